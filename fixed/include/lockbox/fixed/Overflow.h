@@ -1,0 +1,47 @@
+#pragma once
+/// Overflow policy of the fixed-point layer.
+///
+/// Overflow is never undefined behaviour. Every operation that can leave its format's range
+/// (add, sub, mul, div, negate, narrowing, division by zero) takes one of two documented paths:
+/// - checked builds (LOCKBOX_CHECKED): the trap handler is called with the operation and its
+///   operands. The default handler prints them and aborts; tests may install their own.
+/// - default builds: the result saturates to the format's symmetric limit (+-max raw, never
+///   INT_MIN) and a per-thread saturation counter is incremented. The world folds the counter
+///   into its state hash, so lockstep peers see the event, and all peers saturate identically.
+/// See docs/numerics.md.
+
+#include <cstdint>
+
+namespace lockbox {
+
+/// Called on overflow in checked builds. `op` names the operation ("Fixed::operator*", ...),
+/// `a` and `b` are the raw operands (b is 0 for unary operations). Must not return normally
+/// unless the program accepts the saturated result that follows.
+using OverflowTrapHandler = void (*)(const char* op, int64_t a, int64_t b);
+
+/// Replaces the trap handler; returns the previous one. nullptr restores the default
+/// (print to stderr and abort).
+OverflowTrapHandler SetOverflowTrapHandler(OverflowTrapHandler handler) noexcept;
+
+/// Number of saturations on this thread since the last reset. Monotonic; wraps at 2^64.
+uint64_t SaturationCount() noexcept;
+
+/// Resets this thread's saturation counter to zero.
+void ResetSaturationCount() noexcept;
+
+/// True when this build traps on overflow (LOCKBOX_CHECKED).
+constexpr bool kOverflowTraps =
+#ifdef LOCKBOX_CHECKED
+    true;
+#else
+    false;
+#endif
+
+namespace detail {
+/// Slow path for every overflow: traps (checked) or counts (default). Never inlined, so the
+/// fast path stays a compare and a branch. Not constexpr on purpose: an overflow during
+/// constant evaluation is a compile error.
+void OnOverflow(const char* op, int64_t a, int64_t b) noexcept;
+}  // namespace detail
+
+}  // namespace lockbox

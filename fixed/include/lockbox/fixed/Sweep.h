@@ -1,0 +1,45 @@
+#pragma once
+/// b2Sweep (the manual's Math module): the motion of a body's centre of mass over a step, for
+/// continuous collision. Interpolation is c0 + beta*(c - c0), one rounding per component, so
+/// beta = 0 and beta = 1 give c0 and c exactly.
+
+#include "lockbox/fixed/Transform.h"
+
+namespace lockbox {
+
+struct b2Sweep {
+    b2Vec2 localCenter;  ///< centre of mass in body coordinates
+    b2Vec2 c0;           ///< centre at the start of the sweep (world)
+    b2Vec2 c;            ///< centre at the end of the sweep (world)
+    Fixed a0;            ///< angle at the start, radians
+    Fixed a;             ///< angle at the end, radians
+    Fixed alpha0;        ///< fraction of the step already done, in [0, 1)
+
+    /// The body transform at time fraction beta in [0, 1].
+    void GetTransform(b2Transform* xf, Fixed beta) const noexcept {
+        xf->p = c0 + beta * (c - c0);
+        xf->q.Set(a0 + beta * (a - a0));
+        xf->p -= b2Mul(xf->q, localCenter);
+    }
+
+    /// Moves the start of the sweep forward to time fraction alpha (alpha0 <= alpha < 1).
+    constexpr void Advance(Fixed alpha) noexcept {
+        const Fixed beta = (alpha - alpha0) / (Fixed(1) - alpha0);
+        c0 += beta * (c - c0);
+        a0 += beta * (a - a0);
+        alpha0 = alpha;
+    }
+
+    /// Shifts both angles by the same whole number of turns so that a0 lies in [0, 2*pi).
+    /// The shift is a multiple of the Q16.16 2*pi (raw 411775), so a - a0 is unchanged.
+    constexpr void Normalize() noexcept {
+        constexpr int32_t kTwoPiRaw = 411775;
+        int32_t turns = a0.Raw() / kTwoPiRaw;
+        if (a0.Raw() - turns * kTwoPiRaw < 0) --turns;  // floor
+        const Fixed d = Fixed::FromRaw(turns * kTwoPiRaw);
+        a0 -= d;
+        a -= d;
+    }
+};
+
+}  // namespace lockbox

@@ -1,0 +1,202 @@
+#pragma once
+/// lockbox::Wide: Q32.32 in an int64_t, for the quantities NUMERICS shows Q16.16 cannot carry:
+/// mass, rotational inertia and their inverses, effective masses, impulses, spring
+/// coefficients and squared lengths. Range +-2.1e9, resolution 2.3e-10.
+///
+/// Every change between Fixed and Wide is explicit: Wide(Fixed) widens exactly, ToFixed()
+/// rounds (ties away from zero) and saturates. Products use a 64x64->128 multiply (native or
+/// the portable limb version, which gives the same bits).
+
+#include <cstdint>
+#include <limits>
+
+#include "lockbox/fixed/Fixed.h"
+#include "lockbox/fixed/detail/Int128.h"
+
+namespace lockbox {
+
+namespace detail {
+/// Saturating narrow of a 128-bit signed value to a Q32.32 raw.
+constexpr int64_t NarrowWide(const S128& v, const char* op, int64_t a, int64_t b) noexcept {
+    constexpr uint64_t kMax = static_cast<uint64_t>(std::numeric_limits<int64_t>::max());
+    if (v.mag.hi != 0 || v.mag.lo > kMax) [[unlikely]] {
+        OnOverflow(op, a, b);
+        return v.negative ? -static_cast<int64_t>(kMax) : static_cast<int64_t>(kMax);
+    }
+    return v.negative ? -static_cast<int64_t>(v.mag.lo) : static_cast<int64_t>(v.mag.lo);
+}
+
+/// round(a * b / 2^shift), ties away from zero, saturating to +-INT64_MAX.
+constexpr int64_t MulShiftRound64(int64_t a, int64_t b, int shift, const char* op) noexcept {
+#ifdef LOCKBOX_NATIVE_INT128
+    const NativeI128 p = static_cast<NativeI128>(a) * b;
+    const NativeI128 half = static_cast<NativeI128>(1) << (shift - 1);
+    const NativeI128 r = (p + half - (p < 0 ? 1 : 0)) >> shift;
+    constexpr NativeI128 kMax = std::numeric_limits<int64_t>::max();
+    if (r > kMax || r < -kMax) [[unlikely]] {
+        OnOverflow(op, a, b);
+        return r > 0 ? static_cast<int64_t>(kMax) : -static_cast<int64_t>(kMax);
+    }
+    return static_cast<int64_t>(r);
+#else
+    return NarrowWide(ShrRoundS128(MulS64(a, b), shift), op, a, b);
+#endif
+}
+
+/// round(a * 2^shift / b), ties away from zero, saturating; b == 0 reports and saturates.
+constexpr int64_t DivShiftRound64(int64_t a, int64_t b, int shift, const char* op) noexcept {
+    if (b == 0) [[unlikely]] {
+        OnOverflow(op, a, 0);
+        return a == 0 ? 0 : (a > 0 ? std::numeric_limits<int64_t>::max() : -std::numeric_limits<int64_t>::max());
+    }
+    S128 n;
+    n.negative = a < 0;
+    n.mag = ShlU128(U128{0, AbsU64(a)}, shift);
+    S128 d;
+    d.negative = b < 0;
+    d.mag = U128{0, AbsU64(b)};
+    return NarrowWide(DivRoundS128(n, d), op, a, b);
+}
+}  // namespace detail
+
+class Wide {
+public:
+    static constexpr int kFractionBits = 32;
+    static constexpr int64_t kOneRaw = int64_t{1} << kFractionBits;
+    static constexpr int64_t kMaxRaw = std::numeric_limits<int64_t>::max();
+
+    constexpr Wide() noexcept = default;
+
+    /// Exact conversion from an integer in [-2^31+1, 2^31-1]; beyond saturates (or traps).
+    template <FixedIntegral I>
+    constexpr Wide(I v) noexcept : raw_(FromInteger(v)) {}  // NOLINT: implicit, exact
+
+    /// Compile-time literal, correctly rounded.
+    consteval Wide(double v) : raw_(detail::RoundDoubleToRaw(v, kFractionBits)) {}  // NOLINT
+
+    /// Exact widening of a Q16.16 value.
+    constexpr explicit Wide(Fixed f) noexcept : raw_(int64_t{f.Raw()} * (int64_t{1} << 16)) {}
+
+    static constexpr Wide FromRaw(int64_t raw) noexcept {
+        Wide w;
+        w.raw_ = raw;
+        return w;
+    }
+    constexpr int64_t Raw() const noexcept { return raw_; }
+
+    /// num/den correctly rounded; den must not be 0.
+    static constexpr Wide FromRatio(int64_t num, int64_t den) noexcept {
+        return FromRaw(detail::DivShiftRound64(num, den, kFractionBits, "Wide::FromRatio"));
+    }
+
+    /// Narrows to Q16.16, rounding to nearest (ties away from zero) and saturating.
+    constexpr Fixed ToFixed() const noexcept {
+        constexpr int64_t kBiasRoom = int64_t{1} << 62;  // beyond it the result saturates anyway
+        const int64_t r = raw_ >= kBiasRoom ? kBiasRoom : raw_ <= -kBiasRoom ? -kBiasRoom : raw_;
+        return Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(r, 16), "Wide::ToFixed", raw_, 0));
+    }
+
+    /// Parses decimal text exactly. Returns false and leaves `out` unchanged on error.
+    static constexpr bool Parse(std::string_view text, Wide& out, const char** error = nullptr) noexcept {
+        const detail::DecimalResult r = detail::ParseDecimal(text, kFractionBits, kMaxRaw);
+        if (r.error != detail::DecimalError::None) {
+            if (error) *error = detail::DecimalErrorMessage(r.error);
+            return false;
+        }
+        out = FromRaw(r.raw);
+        return true;
+    }
+
+    /// For display only.
+    constexpr double ToDouble() const noexcept { return static_cast<double>(raw_) / static_cast<double>(kOneRaw); }
+
+    constexpr auto operator<=>(const Wide&) const noexcept = default;
+    constexpr bool operator==(const Wide&) const noexcept = default;
+
+    constexpr Wide operator+() const noexcept { return *this; }
+    constexpr Wide operator-() const noexcept {
+        if (raw_ == std::numeric_limits<int64_t>::min()) [[unlikely]] {
+            detail::OnOverflow("Wide::operator- (negate)", raw_, 0);
+            return FromRaw(kMaxRaw);
+        }
+        return FromRaw(-raw_);
+    }
+    friend constexpr Wide operator+(Wide a, Wide b) noexcept {
+        int64_t r = 0;
+        if (__builtin_add_overflow(a.raw_, b.raw_, &r) || r == std::numeric_limits<int64_t>::min()) [[unlikely]] {
+            detail::OnOverflow("Wide::operator+", a.raw_, b.raw_);
+            return FromRaw(a.raw_ > 0 ? kMaxRaw : -kMaxRaw);
+        }
+        return FromRaw(r);
+    }
+    friend constexpr Wide operator-(Wide a, Wide b) noexcept {
+        int64_t r = 0;
+        if (__builtin_sub_overflow(a.raw_, b.raw_, &r) || r == std::numeric_limits<int64_t>::min()) [[unlikely]] {
+            detail::OnOverflow("Wide::operator-", a.raw_, b.raw_);
+            return FromRaw(a.raw_ >= 0 ? kMaxRaw : -kMaxRaw);
+        }
+        return FromRaw(r);
+    }
+    friend constexpr Wide operator*(Wide a, Wide b) noexcept {
+        return FromRaw(detail::MulShiftRound64(a.raw_, b.raw_, kFractionBits, "Wide::operator*"));
+    }
+    friend constexpr Wide operator/(Wide a, Wide b) noexcept {
+        return FromRaw(detail::DivShiftRound64(a.raw_, b.raw_, kFractionBits, "Wide::operator/"));
+    }
+    constexpr Wide& operator+=(Wide b) noexcept { return *this = *this + b; }
+    constexpr Wide& operator-=(Wide b) noexcept { return *this = *this - b; }
+    constexpr Wide& operator*=(Wide b) noexcept { return *this = *this * b; }
+    constexpr Wide& operator/=(Wide b) noexcept { return *this = *this / b; }
+
+private:
+    template <FixedIntegral I>
+    static constexpr int64_t FromInteger(I v) noexcept {
+        constexpr int64_t kLimit = kMaxRaw >> kFractionBits;
+        if constexpr (std::is_signed_v<I>) {
+            if (static_cast<int64_t>(v) > kLimit || static_cast<int64_t>(v) < -kLimit) [[unlikely]] {
+                detail::OnOverflow("Wide(integer)", static_cast<int64_t>(v), 0);
+                return v > 0 ? kMaxRaw : -kMaxRaw;
+            }
+        } else {
+            if (static_cast<uint64_t>(v) > static_cast<uint64_t>(kLimit)) [[unlikely]] {
+                detail::OnOverflow("Wide(integer)", kLimit, 0);
+                return kMaxRaw;
+            }
+        }
+        return static_cast<int64_t>(v) * kOneRaw;
+    }
+
+    int64_t raw_ = 0;
+};
+
+/// Exact product of two Q16.16 values as Q32.32 (no rounding at all).
+constexpr Wide MulWide(Fixed a, Fixed b) noexcept { return Wide::FromRaw(int64_t{a.Raw()} * b.Raw()); }
+
+/// Wide * Fixed -> Wide, one rounding.
+constexpr Wide operator*(Wide a, Fixed b) noexcept {
+    return Wide::FromRaw(detail::MulShiftRound64(a.Raw(), b.Raw(), Fixed::kFractionBits, "Wide*Fixed"));
+}
+constexpr Wide operator*(Fixed a, Wide b) noexcept { return b * a; }
+
+/// Wide * Fixed rounded straight to Fixed (one rounding): impulse * inverse mass -> velocity.
+constexpr Fixed MulToFixed(Wide a, Fixed b) noexcept {
+    const int64_t r = detail::MulShiftRound64(a.Raw(), b.Raw(), Wide::kFractionBits, "MulToFixed");
+    return Fixed::FromRaw(detail::NarrowRaw(r, "MulToFixed", a.Raw(), b.Raw()));
+}
+/// Wide * Wide rounded straight to Fixed (one rounding).
+constexpr Fixed MulToFixed(Wide a, Wide b) noexcept {
+    const int64_t r = detail::MulShiftRound64(a.Raw(), b.Raw(), Wide::kFractionBits + 16, "MulToFixed");
+    return Fixed::FromRaw(detail::NarrowRaw(r, "MulToFixed", a.Raw(), b.Raw()));
+}
+/// Fixed / Wide rounded to Fixed: round(a.raw * 2^32 / b.raw).
+constexpr Fixed DivToFixed(Fixed a, Wide b) noexcept {
+    const int64_t r = detail::DivShiftRound64(a.Raw(), b.Raw(), Wide::kFractionBits, "DivToFixed");
+    return Fixed::FromRaw(detail::NarrowRaw(r, "DivToFixed", a.Raw(), b.Raw()));
+}
+
+constexpr Wide Abs(Wide a) noexcept { return a < Wide() ? -a : a; }
+constexpr Wide Min(Wide a, Wide b) noexcept { return b < a ? b : a; }
+constexpr Wide Max(Wide a, Wide b) noexcept { return a < b ? b : a; }
+constexpr Wide Clamp(Wide a, Wide lo, Wide hi) noexcept { return Max(lo, Min(a, hi)); }
+
+}  // namespace lockbox

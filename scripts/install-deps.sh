@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# Install the Debian packages lockbox needs to build, test, benchmark and run its demo.
+#
+# Usage: scripts/install-deps.sh [--cross]
+#   --cross  also install the i686 / aarch64 / s390x cross toolchains and qemu-user, used to
+#            check that a step produces the same bits on other architectures.
+#
+# Does nothing (one line of output, no apt-get update) when everything is already installed.
+set -euo pipefail
+
+# Always installed. One package per line, with what needs it.
+PACKAGES=(
+    build-essential     # g++ 12, make, libc headers: the default toolchain
+    cmake               # build system (CMakePresets.json needs >= 3.25)
+    ninja-build         # generator used by every preset
+    clang               # second compiler, to check the code builds and hashes the same with it
+    googletest          # GoogleTest / GoogleMock sources (tests/)
+    libgtest-dev        # GTest::gtest, GTest::gtest_main (tests/)
+    libgmock-dev        # GTest::gmock (tests/)
+    libbenchmark-dev    # benchmark::benchmark (bench/)
+    libxxhash-dev       # lockbox_dep::xxhash: state hashing in core/
+    libcereal-dev       # lockbox_dep::cereal: snapshot serialization in core/
+    libzstd-dev         # lockbox_dep::zstd: replay file compression
+    libenet-dev         # lockbox_dep::enet: UDP transport for netcode samples
+    libbox2d-dev        # lockbox_dep::box2d_float: float Box2D, differential tests and benchmarks only
+    python3-matplotlib  # plotting benchmark / drift results
+    valgrind            # memcheck and callgrind instruction counts
+)
+
+# Installed with --cross: other architectures for cross-machine determinism checks.
+CROSS_PACKAGES=(
+    g++-i686-linux-gnu     # 32-bit x86 cross compiler (links -static, runs natively)
+    g++-aarch64-linux-gnu  # 64-bit ARM cross compiler (run with qemu-aarch64 -L /usr/aarch64-linux-gnu)
+    g++-s390x-linux-gnu    # big-endian s390x cross compiler (run with qemu-s390x -L /usr/s390x-linux-gnu)
+    qemu-user              # qemu-aarch64, qemu-s390x user-mode emulators
+)
+
+want_cross=0
+for arg in "$@"; do
+    case "$arg" in
+        --cross) want_cross=1 ;;
+        -h|--help)
+            sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'
+            exit 0
+            ;;
+        *)
+            echo "install-deps.sh: unknown argument '$arg' (expected --cross)" >&2
+            exit 2
+            ;;
+    esac
+done
+
+wanted=("${PACKAGES[@]}")
+if [ "$want_cross" -eq 1 ]; then
+    wanted+=("${CROSS_PACKAGES[@]}")
+fi
+
+missing=()
+for pkg in "${wanted[@]}"; do
+    status=$(dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null || true)
+    if [ "$status" != "install ok installed" ]; then
+        missing+=("$pkg")
+    fi
+done
+
+if [ "${#missing[@]}" -eq 0 ]; then
+    echo "install-deps: all ${#wanted[@]} packages already installed"
+    exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+
+if [ "$(id -u)" -eq 0 ]; then
+    SUDO=()
+elif command -v sudo >/dev/null 2>&1; then
+    SUDO=(sudo)
+else
+    echo "install-deps: missing packages (${missing[*]}) and not root, and sudo is not available." >&2
+    echo "install-deps: run as root: apt-get install ${missing[*]}" >&2
+    exit 1
+fi
+
+export DEBIAN_FRONTEND=noninteractive
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y -qq --no-install-recommends "${missing[@]}"
