@@ -3,8 +3,8 @@
 // Internal formats: "Qn" means value * 2^n. Polynomials run in unsigned Q32 on non-negative
 // arguments (signs are restored afterwards), with every product rounded to nearest, so the
 // internal error stays around 2^-32 and the final rounding to Q16.16 is almost always correct.
-// Taylor coefficients are round(2^32 / k!) and round(2^32 / k) (generated with 300-bit
-// arithmetic); the truncation error of each series is below 2^-36 on its interval.
+// Polynomial coefficients come from Chebyshev fits (mpmath, 40 digits) rounded to Q32; the
+// approximation error of each fit is below 2^-36 on its interval.
 #include "lockbox/fixed/detail/Trig.h"
 
 #include <bit>
@@ -18,6 +18,8 @@ constexpr uint64_t kHalfQ32 = uint64_t{1} << 31;
 // Round-to-nearest Q32 x Q32 -> Q32 product of non-negative values below 2^32 (no overflow:
 // (2^32 - 1)^2 + 2^31 < 2^64).
 constexpr uint64_t MulQ32(uint64_t a, uint64_t b) noexcept { return (a * b + kHalfQ32) >> 32; }
+// Truncating variant for the inner Horner steps, whose error is damped by later factors of z.
+constexpr uint64_t MulQ32Floor(uint64_t a, uint64_t b) noexcept { return (a * b) >> 32; }
 
 // ---- sin / cos -------------------------------------------------------------------------------
 
@@ -27,19 +29,19 @@ constexpr uint64_t kTwoOverPiQ32 = 2734261102u;
 constexpr int64_t kHalfPiQ47 = 221069929750889;
 constexpr int64_t kHalfPiLoQ79 = -1036729146;
 
-// sin r = r - r^3 (1/3! - z/5! + z^2/7! - z^3/9! + z^4/11!), z = r^2, |r| <= pi/4 + 2^-30.
-constexpr uint64_t kSin3 = 715827883;  // 2^32 / 3!
-constexpr uint64_t kSin5 = 35791394;
-constexpr uint64_t kSin7 = 852176;
-constexpr uint64_t kSin9 = 11836;
-constexpr uint64_t kSin11 = 108;
-// cos r = 1 - z (1/2! - z/4! + z^2/6! - z^3/8! + z^4/10! - z^5/12!).
-constexpr uint64_t kCos2 = 2147483648;  // 2^32 / 2!
-constexpr uint64_t kCos4 = 178956971;
-constexpr uint64_t kCos6 = 5965232;
-constexpr uint64_t kCos8 = 106522;
-constexpr uint64_t kCos10 = 1184;
-constexpr uint64_t kCos12 = 9;
+// sin r = r - r^3 P(z), cos r = 1 - z Q(z), z = r^2, |r| <= pi/4 + 2^-20. P and Q are
+// Chebyshev (near-minimax) fits of (r - sin r) / r^3 and (1 - cos r) / z on z in [0, (pi/4)^2]
+// (mpmath chebyfit, 40 digits), coefficients rounded to Q32. Approximation error: sin 2^-36.1,
+// cos 2^-42.0 (absolute, radians), far below the Q32 rounding of the evaluation.
+constexpr uint64_t kSinP0 = 715827883;  // ~1/3!
+constexpr uint64_t kSinP1 = 35791388;   // ~1/5!
+constexpr uint64_t kSinP2 = 852125;     // ~1/7!
+constexpr uint64_t kSinP3 = 11704;      // ~1/9!
+constexpr uint64_t kCosQ0 = 2147483648; // 1/2!
+constexpr uint64_t kCosQ1 = 178956971;  // ~1/4!
+constexpr uint64_t kCosQ2 = 5965231;    // ~1/6!
+constexpr uint64_t kCosQ3 = 106515;     // ~1/8!
+constexpr uint64_t kCosQ4 = 1170;       // ~1/10!
 
 // ---- atan2 -----------------------------------------------------------------------------------
 
@@ -59,13 +61,12 @@ constexpr AtanSegment kAtanSegments[3] = {
 };
 constexpr int64_t kHalfPiQ40 = 1727108826179;
 constexpr int64_t kPiQ40 = 3454217652358;
-// atan u = u - u^3 (1/3 - z/5 + z^2/7 - z^3/9 + z^4/11 - z^5/13), z = u^2, |u| <= tan(pi/16).
-constexpr uint64_t kAtan3 = 1431655765;  // 2^32 / 3
-constexpr uint64_t kAtan5 = 858993459;
-constexpr uint64_t kAtan7 = 613566757;
-constexpr uint64_t kAtan9 = 477218588;
-constexpr uint64_t kAtan11 = 390451572;
-constexpr uint64_t kAtan13 = 330382100;
+// atan u = u - u^3 A(z), z = u^2, |u| <= tan(pi/16) (+ a hair). A is a Chebyshev fit of
+// (u - atan u) / u^3 on z in [0, tan^2(pi/16)], coefficients in Q32; error 2^-36.2.
+constexpr uint64_t kAtanA0 = 1431655758;  // ~1/3
+constexpr uint64_t kAtanA1 = 858987794;   // ~1/5
+constexpr uint64_t kAtanA2 = 612846756;   // ~1/7
+constexpr uint64_t kAtanA3 = 447688019;   // ~1/9
 
 // ---- wrap ------------------------------------------------------------------------------------
 
@@ -97,38 +98,40 @@ void SinCosRaw(int32_t angle, int32_t* s, int32_t* c) noexcept {
   const uint64_t z = MulQ32(r, r);
 
   // sin |r|: the linear term stays in Q47, only the small r^3 term carries the Q32 error.
-  uint64_t p = kSin11;
-  p = kSin9 - MulQ32(z, p);
-  p = kSin7 - MulQ32(z, p);
-  p = kSin5 - MulQ32(z, p);
-  p = kSin3 - MulQ32(z, p);
+  uint64_t p = kSinP3;
+  p = kSinP2 - MulQ32Floor(z, p);
+  p = kSinP1 - MulQ32Floor(z, p);
+  p = kSinP0 - MulQ32(z, p);
   const uint64_t r3p = MulQ32(MulQ32(r, z), p);  // r^3 P(z) in Q32, < 0.09
   const uint64_t sin47 = ar47 - (r3p << 15);
-  int32_t sin_raw = static_cast<int32_t>((sin47 + (uint64_t{1} << 30)) >> 31);
+  const int32_t sin_raw = static_cast<int32_t>((sin47 + (uint64_t{1} << 30)) >> 31);
 
   // cos |r| in Q32 (value in [0.7, 1], so it needs 33 bits: fine in uint64).
-  uint64_t q = kCos12;
-  q = kCos10 - MulQ32(z, q);
-  q = kCos8 - MulQ32(z, q);
-  q = kCos6 - MulQ32(z, q);
-  q = kCos4 - MulQ32(z, q);
-  q = kCos2 - MulQ32(z, q);
+  uint64_t q = kCosQ4;
+  q = kCosQ3 - MulQ32Floor(z, q);
+  q = kCosQ2 - MulQ32Floor(z, q);
+  q = kCosQ1 - MulQ32Floor(z, q);
+  q = kCosQ0 - MulQ32(z, q);
   const uint64_t cos32 = (uint64_t{1} << 32) - MulQ32(z, q);
-  int32_t cos_raw = static_cast<int32_t>((cos32 + (uint64_t{1} << 15)) >> 16);
+  const int32_t cos_raw = static_cast<int32_t>((cos32 + (uint64_t{1} << 15)) >> 16);
 
-  // Undo the reduction: sin(k pi/2 + r), cos(k pi/2 + r), then the sign of the angle.
-  if (r_negative) sin_raw = -sin_raw;
-  if (k & 1) {
-    const int32_t t = sin_raw;
-    sin_raw = cos_raw;
-    cos_raw = -t;
-  }
-  if (k & 2) {
-    sin_raw = -sin_raw;
-    cos_raw = -cos_raw;
-  }
-  *s = negative ? -sin_raw : sin_raw;
-  *c = cos_raw;
+  // Undo the reduction, branch-free (quadrants are unpredictable). A negative angle is
+  // -(k pi/2 + r) = (-k) pi/2 + (-r): fold its sign into k and r. Then, with sr = +-sin|r|
+  // (the sign of the effective r) and C = cos|r|, k pi/2 + r maps (sr, C) to
+  //   k = 0: (sr, C),  1: (C, -sr),  2: (-sr, -C),  3: (-C, sr)   as (sin, cos).
+  const int32_t neg_mask = negative ? -1 : 0;
+  const uint32_t kq = (static_cast<uint32_t>(k) ^ static_cast<uint32_t>(neg_mask)) -
+                      static_cast<uint32_t>(neg_mask);  // -k mod 2^32 when negative
+  const int32_t r_mask = (r_negative ? -1 : 0) ^ neg_mask;
+  const int32_t sr = (sin_raw ^ r_mask) - r_mask;
+  const bool odd = (kq & 1u) != 0;
+  const int32_t a = odd ? cos_raw : sr;
+  const int32_t b = odd ? sr : cos_raw;
+  // (v ^ m) - m negates v for m = -1 and keeps it for m = 0 (|v| <= 65536, no overflow).
+  const int32_t sin_mask = -static_cast<int32_t>((kq >> 1) & 1u);
+  const int32_t cos_mask = -static_cast<int32_t>(((kq + 1u) >> 1) & 1u);
+  *s = (a ^ sin_mask) - sin_mask;
+  *c = (b ^ cos_mask) - cos_mask;
 }
 
 int32_t Atan2Raw(int32_t y, int32_t x) noexcept {
@@ -160,12 +163,10 @@ int32_t Atan2Raw(int32_t y, int32_t x) noexcept {
 
   // atan |u| in Q32.
   const uint64_t z = MulQ32(u, u);
-  uint64_t p = kAtan13;
-  p = kAtan11 - MulQ32(z, p);
-  p = kAtan9 - MulQ32(z, p);
-  p = kAtan7 - MulQ32(z, p);
-  p = kAtan5 - MulQ32(z, p);
-  p = kAtan3 - MulQ32(z, p);
+  uint64_t p = kAtanA3;
+  p = kAtanA2 - MulQ32Floor(z, p);
+  p = kAtanA1 - MulQ32Floor(z, p);
+  p = kAtanA0 - MulQ32(z, p);
   const int64_t atan_u = static_cast<int64_t>(u - MulQ32(MulQ32(u, z), p));
 
   // Assemble in Q40: theta in [0, pi/4], then the octant, then the half plane.

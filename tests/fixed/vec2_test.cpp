@@ -1,0 +1,120 @@
+// b2Vec2: exact dot/cross, correctly rounded Length, precise Normalize over 0.001 m .. 30,000 m
+// (NUMERICS Table 9).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "FixedPrint.h"
+#include "lockbox/fixed/Vec2.h"
+
+using lockbox::b2Vec2;
+using lockbox::Fixed;
+
+namespace {
+long double ExactLength(const b2Vec2& v) {
+    const long double x = v.x.Raw(), y = v.y.Raw();
+    return std::sqrt(x * x + y * y);  // in raw units
+}
+}  // namespace
+
+TEST(Vec2, DotAndCrossAreExactThenRoundedOnce) {
+    std::mt19937 rng(11);
+    for (int i = 0; i < 100000; ++i) {
+        const b2Vec2 a(Fixed::FromRaw(static_cast<int32_t>(rng()) / 4), Fixed::FromRaw(static_cast<int32_t>(rng()) / 4));
+        const b2Vec2 b(Fixed::FromRaw(static_cast<int32_t>(rng()) / 4), Fixed::FromRaw(static_cast<int32_t>(rng()) / 4));
+        const int64_t dot = int64_t{a.x.Raw()} * b.x.Raw() + int64_t{a.y.Raw()} * b.y.Raw();
+        const int64_t cross = int64_t{a.x.Raw()} * b.y.Raw() - int64_t{a.y.Raw()} * b.x.Raw();
+        ASSERT_EQ(lockbox::b2DotWide(a, b).Raw(), dot);
+        ASSERT_EQ(lockbox::b2CrossWide(a, b).Raw(), cross);
+        // Rounded once: within half an ULP of the exact value (unless saturated).
+        const long double d = static_cast<long double>(dot) / 65536.0L;
+        if (std::fabs(d) < 2.1e9L) {
+            ASSERT_LE(std::fabs(lockbox::b2Dot(a, b).Raw() - d), 0.5L);
+        }
+    }
+}
+
+TEST(Vec2, LengthIsCorrectlyRoundedEverywhere) {
+    std::mt19937_64 rng(12);
+    for (int i = 0; i < 200000; ++i) {
+        const int bits = static_cast<int>(rng() % 31);
+        const int32_t x = static_cast<int32_t>(rng() % (uint64_t{1} << bits)) * ((rng() & 1) ? 1 : -1);
+        const int32_t y = static_cast<int32_t>(rng() % (uint64_t{1} << bits)) * ((rng() & 1) ? 1 : -1);
+        const b2Vec2 v(Fixed::FromRaw(x), Fixed::FromRaw(y));
+        const long double exact = ExactLength(v);
+        if (exact > 2147483647.0L) continue;
+        ASSERT_LE(std::fabs(v.Length().Raw() - exact), 0.5L) << x << "," << y;
+    }
+    // 200 m: beyond where Q16.16 squared lengths overflow (181 m), still exact.
+    EXPECT_EQ(b2Vec2(Fixed(200), Fixed(0)).Length(), Fixed(200));
+    EXPECT_EQ(b2Vec2(Fixed(30000), Fixed(0)).Length(), Fixed(30000));
+    EXPECT_EQ(b2Vec2(Fixed(3), Fixed(4)).Length(), Fixed(5));
+    EXPECT_EQ(b2Vec2().Length(), Fixed());
+}
+
+TEST(Vec2, NormalizeKeepsDirectionFromAMillimetreTo30km) {
+    // Targets (NUMERICS Table 9): |n| - 1 within 2e-3 at 0.005 m and within 2 ULP at >= 1 m.
+    std::mt19937_64 rng(13);
+    const double lengths[] = {0.001, 0.005, 0.01, 0.05, 1.0, 10.0, 100.0, 1000.0, 30000.0};
+    for (double L : lengths) {
+        long double worstUnit = 0, worstAngle = 0;
+        for (int i = 0; i < 20000; ++i) {
+            const double angle = static_cast<double>(rng() % 1000000) * 6.283185307179586 / 1e6;
+            b2Vec2 v(Fixed::FromDoubleNondeterministic(L * std::cos(angle)),
+                     Fixed::FromDoubleNondeterministic(L * std::sin(angle)));
+            if (v.x == Fixed() && v.y == Fixed()) continue;
+            const long double ex = v.x.Raw(), ey = v.y.Raw(), el = std::sqrt(ex * ex + ey * ey);
+            b2Vec2 n = v;
+            const Fixed len = n.Normalize();
+            EXPECT_LE(std::fabs(len.Raw() - el), 0.5L);
+            // Each component is within half an ULP (plus the tiny error of the scaled root).
+            const long double nx = ex / el * 65536.0L, ny = ey / el * 65536.0L;
+            worstAngle = std::max(worstAngle, std::max(std::fabs(n.x.Raw() - nx), std::fabs(n.y.Raw() - ny)));
+            const long double unit = std::sqrt(static_cast<long double>(n.x.Raw()) * n.x.Raw() +
+                                               static_cast<long double>(n.y.Raw()) * n.y.Raw()) / 65536.0L;
+            worstUnit = std::max(worstUnit, std::fabs(unit - 1.0L));
+        }
+        EXPECT_LE(worstAngle, 0.51L) << "L = " << L;
+        EXPECT_LE(worstUnit, 2.0L / 65536.0L) << "L = " << L;
+    }
+}
+
+TEST(Vec2, NormalizeOfZeroAndTinyVectors) {
+    b2Vec2 zero;
+    EXPECT_EQ(zero.Normalize(), Fixed());
+    EXPECT_EQ(zero, b2Vec2());
+    b2Vec2 ulp(Fixed::FromRaw(1), Fixed());
+    EXPECT_EQ(ulp.Normalize(), Fixed::FromRaw(1));
+    EXPECT_EQ(ulp, b2Vec2(Fixed(1), Fixed()));
+    b2Vec2 diag(Fixed::FromRaw(-1), Fixed::FromRaw(1));
+    diag.Normalize();
+    EXPECT_EQ(diag.x.Raw(), -46341);  // 65536 / sqrt(2) = 46340.95
+    EXPECT_EQ(diag.y.Raw(), 46341);
+}
+
+TEST(Vec2, HelpersMatchTheManual) {
+    const b2Vec2 a(Fixed(1), Fixed(-2)), b(Fixed(-3), Fixed(4));
+    EXPECT_EQ(a + b, b2Vec2(Fixed(-2), Fixed(2)));
+    EXPECT_EQ(a - b, b2Vec2(Fixed(4), Fixed(-6)));
+    EXPECT_EQ(Fixed(2) * a, b2Vec2(Fixed(2), Fixed(-4)));
+    EXPECT_EQ(-a, b2Vec2(Fixed(-1), Fixed(2)));
+    EXPECT_EQ(lockbox::b2Cross(a, Fixed(2)), b2Vec2(Fixed(-4), Fixed(-2)));
+    EXPECT_EQ(lockbox::b2Cross(Fixed(2), a), b2Vec2(Fixed(4), Fixed(2)));
+    EXPECT_EQ(lockbox::b2Abs(a), b2Vec2(Fixed(1), Fixed(2)));
+    EXPECT_EQ(lockbox::b2Min(a, b), b2Vec2(Fixed(-3), Fixed(-2)));
+    EXPECT_EQ(lockbox::b2Max(a, b), b2Vec2(Fixed(1), Fixed(4)));
+    EXPECT_EQ(lockbox::b2Clamp(b, a, a), a);
+    EXPECT_EQ(lockbox::b2Distance(b2Vec2(), b2Vec2(Fixed(3), Fixed(4))), Fixed(5));
+    EXPECT_EQ(lockbox::b2DistanceSquared(b2Vec2(), b2Vec2(Fixed(3), Fixed(4))), Fixed(25));
+    EXPECT_EQ(lockbox::b2DistanceSquaredWide(b2Vec2(), b2Vec2(Fixed(300), Fixed(400))).ToDouble(), 250000.0);
+    EXPECT_EQ(a.Skew(), b2Vec2(Fixed(2), Fixed(1)));
+    EXPECT_EQ(a(0), Fixed(1));
+    EXPECT_EQ(a(1), Fixed(-2));
+    b2Vec2 c = a;
+    c += b;
+    c -= a;
+    c *= Fixed(0.5);
+    EXPECT_EQ(c, b2Vec2(Fixed(-1.5), Fixed(2)));
+    EXPECT_TRUE(c.IsValid());
+}
