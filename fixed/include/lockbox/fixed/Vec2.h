@@ -6,6 +6,7 @@
 /// sum. Length is the correctly rounded square root of that exact sum, so it neither overflows
 /// nor loses precision from 1 ULP to the edge of the range.
 
+#include <bit>
 #include <cstdint>
 
 #include "lockbox/fixed/Fixed.h"
@@ -91,23 +92,23 @@ constexpr Fixed b2Vec2::Normalize() noexcept {
     const Fixed length = Fixed::FromRaw(static_cast<int32_t>(Clamp32(detail::IsqrtRound64(sum))));
     // Scale the exact sum up to [2^60, 2^62) by an even shift 2k, so that its square root has
     // 30-31 significant bits; the components scale by 2^k and stay below 2^31.
-    int k = 0;
-    uint64_t scaled = sum;
-    while (scaled < (uint64_t{1} << 60)) {
-        scaled <<= 2;
-        ++k;
-    }
-    if (scaled >= (uint64_t{1} << 62)) {
+    const int k = (std::countl_zero(sum) - 2) / 2;
+    if (k < 0) {
         // Only for |v| close to the range limit: plain division is already exact enough.
         x = Fixed::FromRaw(Fixed::DivRaw(int64_t{x.Raw()} * Fixed::kOneRaw, length.Raw(), "Normalize", x.Raw()));
         y = Fixed::FromRaw(Fixed::DivRaw(int64_t{y.Raw()} * Fixed::kOneRaw, length.Raw(), "Normalize", y.Raw()));
         return length;
     }
-    const int64_t rootScaled = static_cast<int64_t>(detail::IsqrtRound64(scaled));
-    const int64_t xs = int64_t{x.Raw()} * (int64_t{1} << k);
-    const int64_t ys = int64_t{y.Raw()} * (int64_t{1} << k);
-    x = Fixed::FromRaw(Fixed::DivRaw(xs * Fixed::kOneRaw, rootScaled, "Normalize", x.Raw()));
-    y = Fixed::FromRaw(Fixed::DivRaw(ys * Fixed::kOneRaw, rootScaled, "Normalize", y.Raw()));
+    const uint64_t rootScaled = detail::IsqrtRound64(sum << (2 * k));  // in [2^30, 2^31]
+    // One division: a 32-bit reciprocal 2^62 / root, then x*2^16/root = (xs * recip) >> 46.
+    // The reciprocal's truncation costs < 2^-30 relative, far below the final rounding.
+    const int64_t recip = static_cast<int64_t>((uint64_t{1} << 62) / rootScaled);
+    auto scale = [&](Fixed c) {
+        const int64_t cs = int64_t{c.Raw()} * (int64_t{1} << k);  // |cs| <= root < 2^31
+        return Fixed::FromRaw(static_cast<int32_t>(detail::ShiftRound(cs * recip, 46)));
+    };
+    x = scale(x);
+    y = scale(y);
     return length;
 }
 
