@@ -145,8 +145,10 @@ function(lockbox_find_box2d_float)
     if(NOT LOCKBOX_BOX2D_FLOAT_INCLUDE_DIR)
         _lockbox_missing("Box2D (float) headers" libbox2d-dev)
     endif()
+    # compat/box2d_float/Box2DFloat.h: includes Box2D and removes its constant macros, which
+    # share names with lockbox's constants.
     target_include_directories(lockbox_dep::box2d_float INTERFACE
-        "${LOCKBOX_BOX2D_FLOAT_INCLUDE_DIR}")
+        "${LOCKBOX_BOX2D_FLOAT_INCLUDE_DIR}" "${PROJECT_SOURCE_DIR}/compat/box2d_float")
 endfunction()
 
 # GoogleTest and GoogleMock (libgtest-dev, libgmock-dev). A macro so GTest_FOUND and the

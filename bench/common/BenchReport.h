@@ -1,0 +1,99 @@
+#pragma once
+/// Printing and file helpers shared by lockbox_bench and lockbox_accuracy: the contracted run
+/// line, the profile block, the machine name for bench/results/<machine>/, and splicing a
+/// generated block into a Markdown file between markers.
+
+#include <cinttypes>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "BenchRunner.h"
+
+namespace lockbox::scenes {
+
+/// The contracted one-line summary of a run.
+inline void PrintLine(const RunResult& r) {
+    std::printf("scene=%s engine=%s steps=%d ms_per_step=%.4f p95_ms=%.4f bodies=%d awake=%d "
+                "contacts=%d hash=0x%016" PRIx64 "\n",
+                r.scene.c_str(), r.engine.c_str(), r.settings.steps, r.msPerStep, r.p95Ms, r.bodies,
+                r.awake, r.contacts, r.hash);
+}
+
+/// The per-stage profile: wall-clock stages (ms per step) then work counters (per step).
+inline void PrintProfile(const RunResult& r) {
+    std::printf("  profile (per step, median over repeats):");
+    for (const auto& [k, v] : r.profile)
+        if (k.size() > 3 && k.compare(k.size() - 3, 3, "_ms") == 0) std::printf(" %s=%.4f", k.c_str(), v);
+    std::printf("\n");
+    bool any = false;
+    for (const auto& [k, v] : r.profile) {
+        if (k.rfind("n_", 0) != 0) continue;
+        if (!any) std::printf("  work (per step):");
+        any = true;
+        std::printf(" %s=%.1f", k.c_str() + 2, v);
+    }
+    if (any) std::printf("\n");
+}
+
+/// A short machine name: the CPU model from /proc/cpuinfo, slugified, plus the core count
+/// (e.g. "amd-epyc-7b13-2c").
+inline std::string MachineName() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line, model = "unknown-cpu";
+    while (std::getline(in, line)) {
+        if (line.rfind("model name", 0) == 0) {
+            const auto colon = line.find(':');
+            if (colon != std::string::npos) model = line.substr(colon + 1);
+            break;
+        }
+    }
+    std::string slug;
+    for (char c : model) {
+        const bool alnum = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+        const bool upper = c >= 'A' && c <= 'Z';
+        if (alnum) slug += c;
+        else if (upper) slug += static_cast<char>(c - 'A' + 'a');
+        else if (!slug.empty() && slug.back() != '-') slug += '-';
+        if (c == '@') break;
+    }
+    for (const char* noise : {"-processor", "-cpu", "(r)", "(tm)"}) {
+        const auto p = slug.find(noise);
+        if (p != std::string::npos) slug.erase(p, std::string(noise).size());
+    }
+    while (!slug.empty() && slug.back() == '-') slug.pop_back();
+    const unsigned cores = std::thread::hardware_concurrency();
+    return slug + "-" + std::to_string(cores) + "c";
+}
+
+/// Replaces the text between `<!-- NAME:begin -->` and `<!-- NAME:end -->` in a Markdown file
+/// with block (appending the markers, or creating the file with `title`, when absent).
+inline bool SpliceMarkdown(const std::string& path, const std::string& name, const std::string& block,
+                           const std::string& title) {
+    std::string text;
+    {
+        std::ifstream in(path);
+        if (in) {
+            std::stringstream ss;
+            ss << in.rdbuf();
+            text = ss.str();
+        } else {
+            text = "# " + title + "\n\n";
+        }
+    }
+    const std::string begin = "<!-- " + name + ":begin -->", end = "<!-- " + name + ":end -->";
+    const auto b = text.find(begin), e = text.find(end);
+    const std::string wrapped = begin + "\n" + block + end;
+    if (b != std::string::npos && e != std::string::npos && e > b) {
+        text.replace(b, e + end.size() - b, wrapped);
+    } else {
+        text += "\n" + wrapped + "\n";
+    }
+    std::ofstream out(path);
+    out << text;
+    return static_cast<bool>(out);
+}
+
+}  // namespace lockbox::scenes

@@ -1,0 +1,148 @@
+#pragma once
+/// Runs one scene on one engine and measures it: wall time per world Step (only the Step call
+/// is timed; scene hooks and metrics run outside the timed region), world counts, the lockbox
+/// state hash, and the per-stage profile averaged per step. Shared by lockbox_bench and
+/// lockbox_accuracy. Include after the lockbox headers (Box2DFloatEngine.h takes care of it).
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "Box2DFloatEngine.h"
+
+namespace lockbox::scenes {
+
+/// Figures of one run.
+struct RunResult {
+    std::string scene;                 ///< scene name
+    std::string engine;                ///< "lockbox" or "box2d-float"
+    Resolved settings{0, 0, 0, 0};     ///< steps, iterations, Hz actually used
+    double msPerStep = 0;              ///< mean wall time of one Step, ms
+    double p95Ms = 0;                  ///< 95th percentile of the Step times, ms
+    int bodies = 0, awake = 0, contacts = 0;  ///< world counts after the last step
+    uint64_t hash = 0;                 ///< HashWorld for lockbox, 0 for float
+    std::vector<std::pair<std::string, double>> profile;  ///< per-step averages (ms or counts)
+    std::vector<Metric> metrics;       ///< scene metrics (when tracked)
+};
+
+/// Per-step profile figures of lockbox: wall-clock stages in ms and work counters.
+inline void AddProfile(LockboxEngine& e, std::map<std::string, double>& acc) {
+    const b2Profile& p = e.world().GetProfile();
+    auto ms = [](int64_t ns) { return static_cast<double>(ns) * 1e-6; };
+    acc["step_ms"] += ms(p.stepNs);
+    acc["collide_ms"] += ms(p.collideNs);
+    acc["solve_ms"] += ms(p.solveNs);
+    acc["solveInit_ms"] += ms(p.solveInitNs);
+    acc["solveVelocity_ms"] += ms(p.solveVelocityNs);
+    acc["solvePosition_ms"] += ms(p.solvePositionNs);
+    acc["broadphase_ms"] += ms(p.broadphaseNs);
+    acc["solveTOI_ms"] += ms(p.solveTOINs);
+    acc["n_pairsFound"] += p.pairsFound;
+    acc["n_contactsCreated"] += p.contactsCreated;
+    acc["n_contactsUpdated"] += p.contactsUpdated;
+    acc["n_manifolds"] += p.manifoldsEvaluated;
+    acc["n_islands"] += p.islandsSolved;
+    acc["n_bodiesIntegrated"] += p.bodiesIntegrated;
+    acc["n_contactConstraints"] += p.contactConstraints;
+    acc["n_jointConstraints"] += p.jointConstraints;
+    acc["n_velocityIterations"] += p.velocityIterations;
+    acc["n_positionIterations"] += p.positionIterations;
+    acc["n_toiCandidates"] += p.toiCandidates;
+    acc["n_toiCalls"] += p.toiCalls;
+    acc["n_toiSubSteps"] += p.toiSubSteps;
+    acc["n_listenerCallbacks"] += p.listenerCallbacks;
+}
+
+/// Per-step profile figures of float Box2D 2.4.1 (its b2Profile is in ms).
+inline void AddProfile(Box2DFloatEngine& e, std::map<std::string, double>& acc) {
+    const ::b2Profile& p = e.world().GetProfile();
+    acc["step_ms"] += p.step;
+    acc["collide_ms"] += p.collide;
+    acc["solve_ms"] += p.solve;
+    acc["solveInit_ms"] += p.solveInit;
+    acc["solveVelocity_ms"] += p.solveVelocity;
+    acc["solvePosition_ms"] += p.solvePosition;
+    acc["broadphase_ms"] += p.broadphase;
+    acc["solveTOI_ms"] += p.solveTOI;
+}
+
+/// The lockbox state hash (0 for float).
+inline uint64_t EngineHash(LockboxEngine& e) { return HashWorld(e.world()); }
+inline uint64_t EngineHash(Box2DFloatEngine&) { return 0; }
+
+/// Runs the named scene once on engine E; false when the scene is unknown or unavailable.
+template <class E>
+bool RunOnce(std::string_view name, const RunSettings& s, RunResult& out) {
+    auto scene = MakeScene<E>(name);
+    if (!scene) return false;
+    E e;
+    const Resolved r = Resolve(scene->Info(), s);
+    ConfigureWorld(e, scene->Info(), s);
+    scene->Prepare(r);
+    scene->Build(e);
+    std::vector<double> times;
+    times.reserve(static_cast<size_t>(r.steps));
+    std::map<std::string, double> acc;
+    for (int i = 0; i < r.steps; ++i) {
+        scene->BeforeStep(e, i);
+        const auto t0 = std::chrono::steady_clock::now();
+        e.Step(r.hz, r.velocityIterations, r.positionIterations);
+        const auto t1 = std::chrono::steady_clock::now();
+        times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+        AddProfile(e, acc);
+        if (s.trackMetrics) scene->AfterStep(e, i);
+    }
+    out = RunResult{};
+    out.scene = std::string(name);
+    out.engine = E::kName;
+    out.settings = r;
+    double total = 0;
+    for (double t : times) total += t;
+    out.msPerStep = r.steps > 0 ? total / r.steps : 0;
+    if (!times.empty()) {
+        std::vector<double> sorted = times;
+        std::sort(sorted.begin(), sorted.end());
+        out.p95Ms = sorted[std::min(sorted.size() - 1, (sorted.size() * 95) / 100)];
+    }
+    out.bodies = e.world().GetBodyCount();
+    for (auto* b = e.world().GetBodyList(); b; b = b->GetNext())
+        if (b->IsAwake() && b->GetType() != E::kStatic) ++out.awake;
+    out.contacts = e.world().GetContactCount();
+    out.hash = EngineHash(e);
+    for (const auto& [k, v] : acc) out.profile.emplace_back(k, r.steps > 0 ? v / r.steps : 0);
+    scene->Report(e, out.metrics);
+    return true;
+}
+
+/// Median of a list (0 when empty).
+inline double Median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// The median over repeats of every timing and profile figure; counts and hash from the
+/// first run (they are identical across repeats for lockbox by construction).
+inline RunResult MedianOf(const std::vector<RunResult>& runs) {
+    RunResult m = runs.front();
+    std::vector<double> v;
+    for (const auto& r : runs) v.push_back(r.msPerStep);
+    m.msPerStep = Median(v);
+    v.clear();
+    for (const auto& r : runs) v.push_back(r.p95Ms);
+    m.p95Ms = Median(v);
+    for (size_t k = 0; k < m.profile.size(); ++k) {
+        v.clear();
+        for (const auto& r : runs)
+            if (k < r.profile.size()) v.push_back(r.profile[k].second);
+        m.profile[k].second = Median(v);
+    }
+    return m;
+}
+
+}  // namespace lockbox::scenes

@@ -1,0 +1,127 @@
+// lockbox_bench: runs scenes on lockbox and on float Box2D 2.4.1 side by side.
+//
+//   lockbox_bench --scene NAME [--steps N] [--velocity-iterations V] [--position-iterations P]
+//                 [--hz H] [--engine lockbox|box2d-float] [--repeat R] [--metrics]
+//   lockbox_bench --all --compare [--repeat R]   (every SCENES.md scene, both engines,
+//                 alternating; writes bench/results/<machine>/compare.csv and the table in
+//                 docs/benchmarks.md)
+//   lockbox_bench --list
+//
+// One line per run (the median over repeats):
+//   scene=NAME engine=E steps=N ms_per_step=M p95_ms=Q bodies=B awake=A contacts=C hash=0x...
+// followed by the per-stage profile (per-step averages, medians over repeats). Only the world's
+// Step is timed. Scene "bullet" expands to its six variants.
+#include <cinttypes>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "BenchReport.h"
+#include "BenchRunner.h"
+#include "Compare.h"
+
+using namespace lockbox::scenes;
+
+namespace {
+
+void Usage() {
+    std::fprintf(stderr,
+                 "usage: lockbox_bench --scene NAME [--steps N] [--velocity-iterations V]\n"
+                 "         [--position-iterations P] [--hz H] [--engine lockbox|box2d-float]\n"
+                 "         [--repeat R] [--metrics] [--no-profile]\n"
+                 "       lockbox_bench --all --compare [--repeat R]\n"
+                 "       lockbox_bench --list\n");
+}
+
+/// Runs one scene `repeat` times on engine E and prints the median line and profile.
+template <class E>
+bool RunAndPrint(std::string_view name, const RunSettings& s, int repeat, bool profile) {
+    std::vector<RunResult> runs;
+    for (int i = 0; i < repeat; ++i) {
+        RunResult r;
+        if (!RunOnce<E>(name, s, r)) {
+            std::fprintf(stderr, "scene %.*s is unknown or not available on %s\n",
+                         static_cast<int>(name.size()), name.data(), E::kName);
+            return false;
+        }
+        runs.push_back(std::move(r));
+    }
+    const RunResult m = MedianOf(runs);
+    PrintLine(m);
+    if (profile) PrintProfile(m);
+    if (!m.metrics.empty()) {
+        std::printf("  metrics:");
+        for (const Metric& x : m.metrics) std::printf(" %s=%.6g", x.name.c_str(), x.value);
+        std::printf("\n");
+    }
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string scene, engine = "lockbox";
+    RunSettings s;
+    s.trackMetrics = false;
+    int repeat = 1;
+    bool all = false, compare = false, list = false, profile = true;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto next = [&](int& v) {
+            if (i + 1 >= argc) {
+                Usage();
+                std::exit(2);
+            }
+            v = std::atoi(argv[++i]);
+        };
+        if (a == "--scene" && i + 1 < argc) scene = argv[++i];
+        else if (a == "--engine" && i + 1 < argc) engine = argv[++i];
+        else if (a == "--steps") next(s.steps);
+        else if (a == "--velocity-iterations") next(s.velocityIterations);
+        else if (a == "--position-iterations") next(s.positionIterations);
+        else if (a == "--hz") next(s.hz);
+        else if (a == "--repeat") next(repeat);
+        else if (a == "--metrics") s.trackMetrics = true;
+        else if (a == "--no-profile") profile = false;
+        else if (a == "--all") all = true;
+        else if (a == "--compare") compare = true;
+        else if (a == "--list") list = true;
+        else {
+            Usage();
+            return 2;
+        }
+    }
+    if (repeat < 1) repeat = 1;
+    if (list) {
+        for (auto n : AllSceneNames()) {
+            auto sc = MakeLockboxScene(n);
+            std::printf("%-26.*s %s\n", static_cast<int>(n.size()), n.data(),
+                        sc ? std::string(sc->Info().summary).c_str() : "(needs joints not yet in lockbox)");
+        }
+        return 0;
+    }
+    if (all && compare) return RunCompare(repeat) ? 0 : 1;
+    if (scene.empty()) {
+        Usage();
+        return 2;
+    }
+    std::vector<std::string_view> names;
+    if (scene == "bullet") {
+        for (auto n : SharedSceneNames())
+            if (n.substr(0, 7) == "bullet_") names.push_back(n);
+    } else {
+        names.push_back(scene);
+    }
+    bool ok = true;
+    for (auto n : names) {
+        if (engine == "lockbox") ok = RunAndPrint<LockboxEngine>(n, s, repeat, profile) && ok;
+        else if (engine == "box2d-float") ok = RunAndPrint<Box2DFloatEngine>(n, s, repeat, profile) && ok;
+        else {
+            Usage();
+            return 2;
+        }
+    }
+    return ok ? 0 : 1;
+}

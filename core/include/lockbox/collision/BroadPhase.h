@@ -1,0 +1,165 @@
+#pragma once
+/// b2BroadPhase: Box2D v2.2.1's broad-phase on top of b2DynamicTree. It buffers the proxies that
+/// moved and, once per step, reports every new pair of overlapping fat AABBs.
+///
+/// Deterministic pair contract (relied on by the contact manager and by the golden hashes):
+/// - The move buffer holds proxy ids in the order of the CreateProxy, MoveProxy (only when the
+///   proxy left its fat AABB) and TouchProxy calls since the last UpdatePairs; a proxy may
+///   appear more than once. DestroyProxy nulls every entry of that proxy (2.3's fix; 2.2.1
+///   nulled only the first, leaving a dangling id behind a Move followed by a Touch).
+/// - UpdatePairs queries the tree with the fat AABB of each buffered proxy in buffer order and
+///   records a pair (min(id, other), max(id, other)) for every other proxy whose fat AABB
+///   overlaps it (touching counts). Pairs are sorted by (proxyIdA, proxyIdB) ascending, a total
+///   order on distinct pairs, and each distinct pair is reported exactly once, in that order,
+///   as AddPair(userData(proxyIdA), userData(proxyIdB)). So the sequence depends only on the
+///   proxy ids and fat AABBs, never on addresses, traversal order or the sort algorithm.
+/// - Pairs are reported again in later steps while they stay overlapping and one of them moves:
+///   the client (the contact manager) filters pairs it already has, as in 2.2.1.
+///
+/// State (ARCHITECTURE.md §4): the tree (see b2DynamicTree), the proxy count and the move
+/// buffer (GetMoveBuffer) carry over between steps; the pair buffer does not (it is cleared at
+/// the start of UpdatePairs). Buffers are std::vectors that keep their capacity, so a warm
+/// broad-phase does not allocate.
+
+#include <algorithm>
+#include <vector>
+
+#include "lockbox/collision/Collision.h"
+#include "lockbox/collision/DynamicTree.h"
+#include "lockbox/common/Settings.h"
+
+namespace lockbox {
+
+/// A candidate pair of proxies, proxyIdA < proxyIdB.
+struct b2Pair {
+    int32 proxyIdA = -1;  ///< the smaller proxy id
+    int32 proxyIdB = -1;  ///< the larger proxy id
+};
+
+/// Lexicographic order on (proxyIdA, proxyIdB): the pair order of UpdatePairs.
+constexpr bool b2PairLessThan(const b2Pair& pair1, const b2Pair& pair2) noexcept {
+    if (pair1.proxyIdA != pair2.proxyIdA) return pair1.proxyIdA < pair2.proxyIdA;
+    return pair1.proxyIdB < pair2.proxyIdB;
+}
+
+/// The broad-phase: a dynamic tree plus the move and pair buffers.
+class b2BroadPhase {
+public:
+    /// Null proxy id (a destroyed move-buffer entry).
+    static constexpr int32 e_nullProxy = -1;
+
+    /// Empty broad-phase with buffer capacity reserved for 16 moves and 16 pairs (as 2.2.1).
+    b2BroadPhase();
+
+    /// Creates a proxy with a tight AABB (m) and buffers it as moved; returns its id (>= 0).
+    int32 CreateProxy(const b2AABB& aabb, uint64 userData);
+
+    /// Destroys a proxy and removes it from the move buffer. proxyId must be live.
+    void DestroyProxy(int32 proxyId);
+
+    /// Moves a proxy (see b2DynamicTree::MoveProxy; displacement in m). Buffers it as moved
+    /// only when its fat AABB had to change.
+    void MoveProxy(int32 proxyId, const b2AABB& aabb, const b2Vec2& displacement);
+
+    /// Buffers a proxy as moved without moving it, so its pairs are reported again.
+    void TouchProxy(int32 proxyId);
+
+    /// The fat AABB of a proxy (m).
+    const b2AABB& GetFatAABB(int32 proxyId) const { return m_tree.GetFatAABB(proxyId); }
+
+    /// The user data of a proxy.
+    uint64 GetUserData(int32 proxyId) const { return m_tree.GetUserData(proxyId); }
+
+    /// True when the fat AABBs of two proxies overlap (touching counts).
+    bool TestOverlap(int32 proxyIdA, int32 proxyIdB) const {
+        return b2TestOverlap(m_tree.GetFatAABB(proxyIdA), m_tree.GetFatAABB(proxyIdB));
+    }
+
+    /// Number of live proxies.
+    int32 GetProxyCount() const noexcept { return m_proxyCount; }
+
+    /// Reports the new pairs through callback->AddPair(uint64 userDataA, uint64 userDataB) in
+    /// the order of the contract above, then empties the move buffer.
+    template <typename T>
+    void UpdatePairs(T* callback);
+
+    /// Forwards to b2DynamicTree::Query.
+    template <typename T>
+    void Query(T* callback, const b2AABB& aabb) const {
+        m_tree.Query(callback, aabb);
+    }
+
+    /// Forwards to b2DynamicTree::RayCast.
+    template <typename T>
+    void RayCast(T* callback, const b2RayCastInput& input) const {
+        m_tree.RayCast(callback, input);
+    }
+
+    /// Height of the tree.
+    int32 GetTreeHeight() const { return m_tree.GetHeight(); }
+    /// Largest balance of the tree.
+    int32 GetTreeBalance() const { return m_tree.GetMaxBalance(); }
+    /// Sum of node perimeters over root perimeter (dimensionless).
+    Wide GetTreeQuality() const { return m_tree.GetAreaRatio(); }
+
+    /// The tree (read-only), for snapshots and tests.
+    const b2DynamicTree& GetTree() const noexcept { return m_tree; }
+    /// The pending move buffer (read-only, may contain e_nullProxy), for snapshots and tests.
+    const std::vector<int32>& GetMoveBuffer() const noexcept { return m_moveBuffer; }
+
+    /// Equality of the state that carries over between steps (tree, proxy count, move buffer).
+    friend bool operator==(const b2BroadPhase& a, const b2BroadPhase& b) noexcept {
+        return a.m_proxyCount == b.m_proxyCount && a.m_moveBuffer == b.m_moveBuffer && a.m_tree == b.m_tree;
+    }
+
+private:
+    /// The tree's query callback during UpdatePairs (a nested type reaches the private state
+    /// without befriending the tree).
+    struct PairCollector {
+        b2BroadPhase* broadPhase;
+        bool QueryCallback(int32 proxyId) { return broadPhase->QueryCallback(proxyId); }
+    };
+
+    void BufferMove(int32 proxyId);
+    void UnBufferMove(int32 proxyId);
+    bool QueryCallback(int32 proxyId);
+
+    b2DynamicTree m_tree;
+    int32 m_proxyCount = 0;
+    std::vector<int32> m_moveBuffer;
+    std::vector<b2Pair> m_pairBuffer;
+    int32 m_queryProxyId = e_nullProxy;
+};
+
+template <typename T>
+void b2BroadPhase::UpdatePairs(T* callback) {
+    m_pairBuffer.clear();
+
+    // Query the tree with every moved proxy's fat AABB, in buffer order.
+    PairCollector collector{this};
+    for (const int32 proxyId : m_moveBuffer) {
+        m_queryProxyId = proxyId;
+        if (proxyId == e_nullProxy) continue;
+        m_tree.Query(&collector, m_tree.GetFatAABB(proxyId));
+    }
+    m_queryProxyId = e_nullProxy;
+    m_moveBuffer.clear();
+
+    // Total order on (A, B): equal elements are identical, so any sort gives the same sequence.
+    std::sort(m_pairBuffer.begin(), m_pairBuffer.end(), b2PairLessThan);
+
+    // Report each distinct pair once.
+    const size_t count = m_pairBuffer.size();
+    size_t i = 0;
+    while (i < count) {
+        const b2Pair primary = m_pairBuffer[i];
+        callback->AddPair(m_tree.GetUserData(primary.proxyIdA), m_tree.GetUserData(primary.proxyIdB));
+        ++i;
+        while (i < count && m_pairBuffer[i].proxyIdA == primary.proxyIdA &&
+               m_pairBuffer[i].proxyIdB == primary.proxyIdB) {
+            ++i;
+        }
+    }
+}
+
+}  // namespace lockbox

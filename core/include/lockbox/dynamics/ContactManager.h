@@ -1,0 +1,55 @@
+#pragma once
+/// b2ContactManager (Box2D 2.2.1 b2ContactManager.h): owns the broad phase and the contacts,
+/// turns broad-phase pairs into contacts and keeps their manifolds up to date.
+
+#include "lockbox/collision/BroadPhase.h"
+#include "lockbox/common/Settings.h"
+#include "lockbox/dynamics/Pool.h"
+#include "lockbox/dynamics/TimeStep.h"
+#include "lockbox/dynamics/contacts/Contact.h"
+
+namespace lockbox {
+
+class b2ContactFilter;
+class b2ContactListener;
+class b2Fixture;
+
+/// Contact bookkeeping for one world.
+class b2ContactManager {
+public:
+    /// fixtures is the world's fixture pool: broad-phase user data are fixture ids.
+    explicit b2ContactManager(b2Pool<b2Fixture>* fixtures);
+    b2ContactManager(const b2ContactManager&) = delete;
+    b2ContactManager& operator=(const b2ContactManager&) = delete;
+
+    /// Broad-phase callback: creates a contact for a new overlapping pair (after the body,
+    /// joint and filter checks). Keys are b2FixtureProxy::MakeKey values.
+    void AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB);
+    /// Reports new pairs of moved proxies to AddPair.
+    void FindNewContacts();
+    /// Destroys a contact (EndContact first when it was touching).
+    void Destroy(b2Contact* c);
+    /// Re-filters flagged contacts, drops contacts whose fat AABBs separated, and updates the
+    /// manifolds of contacts with an awake, non-static body.
+    void Collide();
+
+    /// The contact with a given id (nullptr when free).
+    b2Contact* GetContact(int32 id) noexcept { return m_contacts.Get(id); }
+    /// The contact pool (ids and free list).
+    const b2Pool<b2Contact>& GetPool() const noexcept { return m_contacts; }
+
+    b2BroadPhase m_broadPhase;
+    b2Contact* m_contactList = nullptr;
+    int32 m_contactCount = 0;
+    b2ContactFilter* m_contactFilter = nullptr;  ///< nullptr: the default rule
+    b2ContactListener* m_contactListener = nullptr;  ///< nullptr: no events, no overhead
+    b2Profile* m_profile = nullptr;  ///< counters of the current step (owned by the world)
+
+private:
+    bool ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB);
+
+    b2Pool<b2Fixture>* m_fixtures;
+    b2Pool<b2Contact> m_contacts;
+};
+
+}  // namespace lockbox

@@ -1,0 +1,62 @@
+#pragma once
+/// b2Island (Box2D 2.2.1 b2Island.h): a connected group of awake bodies, contacts and joints,
+/// solved together; also the small island of a time-of-impact event.
+
+#include <vector>
+
+#include "lockbox/common/Settings.h"
+#include "lockbox/dynamics/TimeStep.h"
+#include "lockbox/fixed/Math.h"
+
+namespace lockbox {
+
+class b2Body;
+class b2Contact;
+class b2Joint;
+class b2ContactListener;
+class b2ContactSolver;
+struct b2ContactVelocityConstraint;
+
+/// An island: buffers reused between islands and steps (capacity grows, never shrinks).
+class b2Island {
+public:
+    b2Island() = default;
+
+    /// Sets the capacities and the listener for the next islands.
+    void Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapacity, b2ContactListener* listener);
+    /// Empties the island (keeps the buffers).
+    void Clear() noexcept {
+        m_bodyCount = 0;
+        m_contactCount = 0;
+        m_jointCount = 0;
+    }
+
+    /// Discrete solve: integrate velocities (gravity, forces, damping), warm start, velocity
+    /// iterations, integrate positions, position iterations, then the sleep test.
+    void Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep);
+    /// Time-of-impact sub-step: position solve that moves only the two TOI bodies, then a
+    /// velocity solve and integration of the remaining time.
+    void SolveTOI(b2Profile* profile, const b2TimeStep& subStep, int32 toiIndexA, int32 toiIndexB);
+
+    void Add(b2Body* body);
+    void Add(b2Contact* contact) { m_contacts[static_cast<size_t>(m_contactCount++)] = contact; }
+    void Add(b2Joint* joint) { m_joints[static_cast<size_t>(m_jointCount++)] = joint; }
+
+    /// Calls PostSolve for every contact with the impulses of its constraint.
+    void Report(b2Profile* profile, const b2ContactVelocityConstraint* constraints);
+
+    b2ContactListener* m_listener = nullptr;
+    std::vector<b2Body*> m_bodies;
+    std::vector<b2Contact*> m_contacts;
+    std::vector<b2Joint*> m_joints;
+    std::vector<b2Position> m_positions;
+    std::vector<b2Velocity> m_velocities;
+    int32 m_bodyCount = 0;
+    int32 m_jointCount = 0;
+    int32 m_contactCount = 0;
+    int32 m_bodyCapacity = 0;
+    int32 m_contactCapacity = 0;
+    int32 m_jointCapacity = 0;
+};
+
+}  // namespace lockbox

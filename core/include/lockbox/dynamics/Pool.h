@@ -1,0 +1,103 @@
+#pragma once
+/// b2Pool: the storage of bodies, fixtures, contacts (and later joints).
+///
+/// Objects live in chunked blocks that are never moved or freed while the pool lives, so a
+/// pointer to a slot stays valid until that slot is destroyed (ARCHITECTURE §4: the pointer API
+/// is a facade over slots). Every slot has a small int32 id: its index. Free slots are reused in
+/// LIFO order from an explicit stack of ids, so the id sequence depends only on the sequence of
+/// creations and destructions, never on addresses.
+
+#include <cstddef>
+#include <memory>
+#include <new>
+#include <utility>
+#include <vector>
+
+#include "lockbox/common/Settings.h"
+
+namespace lockbox {
+
+/// Null object id.
+inline constexpr int32 b2_nullId = -1;
+
+/// A pool of T with stable addresses and LIFO id reuse. Not thread-safe.
+template <typename T, int32 kBlockSize = 64>
+class b2Pool {
+public:
+    b2Pool() = default;
+    b2Pool(const b2Pool&) = delete;
+    b2Pool& operator=(const b2Pool&) = delete;
+    ~b2Pool() { Clear(); }
+
+    /// Constructs a T in a free slot (the most recently freed one first, else a new slot) and
+    /// returns its id. The object's address is Get(id) and stays fixed until Destroy(id).
+    template <typename... Args>
+    int32 Create(Args&&... args) {
+        int32 id;
+        if (!m_free.empty()) {
+            id = m_free.back();
+            m_free.pop_back();
+        } else {
+            id = static_cast<int32>(m_live.size());
+            if (id % kBlockSize == 0) m_blocks.push_back(std::make_unique<Slot[]>(kBlockSize));
+            m_live.push_back(0);
+        }
+        ::new (static_cast<void*>(SlotAt(id))) T(std::forward<Args>(args)...);
+        m_live[static_cast<size_t>(id)] = 1;
+        ++m_count;
+        return id;
+    }
+
+    /// Destroys the object in slot id and pushes id on the free stack. id must be live.
+    void Destroy(int32 id) {
+        if (!IsLive(id)) return;
+        Get(id)->~T();
+        m_live[static_cast<size_t>(id)] = 0;
+        m_free.push_back(id);
+        --m_count;
+    }
+
+    /// The object in slot id, or nullptr when the slot is free or out of range.
+    T* Get(int32 id) noexcept { return IsLive(id) ? std::launder(reinterpret_cast<T*>(SlotAt(id))) : nullptr; }
+    const T* Get(int32 id) const noexcept {
+        return IsLive(id) ? std::launder(reinterpret_cast<const T*>(SlotAt(id))) : nullptr;
+    }
+
+    /// True when slot id holds an object.
+    bool IsLive(int32 id) const noexcept {
+        return id >= 0 && static_cast<size_t>(id) < m_live.size() && m_live[static_cast<size_t>(id)] != 0;
+    }
+
+    /// Number of live objects.
+    int32 GetCount() const noexcept { return m_count; }
+    /// Number of slots ever used (live + free); ids are below this.
+    int32 GetCapacity() const noexcept { return static_cast<int32>(m_live.size()); }
+    /// The free-slot stack, bottom first (the next Create takes the back).
+    const std::vector<int32>& GetFreeList() const noexcept { return m_free; }
+
+    /// Destroys every object and forgets all slots.
+    void Clear() {
+        for (int32 id = 0; id < GetCapacity(); ++id) {
+            if (IsLive(id)) Get(id)->~T();
+        }
+        m_blocks.clear();
+        m_live.clear();
+        m_free.clear();
+        m_count = 0;
+    }
+
+private:
+    struct Slot {
+        alignas(T) std::byte bytes[sizeof(T)];
+    };
+    std::byte* SlotAt(int32 id) const noexcept {
+        return m_blocks[static_cast<size_t>(id / kBlockSize)][static_cast<size_t>(id % kBlockSize)].bytes;
+    }
+
+    std::vector<std::unique_ptr<Slot[]>> m_blocks;
+    std::vector<uint8> m_live;
+    std::vector<int32> m_free;
+    int32 m_count = 0;
+};
+
+}  // namespace lockbox

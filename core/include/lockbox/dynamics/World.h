@@ -1,0 +1,183 @@
+#pragma once
+/// b2World (Box2D 2.2.1 b2World.h): owns bodies, fixtures, contacts (and later joints), steps
+/// the simulation, and answers queries.
+///
+/// Storage: bodies, fixtures and contacts live in b2Pool slots with small integer ids; the
+/// pointer API is a facade over those slots (addresses never move). Lists are in creation
+/// order, newest first, as in 2.2.1.
+///
+/// Locking: inside Step (and so inside any callback it makes) the world is locked. Create/
+/// Destroy calls made then are programmer errors: in debug and checked builds they go to the
+/// assert handler (b2SetAssertHandler); if the handler returns, or in release builds, the call
+/// does nothing and returns nullptr.
+
+#include <vector>
+
+#include "lockbox/collision/Collision.h"
+#include "lockbox/common/Settings.h"
+#include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/ContactManager.h"
+#include "lockbox/dynamics/Draw.h"
+#include "lockbox/dynamics/Fixture.h"
+#include "lockbox/dynamics/Island.h"
+#include "lockbox/dynamics/Pool.h"
+#include "lockbox/dynamics/TimeStep.h"
+#include "lockbox/dynamics/WorldCallbacks.h"
+#include "lockbox/dynamics/joints/Joint.h"
+
+namespace lockbox {
+
+
+/// Called for programmer errors such as modifying a locked world. expr names the check, msg
+/// explains it. The default prints to stderr and aborts. If the handler returns, the call is
+/// refused (nothing changes; creators return nullptr).
+using b2AssertHandler = void (*)(const char* expr, const char* msg, const char* file, int line);
+
+/// Replaces the assert handler; returns the previous one. nullptr restores the default.
+b2AssertHandler b2SetAssertHandler(b2AssertHandler handler) noexcept;
+
+/// True in builds where b2World's programmer-error checks call the assert handler (debug or
+/// LOCKBOX_CHECKED); release builds refuse the call silently.
+constexpr bool b2_assertsEnabled =
+#if defined(LOCKBOX_CHECKED) || !defined(NDEBUG)
+    true;
+#else
+    false;
+#endif
+
+/// Default world bounds: +-16000 m on both axes. Any two in-world positions differ by at
+/// most 32000 m, which still fits Q16.16 (ARCHITECTURE §5).
+inline constexpr Fixed b2_defaultWorldExtent = 16000;
+
+/// The physics world.
+class b2World {
+public:
+    /// A world with the given gravity (m/s^2). Sleeping is allowed by default.
+    explicit b2World(const b2Vec2& gravity);
+    ~b2World();
+    b2World(const b2World&) = delete;
+    b2World& operator=(const b2World&) = delete;
+
+    void SetDestructionListener(b2DestructionListener* listener) noexcept { m_destructionListener = listener; }
+    /// nullptr restores the default filter (the manual's category/mask/group rule).
+    void SetContactFilter(b2ContactFilter* filter) noexcept { m_contactManager.m_contactFilter = filter; }
+    /// nullptr removes the listener (no events, no callback overhead).
+    void SetContactListener(b2ContactListener* listener) noexcept { m_contactManager.m_contactListener = listener; }
+    /// Listener for bodies leaving the world bounds.
+    void SetBoundaryListener(b2BoundaryListener* listener) noexcept { m_boundaryListener = listener; }
+    /// Debug draw target for DrawDebugData.
+    void SetDebugDraw(b2Draw* debugDraw) noexcept { m_debugDraw = debugDraw; }
+
+    /// Creates a body (refused while locked: returns nullptr).
+    b2Body* CreateBody(const b2BodyDef* def);
+    /// Destroys a body with its fixtures, contacts and joints (refused while locked). The
+    /// destruction listener hears about the fixtures and joints.
+    void DestroyBody(b2Body* body);
+    /// Creates a joint from a concrete definition (b2RevoluteJointDef, ...); refused while
+    /// locked or for an invalid definition (returns nullptr). Does not wake the bodies.
+    b2Joint* CreateJoint(const b2JointDef* def);
+    /// Destroys a joint and wakes its bodies (refused while locked). Gear joints that couple
+    /// it are destroyed first, and the destruction listener hears SayGoodbye for each of them.
+    void DestroyJoint(b2Joint* joint);
+
+    /// Advances the world by timeStep seconds (Q16.16; 1/60 s is raw 1092) with the given
+    /// iteration counts (the manual suggests 8 and 3).
+    void Step(Fixed timeStep, int32 velocityIterations, int32 positionIterations);
+    /// Zeroes all forces and torques (automatic after each Step unless disabled).
+    void ClearForces();
+    /// Draws the world through the registered b2Draw according to its flags.
+    void DrawDebugData();
+
+    /// Reports every fixture whose fat AABB overlaps aabb.
+    void QueryAABB(b2QueryCallback* callback, const b2AABB& aabb) const;
+    /// Casts a ray from point1 to point2 (m) with the manual's fraction protocol.
+    void RayCast(b2RayCastCallback* callback, const b2Vec2& point1, const b2Vec2& point2) const;
+
+    /// Bodies, newest first.
+    b2Body* GetBodyList() noexcept { return m_bodyList; }
+    const b2Body* GetBodyList() const noexcept { return m_bodyList; }
+    /// Joints, newest first (always empty until joints exist).
+    b2Joint* GetJointList() noexcept { return m_jointList; }
+    /// Contacts, newest first; use IsTouching to find touching ones.
+    b2Contact* GetContactList() noexcept { return m_contactManager.m_contactList; }
+    const b2Contact* GetContactList() const noexcept { return m_contactManager.m_contactList; }
+
+    /// Lookup by id (nullptr when the id is free).
+    b2Body* GetBody(int32 id) noexcept { return m_bodies.Get(id); }
+    b2Fixture* GetFixture(int32 id) noexcept { return m_fixtures.Get(id); }
+    b2Contact* GetContact(int32 id) noexcept { return m_contactManager.GetContact(id); }
+
+    /// Sleeping switch; turning it off wakes every body.
+    void SetAllowSleeping(bool flag);
+    bool GetAllowSleeping() const noexcept { return m_allowSleep; }
+    void SetWarmStarting(bool flag) noexcept { m_warmStarting = flag; }
+    bool GetWarmStarting() const noexcept { return m_warmStarting; }
+    void SetContinuousPhysics(bool flag) noexcept { m_continuousPhysics = flag; }
+    bool GetContinuousPhysics() const noexcept { return m_continuousPhysics; }
+    void SetSubStepping(bool flag) noexcept { m_subStepping = flag; }
+    bool GetSubStepping() const noexcept { return m_subStepping; }
+    void SetAutoClearForces(bool flag) noexcept { m_autoClearForces = flag; }
+    bool GetAutoClearForces() const noexcept { return m_autoClearForces; }
+    /// Gravity, m/s^2.
+    void SetGravity(const b2Vec2& gravity) noexcept { m_gravity = gravity; }
+    b2Vec2 GetGravity() const noexcept { return m_gravity; }
+
+    /// Bounds for body centres (m); a body whose centre leaves them is taken out of the
+    /// simulation and reported to the b2BoundaryListener. Default +-16000 m.
+    void SetWorldBounds(const b2AABB& bounds) noexcept { m_bounds = bounds; }
+    const b2AABB& GetWorldBounds() const noexcept { return m_bounds; }
+
+    int32 GetProxyCount() const noexcept { return m_contactManager.m_broadPhase.GetProxyCount(); }
+    int32 GetBodyCount() const noexcept { return m_bodyCount; }
+    int32 GetJointCount() const noexcept { return m_jointCount; }
+    int32 GetContactCount() const noexcept { return m_contactManager.m_contactCount; }
+    /// True inside Step.
+    bool IsLocked() const noexcept { return (m_flags & e_locked) != 0; }
+    /// Work counters and timings of the last Step.
+    const b2Profile& GetProfile() const noexcept { return m_profile; }
+    /// The contact manager (broad phase, contacts).
+    const b2ContactManager& GetContactManager() const noexcept { return m_contactManager; }
+
+    // ---- internal (bodies and fixtures call back into the world) ----
+    enum : uint32 { e_newFixture = 0x0001, e_locked = 0x0002, e_clearForces = 0x0004 };
+    /// Reports a refused call on a locked world; returns true when the world is locked.
+    bool CheckLocked(const char* what) const;
+    b2Fixture* CreateFixtureSlot(b2Body* body, const b2FixtureDef* def);
+    void DestroyFixtureSlot(b2Fixture* fixture);
+
+    uint32 m_flags = e_clearForces;
+    b2ContactManager m_contactManager;
+    b2Pool<b2Body> m_bodies;
+    b2Pool<b2Fixture> m_fixtures;
+    b2Body* m_bodyList = nullptr;
+    b2Joint* m_jointList = nullptr;
+    int32 m_bodyCount = 0;
+    int32 m_jointCount = 0;
+    b2Vec2 m_gravity;
+    bool m_allowSleep = true;
+    b2DestructionListener* m_destructionListener = nullptr;
+    b2BoundaryListener* m_boundaryListener = nullptr;
+    b2Draw* m_debugDraw = nullptr;
+    Fixed m_inv_dt0;  ///< inverse of the previous step, for dtRatio
+    bool m_warmStarting = true;
+    bool m_continuousPhysics = true;
+    bool m_subStepping = false;
+    bool m_autoClearForces = true;
+    bool m_stepComplete = true;
+    b2AABB m_bounds;
+    b2Profile m_profile;
+
+private:
+    void Solve(const b2TimeStep& step);
+    void SolveTOI(const b2TimeStep& step);
+    /// Takes bodies whose centre left the bounds out of the simulation and reports them.
+    void EnforceBounds();
+    bool IsOutside(const b2Body* b) const noexcept;
+    void DrawShape(b2Fixture* fixture, const b2Transform& xf, const b2Color& color);
+
+    b2Island m_island;
+    std::vector<b2Body*> m_stack;
+    std::vector<b2Body*> m_outOfBounds;
+};
+
+}  // namespace lockbox

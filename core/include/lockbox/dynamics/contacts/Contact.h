@@ -1,0 +1,115 @@
+#pragma once
+/// b2Contact (Box2D 2.2.1 b2Contact.h): the manifold of two fixture children whose AABBs
+/// overlap. One class serves every shape pair: Evaluate dispatches on the two shape types to the
+/// b2Collide* functions (a chain collides through its child edge). Pairs without a collider
+/// (edge/chain against edge/chain) create no contact.
+
+#include "lockbox/collision/Collision.h"
+#include "lockbox/collision/Shape.h"
+#include "lockbox/common/Settings.h"
+#include "lockbox/fixed/Math.h"
+
+namespace lockbox {
+
+class b2Body;
+class b2Contact;
+class b2Fixture;
+class b2ContactListener;
+struct b2Profile;
+
+/// Friction mixing: sqrt(f1 * f2), computed as the correctly rounded square root of the exact
+/// raw product (one rounding).
+Fixed b2MixFriction(Fixed friction1, Fixed friction2);
+/// Restitution mixing: the larger one.
+inline Fixed b2MixRestitution(Fixed r1, Fixed r2) noexcept { return r1 > r2 ? r1 : r2; }
+
+/// A contact edge links a body to a contact and to the other body in the contact graph.
+struct b2ContactEdge {
+    b2Body* other = nullptr;       ///< the other body
+    b2Contact* contact = nullptr;  ///< the contact
+    b2ContactEdge* prev = nullptr; ///< previous edge in the body's contact list
+    b2ContactEdge* next = nullptr; ///< next edge in the body's contact list
+};
+
+/// A potential contact between two fixture children. Owned by the contact manager.
+class b2Contact {
+public:
+    /// The manifold in local coordinates (do not modify).
+    b2Manifold* GetManifold() noexcept { return &m_manifold; }
+    const b2Manifold* GetManifold() const noexcept { return &m_manifold; }
+    /// The manifold in world coordinates.
+    void GetWorldManifold(b2WorldManifold* worldManifold) const;
+    /// True when the shapes touch (sensors: overlap).
+    bool IsTouching() const noexcept { return (m_flags & e_touchingFlag) != 0; }
+    /// Enables or disables the contact for the current step only (PreSolve use).
+    void SetEnabled(bool flag) noexcept {
+        if (flag) m_flags |= e_enabledFlag; else m_flags &= ~e_enabledFlag;
+    }
+    bool IsEnabled() const noexcept { return (m_flags & e_enabledFlag) != 0; }
+    /// Next contact in the world's list (newest first).
+    b2Contact* GetNext() noexcept { return m_next; }
+    const b2Contact* GetNext() const noexcept { return m_next; }
+    b2Fixture* GetFixtureA() noexcept { return m_fixtureA; }
+    const b2Fixture* GetFixtureA() const noexcept { return m_fixtureA; }
+    int32 GetChildIndexA() const noexcept { return m_indexA; }
+    b2Fixture* GetFixtureB() noexcept { return m_fixtureB; }
+    const b2Fixture* GetFixtureB() const noexcept { return m_fixtureB; }
+    int32 GetChildIndexB() const noexcept { return m_indexB; }
+    /// Mixed friction; persists until ResetFriction.
+    void SetFriction(Fixed friction) noexcept { m_friction = friction; }
+    Fixed GetFriction() const noexcept { return m_friction; }
+    void ResetFriction();
+    /// Mixed restitution; persists until ResetRestitution.
+    void SetRestitution(Fixed restitution) noexcept { m_restitution = restitution; }
+    Fixed GetRestitution() const noexcept { return m_restitution; }
+    void ResetRestitution();
+    /// Small integer id (stable across snapshot and restore).
+    int32 GetId() const noexcept { return m_id; }
+    /// Flags the contact for re-filtering at the next Step.
+    void FlagForFiltering() noexcept { m_flags |= e_filterFlag; }
+
+    /// Computes the manifold for the current transforms (dispatches on the shape types).
+    void Evaluate(b2Manifold* manifold, const b2Transform& xfA, const b2Transform& xfB);
+
+    // ---- internal ----
+    enum : uint32 {
+        e_islandFlag = 0x0001,     ///< used when crawling the contact graph to form islands
+        e_touchingFlag = 0x0002,   ///< set when the shapes are touching
+        e_enabledFlag = 0x0004,    ///< this contact can be disabled by the user
+        e_filterFlag = 0x0008,     ///< this contact needs filtering (filter data changed)
+        e_bulletHitFlag = 0x0010,  ///< this bullet contact had a TOI event
+        e_toiFlag = 0x0020         ///< m_toi is valid
+    };
+
+    /// True when a collider exists for this pair of shape types (in either order).
+    static bool CanCollide(b2Shape::Type typeA, b2Shape::Type typeB) noexcept;
+    /// True when the pair must be swapped so that A has the "primary" type of the collider
+    /// (polygon before circle, edge/chain before circle or polygon).
+    static bool NeedsSwap(b2Shape::Type typeA, b2Shape::Type typeB) noexcept;
+
+    b2Contact(b2Fixture* fixtureA, int32 indexA, b2Fixture* fixtureB, int32 indexB, int32 id);
+    b2Contact(const b2Contact&) = delete;
+    b2Contact& operator=(const b2Contact&) = delete;
+
+    /// Updates the manifold and touching state and calls the listener (Begin/End/PreSolve).
+    /// Counts narrow-phase work and listener calls into profile (may be nullptr).
+    void Update(b2ContactListener* listener, b2Profile* profile);
+
+    uint32 m_flags = e_enabledFlag;
+    b2Contact* m_prev = nullptr;
+    b2Contact* m_next = nullptr;
+    b2ContactEdge m_nodeA;
+    b2ContactEdge m_nodeB;
+    b2Fixture* m_fixtureA;
+    b2Fixture* m_fixtureB;
+    int32 m_indexA;
+    int32 m_indexB;
+    b2Manifold m_manifold;
+    int32 m_toiCount = 0;
+    Fixed m_toi;           ///< cached time of impact, fraction of the step in [0, 1]
+    Fixed m_friction;
+    Fixed m_restitution;
+    int32 m_id;
+};
+
+}  // namespace lockbox

@@ -1,0 +1,107 @@
+#pragma once
+/// b2ContactSolver (Box2D 2.2.1 b2ContactSolver.h): sequential impulses with warm starting,
+/// the two-point block solver, restitution above b2_velocityThreshold, Coulomb friction,
+/// non-linear position correction and the time-of-impact position solve.
+///
+/// Formats: velocities and positions are Fixed; masses, inverse masses and inertias, effective
+/// masses (normalMass, tangentMass, K and its inverse) and impulses are Wide (Q32.32). The
+/// block solver's condition test k11^2 < 1000 (k11 k22 - k12^2) is evaluated exactly in
+/// 128 bits (NUMERICS Table 1: it overflows Q32.32).
+
+#include <vector>
+
+#include "lockbox/collision/Collision.h"
+#include "lockbox/common/Settings.h"
+#include "lockbox/dynamics/TimeStep.h"
+#include "lockbox/fixed/Math.h"
+
+namespace lockbox {
+
+class b2Contact;
+
+/// A symmetric 2x2 matrix of Wide entries (the block solver's K and its inverse).
+struct b2WideMat22 {
+    Wide k11, k12, k22;
+};
+
+/// Per-point velocity data.
+struct b2VelocityConstraintPoint {
+    b2Vec2 rA;           ///< anchor relative to A's centre, m
+    b2Vec2 rB;           ///< anchor relative to B's centre, m
+    Wide normalImpulse;  ///< accumulated, N*s
+    Wide tangentImpulse; ///< accumulated, N*s
+    Wide normalMass;     ///< 1 / K_normal, kg
+    Wide tangentMass;    ///< 1 / K_tangent, kg
+    Fixed velocityBias;  ///< restitution target, m/s
+    Fixed rnA, rnB;      ///< cross(r, normal), m (cached for the block solver)
+};
+
+/// One contact's velocity constraint.
+struct b2ContactVelocityConstraint {
+    b2VelocityConstraintPoint points[b2_maxManifoldPoints];
+    b2Vec2 normal;
+    b2WideMat22 normalMass;  ///< inverse of K (block solver only)
+    b2WideMat22 K;           ///< block solver matrix, 1/kg
+    int32 indexA = 0, indexB = 0;
+    Wide invMassA, invMassB;
+    Wide invIA, invIB;
+    Fixed friction;
+    Fixed restitution;
+    int32 pointCount = 0;
+    int32 contactIndex = 0;
+    bool useBlock = false;   ///< two points and a well-conditioned K
+};
+
+/// One contact's position constraint (copied from the manifold).
+struct b2ContactPositionConstraint {
+    b2Vec2 localPoints[b2_maxManifoldPoints];
+    b2Vec2 localNormal;
+    b2Vec2 localPoint;
+    int32 indexA = 0, indexB = 0;
+    Wide invMassA, invMassB;
+    b2Vec2 localCenterA, localCenterB;
+    Wide invIA, invIB;
+    b2Manifold::Type type = b2Manifold::e_circles;
+    Fixed radiusA, radiusB;
+    int32 pointCount = 0;
+};
+
+/// Input to the contact solver.
+struct b2ContactSolverDef {
+    b2TimeStep step;
+    b2Contact** contacts = nullptr;
+    int32 count = 0;
+    b2Position* positions = nullptr;
+    b2Velocity* velocities = nullptr;
+};
+
+/// Solves the contacts of one island.
+class b2ContactSolver {
+public:
+    /// Copies the constraint data; warm-start impulses are scaled by dtRatio.
+    explicit b2ContactSolver(b2ContactSolverDef* def);
+
+    /// Anchors, effective masses, restitution bias and the block-solver matrices.
+    void InitializeVelocityConstraints();
+    /// Applies the accumulated impulses of the previous step.
+    void WarmStart();
+    /// One velocity iteration: friction, then normal (block solver for two points).
+    void SolveVelocityConstraints();
+    /// Copies the accumulated impulses back to the manifolds for warm starting.
+    void StoreImpulses();
+    /// One position iteration; true when the largest overlap is within 3 linearSlop.
+    bool SolvePositionConstraints();
+    /// One TOI position iteration moving only bodies toiIndexA and toiIndexB; true when the
+    /// largest overlap is within 1.5 linearSlop.
+    bool SolveTOIPositionConstraints(int32 toiIndexA, int32 toiIndexB);
+
+    b2TimeStep m_step;
+    b2Position* m_positions;
+    b2Velocity* m_velocities;
+    std::vector<b2ContactPositionConstraint> m_positionConstraints;
+    std::vector<b2ContactVelocityConstraint> m_velocityConstraints;
+    b2Contact** m_contacts;
+    int32 m_count;
+};
+
+}  // namespace lockbox

@@ -1,0 +1,74 @@
+#pragma once
+/// b2DistanceJoint (Box2D 2.2.1): keeps two anchor points at a fixed distance, rigidly or
+/// through a soft spring (frequencyHz > 0).
+
+#include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/dynamics/joints/WideMatrix.h"
+
+namespace lockbox {
+
+/// Distance joint definition. Do not make length too short (below a few linearSlop).
+struct b2DistanceJointDef : b2JointDef {
+    b2DistanceJointDef() { type = e_distanceJoint; }
+
+    /// Sets bodies and local anchors from two world anchors (m); length = their distance.
+    void Initialize(b2Body* bodyA, b2Body* bodyB, const b2Vec2& anchorA, const b2Vec2& anchorB);
+
+    b2Vec2 localAnchorA;     ///< anchor on A relative to A's origin, m
+    b2Vec2 localAnchorB;     ///< anchor on B relative to B's origin, m
+    Fixed length = 1;        ///< natural length, m (> 0)
+    Fixed frequencyHz;       ///< spring frequency, Hz, in [0, 30]; 0 makes the joint rigid
+    Fixed dampingRatio;      ///< 0 = no damping, 1 = critical, in [0, 10]
+};
+
+/// Distance joint.
+class b2DistanceJoint : public b2Joint {
+public:
+    explicit b2DistanceJoint(const b2DistanceJointDef* def);
+
+    b2Vec2 GetAnchorA() const override;
+    b2Vec2 GetAnchorB() const override;
+    /// Reaction force on B (N): impulse * inv_dt along the joint axis.
+    b2Vec2 GetReactionForce(Fixed inv_dt) const override;
+    /// Always 0.
+    Fixed GetReactionTorque(Fixed inv_dt) const override;
+
+    const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    /// Natural length, m.
+    void SetLength(Fixed length) noexcept { m_length = length; }
+    Fixed GetLength() const noexcept { return m_length; }
+    /// Spring frequency, Hz (0 = rigid).
+    void SetFrequency(Fixed hz) noexcept { m_frequencyHz = hz; }
+    Fixed GetFrequency() const noexcept { return m_frequencyHz; }
+    /// Damping ratio (dimensionless).
+    void SetDampingRatio(Fixed ratio) noexcept { m_dampingRatio = ratio; }
+    Fixed GetDampingRatio() const noexcept { return m_dampingRatio; }
+
+    void InitVelocityConstraints(const b2SolverData& data) override;
+    void SolveVelocityConstraints(const b2SolverData& data) override;
+    bool SolvePositionConstraints(const b2SolverData& data) override;
+
+private:
+    Fixed m_frequencyHz;
+    Fixed m_dampingRatio;
+    Wide m_bias;  ///< m/s
+    b2Vec2 m_localAnchorA;
+    b2Vec2 m_localAnchorB;
+    Wide m_gamma;    ///< 1/kg
+    Wide m_impulse;  ///< N*s
+    Fixed m_length;
+
+    // Solver temporaries.
+    int32 m_indexA = 0;
+    int32 m_indexB = 0;
+    b2Vec2 m_u;
+    b2Vec2 m_rA;
+    b2Vec2 m_rB;
+    b2Vec2 m_localCenterA;
+    b2Vec2 m_localCenterB;
+    Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
+    Wide m_mass;  ///< effective mass along u, kg
+};
+
+}  // namespace lockbox

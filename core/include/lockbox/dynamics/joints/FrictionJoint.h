@@ -1,0 +1,66 @@
+#pragma once
+/// b2FrictionJoint (Box2D 2.2.1): top-down friction. Resists relative linear and angular
+/// motion with at most maxForce and maxTorque.
+
+#include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/dynamics/joints/WideMatrix.h"
+
+namespace lockbox {
+
+/// Friction joint definition.
+struct b2FrictionJointDef : b2JointDef {
+    b2FrictionJointDef() { type = e_frictionJoint; }
+
+    /// Bodies and local anchors from one world anchor (m).
+    void Initialize(b2Body* bodyA, b2Body* bodyB, const b2Vec2& anchor);
+
+    b2Vec2 localAnchorA;  ///< m, relative to A's origin
+    b2Vec2 localAnchorB;  ///< m, relative to B's origin
+    Fixed maxForce;       ///< N, >= 0
+    Fixed maxTorque;      ///< N*m, >= 0
+};
+
+/// Friction joint.
+class b2FrictionJoint : public b2Joint {
+public:
+    explicit b2FrictionJoint(const b2FrictionJointDef* def);
+
+    b2Vec2 GetAnchorA() const override;
+    b2Vec2 GetAnchorB() const override;
+    /// Friction force on B, N.
+    b2Vec2 GetReactionForce(Fixed inv_dt) const override;
+    /// Friction torque on B, N*m.
+    Fixed GetReactionTorque(Fixed inv_dt) const override;
+
+    const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    /// Maximum friction force, N (>= 0).
+    void SetMaxForce(Fixed force) noexcept { m_maxForce = force; }
+    Fixed GetMaxForce() const noexcept { return m_maxForce; }
+    /// Maximum friction torque, N*m (>= 0).
+    void SetMaxTorque(Fixed torque) noexcept { m_maxTorque = torque; }
+    Fixed GetMaxTorque() const noexcept { return m_maxTorque; }
+
+    void InitVelocityConstraints(const b2SolverData& data) override;
+    void SolveVelocityConstraints(const b2SolverData& data) override;
+    bool SolvePositionConstraints(const b2SolverData& data) override;
+
+private:
+    b2Vec2 m_localAnchorA;
+    b2Vec2 m_localAnchorB;
+    b2WideVec2 m_linearImpulse;  ///< N*s
+    Wide m_angularImpulse;       ///< N*m*s
+    Fixed m_maxForce;
+    Fixed m_maxTorque;
+
+    int32 m_indexA = 0;
+    int32 m_indexB = 0;
+    b2Vec2 m_rA, m_rB;
+    b2Vec2 m_localCenterA;
+    b2Vec2 m_localCenterB;
+    Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
+    b2WideMat22 m_linearK;  ///< solved, never inverted
+    Wide m_angularMass;     ///< kg*m^2
+};
+
+}  // namespace lockbox

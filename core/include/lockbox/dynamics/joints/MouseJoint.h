@@ -1,0 +1,74 @@
+#pragma once
+/// b2MouseJoint (Box2D 2.2.1): a soft spring pulling a point on body B toward a world target,
+/// with a force cap. bodyA is ignored (use any body, usually the ground).
+///
+/// maxForce is Q32.32: the testbed's 1000 * mass reaches 1e6 N for a 1000 kg body, beyond
+/// Q16.16 (NUMERICS Table 1).
+
+#include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/dynamics/joints/WideMatrix.h"
+
+namespace lockbox {
+
+/// Mouse joint definition.
+struct b2MouseJointDef : b2JointDef {
+    b2MouseJointDef() { type = e_mouseJoint; }
+
+    b2Vec2 target;                   ///< initial world target, m (also the grab point on B)
+    Wide maxForce;                   ///< N, >= 0 (Q32.32, up to ~2e9)
+    Fixed frequencyHz = 5;           ///< response speed, Hz, in (0, 30]
+    Fixed dampingRatio = Fixed(0.7); ///< 0 = no damping, 1 = critical
+};
+
+/// Mouse joint.
+class b2MouseJoint : public b2Joint {
+public:
+    explicit b2MouseJoint(const b2MouseJointDef* def);
+
+    /// The target point, m.
+    b2Vec2 GetAnchorA() const override;
+    /// The grab point on B, m.
+    b2Vec2 GetAnchorB() const override;
+    /// Force on B, N (saturates at 32768 N: read GetImpulse for larger forces).
+    b2Vec2 GetReactionForce(Fixed inv_dt) const override;
+    /// Always 0.
+    Fixed GetReactionTorque(Fixed inv_dt) const override;
+
+    /// Moves the target, m (wakes body B).
+    void SetTarget(const b2Vec2& target);
+    const b2Vec2& GetTarget() const noexcept { return m_targetA; }
+    /// Maximum force, N.
+    void SetMaxForce(Wide force) noexcept { m_maxForce = force; }
+    Wide GetMaxForce() const noexcept { return m_maxForce; }
+    /// Response frequency, Hz.
+    void SetFrequency(Fixed hz) noexcept { m_frequencyHz = hz; }
+    Fixed GetFrequency() const noexcept { return m_frequencyHz; }
+    /// Damping ratio.
+    void SetDampingRatio(Fixed ratio) noexcept { m_dampingRatio = ratio; }
+    Fixed GetDampingRatio() const noexcept { return m_dampingRatio; }
+    /// Accumulated impulse of the last step, N*s (Q32.32, never saturated).
+    const b2WideVec2& GetImpulse() const noexcept { return m_impulse; }
+
+    void InitVelocityConstraints(const b2SolverData& data) override;
+    void SolveVelocityConstraints(const b2SolverData& data) override;
+    bool SolvePositionConstraints(const b2SolverData& data) override;
+
+private:
+    b2Vec2 m_localAnchorB;
+    b2Vec2 m_targetA;
+    Fixed m_frequencyHz;
+    Fixed m_dampingRatio;
+    Wide m_beta;   ///< 1/s
+    b2WideVec2 m_impulse;
+    Wide m_maxForce;
+    Wide m_gamma;  ///< 1/kg
+
+    int32 m_indexB = 0;
+    b2Vec2 m_rB;
+    b2Vec2 m_localCenterB;
+    Wide m_invMassB, m_invIB;
+    b2WideMat22 m_K;  ///< solved, never inverted
+    b2WideVec2 m_C;   ///< beta * position error, m/s
+};
+
+}  // namespace lockbox

@@ -1,0 +1,105 @@
+#pragma once
+/// b2PrismaticJoint (Box2D 2.2.1): one translational degree of freedom along an axis fixed in
+/// body A, no relative rotation, with an optional translation limit and motor.
+
+#include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/dynamics/joints/WideMatrix.h"
+
+namespace lockbox {
+
+/// Prismatic joint definition.
+struct b2PrismaticJointDef : b2JointDef {
+    b2PrismaticJointDef() { type = e_prismaticJoint; localAxisA.Set(1, 0); }
+
+    /// Bodies, anchors from one world point (m), the axis from a world direction (normalised
+    /// here), and the reference angle from the current angles.
+    void Initialize(b2Body* bodyA, b2Body* bodyB, const b2Vec2& anchor, const b2Vec2& axis);
+
+    b2Vec2 localAnchorA;          ///< m, relative to A's origin
+    b2Vec2 localAnchorB;          ///< m, relative to B's origin
+    b2Vec2 localAxisA;            ///< translation axis in A's frame (unit length)
+    Fixed referenceAngle;         ///< angleB - angleA in the reference state, rad
+    bool enableLimit = false;     ///< enforce [lowerTranslation, upperTranslation]?
+    Fixed lowerTranslation;       ///< m
+    Fixed upperTranslation;       ///< m, >= lowerTranslation
+    bool enableMotor = false;     ///< drive the translation speed?
+    Fixed maxMotorForce;          ///< N, >= 0
+    Fixed motorSpeed;             ///< m/s
+};
+
+/// Prismatic joint.
+class b2PrismaticJoint : public b2Joint {
+public:
+    explicit b2PrismaticJoint(const b2PrismaticJointDef* def);
+
+    b2Vec2 GetAnchorA() const override;
+    b2Vec2 GetAnchorB() const override;
+    /// Perpendicular plus limit/motor reaction on B, N.
+    b2Vec2 GetReactionForce(Fixed inv_dt) const override;
+    /// Angular reaction on B, N*m.
+    Fixed GetReactionTorque(Fixed inv_dt) const override;
+
+    const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    const b2Vec2& GetLocalAxisA() const noexcept { return m_localXAxisA; }
+    Fixed GetReferenceAngle() const noexcept { return m_referenceAngle; }
+
+    /// Translation of B's anchor from A's along the axis, m.
+    Fixed GetJointTranslation() const;
+    /// Translation speed, m/s.
+    Fixed GetJointSpeed() const;
+
+    bool IsLimitEnabled() const noexcept { return m_enableLimit; }
+    /// Enables or disables the limit (wakes the bodies).
+    void EnableLimit(bool flag);
+    Fixed GetLowerLimit() const noexcept { return m_lowerTranslation; }
+    Fixed GetUpperLimit() const noexcept { return m_upperTranslation; }
+    /// Sets the limits, m (lower <= upper; wakes the bodies).
+    void SetLimits(Fixed lower, Fixed upper);
+
+    bool IsMotorEnabled() const noexcept { return m_enableMotor; }
+    void EnableMotor(bool flag);
+    /// Target speed, m/s.
+    void SetMotorSpeed(Fixed speed);
+    Fixed GetMotorSpeed() const noexcept { return m_motorSpeed; }
+    /// Maximum motor force, N.
+    void SetMaxMotorForce(Fixed force);
+    Fixed GetMaxMotorForce() const noexcept { return m_maxMotorForce; }
+    /// Motor force applied in the last step, N.
+    Fixed GetMotorForce(Fixed inv_dt) const;
+
+    void InitVelocityConstraints(const b2SolverData& data) override;
+    void SolveVelocityConstraints(const b2SolverData& data) override;
+    bool SolvePositionConstraints(const b2SolverData& data) override;
+
+    // Read by the gear joint.
+    b2Vec2 m_localAnchorA;
+    b2Vec2 m_localAnchorB;
+    b2Vec2 m_localXAxisA;
+    b2Vec2 m_localYAxisA;
+    Fixed m_referenceAngle;
+
+private:
+    b2WideVec3 m_impulse;  ///< perpendicular (N*s), angular (N*m*s), axial limit (N*s)
+    Wide m_motorImpulse;   ///< N*s
+    Fixed m_lowerTranslation;
+    Fixed m_upperTranslation;
+    Fixed m_maxMotorForce;
+    Fixed m_motorSpeed;
+    bool m_enableLimit;
+    bool m_enableMotor;
+    b2LimitState m_limitState = e_inactiveLimit;
+
+    int32 m_indexA = 0;
+    int32 m_indexB = 0;
+    b2Vec2 m_localCenterA;
+    b2Vec2 m_localCenterB;
+    Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
+    b2Vec2 m_axis, m_perp;
+    Fixed m_s1, m_s2;  ///< arms of the perpendicular constraint, m
+    Fixed m_a1, m_a2;  ///< arms of the axial constraint, m
+    b2WideMat33 m_K;
+    Wide m_motorMass;  ///< kg
+};
+
+}  // namespace lockbox

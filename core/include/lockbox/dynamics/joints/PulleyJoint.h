@@ -1,0 +1,78 @@
+#pragma once
+/// b2PulleyJoint (Box2D 2.2.1): an ideal pulley. Each body hangs from a fixed ground anchor and
+/// lengthA + ratio * lengthB stays constant. When one side reaches zero length its direction
+/// is undefined: that side then contributes nothing (finite, no division), as in 2.2.1.
+
+#include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/dynamics/joints/WideMatrix.h"
+
+namespace lockbox {
+
+/// Pulley joint definition. collideConnected is true by default, as in 2.2.1.
+struct b2PulleyJointDef : b2JointDef {
+    b2PulleyJointDef() {
+        type = e_pulleyJoint;
+        groundAnchorA.Set(-1, 1);
+        groundAnchorB.Set(1, 1);
+        localAnchorA.Set(-1, 0);
+        localAnchorB.Set(1, 0);
+        collideConnected = true;
+    }
+
+    /// Bodies, ground anchors (m), body anchors (world, m) and the ratio (> 0).
+    void Initialize(b2Body* bodyA, b2Body* bodyB, const b2Vec2& groundAnchorA, const b2Vec2& groundAnchorB,
+                    const b2Vec2& anchorA, const b2Vec2& anchorB, Fixed ratio);
+
+    b2Vec2 groundAnchorA;  ///< world, m
+    b2Vec2 groundAnchorB;  ///< world, m
+    b2Vec2 localAnchorA;   ///< m, relative to A's origin
+    b2Vec2 localAnchorB;   ///< m, relative to B's origin
+    Fixed lengthA;         ///< reference length of side A, m
+    Fixed lengthB;         ///< reference length of side B, m
+    Fixed ratio = 1;       ///< pulley ratio (block and tackle), > 0
+};
+
+/// Pulley joint.
+class b2PulleyJoint : public b2Joint {
+public:
+    explicit b2PulleyJoint(const b2PulleyJointDef* def);
+
+    b2Vec2 GetAnchorA() const override;
+    b2Vec2 GetAnchorB() const override;
+    /// Rope tension on B along side B, N.
+    b2Vec2 GetReactionForce(Fixed inv_dt) const override;
+    /// Always 0.
+    Fixed GetReactionTorque(Fixed inv_dt) const override;
+
+    b2Vec2 GetGroundAnchorA() const noexcept { return m_groundAnchorA; }
+    b2Vec2 GetGroundAnchorB() const noexcept { return m_groundAnchorB; }
+    /// Current length of side A, m.
+    Fixed GetLengthA() const;
+    /// Current length of side B, m.
+    Fixed GetLengthB() const;
+    /// The pulley ratio.
+    Fixed GetRatio() const noexcept { return m_ratio; }
+
+    void InitVelocityConstraints(const b2SolverData& data) override;
+    void SolveVelocityConstraints(const b2SolverData& data) override;
+    bool SolvePositionConstraints(const b2SolverData& data) override;
+
+private:
+    b2Vec2 m_groundAnchorA;
+    b2Vec2 m_groundAnchorB;
+    b2Vec2 m_localAnchorA;
+    b2Vec2 m_localAnchorB;
+    Fixed m_constant;  ///< lengthA + ratio * lengthB, m
+    Fixed m_ratio;
+    Wide m_impulse;    ///< N*s
+
+    int32 m_indexA = 0;
+    int32 m_indexB = 0;
+    b2Vec2 m_uA, m_uB, m_rA, m_rB;
+    b2Vec2 m_localCenterA;
+    b2Vec2 m_localCenterB;
+    Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
+    Wide m_mass;  ///< kg
+};
+
+}  // namespace lockbox

@@ -1,0 +1,113 @@
+#pragma once
+/// b2RevoluteJoint (Box2D 2.2.1): a shared point (hinge) with an optional angle limit and motor.
+///
+/// Body angles are wrapped into [-pi, pi) every step (ARCHITECTURE §5), so the joint keeps its
+/// own continuous angle: each step it moves to the branch of aB - aA - referenceAngle nearest
+/// to the previous value (the relative rotation per step is below pi). Limits may therefore
+/// span many turns (within +-5000 rad, the Q16.16 range with margin).
+
+#include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/dynamics/joints/WideMatrix.h"
+
+namespace lockbox {
+
+/// Range of the continuous joint angle, rad: 8192 rad (1303 turns) leaves a 4x margin to the
+/// Q16.16 limit for the differences formed from it. Past it the angle restarts from its
+/// wrapped value (see b2RevoluteJoint::GetJointAngle).
+inline constexpr Fixed kMaxContinuousAngle = 8192;
+
+/// Revolute joint definition.
+struct b2RevoluteJointDef : b2JointDef {
+    b2RevoluteJointDef() { type = e_revoluteJoint; }
+
+    /// Bodies, local anchors from one world anchor (m), and the reference angle from the
+    /// bodies' current angles.
+    void Initialize(b2Body* bodyA, b2Body* bodyB, const b2Vec2& anchor);
+
+    b2Vec2 localAnchorA;      ///< m, relative to A's origin
+    b2Vec2 localAnchorB;      ///< m, relative to B's origin
+    Fixed referenceAngle;     ///< angleB - angleA in the reference state, rad
+    bool enableLimit = false; ///< enforce [lowerAngle, upperAngle]?
+    Fixed lowerAngle;         ///< rad, may be many turns (|value| <= 5000)
+    Fixed upperAngle;         ///< rad, >= lowerAngle
+    bool enableMotor = false; ///< drive the relative angular speed?
+    Fixed motorSpeed;         ///< rad/s
+    Fixed maxMotorTorque;     ///< N*m, >= 0
+};
+
+/// Revolute joint.
+class b2RevoluteJoint : public b2Joint {
+public:
+    explicit b2RevoluteJoint(const b2RevoluteJointDef* def);
+
+    b2Vec2 GetAnchorA() const override;
+    b2Vec2 GetAnchorB() const override;
+    /// Point reaction on B, N.
+    b2Vec2 GetReactionForce(Fixed inv_dt) const override;
+    /// Limit reaction torque on B, N*m (the motor torque is GetMotorTorque).
+    Fixed GetReactionTorque(Fixed inv_dt) const override;
+
+    const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    Fixed GetReferenceAngle() const noexcept { return m_referenceAngle; }
+
+    /// Continuous joint angle angleB - angleA - referenceAngle, rad: counts whole turns
+    /// within +-kMaxContinuousAngle, and restarts from the wrapped angle beyond it.
+    Fixed GetJointAngle() const;
+    /// Relative angular speed wB - wA, rad/s.
+    Fixed GetJointSpeed() const;
+
+    bool IsLimitEnabled() const noexcept { return m_enableLimit; }
+    /// Enables or disables the limit (wakes the bodies).
+    void EnableLimit(bool flag);
+    Fixed GetLowerLimit() const noexcept { return m_lowerAngle; }
+    Fixed GetUpperLimit() const noexcept { return m_upperAngle; }
+    /// Sets the limits, rad (lower <= upper; wakes the bodies).
+    void SetLimits(Fixed lower, Fixed upper);
+
+    bool IsMotorEnabled() const noexcept { return m_enableMotor; }
+    /// Enables or disables the motor (wakes the bodies).
+    void EnableMotor(bool flag);
+    /// Target relative speed, rad/s (wakes the bodies).
+    void SetMotorSpeed(Fixed speed);
+    Fixed GetMotorSpeed() const noexcept { return m_motorSpeed; }
+    /// Maximum motor torque, N*m (wakes the bodies).
+    void SetMaxMotorTorque(Fixed torque);
+    Fixed GetMaxMotorTorque() const noexcept { return m_maxMotorTorque; }
+    /// Motor torque applied in the last step, N*m.
+    Fixed GetMotorTorque(Fixed inv_dt) const;
+
+    void InitVelocityConstraints(const b2SolverData& data) override;
+    void SolveVelocityConstraints(const b2SolverData& data) override;
+    bool SolvePositionConstraints(const b2SolverData& data) override;
+
+private:
+    /// The continuous angle for body angles aA, aB: the branch nearest to m_angleBase.
+    Fixed ContinuousAngle(Fixed aA, Fixed aB) const noexcept;
+
+    b2Vec2 m_localAnchorA;
+    b2Vec2 m_localAnchorB;
+    b2WideVec3 m_impulse;  ///< point (N*s) and limit (N*m*s)
+    Wide m_motorImpulse;   ///< N*m*s
+    bool m_enableMotor;
+    Fixed m_maxMotorTorque;
+    Fixed m_motorSpeed;
+    bool m_enableLimit;
+    Fixed m_referenceAngle;
+    Fixed m_lowerAngle;
+    Fixed m_upperAngle;
+    Fixed m_angleBase;  ///< continuous joint angle at the last velocity init, rad
+
+    int32 m_indexA = 0;
+    int32 m_indexB = 0;
+    b2Vec2 m_rA;
+    b2Vec2 m_rB;
+    b2Vec2 m_localCenterA;
+    b2Vec2 m_localCenterB;
+    Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
+    b2WideMat33 m_mass;  ///< the K matrix (1/kg, 1/(kg m), 1/(kg m^2)); solved, never inverted
+    Wide m_motorMass;    ///< 1/(iA + iB), kg*m^2
+    b2LimitState m_limitState = e_inactiveLimit;
+};
+
+}  // namespace lockbox

@@ -1,0 +1,64 @@
+#pragma once
+/// b2RopeJoint (Box2D 2.2.1): a maximum distance between two anchors (a slack rope). It keeps
+/// chains and ragdolls from stretching under large mass ratios.
+
+#include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/dynamics/joints/WideMatrix.h"
+
+namespace lockbox {
+
+/// Rope joint definition.
+struct b2RopeJointDef : b2JointDef {
+    b2RopeJointDef() {
+        type = e_ropeJoint;
+        localAnchorA.Set(-1, 0);
+        localAnchorB.Set(1, 0);
+    }
+
+    b2Vec2 localAnchorA;  ///< m, relative to A's origin
+    b2Vec2 localAnchorB;  ///< m, relative to B's origin
+    Fixed maxLength;      ///< m, > linearSlop
+};
+
+/// Rope joint.
+class b2RopeJoint : public b2Joint {
+public:
+    explicit b2RopeJoint(const b2RopeJointDef* def);
+
+    b2Vec2 GetAnchorA() const override;
+    b2Vec2 GetAnchorB() const override;
+    /// Rope tension on B, N.
+    b2Vec2 GetReactionForce(Fixed inv_dt) const override;
+    /// Always 0.
+    Fixed GetReactionTorque(Fixed inv_dt) const override;
+
+    const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    /// Maximum length, m.
+    void SetMaxLength(Fixed length) noexcept { m_maxLength = length; }
+    Fixed GetMaxLength() const noexcept { return m_maxLength; }
+    /// e_atUpperLimit while the rope is taut, else e_inactiveLimit.
+    b2LimitState GetLimitState() const noexcept { return m_state; }
+
+    void InitVelocityConstraints(const b2SolverData& data) override;
+    void SolveVelocityConstraints(const b2SolverData& data) override;
+    bool SolvePositionConstraints(const b2SolverData& data) override;
+
+private:
+    b2Vec2 m_localAnchorA;
+    b2Vec2 m_localAnchorB;
+    Fixed m_maxLength;
+    Fixed m_length;
+    Wide m_impulse;  ///< N*s (<= 0: the rope only pulls)
+
+    int32 m_indexA = 0;
+    int32 m_indexB = 0;
+    b2Vec2 m_u, m_rA, m_rB;
+    b2Vec2 m_localCenterA;
+    b2Vec2 m_localCenterB;
+    Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
+    Wide m_mass;  ///< kg
+    b2LimitState m_state = e_inactiveLimit;
+};
+
+}  // namespace lockbox

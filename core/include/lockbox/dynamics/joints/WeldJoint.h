@@ -1,0 +1,71 @@
+#pragma once
+/// b2WeldJoint (Box2D 2.2.1): glues two bodies together (point and angle), optionally with a
+/// soft angular spring (frequencyHz > 0).
+
+#include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/dynamics/joints/WideMatrix.h"
+
+namespace lockbox {
+
+/// Weld joint definition.
+struct b2WeldJointDef : b2JointDef {
+    b2WeldJointDef() { type = e_weldJoint; }
+
+    /// Bodies, anchors from one world point (m), reference angle from the current angles.
+    void Initialize(b2Body* bodyA, b2Body* bodyB, const b2Vec2& anchor);
+
+    b2Vec2 localAnchorA;   ///< m, relative to A's origin
+    b2Vec2 localAnchorB;   ///< m, relative to B's origin
+    Fixed referenceAngle;  ///< angleB - angleA in the reference state, rad
+    Fixed frequencyHz;     ///< angular spring frequency, Hz, in [0, 30]; 0 = rigid
+    Fixed dampingRatio;    ///< angular spring damping ratio
+};
+
+/// Weld joint.
+class b2WeldJoint : public b2Joint {
+public:
+    explicit b2WeldJoint(const b2WeldJointDef* def);
+
+    b2Vec2 GetAnchorA() const override;
+    b2Vec2 GetAnchorB() const override;
+    /// Point reaction on B, N.
+    b2Vec2 GetReactionForce(Fixed inv_dt) const override;
+    /// Angular reaction on B, N*m.
+    Fixed GetReactionTorque(Fixed inv_dt) const override;
+
+    const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    Fixed GetReferenceAngle() const noexcept { return m_referenceAngle; }
+    /// Angular spring frequency, Hz.
+    void SetFrequency(Fixed hz) noexcept { m_frequencyHz = hz; }
+    Fixed GetFrequency() const noexcept { return m_frequencyHz; }
+    /// Angular spring damping ratio.
+    void SetDampingRatio(Fixed ratio) noexcept { m_dampingRatio = ratio; }
+    Fixed GetDampingRatio() const noexcept { return m_dampingRatio; }
+
+    void InitVelocityConstraints(const b2SolverData& data) override;
+    void SolveVelocityConstraints(const b2SolverData& data) override;
+    bool SolvePositionConstraints(const b2SolverData& data) override;
+
+private:
+    Fixed m_frequencyHz;
+    Fixed m_dampingRatio;
+    Wide m_bias;   ///< rad/s
+    b2Vec2 m_localAnchorA;
+    b2Vec2 m_localAnchorB;
+    Fixed m_referenceAngle;
+    Wide m_gamma;  ///< 1/(kg m^2)
+    b2WideVec3 m_impulse;
+
+    int32 m_indexA = 0;
+    int32 m_indexB = 0;
+    b2Vec2 m_rA;
+    b2Vec2 m_rB;
+    b2Vec2 m_localCenterA;
+    b2Vec2 m_localCenterB;
+    Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
+    b2WideMat33 m_K;       ///< solved, never inverted
+    Wide m_angularMass;    ///< soft angular effective mass, kg*m^2
+};
+
+}  // namespace lockbox

@@ -1,0 +1,99 @@
+#pragma once
+/// b2WheelJoint (Box2D 2.2.1): B's anchor slides on a line fixed in A (the suspension axis)
+/// with a spring along it, and B rotates freely with an optional motor. For vehicles.
+
+#include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/dynamics/joints/WideMatrix.h"
+
+namespace lockbox {
+
+/// Wheel joint definition.
+struct b2WheelJointDef : b2JointDef {
+    b2WheelJointDef() { type = e_wheelJoint; localAxisA.Set(1, 0); }
+
+    /// Bodies, anchors from one world point (m) and the axis from a world direction.
+    void Initialize(b2Body* bodyA, b2Body* bodyB, const b2Vec2& anchor, const b2Vec2& axis);
+
+    b2Vec2 localAnchorA;       ///< m, relative to A's origin
+    b2Vec2 localAnchorB;       ///< m, relative to B's origin
+    b2Vec2 localAxisA;         ///< suspension axis in A's frame (unit length)
+    bool enableMotor = false;  ///< drive the wheel's rotation?
+    Fixed maxMotorTorque;      ///< N*m, >= 0
+    Fixed motorSpeed;          ///< rad/s
+    Fixed frequencyHz = 2;     ///< suspension frequency, Hz, in [0, 30]; 0 = rigid axle
+    Fixed dampingRatio = Fixed(0.7);  ///< suspension damping ratio
+};
+
+/// Wheel joint.
+class b2WheelJoint : public b2Joint {
+public:
+    explicit b2WheelJoint(const b2WheelJointDef* def);
+
+    b2Vec2 GetAnchorA() const override;
+    b2Vec2 GetAnchorB() const override;
+    /// Line plus spring reaction on B, N.
+    b2Vec2 GetReactionForce(Fixed inv_dt) const override;
+    /// Motor torque on B, N*m.
+    Fixed GetReactionTorque(Fixed inv_dt) const override;
+
+    const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    const b2Vec2& GetLocalAxisA() const noexcept { return m_localXAxisA; }
+
+    /// Translation along the axis, m.
+    Fixed GetJointTranslation() const;
+    /// Relative angular speed wB - wA, rad/s.
+    Fixed GetJointSpeed() const;
+
+    bool IsMotorEnabled() const noexcept { return m_enableMotor; }
+    void EnableMotor(bool flag);
+    /// Target speed, rad/s.
+    void SetMotorSpeed(Fixed speed);
+    Fixed GetMotorSpeed() const noexcept { return m_motorSpeed; }
+    /// Maximum motor torque, N*m.
+    void SetMaxMotorTorque(Fixed torque);
+    Fixed GetMaxMotorTorque() const noexcept { return m_maxMotorTorque; }
+    /// Motor torque applied in the last step, N*m.
+    Fixed GetMotorTorque(Fixed inv_dt) const;
+
+    /// Suspension frequency, Hz (0 disables the spring).
+    void SetSpringFrequencyHz(Fixed hz) noexcept { m_frequencyHz = hz; }
+    Fixed GetSpringFrequencyHz() const noexcept { return m_frequencyHz; }
+    /// Suspension damping ratio.
+    void SetSpringDampingRatio(Fixed ratio) noexcept { m_dampingRatio = ratio; }
+    Fixed GetSpringDampingRatio() const noexcept { return m_dampingRatio; }
+
+    void InitVelocityConstraints(const b2SolverData& data) override;
+    void SolveVelocityConstraints(const b2SolverData& data) override;
+    bool SolvePositionConstraints(const b2SolverData& data) override;
+
+private:
+    Fixed m_frequencyHz;
+    Fixed m_dampingRatio;
+    b2Vec2 m_localAnchorA;
+    b2Vec2 m_localAnchorB;
+    b2Vec2 m_localXAxisA;
+    b2Vec2 m_localYAxisA;
+
+    Wide m_impulse;        ///< line constraint, N*s
+    Wide m_motorImpulse;   ///< N*m*s
+    Wide m_springImpulse;  ///< N*s
+    Fixed m_maxMotorTorque;
+    Fixed m_motorSpeed;
+    bool m_enableMotor;
+
+    int32 m_indexA = 0;
+    int32 m_indexB = 0;
+    b2Vec2 m_localCenterA;
+    b2Vec2 m_localCenterB;
+    Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
+    b2Vec2 m_ax, m_ay;
+    Fixed m_sAx, m_sBx, m_sAy, m_sBy;  ///< arms, m
+    Wide m_mass;        ///< kg
+    Wide m_motorMass;   ///< kg*m^2
+    Wide m_springMass;  ///< kg
+    Wide m_bias;        ///< m/s
+    Wide m_gamma;       ///< 1/kg
+};
+
+}  // namespace lockbox

@@ -1,0 +1,212 @@
+#pragma once
+/// Q32.32 vectors and matrices for the joint solvers: impulses (N*s), effective-mass matrices
+/// K (1/kg) and their solves.
+///
+/// Why: K's entries are inverse masses (up to ~1e3 1/kg) plus inverse inertias times squared
+/// arms (up to ~1e6 and more), which overflow Q16.16, and its 3x3 determinant spans 1e-9..5e11
+/// (NUMERICS Table 1). Here K is stored in Wide, normalised by a power of two so that its
+/// largest entry has kNormBits significant bits, and solved by Cramer's rule with exact 128-bit
+/// cofactors and one rounded division per component.
+
+#include "lockbox/fixed/Math.h"
+#include "lockbox/fixed/detail/Int128.h"
+
+namespace lockbox {
+
+/// A 2D vector in Q32.32: an impulse (N*s) or a wide velocity (m/s).
+struct b2WideVec2 {
+    Wide x;
+    Wide y;
+
+    constexpr b2WideVec2() noexcept = default;
+    constexpr b2WideVec2(Wide xIn, Wide yIn) noexcept : x(xIn), y(yIn) {}
+    /// Exact widening of a Q16.16 vector.
+    constexpr explicit b2WideVec2(const b2Vec2& v) noexcept : x(Wide(v.x)), y(Wide(v.y)) {}
+
+    constexpr void SetZero() noexcept { x = Wide(); y = Wide(); }
+    constexpr b2WideVec2 operator-() const noexcept { return {-x, -y}; }
+    constexpr b2WideVec2& operator+=(const b2WideVec2& v) noexcept { x += v.x; y += v.y; return *this; }
+    constexpr b2WideVec2& operator-=(const b2WideVec2& v) noexcept { x -= v.x; y -= v.y; return *this; }
+    /// Squared length (Q32.32, rounded once); for clamping impulses to a disc.
+    constexpr Wide LengthSquared() const noexcept { return x * x + y * y; }
+    /// Rounds to a Q16.16 vector (saturating).
+    constexpr b2Vec2 ToFixed() const noexcept { return {x.ToFixed(), y.ToFixed()}; }
+};
+
+constexpr b2WideVec2 operator+(const b2WideVec2& a, const b2WideVec2& b) noexcept { return {a.x + b.x, a.y + b.y}; }
+constexpr b2WideVec2 operator-(const b2WideVec2& a, const b2WideVec2& b) noexcept { return {a.x - b.x, a.y - b.y}; }
+/// s * v with a Q16.16 scalar, one rounding per component.
+constexpr b2WideVec2 operator*(Fixed s, const b2WideVec2& v) noexcept { return {v.x * s, v.y * s}; }
+/// s * v with a Q32.32 scalar, one rounding per component.
+constexpr b2WideVec2 operator*(Wide s, const b2WideVec2& v) noexcept { return {s * v.x, s * v.y}; }
+/// s * d for a Q16.16 vector d (an impulse along a direction), one rounding per component.
+constexpr b2WideVec2 operator*(Wide s, const b2Vec2& d) noexcept { return {s * d.x, s * d.y}; }
+
+/// A 3D vector in Q32.32 (point impulse plus angular impulse).
+struct b2WideVec3 {
+    Wide x;
+    Wide y;
+    Wide z;
+
+    constexpr b2WideVec3() noexcept = default;
+    constexpr b2WideVec3(Wide xIn, Wide yIn, Wide zIn) noexcept : x(xIn), y(yIn), z(zIn) {}
+    constexpr explicit b2WideVec3(const b2Vec3& v) noexcept : x(Wide(v.x)), y(Wide(v.y)), z(Wide(v.z)) {}
+
+    constexpr void SetZero() noexcept { x = y = z = Wide(); }
+    constexpr b2WideVec3 operator-() const noexcept { return {-x, -y, -z}; }
+    constexpr b2WideVec3& operator+=(const b2WideVec3& v) noexcept { x += v.x; y += v.y; z += v.z; return *this; }
+    constexpr b2WideVec3& operator-=(const b2WideVec3& v) noexcept { x -= v.x; y -= v.y; z -= v.z; return *this; }
+};
+
+constexpr b2WideVec3 operator+(const b2WideVec3& a, const b2WideVec3& b) noexcept { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+constexpr b2WideVec3 operator-(const b2WideVec3& a, const b2WideVec3& b) noexcept { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+
+/// Exact r x P (N*m*s) of a Q16.16 arm and a Q32.32 impulse, rounded once to Q32.32.
+constexpr Wide b2Cross(const b2Vec2& r, const b2WideVec2& p) noexcept {
+    const detail::S128 e = detail::SubS128(detail::MulS64(r.x.Raw(), p.y.Raw()), detail::MulS64(r.y.Raw(), p.x.Raw()));
+    return Wide::FromRaw(detail::NarrowWide(detail::ShrRoundS128(e, 16), "b2Cross(b2Vec2, b2WideVec2)", r.x.Raw(), p.y.Raw()));
+}
+
+namespace detail {
+/// round(n * 2^shift / d) as a saturated Q32.32 raw. When n << shift would not fit 127 bits,
+/// d is shifted right instead (d is then so large that its dropped bits do not matter). A
+/// zero (or vanishing) d is the singular case and gives 0, as Box2D's solves do.
+constexpr int64_t DivShiftS128(S128 n, S128 d, int shift, const char* op) noexcept {
+    if (IsZero(n)) return 0;
+    const int room = 126 - BitWidthU128(n.mag);
+    if (shift <= room) {
+        n.mag = ShlU128(n.mag, shift);
+    } else {
+        n.mag = ShlU128(n.mag, room);
+        d = ShrRoundS128(d, shift - room);
+    }
+    if (IsZero(d)) return 0;
+    return NarrowWide(DivRoundS128(n, d), op, 0, 0);
+}
+
+/// Significant bits kept in the largest entry of a normalised K. 36 bits (a relative
+/// resolution of 1.5e-11, far better than float's 6e-8) leave room for the exact 3x3
+/// cofactor sums times a right-hand side of up to 2^47 raw (32768 m/s) inside 127 bits.
+inline constexpr int kNormBits = 36;
+
+/// The power-of-two exponent s that brings the largest |raw| to kNormBits bits.
+constexpr int NormShift(const int64_t* raws, int count) noexcept {
+    uint64_t m = 0;
+    for (int i = 0; i < count; ++i) m |= AbsU64(raws[i]);
+    if (m == 0) return 0;
+    return BitWidthU128(U128{0, m}) - kNormBits;
+}
+
+/// raw * 2^-s with rounding (s > 0) or exact raw * 2^-s (s <= 0, never overflows since the
+/// result has kNormBits bits).
+constexpr int64_t ScaleRaw(int64_t raw, int s) noexcept {
+    if (s > 0) return ToS64(ShrRoundS128(MulS64(raw, 1), s));
+    return raw * (int64_t{1} << (-s));
+}
+}  // namespace detail
+
+namespace detail {
+/// floor(sqrt(n)) of a 128-bit value (digit by digit; off the hot path: impulse clamps only).
+constexpr uint64_t IsqrtU128(U128 n) noexcept {
+    U128 rem{0, 0};
+    U128 root{0, 0};
+    for (int i = 63; i >= 0; --i) {
+        // Bring down the next two bits of n.
+        rem = AddU128(ShlU128(rem, 2), ShrU128(n, 2 * i).lo & 3u);
+        root = ShlU128(root, 1);
+        const U128 trial = AddU128(ShlU128(root, 1), 1);
+        if (!LessU128(rem, trial)) {
+            rem = SubU128(rem, trial);
+            root = AddU128(root, 1);
+        }
+    }
+    return root.lo;
+}
+}  // namespace detail
+
+/// Scales v down to length maxLength (>= 0) when it is longer; otherwise returns v. The test
+/// compares exact 128-bit squares (the Q32.32 square of a 1e5 N*s impulse would overflow) and
+/// the scaling is one rounded division per component. Used for the friction and mouse clamps.
+constexpr b2WideVec2 b2ClampLength(const b2WideVec2& v, Wide maxLength) noexcept {
+    using namespace detail;
+    const U128 sum = AddU128(MulU64(AbsU64(v.x.Raw()), AbsU64(v.x.Raw())), MulU64(AbsU64(v.y.Raw()), AbsU64(v.y.Raw())));
+    const int64_t maxRaw = maxLength.Raw() > 0 ? maxLength.Raw() : 0;
+    const U128 lim = MulU64(static_cast<uint64_t>(maxRaw), static_cast<uint64_t>(maxRaw));
+    if (!LessU128(lim, sum)) return v;
+    const uint64_t len = IsqrtU128(sum);  // > maxRaw >= 0, so non-zero
+    const S128 d{false, U128{0, len}};
+    auto scale = [&](Wide c) {
+        return Wide::FromRaw(NarrowWide(DivRoundS128(MulS64(c.Raw(), maxRaw), d), "b2ClampLength", c.Raw(), maxRaw));
+    };
+    return {scale(v.x), scale(v.y)};
+}
+
+/// Symmetric or general 2x2 matrix of Q32.32 entries, column-major (an effective-mass K, 1/kg).
+struct b2WideMat22 {
+    b2WideVec2 ex;
+    b2WideVec2 ey;
+
+    /// Solves K x = b for a Q32.32 right-hand side (m/s); x is an impulse (N*s). A singular K
+    /// gives x = 0.
+    constexpr b2WideVec2 Solve(const b2WideVec2& b) const noexcept {
+        using namespace detail;
+        const int64_t raws[4] = {ex.x.Raw(), ex.y.Raw(), ey.x.Raw(), ey.y.Raw()};
+        const int s = NormShift(raws, 4);
+        const int64_t a11 = ScaleRaw(ex.x.Raw(), s), a21 = ScaleRaw(ex.y.Raw(), s);
+        const int64_t a12 = ScaleRaw(ey.x.Raw(), s), a22 = ScaleRaw(ey.y.Raw(), s);
+        const S128 det = SubS128(MulS64(a11, a22), MulS64(a12, a21));
+        const S128 nx = SubS128(MulS64(a22, b.x.Raw()), MulS64(a12, b.y.Raw()));
+        const S128 ny = SubS128(MulS64(a11, b.y.Raw()), MulS64(a21, b.x.Raw()));
+        // Raw bookkeeping: x_raw = (n / det) * 2^(32 - s), see WideMatrix.h's header.
+        return {Wide::FromRaw(DivShiftS128(nx, det, 32 - s, "b2WideMat22::Solve")),
+                Wide::FromRaw(DivShiftS128(ny, det, 32 - s, "b2WideMat22::Solve"))};
+    }
+    /// Solves K x = b for a Q16.16 right-hand side.
+    constexpr b2WideVec2 Solve(const b2Vec2& b) const noexcept { return Solve(b2WideVec2(b)); }
+};
+
+/// 3x3 matrix of Q32.32 entries, column-major (the point-plus-angle K of revolute, prismatic
+/// and weld joints).
+struct b2WideMat33 {
+    b2WideVec3 ex;
+    b2WideVec3 ey;
+    b2WideVec3 ez;
+
+    /// Solves K x = b (b in m/s and rad/s as Q32.32). A singular K gives x = 0.
+    constexpr b2WideVec3 Solve33(const b2WideVec3& b) const noexcept {
+        using namespace detail;
+        const int64_t raws[9] = {ex.x.Raw(), ex.y.Raw(), ex.z.Raw(), ey.x.Raw(), ey.y.Raw(),
+                                 ey.z.Raw(), ez.x.Raw(), ez.y.Raw(), ez.z.Raw()};
+        const int s = NormShift(raws, 9);
+        int64_t m[9] = {};
+        for (int i = 0; i < 9; ++i) m[i] = ScaleRaw(raws[i], s);
+        const int64_t bv[3] = {b.x.Raw(), b.y.Raw(), b.z.Raw()};
+        // Columns c0 = m[0..2], c1 = m[3..5], c2 = m[6..8]; det = c0 . (c1 x c2).
+        auto triple = [](const int64_t* a, const int64_t* p, const int64_t* q) {
+            const S128 cx = SubS128(MulS64(p[1], q[2]), MulS64(p[2], q[1]));
+            const S128 cy = SubS128(MulS64(p[2], q[0]), MulS64(p[0], q[2]));
+            const S128 cz = SubS128(MulS64(p[0], q[1]), MulS64(p[1], q[0]));
+            return AddS128(AddS128(MulS128S64(cx, a[0]), MulS128S64(cy, a[1])), MulS128S64(cz, a[2]));
+        };
+        const S128 det = triple(m, m + 3, m + 6);
+        const S128 nx = triple(bv, m + 3, m + 6);
+        const S128 ny = triple(m, bv, m + 6);
+        const S128 nz = triple(m, m + 3, bv);
+        return {Wide::FromRaw(DivShiftS128(nx, det, 32 - s, "b2WideMat33::Solve33")),
+                Wide::FromRaw(DivShiftS128(ny, det, 32 - s, "b2WideMat33::Solve33")),
+                Wide::FromRaw(DivShiftS128(nz, det, 32 - s, "b2WideMat33::Solve33"))};
+    }
+    /// Solves K x = b for a Q16.16 right-hand side.
+    constexpr b2WideVec3 Solve33(const b2Vec3& b) const noexcept { return Solve33(b2WideVec3(b)); }
+
+    /// Solves the upper 2x2 block: K22 x = b. A singular block gives x = 0.
+    constexpr b2WideVec2 Solve22(const b2WideVec2& b) const noexcept {
+        b2WideMat22 k;
+        k.ex = {ex.x, ex.y};
+        k.ey = {ey.x, ey.y};
+        return k.Solve(b);
+    }
+    constexpr b2WideVec2 Solve22(const b2Vec2& b) const noexcept { return Solve22(b2WideVec2(b)); }
+};
+
+}  // namespace lockbox

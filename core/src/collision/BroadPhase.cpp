@@ -1,0 +1,59 @@
+#include "lockbox/collision/BroadPhase.h"
+
+#include <cassert>
+
+namespace lockbox {
+
+namespace {
+/// Initial buffer capacities, as 2.2.1 (they grow by doubling and never shrink).
+constexpr size_t kInitialMoveCapacity = 16;
+constexpr size_t kInitialPairCapacity = 16;
+}  // namespace
+
+b2BroadPhase::b2BroadPhase() {
+    m_moveBuffer.reserve(kInitialMoveCapacity);
+    m_pairBuffer.reserve(kInitialPairCapacity);
+}
+
+int32 b2BroadPhase::CreateProxy(const b2AABB& aabb, uint64 userData) {
+    const int32 proxyId = m_tree.CreateProxy(aabb, userData);
+    ++m_proxyCount;
+    BufferMove(proxyId);
+    return proxyId;
+}
+
+void b2BroadPhase::DestroyProxy(int32 proxyId) {
+    UnBufferMove(proxyId);
+    --m_proxyCount;
+    m_tree.DestroyProxy(proxyId);
+}
+
+void b2BroadPhase::MoveProxy(int32 proxyId, const b2AABB& aabb, const b2Vec2& displacement) {
+    if (m_tree.MoveProxy(proxyId, aabb, displacement)) BufferMove(proxyId);
+}
+
+void b2BroadPhase::TouchProxy(int32 proxyId) { BufferMove(proxyId); }
+
+void b2BroadPhase::BufferMove(int32 proxyId) {
+    assert(proxyId >= 0 && "b2BroadPhase: buffering a null proxy");
+    m_moveBuffer.push_back(proxyId);
+}
+
+void b2BroadPhase::UnBufferMove(int32 proxyId) {
+    // Null every entry, not only the first (a proxy moved and touched in the same step is
+    // buffered twice; a surviving entry would query a freed node).
+    for (int32& id : m_moveBuffer) {
+        if (id == proxyId) id = e_nullProxy;
+    }
+}
+
+bool b2BroadPhase::QueryCallback(int32 proxyId) {
+    // A proxy cannot form a pair with itself.
+    if (proxyId == m_queryProxyId) return true;
+    const int32 a = proxyId < m_queryProxyId ? proxyId : m_queryProxyId;
+    const int32 b = proxyId < m_queryProxyId ? m_queryProxyId : proxyId;
+    m_pairBuffer.push_back(b2Pair{a, b});
+    return true;
+}
+
+}  // namespace lockbox

@@ -1,0 +1,346 @@
+// b2Body: construction, fixtures, mass, transforms, forces and state flags.
+#include "lockbox/dynamics/Body.h"
+
+#include "lockbox/dynamics/World.h"
+#include "lockbox/dynamics/contacts/Contact.h"
+#include "lockbox/dynamics/joints/Joint.h"
+
+namespace lockbox {
+
+b2Body::b2Body(const b2BodyDef* bd, b2World* world, int32 id) : m_type(bd->type), m_world(world), m_id(id) {
+    if (bd->bullet) m_flags |= e_bulletFlag;
+    if (bd->fixedRotation) m_flags |= e_fixedRotationFlag;
+    if (bd->allowSleep) m_flags |= e_autoSleepFlag;
+    if (bd->awake) m_flags |= e_awakeFlag;
+    if (bd->active) m_flags |= e_activeFlag;
+
+    m_xf.p = bd->position;
+    m_xf.q.Set(bd->angle);
+    m_sweep.localCenter.SetZero();
+    m_sweep.c0 = m_xf.p;
+    m_sweep.c = m_xf.p;
+    m_sweep.a0 = bd->angle;
+    m_sweep.a = bd->angle;
+    m_sweep.alpha0 = 0;
+
+    m_linearVelocity = bd->linearVelocity;
+    m_angularVelocity = bd->angularVelocity;
+    m_linearDamping = bd->linearDamping;
+    m_angularDamping = bd->angularDamping;
+    m_gravityScale = bd->gravityScale;
+    m_userData = bd->userData;
+
+    if (m_type == b2_dynamicBody) {
+        m_mass = 1;
+        m_invMass = 1;
+    }
+}
+
+b2Fixture* b2Body::CreateFixture(const b2FixtureDef* def) {
+    if (m_world->CheckLocked("b2Body::CreateFixture")) return nullptr;
+    return m_world->CreateFixtureSlot(this, def);
+}
+
+b2Fixture* b2Body::CreateFixture(const b2Shape* shape, Fixed density) {
+    b2FixtureDef def;
+    def.shape = shape;
+    def.density = density;
+    return CreateFixture(&def);
+}
+
+void b2Body::DestroyFixture(b2Fixture* fixture) {
+    if (m_world->CheckLocked("b2Body::DestroyFixture")) return;
+    if (fixture == nullptr || fixture->m_body != this) return;
+    m_world->DestroyFixtureSlot(fixture);
+}
+
+Wide b2Body::GetInertia() const noexcept {
+    return m_I + m_mass * b2DotWide(m_sweep.localCenter, m_sweep.localCenter);
+}
+
+void b2Body::GetMassData(b2MassData* data) const {
+    data->mass = m_mass;
+    data->I = GetInertia();
+    data->center = m_sweep.localCenter;
+}
+
+void b2Body::ResetMassData() {
+    m_mass = Wide();
+    m_invMass = Wide();
+    m_I = Wide();
+    m_invI = Wide();
+    m_sweep.localCenter.SetZero();
+
+    if (m_type == b2_staticBody || m_type == b2_kinematicBody) {
+        m_sweep.c0 = m_xf.p;
+        m_sweep.c = m_xf.p;
+        m_sweep.a0 = m_sweep.a;
+        UpdateExtents();
+        return;
+    }
+
+    // First moments accumulate in Q32.32 so the centre is divided out with one rounding.
+    Wide momentX;
+    Wide momentY;
+    for (b2Fixture* f = m_fixtureList; f; f = f->m_next) {
+        if (f->m_density == Fixed()) continue;
+        b2MassData massData;
+        f->GetMassData(&massData);
+        m_mass += massData.mass;
+        momentX += massData.mass * massData.center.x;
+        momentY += massData.mass * massData.center.y;
+        m_I += massData.I;
+    }
+
+    b2Vec2 localCenter;
+    if (m_mass > Wide()) {
+        m_invMass = Wide(1) / m_mass;
+        localCenter.Set((momentX / m_mass).ToFixed(), (momentY / m_mass).ToFixed());
+    } else {
+        // Force all dynamic bodies to have a positive mass (the manual's 1 kg fallback).
+        m_mass = 1;
+        m_invMass = 1;
+    }
+
+    if (m_I > Wide() && (m_flags & e_fixedRotationFlag) == 0) {
+        // Move the inertia from the body origin to the centre of mass.
+        m_I -= m_mass * b2DotWide(localCenter, localCenter);
+        if (m_I > Wide()) {
+            m_invI = Wide(1) / m_I;
+        } else {
+            m_I = Wide();
+        }
+    } else {
+        m_I = Wide();
+        m_invI = Wide();
+    }
+
+    const b2Vec2 oldCenter = m_sweep.c;
+    m_sweep.localCenter = localCenter;
+    m_sweep.c = b2Mul(m_xf, m_sweep.localCenter);
+    m_sweep.c0 = m_sweep.c;
+    // Keep the velocity of the origin: the centre of mass moved.
+    m_linearVelocity += b2Cross(m_angularVelocity, m_sweep.c - oldCenter);
+    UpdateExtents();
+}
+
+void b2Body::SetMassData(const b2MassData* massData) {
+    if (m_world->CheckLocked("b2Body::SetMassData")) return;
+    if (m_type != b2_dynamicBody) return;
+
+    m_invMass = Wide();
+    m_I = Wide();
+    m_invI = Wide();
+
+    m_mass = massData->mass;
+    if (m_mass <= Wide()) m_mass = 1;
+    m_invMass = Wide(1) / m_mass;
+
+    if (massData->I > Wide() && (m_flags & e_fixedRotationFlag) == 0) {
+        m_I = massData->I - m_mass * b2DotWide(massData->center, massData->center);
+        if (m_I > Wide()) {
+            m_invI = Wide(1) / m_I;
+        } else {
+            m_I = Wide();
+        }
+    }
+
+    const b2Vec2 oldCenter = m_sweep.c;
+    m_sweep.localCenter = massData->center;
+    m_sweep.c = b2Mul(m_xf, m_sweep.localCenter);
+    m_sweep.c0 = m_sweep.c;
+    m_linearVelocity += b2Cross(m_angularVelocity, m_sweep.c - oldCenter);
+    UpdateExtents();
+}
+
+bool b2Body::ShouldCollide(const b2Body* other) const {
+    // At least one body must be dynamic.
+    if (m_type != b2_dynamicBody && other->m_type != b2_dynamicBody) return false;
+    for (const b2JointEdge* jn = m_jointList; jn; jn = jn->next) {
+        if (jn->other == other && !jn->joint->m_collideConnected) return false;
+    }
+    return true;
+}
+
+void b2Body::SetTransform(const b2Vec2& position, Fixed angle) {
+    if (m_world->CheckLocked("b2Body::SetTransform")) return;
+    m_xf.q.Set(angle);
+    m_xf.p = position;
+    m_sweep.c = b2Mul(m_xf, m_sweep.localCenter);
+    m_sweep.a = angle;
+    m_sweep.c0 = m_sweep.c;
+    m_sweep.a0 = angle;
+    b2BroadPhase* broadPhase = &m_world->m_contactManager.m_broadPhase;
+    for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->Synchronize(broadPhase, m_xf, m_xf);
+    m_world->m_contactManager.FindNewContacts();
+}
+
+void b2Body::SynchronizeFixtures() {
+    b2Transform xf1;
+    xf1.q.Set(m_sweep.a0);
+    xf1.p = m_sweep.c0 - b2Mul(xf1.q, m_sweep.localCenter);
+    b2BroadPhase* broadPhase = &m_world->m_contactManager.m_broadPhase;
+    for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->Synchronize(broadPhase, xf1, m_xf);
+}
+
+void b2Body::SynchronizeTransform() {
+    m_xf.q.Set(m_sweep.a);
+    m_xf.p = m_sweep.c - b2Mul(m_xf.q, m_sweep.localCenter);
+}
+
+void b2Body::Advance(Fixed alpha) {
+    // Advance to the new safe time. This doesn't sync the broad phase.
+    m_sweep.Advance(alpha);
+    m_sweep.c = m_sweep.c0;
+    m_sweep.a = m_sweep.a0;
+    SynchronizeTransform();
+}
+
+void b2Body::WrapAngle() noexcept {
+    // The Q16.16 2*pi (raw 411775) is 0.17 ULP off the true value. Subtracting the same whole
+    // number of these turns from a and a0 keeps a - a0 (the step's rotation) exact; the
+    // transform is rebuilt from the wrapped angle at the next synchronisation, so the
+    // orientation moves by at most k * 0.4e-5 rad for k removed turns (once per turn).
+    constexpr int32 kPiRaw = 205887;
+    constexpr int32 kTwoPiRaw = 411775;
+    const int32 a = m_sweep.a.Raw();
+    if (a >= -kPiRaw && a < kPiRaw) return;
+    const int64_t shifted = int64_t{a} + kPiRaw;
+    int64_t turns = shifted / kTwoPiRaw;
+    if (shifted - turns * kTwoPiRaw < 0) --turns;  // floor division
+    const Fixed d = Fixed::FromRaw(static_cast<int32>(turns * kTwoPiRaw));
+    m_sweep.a -= d;
+    m_sweep.a0 -= d;
+}
+
+void b2Body::SetType(b2BodyType type) {
+    if (m_world->CheckLocked("b2Body::SetType")) return;
+    if (m_type == type) return;
+    m_type = type;
+    ResetMassData();
+    if (m_type == b2_staticBody) {
+        m_linearVelocity.SetZero();
+        m_angularVelocity = Fixed();
+        m_sweep.a0 = m_sweep.a;
+        m_sweep.c0 = m_sweep.c;
+        SynchronizeFixtures();
+    }
+    SetAwake(true);
+    m_force.SetZero();
+    m_torque = Fixed();
+    // The type rule may now accept or reject existing pairs.
+    for (b2ContactEdge* ce = m_contactList; ce; ce = ce->next) ce->contact->FlagForFiltering();
+}
+
+void b2Body::SetBullet(bool flag) noexcept {
+    if (flag) m_flags |= e_bulletFlag; else m_flags &= ~e_bulletFlag;
+}
+
+void b2Body::SetSleepingAllowed(bool flag) {
+    if (flag) {
+        m_flags |= e_autoSleepFlag;
+    } else {
+        m_flags &= ~e_autoSleepFlag;
+        SetAwake(true);
+    }
+}
+
+void b2Body::SetAwake(bool flag) {
+    if (flag) {
+        if ((m_flags & e_awakeFlag) == 0) {
+            m_flags |= e_awakeFlag;
+            m_sleepSteps = 0;
+        }
+    } else {
+        m_flags &= ~e_awakeFlag;
+        m_sleepSteps = 0;
+        m_linearVelocity.SetZero();
+        m_angularVelocity = Fixed();
+        m_force.SetZero();
+        m_torque = Fixed();
+    }
+}
+
+void b2Body::SetActive(bool flag) {
+    if (m_world->CheckLocked("b2Body::SetActive")) return;
+    if (flag == IsActive()) return;
+    b2BroadPhase* broadPhase = &m_world->m_contactManager.m_broadPhase;
+    if (flag) {
+        m_flags |= e_activeFlag;
+        m_flags &= ~e_outOfBoundsFlag;
+        for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->CreateProxies(broadPhase, m_xf);
+        // Contacts are created at the next Step.
+        m_world->m_flags |= b2World::e_newFixture;
+    } else {
+        m_flags &= ~e_activeFlag;
+        for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->DestroyProxies(broadPhase);
+        b2ContactEdge* ce = m_contactList;
+        while (ce) {
+            b2ContactEdge* ce0 = ce;
+            ce = ce->next;
+            m_world->m_contactManager.Destroy(ce0->contact);
+        }
+        m_contactList = nullptr;
+    }
+}
+
+void b2Body::SetFixedRotation(bool flag) {
+    if (flag) m_flags |= e_fixedRotationFlag; else m_flags &= ~e_fixedRotationFlag;
+    ResetMassData();
+}
+
+void b2Body::SetLinearVelocity(const b2Vec2& v) {
+    if (m_type == b2_staticBody) return;
+    if (v.LengthSquaredWide() > Wide()) SetAwake(true);
+    m_linearVelocity = v;
+}
+
+void b2Body::SetAngularVelocity(Fixed w) {
+    if (m_type == b2_staticBody) return;
+    if (w != Fixed()) SetAwake(true);
+    m_angularVelocity = w;
+}
+
+void b2Body::ApplyForce(const b2Vec2& force, const b2Vec2& point) {
+    if (m_type != b2_dynamicBody) return;
+    if (!IsAwake()) SetAwake(true);
+    m_force += force;
+    m_torque += b2Cross(point - m_sweep.c, force);
+}
+
+void b2Body::ApplyForceToCenter(const b2Vec2& force) {
+    if (m_type != b2_dynamicBody) return;
+    if (!IsAwake()) SetAwake(true);
+    m_force += force;
+}
+
+void b2Body::ApplyTorque(Fixed torque) {
+    if (m_type != b2_dynamicBody) return;
+    if (!IsAwake()) SetAwake(true);
+    m_torque += torque;
+}
+
+void b2Body::ApplyLinearImpulse(const b2Vec2& impulse, const b2Vec2& point) {
+    if (m_type != b2_dynamicBody) return;
+    if (!IsAwake()) SetAwake(true);
+    // Velocity changes are rounded once from the exact products.
+    m_linearVelocity.x += MulToFixed(m_invMass, impulse.x);
+    m_linearVelocity.y += MulToFixed(m_invMass, impulse.y);
+    m_angularVelocity += MulToFixed(m_invI, b2CrossWide(point - m_sweep.c, impulse));
+}
+
+void b2Body::ApplyAngularImpulse(Fixed impulse) {
+    if (m_type != b2_dynamicBody) return;
+    if (!IsAwake()) SetAwake(true);
+    m_angularVelocity += MulToFixed(m_invI, impulse);
+}
+
+b2Vec2 b2Body::GetLinearVelocityFromWorldPoint(const b2Vec2& worldPoint) const {
+    return m_linearVelocity + b2Cross(m_angularVelocity, worldPoint - m_sweep.c);
+}
+
+b2Vec2 b2Body::GetLinearVelocityFromLocalPoint(const b2Vec2& localPoint) const {
+    return GetLinearVelocityFromWorldPoint(GetWorldPoint(localPoint));
+}
+
+}  // namespace lockbox

@@ -1,0 +1,179 @@
+// b2ContactManager: pairs to contacts, contact destruction and the narrow-phase pass.
+#include "lockbox/dynamics/ContactManager.h"
+
+#include <utility>
+
+#include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/Fixture.h"
+#include "lockbox/dynamics/WorldCallbacks.h"
+
+namespace lockbox {
+
+namespace {
+// The manual's default rule, used when no filter is registered (no virtual call needed).
+b2ContactFilter g_defaultFilter;
+}  // namespace
+
+b2ContactManager::b2ContactManager(b2Pool<b2Fixture>* fixtures) : m_fixtures(fixtures) {}
+
+bool b2ContactManager::ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) {
+    b2ContactFilter* filter = m_contactFilter ? m_contactFilter : &g_defaultFilter;
+    return filter->ShouldCollide(fixtureA, fixtureB);
+}
+
+void b2ContactManager::AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB) {
+    if (m_profile) ++m_profile->pairsFound;
+    b2Fixture* fixtureA = m_fixtures->Get(b2FixtureProxy::KeyFixture(proxyUserDataA));
+    b2Fixture* fixtureB = m_fixtures->Get(b2FixtureProxy::KeyFixture(proxyUserDataB));
+    if (fixtureA == nullptr || fixtureB == nullptr) return;
+    int32 indexA = b2FixtureProxy::KeyChild(proxyUserDataA);
+    int32 indexB = b2FixtureProxy::KeyChild(proxyUserDataB);
+    b2Body* bodyA = fixtureA->GetBody();
+    b2Body* bodyB = fixtureB->GetBody();
+
+    // Fixtures on the same body never collide.
+    if (bodyA == bodyB) return;
+
+    // Does a contact already exist? (Walk B's edges, newest first, as 2.2.1.)
+    for (b2ContactEdge* edge = bodyB->GetContactList(); edge; edge = edge->next) {
+        if (edge->other != bodyA) continue;
+        const b2Contact* c = edge->contact;
+        const b2Fixture* fA = c->GetFixtureA();
+        const b2Fixture* fB = c->GetFixtureB();
+        const int32 iA = c->GetChildIndexA();
+        const int32 iB = c->GetChildIndexB();
+        if (fA == fixtureA && fB == fixtureB && iA == indexA && iB == indexB) return;
+        if (fA == fixtureB && fB == fixtureA && iA == indexB && iB == indexA) return;
+    }
+
+    // Body type rule and joints, then user filtering.
+    if (!bodyB->ShouldCollide(bodyA)) return;
+    if (!ShouldCollide(fixtureA, fixtureB)) return;
+
+    const b2Shape::Type typeA = fixtureA->GetType();
+    const b2Shape::Type typeB = fixtureB->GetType();
+    if (!b2Contact::CanCollide(typeA, typeB)) return;
+    if (b2Contact::NeedsSwap(typeA, typeB)) {
+        std::swap(fixtureA, fixtureB);
+        std::swap(indexA, indexB);
+        std::swap(bodyA, bodyB);
+    }
+
+    const int32 id = m_contacts.Create(fixtureA, indexA, fixtureB, indexB, 0);
+    b2Contact* c = m_contacts.Get(id);
+    c->m_id = id;
+    if (m_profile) ++m_profile->contactsCreated;
+
+    // Insert at the head of the world list.
+    c->m_prev = nullptr;
+    c->m_next = m_contactList;
+    if (m_contactList != nullptr) m_contactList->m_prev = c;
+    m_contactList = c;
+
+    // Connect to body A.
+    c->m_nodeA.contact = c;
+    c->m_nodeA.other = bodyB;
+    c->m_nodeA.prev = nullptr;
+    c->m_nodeA.next = bodyA->m_contactList;
+    if (bodyA->m_contactList != nullptr) bodyA->m_contactList->prev = &c->m_nodeA;
+    bodyA->m_contactList = &c->m_nodeA;
+
+    // Connect to body B.
+    c->m_nodeB.contact = c;
+    c->m_nodeB.other = bodyA;
+    c->m_nodeB.prev = nullptr;
+    c->m_nodeB.next = bodyB->m_contactList;
+    if (bodyB->m_contactList != nullptr) bodyB->m_contactList->prev = &c->m_nodeB;
+    bodyB->m_contactList = &c->m_nodeB;
+
+    // 2.2.1 wakes both bodies when a pair forms.
+    bodyA->SetAwake(true);
+    bodyB->SetAwake(true);
+
+    ++m_contactCount;
+}
+
+void b2ContactManager::FindNewContacts() { m_broadPhase.UpdatePairs(this); }
+
+void b2ContactManager::Destroy(b2Contact* c) {
+    b2Fixture* fixtureA = c->GetFixtureA();
+    b2Fixture* fixtureB = c->GetFixtureB();
+    b2Body* bodyA = fixtureA->GetBody();
+    b2Body* bodyB = fixtureB->GetBody();
+
+    if (m_contactListener && c->IsTouching()) {
+        m_contactListener->EndContact(c);
+        if (m_profile) ++m_profile->listenerCallbacks;
+    }
+    if (m_profile) ++m_profile->contactsDestroyed;
+
+    // Remove from the world list.
+    if (c->m_prev) c->m_prev->m_next = c->m_next;
+    if (c->m_next) c->m_next->m_prev = c->m_prev;
+    if (c == m_contactList) m_contactList = c->m_next;
+
+    // Remove from body A.
+    if (c->m_nodeA.prev) c->m_nodeA.prev->next = c->m_nodeA.next;
+    if (c->m_nodeA.next) c->m_nodeA.next->prev = c->m_nodeA.prev;
+    if (&c->m_nodeA == bodyA->m_contactList) bodyA->m_contactList = c->m_nodeA.next;
+
+    // Remove from body B.
+    if (c->m_nodeB.prev) c->m_nodeB.prev->next = c->m_nodeB.next;
+    if (c->m_nodeB.next) c->m_nodeB.next->prev = c->m_nodeB.prev;
+    if (&c->m_nodeB == bodyB->m_contactList) bodyB->m_contactList = c->m_nodeB.next;
+
+    // A contact that held the bodies apart no longer does: wake them.
+    if (c->m_manifold.pointCount > 0) {
+        bodyA->SetAwake(true);
+        bodyB->SetAwake(true);
+    }
+
+    m_contacts.Destroy(c->GetId());
+    --m_contactCount;
+}
+
+void b2ContactManager::Collide() {
+    b2Contact* c = m_contactList;
+    while (c) {
+        b2Fixture* fixtureA = c->GetFixtureA();
+        b2Fixture* fixtureB = c->GetFixtureB();
+        const int32 indexA = c->GetChildIndexA();
+        const int32 indexB = c->GetChildIndexB();
+        b2Body* bodyA = fixtureA->GetBody();
+        b2Body* bodyB = fixtureB->GetBody();
+
+        // Re-filter contacts whose filter data or body type changed.
+        if (c->m_flags & b2Contact::e_filterFlag) {
+            if (!bodyB->ShouldCollide(bodyA) || !ShouldCollide(fixtureA, fixtureB)) {
+                b2Contact* cNuke = c;
+                c = cNuke->GetNext();
+                Destroy(cNuke);
+                continue;
+            }
+            c->m_flags &= ~b2Contact::e_filterFlag;
+        }
+
+        // At least one body must be awake and dynamic or kinematic.
+        const bool activeA = bodyA->IsAwake() && bodyA->m_type != b2_staticBody;
+        const bool activeB = bodyB->IsAwake() && bodyB->m_type != b2_staticBody;
+        if (!activeA && !activeB) {
+            c = c->GetNext();
+            continue;
+        }
+
+        // Destroy contacts whose fat AABBs ceased to overlap.
+        const int32 proxyIdA = fixtureA->m_proxies[static_cast<size_t>(indexA)].proxyId;
+        const int32 proxyIdB = fixtureB->m_proxies[static_cast<size_t>(indexB)].proxyId;
+        if (!m_broadPhase.TestOverlap(proxyIdA, proxyIdB)) {
+            b2Contact* cNuke = c;
+            c = cNuke->GetNext();
+            Destroy(cNuke);
+            continue;
+        }
+
+        c->Update(m_contactListener, m_profile);
+        c = c->GetNext();
+    }
+}
+
+}  // namespace lockbox

@@ -1,0 +1,89 @@
+// b2Fixture: shape ownership, broad-phase proxies and filtering.
+#include "lockbox/dynamics/Fixture.h"
+
+#include "lockbox/collision/BroadPhase.h"
+#include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/World.h"
+#include "lockbox/dynamics/contacts/Contact.h"
+
+namespace lockbox {
+
+void b2Fixture::Create(b2Body* body, const b2FixtureDef* def, int32 id) {
+    m_userData = def->userData;
+    m_friction = def->friction;
+    m_restitution = def->restitution;
+    m_body = body;
+    m_next = nullptr;
+    m_filter = def->filter;
+    m_isSensor = def->isSensor;
+    m_shape = def->shape->Clone();
+    m_id = id;
+    // One proxy slot per child; they are filled only while the body is active.
+    m_proxies.assign(static_cast<size_t>(m_shape->GetChildCount()), b2FixtureProxy{});
+    for (b2FixtureProxy& proxy : m_proxies) {
+        proxy.fixture = this;
+        proxy.proxyId = b2BroadPhase::e_nullProxy;
+    }
+    m_proxyCount = 0;
+    m_density = def->density;
+}
+
+void b2Fixture::CreateProxies(b2BroadPhase* broadPhase, const b2Transform& xf) {
+    m_proxyCount = m_shape->GetChildCount();
+    for (int32 i = 0; i < m_proxyCount; ++i) {
+        b2FixtureProxy& proxy = m_proxies[static_cast<size_t>(i)];
+        m_shape->ComputeAABB(&proxy.aabb, xf, i);
+        proxy.proxyId = broadPhase->CreateProxy(proxy.aabb, b2FixtureProxy::MakeKey(m_id, i));
+        proxy.fixture = this;
+        proxy.childIndex = i;
+    }
+}
+
+void b2Fixture::DestroyProxies(b2BroadPhase* broadPhase) {
+    for (int32 i = 0; i < m_proxyCount; ++i) {
+        b2FixtureProxy& proxy = m_proxies[static_cast<size_t>(i)];
+        broadPhase->DestroyProxy(proxy.proxyId);
+        proxy.proxyId = b2BroadPhase::e_nullProxy;
+    }
+    m_proxyCount = 0;
+}
+
+void b2Fixture::Synchronize(b2BroadPhase* broadPhase, const b2Transform& transform1, const b2Transform& transform2) {
+    if (m_proxyCount == 0) return;
+    for (int32 i = 0; i < m_proxyCount; ++i) {
+        b2FixtureProxy& proxy = m_proxies[static_cast<size_t>(i)];
+        // The swept AABB covers the child at the start and the end of the step.
+        b2AABB aabb1;
+        b2AABB aabb2;
+        m_shape->ComputeAABB(&aabb1, transform1, proxy.childIndex);
+        m_shape->ComputeAABB(&aabb2, transform2, proxy.childIndex);
+        proxy.aabb.Combine(aabb1, aabb2);
+        const b2Vec2 displacement = transform2.p - transform1.p;
+        broadPhase->MoveProxy(proxy.proxyId, proxy.aabb, displacement);
+    }
+}
+
+void b2Fixture::SetFilterData(const b2Filter& filter) {
+    m_filter = filter;
+    if (m_body == nullptr) return;
+    for (b2ContactEdge* edge = m_body->GetContactList(); edge; edge = edge->next) {
+        b2Contact* contact = edge->contact;
+        if (contact->GetFixtureA() == this || contact->GetFixtureB() == this) contact->FlagForFiltering();
+    }
+    b2World* world = m_body->GetWorld();
+    if (world == nullptr) return;
+    // Touching the proxies puts them in the move buffer, so pairs that the old filter
+    // rejected are offered again at the next Step.
+    b2BroadPhase* broadPhase = &world->m_contactManager.m_broadPhase;
+    for (int32 i = 0; i < m_proxyCount; ++i) broadPhase->TouchProxy(m_proxies[static_cast<size_t>(i)].proxyId);
+}
+
+bool b2Fixture::TestPoint(const b2Vec2& p) const { return m_shape->TestPoint(m_body->GetTransform(), p); }
+
+bool b2Fixture::RayCast(b2RayCastOutput* output, const b2RayCastInput& input, int32 childIndex) const {
+    return m_shape->RayCast(output, input, m_body->GetTransform(), childIndex);
+}
+
+void b2Fixture::GetMassData(b2MassData* massData) const { m_shape->ComputeMass(massData, m_density); }
+
+}  // namespace lockbox

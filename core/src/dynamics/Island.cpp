@@ -1,0 +1,262 @@
+// b2Island: integration, the contact/joint solver loops and sleep.
+#include "lockbox/dynamics/Island.h"
+
+#include <chrono>
+
+#include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/WorldCallbacks.h"
+#include "lockbox/dynamics/contacts/Contact.h"
+#include "lockbox/dynamics/contacts/ContactSolver.h"
+#include "lockbox/dynamics/joints/Joint.h"
+
+namespace lockbox {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+int64_t Nanos(Clock::time_point from) {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
+}
+
+// Clamps the motion of one step (Box2D's maxTranslation and maxRotation) and integrates.
+void IntegratePosition(Fixed h, b2Vec2& c, Fixed& a, b2Vec2& v, Fixed& w) {
+    const b2Vec2 translation = h * v;
+    // Compare squares exactly in Q32.32 (the Q16.16 square saturates beyond 181 m).
+    if (translation.LengthSquaredWide() > Wide(b2_maxTranslationSquared)) {
+        const Fixed ratio = b2_maxTranslation / translation.Length();
+        v *= ratio;
+    }
+    const Fixed rotation = h * w;
+    if (MulWide(rotation, rotation) > Wide(b2_maxRotationSquared)) {
+        const Fixed ratio = b2_maxRotation / Abs(rotation);
+        w *= ratio;
+    }
+    c += h * v;
+    a += h * w;
+}
+}  // namespace
+
+void b2Island::Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapacity, b2ContactListener* listener) {
+    m_bodyCapacity = bodyCapacity;
+    m_contactCapacity = contactCapacity;
+    m_jointCapacity = jointCapacity;
+    m_listener = listener;
+    if (m_bodies.size() < static_cast<size_t>(bodyCapacity)) {
+        m_bodies.resize(static_cast<size_t>(bodyCapacity));
+        m_positions.resize(static_cast<size_t>(bodyCapacity));
+        m_velocities.resize(static_cast<size_t>(bodyCapacity));
+    }
+    if (m_contacts.size() < static_cast<size_t>(contactCapacity)) m_contacts.resize(static_cast<size_t>(contactCapacity));
+    if (m_joints.size() < static_cast<size_t>(jointCapacity)) m_joints.resize(static_cast<size_t>(jointCapacity));
+    Clear();
+}
+
+void b2Island::Add(b2Body* body) {
+    body->m_islandIndex = m_bodyCount;
+    m_bodies[static_cast<size_t>(m_bodyCount++)] = body;
+}
+
+void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep) {
+    Clock::time_point timer = Clock::now();
+    const Fixed h = step.dt;
+
+    // Integrate velocities and apply damping; copy the state into the solver buffers.
+    for (int32 i = 0; i < m_bodyCount; ++i) {
+        b2Body* b = m_bodies[static_cast<size_t>(i)];
+        const b2Vec2 c = b->m_sweep.c;
+        const Fixed a = b->m_sweep.a;
+        b2Vec2 v = b->m_linearVelocity;
+        Fixed w = b->m_angularVelocity;
+
+        // Store positions for continuous collision.
+        b->m_sweep.c0 = b->m_sweep.c;
+        b->m_sweep.a0 = b->m_sweep.a;
+
+        if (b->m_type == b2_dynamicBody) {
+            // v += h * (gravityScale * g + invMass * f): the acceleration is formed exactly-ish
+            // in Q32.32 and the velocity change is rounded once.
+            const Wide ax = MulWide(b->m_gravityScale, gravity.x) + b->m_invMass * b->m_force.x;
+            const Wide ay = MulWide(b->m_gravityScale, gravity.y) + b->m_invMass * b->m_force.y;
+            v.x += MulToFixed(ax, h);
+            v.y += MulToFixed(ay, h);
+            w += MulToFixed(b->m_invI * b->m_torque, h);
+
+            // Damping, the Box2D 2.3+ form v *= 1 / (1 + h c): unconditionally stable and never
+            // reverses the velocity (2.2.1 clamps 1 - h c instead). One division each.
+            if (b->m_linearDamping != Fixed()) {
+                const Fixed d = Fixed(1) + h * b->m_linearDamping;
+                v.x = v.x / d;
+                v.y = v.y / d;
+            }
+            if (b->m_angularDamping != Fixed()) w = w / (Fixed(1) + h * b->m_angularDamping);
+        }
+
+        m_positions[static_cast<size_t>(i)].c = c;
+        m_positions[static_cast<size_t>(i)].a = a;
+        m_velocities[static_cast<size_t>(i)].v = v;
+        m_velocities[static_cast<size_t>(i)].w = w;
+    }
+    profile->bodiesIntegrated += m_bodyCount;
+
+    b2SolverData solverData;
+    solverData.step = step;
+    solverData.positions = m_positions.data();
+    solverData.velocities = m_velocities.data();
+
+    b2ContactSolverDef contactSolverDef;
+    contactSolverDef.step = step;
+    contactSolverDef.contacts = m_contacts.data();
+    contactSolverDef.count = m_contactCount;
+    contactSolverDef.positions = m_positions.data();
+    contactSolverDef.velocities = m_velocities.data();
+
+    b2ContactSolver contactSolver(&contactSolverDef);
+    contactSolver.InitializeVelocityConstraints();
+    profile->contactConstraints += m_contactCount;
+    if (step.warmStarting) contactSolver.WarmStart();
+    // Joint loops are entered only when the island has joints.
+    for (int32 i = 0; i < m_jointCount; ++i) m_joints[static_cast<size_t>(i)]->InitVelocityConstraints(solverData);
+    profile->jointConstraints += m_jointCount;
+    profile->solveInitNs += Nanos(timer);
+
+    timer = Clock::now();
+    for (int32 it = 0; it < step.velocityIterations; ++it) {
+        for (int32 j = 0; j < m_jointCount; ++j) m_joints[static_cast<size_t>(j)]->SolveVelocityConstraints(solverData);
+        contactSolver.SolveVelocityConstraints();
+    }
+    profile->velocityIterations += step.velocityIterations * m_contactCount;
+    profile->jointVelocityIterations += step.velocityIterations * m_jointCount;
+    contactSolver.StoreImpulses();
+    profile->solveVelocityNs += Nanos(timer);
+
+    timer = Clock::now();
+    for (int32 i = 0; i < m_bodyCount; ++i) {
+        b2Position& pos = m_positions[static_cast<size_t>(i)];
+        b2Velocity& vel = m_velocities[static_cast<size_t>(i)];
+        IntegratePosition(h, pos.c, pos.a, vel.v, vel.w);
+    }
+
+    bool positionSolved = false;
+    for (int32 it = 0; it < step.positionIterations; ++it) {
+        ++profile->positionIterations;
+        const bool contactsOkay = contactSolver.SolvePositionConstraints();
+        bool jointsOkay = true;
+        for (int32 j = 0; j < m_jointCount; ++j) {
+            const bool jointOkay = m_joints[static_cast<size_t>(j)]->SolvePositionConstraints(solverData);
+            jointsOkay = jointsOkay && jointOkay;
+        }
+        if (contactsOkay && jointsOkay) {
+            // Exit early if the position errors are small.
+            positionSolved = true;
+            break;
+        }
+    }
+
+    // Copy state buffers back to the bodies.
+    for (int32 i = 0; i < m_bodyCount; ++i) {
+        b2Body* body = m_bodies[static_cast<size_t>(i)];
+        body->m_sweep.c = m_positions[static_cast<size_t>(i)].c;
+        body->m_sweep.a = m_positions[static_cast<size_t>(i)].a;
+        body->m_linearVelocity = m_velocities[static_cast<size_t>(i)].v;
+        body->m_angularVelocity = m_velocities[static_cast<size_t>(i)].w;
+        body->SynchronizeTransform();
+    }
+    profile->solvePositionNs += Nanos(timer);
+
+    Report(profile, contactSolver.m_velocityConstraints.data());
+
+    if (allowSleep) {
+        // The sleep timer counts whole steps (NUMERICS Table 4: summing h in Q16.16 takes 31
+        // steps instead of 30). Speeds are compared squared and exactly in Q32.32 (the Q16.16
+        // square of linearSleepTolerance is 6.8 % off).
+        int32 minSleepSteps = INT32_MAX;
+        const Wide linTolSqr = MulWide(b2_linearSleepTolerance, b2_linearSleepTolerance);
+        const Wide angTolSqr = MulWide(b2_angularSleepTolerance, b2_angularSleepTolerance);
+        for (int32 i = 0; i < m_bodyCount; ++i) {
+            b2Body* b = m_bodies[static_cast<size_t>(i)];
+            if (b->GetType() == b2_staticBody) continue;
+            ++profile->sleepChecks;
+            if ((b->m_flags & b2Body::e_autoSleepFlag) == 0 ||
+                MulWide(b->m_angularVelocity, b->m_angularVelocity) > angTolSqr ||
+                b->m_linearVelocity.LengthSquaredWide() > linTolSqr) {
+                b->m_sleepSteps = 0;
+                minSleepSteps = 0;
+            } else {
+                if (b->m_sleepSteps < INT32_MAX) ++b->m_sleepSteps;
+                minSleepSteps = minSleepSteps < b->m_sleepSteps ? minSleepSteps : b->m_sleepSteps;
+            }
+        }
+        if (minSleepSteps >= step.stepsToSleep && positionSolved) {
+            for (int32 i = 0; i < m_bodyCount; ++i) m_bodies[static_cast<size_t>(i)]->SetAwake(false);
+        }
+    }
+}
+
+void b2Island::SolveTOI(b2Profile* profile, const b2TimeStep& subStep, int32 toiIndexA, int32 toiIndexB) {
+    for (int32 i = 0; i < m_bodyCount; ++i) {
+        const b2Body* b = m_bodies[static_cast<size_t>(i)];
+        m_positions[static_cast<size_t>(i)].c = b->m_sweep.c;
+        m_positions[static_cast<size_t>(i)].a = b->m_sweep.a;
+        m_velocities[static_cast<size_t>(i)].v = b->m_linearVelocity;
+        m_velocities[static_cast<size_t>(i)].w = b->m_angularVelocity;
+    }
+
+    b2ContactSolverDef contactSolverDef;
+    contactSolverDef.contacts = m_contacts.data();
+    contactSolverDef.count = m_contactCount;
+    contactSolverDef.step = subStep;
+    contactSolverDef.positions = m_positions.data();
+    contactSolverDef.velocities = m_velocities.data();
+    b2ContactSolver contactSolver(&contactSolverDef);
+
+    // Solve position constraints.
+    for (int32 i = 0; i < subStep.positionIterations; ++i) {
+        ++profile->positionIterations;
+        if (contactSolver.SolveTOIPositionConstraints(toiIndexA, toiIndexB)) break;
+    }
+
+    // Leap of faith to the new safe state.
+    b2Body* bodyA = m_bodies[static_cast<size_t>(toiIndexA)];
+    b2Body* bodyB = m_bodies[static_cast<size_t>(toiIndexB)];
+    bodyA->m_sweep.c0 = m_positions[static_cast<size_t>(toiIndexA)].c;
+    bodyA->m_sweep.a0 = m_positions[static_cast<size_t>(toiIndexA)].a;
+    bodyB->m_sweep.c0 = m_positions[static_cast<size_t>(toiIndexB)].c;
+    bodyB->m_sweep.a0 = m_positions[static_cast<size_t>(toiIndexB)].a;
+
+    // No warm starting: the discrete solver already applied those impulses.
+    contactSolver.InitializeVelocityConstraints();
+    for (int32 i = 0; i < subStep.velocityIterations; ++i) contactSolver.SolveVelocityConstraints();
+    // TOI impulses are not stored for warm starting: they can be very large.
+
+    const Fixed h = subStep.dt;
+    for (int32 i = 0; i < m_bodyCount; ++i) {
+        b2Position& pos = m_positions[static_cast<size_t>(i)];
+        b2Velocity& vel = m_velocities[static_cast<size_t>(i)];
+        IntegratePosition(h, pos.c, pos.a, vel.v, vel.w);
+
+        b2Body* body = m_bodies[static_cast<size_t>(i)];
+        body->m_sweep.c = pos.c;
+        body->m_sweep.a = pos.a;
+        body->m_linearVelocity = vel.v;
+        body->m_angularVelocity = vel.w;
+        body->SynchronizeTransform();
+    }
+
+    Report(profile, contactSolver.m_velocityConstraints.data());
+}
+
+void b2Island::Report(b2Profile* profile, const b2ContactVelocityConstraint* constraints) {
+    if (m_listener == nullptr) return;
+    for (int32 i = 0; i < m_contactCount; ++i) {
+        b2Contact* c = m_contacts[static_cast<size_t>(i)];
+        const b2ContactVelocityConstraint* vc = constraints + i;
+        b2ContactImpulse impulse;
+        for (int32 j = 0; j < vc->pointCount; ++j) {
+            impulse.normalImpulses[j] = vc->points[j].normalImpulse;
+            impulse.tangentImpulses[j] = vc->points[j].tangentImpulse;
+        }
+        m_listener->PostSolve(c, &impulse);
+        ++profile->listenerCallbacks;
+    }
+}
+
+}  // namespace lockbox

@@ -1,0 +1,282 @@
+// b2World: lifetime of bodies and fixtures, the step driver, switches and the assert handler.
+#include "lockbox/dynamics/World.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+#include "lockbox/dynamics/contacts/Contact.h"
+
+namespace lockbox {
+
+namespace {
+void DefaultAssertHandler(const char* expr, const char* msg, const char* file, int line) {
+    std::fprintf(stderr, "lockbox: %s:%d: check '%s' failed: %s\n", file, line, expr, msg);
+    std::abort();
+}
+b2AssertHandler g_assertHandler = &DefaultAssertHandler;
+
+using Clock = std::chrono::steady_clock;
+int64_t Nanos(Clock::time_point from) {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
+}
+}  // namespace
+
+b2AssertHandler b2SetAssertHandler(b2AssertHandler handler) noexcept {
+    const b2AssertHandler previous = g_assertHandler;
+    g_assertHandler = handler ? handler : &DefaultAssertHandler;
+    return previous;
+}
+
+b2World::b2World(const b2Vec2& gravity) : m_contactManager(&m_fixtures), m_gravity(gravity) {
+    m_bounds.lowerBound.Set(-b2_defaultWorldExtent, -b2_defaultWorldExtent);
+    m_bounds.upperBound.Set(b2_defaultWorldExtent, b2_defaultWorldExtent);
+    m_contactManager.m_profile = &m_profile;
+}
+
+b2World::~b2World() {
+    // Joints are heap objects owned by the world (bodies and fixtures live in pools).
+    b2Joint* j = m_jointList;
+    while (j) {
+        b2Joint* next = j->m_next;
+        b2Joint::Destroy(j);
+        j = next;
+    }
+}
+
+bool b2World::CheckLocked(const char* what) const {
+    if (!IsLocked()) return false;
+    if constexpr (b2_assertsEnabled) {
+        g_assertHandler("!world->IsLocked()", what, __FILE__, __LINE__);
+    }
+    // Refused: the caller returns nullptr or does nothing.
+    return true;
+}
+
+b2Body* b2World::CreateBody(const b2BodyDef* def) {
+    if (CheckLocked("b2World::CreateBody called inside a Step callback (the world is locked)")) return nullptr;
+    const int32 id = m_bodies.Create(def, this, b2_nullId);
+    b2Body* b = m_bodies.Get(id);
+    b->m_id = id;
+
+    // Newest first, as 2.2.1.
+    b->m_prev = nullptr;
+    b->m_next = m_bodyList;
+    if (m_bodyList) m_bodyList->m_prev = b;
+    m_bodyList = b;
+    ++m_bodyCount;
+    return b;
+}
+
+void b2World::DestroyBody(b2Body* b) {
+    if (CheckLocked("b2World::DestroyBody called inside a Step callback (the world is locked)")) return;
+    if (b == nullptr) return;
+
+    // Delete the attached joints (and any gear coupling them), telling the listener. The list
+    // head is re-read each time: destroying a gear may unlink other edges of this body.
+    while (b->m_jointList) {
+        b2Joint* j = b->m_jointList->joint;
+        if (m_destructionListener) m_destructionListener->SayGoodbye(j);
+        DestroyJoint(j);
+    }
+
+    // Delete the attached contacts.
+    b2ContactEdge* ce = b->m_contactList;
+    while (ce) {
+        b2ContactEdge* ce0 = ce;
+        ce = ce->next;
+        m_contactManager.Destroy(ce0->contact);
+    }
+    b->m_contactList = nullptr;
+
+    // Delete the attached fixtures; this destroys their broad-phase proxies.
+    b2Fixture* f = b->m_fixtureList;
+    while (f) {
+        b2Fixture* f0 = f;
+        f = f->m_next;
+        if (m_destructionListener) m_destructionListener->SayGoodbye(f0);
+        f0->DestroyProxies(&m_contactManager.m_broadPhase);
+        m_fixtures.Destroy(f0->GetId());
+        b->m_fixtureList = f;
+        b->m_fixtureCount -= 1;
+    }
+    b->m_fixtureList = nullptr;
+    b->m_fixtureCount = 0;
+
+    // Remove from the world list.
+    if (b->m_prev) b->m_prev->m_next = b->m_next;
+    if (b->m_next) b->m_next->m_prev = b->m_prev;
+    if (b == m_bodyList) m_bodyList = b->m_next;
+    --m_bodyCount;
+    m_bodies.Destroy(b->GetId());
+}
+
+b2Fixture* b2World::CreateFixtureSlot(b2Body* body, const b2FixtureDef* def) {
+    if (def == nullptr || def->shape == nullptr) {
+        if constexpr (b2_assertsEnabled) {
+            g_assertHandler("def->shape != nullptr", "b2Body::CreateFixture needs a shape", __FILE__, __LINE__);
+        }
+        return nullptr;
+    }
+    const int32 id = m_fixtures.Create();
+    b2Fixture* fixture = m_fixtures.Get(id);
+    fixture->Create(body, def, id);
+    if (body->IsActive()) fixture->CreateProxies(&m_contactManager.m_broadPhase, body->m_xf);
+
+    fixture->m_next = body->m_fixtureList;
+    body->m_fixtureList = fixture;
+    ++body->m_fixtureCount;
+
+    if (fixture->m_density > Fixed()) body->ResetMassData();
+    body->UpdateExtents();
+
+    // New contacts are found at the beginning of the next Step.
+    m_flags |= e_newFixture;
+    return fixture;
+}
+
+void b2World::DestroyFixtureSlot(b2Fixture* fixture) {
+    b2Body* body = fixture->m_body;
+
+    // Unlink from the body's singly linked list.
+    b2Fixture** node = &body->m_fixtureList;
+    while (*node != nullptr) {
+        if (*node == fixture) {
+            *node = fixture->m_next;
+            break;
+        }
+        node = &(*node)->m_next;
+    }
+
+    // Destroy any contacts of this fixture.
+    b2ContactEdge* edge = body->m_contactList;
+    while (edge) {
+        b2Contact* c = edge->contact;
+        edge = edge->next;
+        if (c->GetFixtureA() == fixture || c->GetFixtureB() == fixture) m_contactManager.Destroy(c);
+    }
+
+    if (body->IsActive()) fixture->DestroyProxies(&m_contactManager.m_broadPhase);
+    m_fixtures.Destroy(fixture->GetId());
+    --body->m_fixtureCount;
+    body->ResetMassData();
+}
+
+void b2World::SetAllowSleeping(bool flag) {
+    if (flag == m_allowSleep) return;
+    m_allowSleep = flag;
+    if (!m_allowSleep) {
+        for (b2Body* b = m_bodyList; b; b = b->m_next) b->SetAwake(true);
+    }
+}
+
+void b2World::ClearForces() {
+    for (b2Body* body = m_bodyList; body; body = body->GetNext()) {
+        body->m_force.SetZero();
+        body->m_torque = Fixed();
+    }
+}
+
+void b2World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
+    const Clock::time_point stepTimer = Clock::now();
+    m_profile = b2Profile{};
+
+    // New fixtures need their pairs before the narrow phase.
+    if (m_flags & e_newFixture) {
+        m_contactManager.FindNewContacts();
+        m_flags &= ~e_newFixture;
+    }
+
+    m_flags |= e_locked;
+
+    b2TimeStep step;
+    step.dt = dt;
+    step.velocityIterations = velocityIterations;
+    step.positionIterations = positionIterations;
+    // inv_dt is 1/dt in Q16.16, so dtRatio = inv_dt0 * dt is exactly 1 for a fixed step
+    // (NUMERICS Table 4), unlike an exact 60 which gives 65520 raw.
+    step.inv_dt = dt > Fixed() ? Fixed(1) / dt : Fixed();
+    step.dtRatio = m_inv_dt0 * dt;
+    step.warmStarting = m_warmStarting;
+    if (dt > Fixed()) {
+        // round(timeToSleep / dt) whole steps: 30 at 60 Hz, as float Box2D sleeps.
+        const int64_t n = (2 * int64_t{b2_timeToSleep.Raw()} + dt.Raw()) / (2 * int64_t{dt.Raw()});
+        step.stepsToSleep = n < 1 ? 1 : static_cast<int32>(n);
+    }
+
+    // Update contacts: this is where some contacts are destroyed.
+    {
+        const Clock::time_point timer = Clock::now();
+        m_contactManager.Collide();
+        m_profile.collideNs = Nanos(timer);
+    }
+
+    // Integrate velocities, solve velocity constraints, integrate positions.
+    if (m_stepComplete && step.dt > Fixed()) {
+        const Clock::time_point timer = Clock::now();
+        Solve(step);
+        m_profile.solveNs = Nanos(timer);
+    }
+
+    // Handle TOI events.
+    if (m_continuousPhysics && step.dt > Fixed()) {
+        const Clock::time_point timer = Clock::now();
+        SolveTOI(step);
+        m_profile.solveTOINs = Nanos(timer);
+    }
+
+    if (step.dt > Fixed()) m_inv_dt0 = step.inv_dt;
+
+    if (m_autoClearForces) ClearForces();
+
+    // Take escaped bodies out while still locked (EndContact may fire), then report them.
+    EnforceBounds();
+
+    m_flags &= ~e_locked;
+
+    if (m_boundaryListener != nullptr) {
+        // The world is unlocked: a handler may destroy or revive the body it is given (but
+        // should not destroy other reported bodies before they are reported).
+        std::vector<b2Body*> escaped;
+        escaped.swap(m_outOfBounds);
+        for (b2Body* b : escaped) {
+            m_boundaryListener->Violation(b);
+            ++m_profile.listenerCallbacks;
+        }
+    }
+    m_outOfBounds.clear();
+    m_profile.stepNs = Nanos(stepTimer);
+}
+
+bool b2World::IsOutside(const b2Body* b) const noexcept {
+    const b2Vec2& c = b->m_sweep.c;
+    return c.x < m_bounds.lowerBound.x || c.y < m_bounds.lowerBound.y || c.x > m_bounds.upperBound.x ||
+           c.y > m_bounds.upperBound.y;
+}
+
+void b2World::EnforceBounds() {
+    if (m_outOfBounds.empty()) return;
+    // The candidates were pushed in body-list order by the solver; drop duplicates and bodies
+    // that came back inside within the step (TOI).
+    std::vector<b2Body*> taken;
+    for (b2Body* b : m_outOfBounds) {
+        if (b->IsOutOfBounds() || !b->IsActive() || !IsOutside(b)) continue;
+        // Out of the simulation: no proxies, no contacts, no motion. The body keeps its
+        // transform so the application can inspect it or move it back.
+        m_flags &= ~e_locked;
+        b->SetActive(false);
+        m_flags |= e_locked;
+        b->m_flags |= b2Body::e_outOfBoundsFlag;
+        b->m_linearVelocity.SetZero();
+        b->m_angularVelocity = Fixed();
+        b->m_force.SetZero();
+        b->m_torque = Fixed();
+        b->m_sweep.c0 = b->m_sweep.c;
+        b->m_sweep.a0 = b->m_sweep.a;
+        ++m_profile.boundsViolations;
+        taken.push_back(b);
+    }
+    m_outOfBounds.swap(taken);
+}
+
+}  // namespace lockbox

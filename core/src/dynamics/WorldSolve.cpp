@@ -1,0 +1,348 @@
+// b2World::Solve (islands) and b2World::SolveTOI (continuous collision).
+#include <chrono>
+
+#include "lockbox/collision/TimeOfImpact.h"
+#include "lockbox/dynamics/World.h"
+#include "lockbox/dynamics/contacts/Contact.h"
+
+namespace lockbox {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+int64_t Nanos(Clock::time_point from) {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
+}
+
+// A TOI at or beyond 1 - 1 raw leaves a sub-step of (1 raw) * dt, which rounds to zero time:
+// treat it as no event (Box2D's 1 - 10 * FLT_EPSILON is below the Q16.16 quantum).
+constexpr Fixed kTOIAlphaComplete = Fixed::FromRaw(Fixed::kOneRaw - 1);
+
+// Position iterations of a TOI sub-step (2.2.1's literal 20).
+constexpr int32 kTOIPositionIterations = 20;
+
+bool IsSensorContact(const b2Contact* c) { return c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor(); }
+}  // namespace
+
+void b2World::Solve(const b2TimeStep& step) {
+    // Size the island for the worst case and clear the graph flags.
+    m_island.Reset(m_bodyCount, m_contactManager.m_contactCount, m_jointCount, m_contactManager.m_contactListener);
+    for (b2Body* b = m_bodyList; b; b = b->m_next) b->m_flags &= ~(b2Body::e_islandFlag | b2Body::e_fastFlag);
+    for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) c->m_flags &= ~b2Contact::e_islandFlag;
+    for (b2Joint* j = m_jointList; j; j = j->m_next) j->m_islandFlag = false;
+
+    m_stack.resize(static_cast<size_t>(m_bodyCount));
+    b2Body** stack = m_stack.data();
+
+    for (b2Body* seed = m_bodyList; seed; seed = seed->m_next) {
+        if (seed->m_flags & b2Body::e_islandFlag) continue;
+        if (!seed->IsAwake() || !seed->IsActive()) continue;
+        // The seed can be dynamic or kinematic.
+        if (seed->GetType() == b2_staticBody) continue;
+
+        m_island.Clear();
+        int32 stackCount = 0;
+        stack[stackCount++] = seed;
+        seed->m_flags |= b2Body::e_islandFlag;
+
+        // Depth-first search over the constraint graph, in list order.
+        while (stackCount > 0) {
+            b2Body* b = stack[--stackCount];
+            m_island.Add(b);
+            b->SetAwake(true);
+
+            // Islands do not propagate across static bodies.
+            if (b->GetType() == b2_staticBody) continue;
+
+            for (b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) {
+                b2Contact* contact = ce->contact;
+                if (contact->m_flags & b2Contact::e_islandFlag) continue;
+                if (!contact->IsEnabled() || !contact->IsTouching()) continue;
+                if (IsSensorContact(contact)) continue;
+                m_island.Add(contact);
+                contact->m_flags |= b2Contact::e_islandFlag;
+                b2Body* other = ce->other;
+                if (other->m_flags & b2Body::e_islandFlag) continue;
+                stack[stackCount++] = other;
+                other->m_flags |= b2Body::e_islandFlag;
+            }
+
+            for (b2JointEdge* je = b->m_jointList; je; je = je->next) {
+                if (je->joint->m_islandFlag) continue;
+                b2Body* other = je->other;
+                // Don't simulate joints connected to inactive bodies.
+                if (!other->IsActive()) continue;
+                m_island.Add(je->joint);
+                je->joint->m_islandFlag = true;
+                if (other->m_flags & b2Body::e_islandFlag) continue;
+                stack[stackCount++] = other;
+                other->m_flags |= b2Body::e_islandFlag;
+            }
+        }
+
+        m_island.Solve(&m_profile, step, m_gravity, m_allowSleep);
+        ++m_profile.islandsSolved;
+
+        // Static bodies may take part in other islands.
+        for (int32 i = 0; i < m_island.m_bodyCount; ++i) {
+            b2Body* b = m_island.m_bodies[static_cast<size_t>(i)];
+            if (b->GetType() == b2_staticBody) b->m_flags &= ~b2Body::e_islandFlag;
+        }
+    }
+
+    const Clock::time_point timer = Clock::now();
+    // Synchronise fixtures of bodies that moved, keep angles bounded, flag fast bodies and
+    // collect bodies that left the world.
+    for (b2Body* b = m_bodyList; b; b = b->GetNext()) {
+        if ((b->m_flags & b2Body::e_islandFlag) == 0) continue;
+        if (b->GetType() == b2_staticBody) continue;
+        b->SynchronizeFixtures();
+        if (b->IsBullet() || b->IsFastThisStep()) b->m_flags |= b2Body::e_fastFlag;
+        // Wrapping after the synchronisation keeps this step's swept AABB exact; the next
+        // step starts from the wrapped angle (a and a0 shift by the same whole turns).
+        b->WrapAngle();
+        if (IsOutside(b)) m_outOfBounds.push_back(b);
+    }
+    m_contactManager.FindNewContacts();
+    m_profile.broadphaseNs += Nanos(timer);
+}
+
+void b2World::SolveTOI(const b2TimeStep& step) {
+    // The cheap check: without a fast or bullet body no contact can need a TOI event (see
+    // b2Body::IsFastThisStep), so nothing else runs.
+    bool anyFast = false;
+    for (const b2Body* b = m_bodyList; b; b = b->m_next) {
+        if (b->m_flags & b2Body::e_fastFlag) {
+            anyFast = true;
+            break;
+        }
+    }
+    if (!anyFast) {
+        m_stepComplete = true;
+        return;
+    }
+
+    m_island.Reset(2 * b2_maxTOIContacts, b2_maxTOIContacts, 0, m_contactManager.m_contactListener);
+
+    if (m_stepComplete) {
+        for (b2Body* b = m_bodyList; b; b = b->m_next) {
+            b->m_flags &= ~b2Body::e_islandFlag;
+            b->m_sweep.alpha0 = Fixed();
+        }
+        for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) {
+            // Invalidate TOI.
+            c->m_flags &= ~(b2Contact::e_toiFlag | b2Contact::e_islandFlag);
+            c->m_toiCount = 0;
+            c->m_toi = Fixed(1);
+        }
+    }
+
+    // Find TOI events and solve them.
+    for (;;) {
+        // Find the first TOI.
+        b2Contact* minContact = nullptr;
+        Fixed minAlpha = 1;
+
+        for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) {
+            if (!c->IsEnabled()) continue;
+            // Prevent excessive sub-stepping.
+            if (c->m_toiCount > b2_maxSubSteps) continue;
+
+            Fixed alpha = 1;
+            if (c->m_flags & b2Contact::e_toiFlag) {
+                // This contact has a valid cached TOI.
+                alpha = c->m_toi;
+            } else {
+                b2Fixture* fA = c->GetFixtureA();
+                b2Fixture* fB = c->GetFixtureB();
+                if (fA->IsSensor() || fB->IsSensor()) continue;
+
+                b2Body* bA = fA->GetBody();
+                b2Body* bB = fB->GetBody();
+                const b2BodyType typeA = bA->m_type;
+                const b2BodyType typeB = bB->m_type;
+
+                const bool activeA = bA->IsAwake() && typeA != b2_staticBody;
+                const bool activeB = bB->IsAwake() && typeB != b2_staticBody;
+                // Is at least one body active (awake and dynamic or kinematic)?
+                if (!activeA && !activeB) continue;
+
+                const bool collideA = bA->IsBullet() || typeA != b2_dynamicBody;
+                const bool collideB = bB->IsBullet() || typeB != b2_dynamicBody;
+                // Are these two non-bullet dynamic bodies?
+                if (!collideA && !collideB) continue;
+
+                // Neither body moved enough to tunnel: the discrete step handled it.
+                if (((bA->m_flags | bB->m_flags) & b2Body::e_fastFlag) == 0) continue;
+                ++m_profile.toiCandidates;
+
+                // Put the sweeps onto the same time interval.
+                Fixed alpha0 = bA->m_sweep.alpha0;
+                if (bA->m_sweep.alpha0 < bB->m_sweep.alpha0) {
+                    alpha0 = bB->m_sweep.alpha0;
+                    bA->m_sweep.Advance(alpha0);
+                } else if (bB->m_sweep.alpha0 < bA->m_sweep.alpha0) {
+                    alpha0 = bA->m_sweep.alpha0;
+                    bB->m_sweep.Advance(alpha0);
+                }
+
+                b2TOIInput input;
+                input.proxyA.Set(fA->GetShape(), c->GetChildIndexA());
+                input.proxyB.Set(fB->GetShape(), c->GetChildIndexB());
+                input.sweepA = bA->m_sweep;
+                input.sweepB = bB->m_sweep;
+                input.tMax = 1;
+
+                b2TOIOutput output;
+                b2TimeOfImpact(&output, &input);
+                ++m_profile.toiCalls;
+
+                // beta is the fraction of the remaining portion of the step.
+                const Fixed beta = output.t;
+                if (output.state == b2TOIOutput::e_touching) {
+                    alpha = Min(alpha0 + (Fixed(1) - alpha0) * beta, Fixed(1));
+                } else {
+                    alpha = 1;
+                }
+                c->m_toi = alpha;
+                c->m_flags |= b2Contact::e_toiFlag;
+            }
+
+            if (alpha < minAlpha) {
+                // This is the minimum TOI found so far (ties keep the earlier contact in list order).
+                minContact = c;
+                minAlpha = alpha;
+            }
+        }
+
+        if (minContact == nullptr || minAlpha >= kTOIAlphaComplete) {
+            // No more TOI events. Done!
+            m_stepComplete = true;
+            break;
+        }
+        ++m_profile.toiEvents;
+
+        // Advance the bodies to the TOI.
+        b2Fixture* fA = minContact->GetFixtureA();
+        b2Fixture* fB = minContact->GetFixtureB();
+        b2Body* bA = fA->GetBody();
+        b2Body* bB = fB->GetBody();
+
+        const b2Sweep backup1 = bA->m_sweep;
+        const b2Sweep backup2 = bB->m_sweep;
+        bA->Advance(minAlpha);
+        bB->Advance(minAlpha);
+
+        // The TOI contact likely has some new contact points.
+        minContact->Update(m_contactManager.m_contactListener, &m_profile);
+        minContact->m_flags &= ~b2Contact::e_toiFlag;
+        ++minContact->m_toiCount;
+
+        // Is the contact solid?
+        if (!minContact->IsEnabled() || !minContact->IsTouching()) {
+            // Restore the sweeps.
+            minContact->SetEnabled(false);
+            bA->m_sweep = backup1;
+            bB->m_sweep = backup2;
+            bA->SynchronizeTransform();
+            bB->SynchronizeTransform();
+            continue;
+        }
+
+        bA->SetAwake(true);
+        bB->SetAwake(true);
+
+        // Build the island.
+        m_island.Clear();
+        m_island.Add(bA);
+        m_island.Add(bB);
+        m_island.Add(minContact);
+        bA->m_flags |= b2Body::e_islandFlag;
+        bB->m_flags |= b2Body::e_islandFlag;
+        minContact->m_flags |= b2Contact::e_islandFlag;
+
+        // Get contacts on bodyA and bodyB.
+        b2Body* bodies[2] = {bA, bB};
+        for (b2Body* body : bodies) {
+            if (body->m_type != b2_dynamicBody) continue;
+            for (b2ContactEdge* ce = body->m_contactList; ce; ce = ce->next) {
+                if (m_island.m_bodyCount == m_island.m_bodyCapacity) break;
+                if (m_island.m_contactCount == m_island.m_contactCapacity) break;
+
+                b2Contact* contact = ce->contact;
+                // Has this contact already been added to the island?
+                if (contact->m_flags & b2Contact::e_islandFlag) continue;
+
+                // Only add static, kinematic, or bullet bodies.
+                b2Body* other = ce->other;
+                if (other->m_type == b2_dynamicBody && !body->IsBullet() && !other->IsBullet()) continue;
+
+                // Skip sensors.
+                if (IsSensorContact(contact)) continue;
+
+                // Tentatively advance the body to the TOI.
+                const b2Sweep backup = other->m_sweep;
+                if ((other->m_flags & b2Body::e_islandFlag) == 0) other->Advance(minAlpha);
+
+                // Update the contact points.
+                contact->Update(m_contactManager.m_contactListener, &m_profile);
+
+                // Was the contact disabled by the user, or are there no contact points?
+                if (!contact->IsEnabled() || !contact->IsTouching()) {
+                    other->m_sweep = backup;
+                    other->SynchronizeTransform();
+                    continue;
+                }
+
+                // Add the contact to the island.
+                contact->m_flags |= b2Contact::e_islandFlag;
+                m_island.Add(contact);
+
+                // Has the other body already been added to the island?
+                if (other->m_flags & b2Body::e_islandFlag) continue;
+
+                // Add the other body to the island.
+                other->m_flags |= b2Body::e_islandFlag;
+                if (other->m_type != b2_staticBody) other->SetAwake(true);
+                m_island.Add(other);
+            }
+        }
+
+        b2TimeStep subStep;
+        subStep.dt = (Fixed(1) - minAlpha) * step.dt;
+        subStep.inv_dt = subStep.dt > Fixed() ? Fixed(1) / subStep.dt : Fixed();
+        subStep.dtRatio = 1;
+        subStep.positionIterations = kTOIPositionIterations;
+        subStep.velocityIterations = step.velocityIterations;
+        subStep.stepsToSleep = step.stepsToSleep;
+        subStep.warmStarting = false;
+        m_island.SolveTOI(&m_profile, subStep, bA->m_islandIndex, bB->m_islandIndex);
+        ++m_profile.toiSubSteps;
+
+        // Reset island flags and synchronise broad-phase proxies.
+        for (int32 i = 0; i < m_island.m_bodyCount; ++i) {
+            b2Body* body = m_island.m_bodies[static_cast<size_t>(i)];
+            body->m_flags &= ~b2Body::e_islandFlag;
+            if (body->m_type != b2_dynamicBody) continue;
+            body->SynchronizeFixtures();
+            // The sub-step moved it: it needs its TOIs re-examined.
+            body->m_flags |= b2Body::e_fastFlag;
+            if (IsOutside(body)) m_outOfBounds.push_back(body);
+
+            // Invalidate all contact TOIs on this displaced body.
+            for (b2ContactEdge* ce = body->m_contactList; ce; ce = ce->next) {
+                ce->contact->m_flags &= ~(b2Contact::e_toiFlag | b2Contact::e_islandFlag);
+            }
+        }
+
+        // Commit fixture proxy movements to the broad phase so that new contacts are created.
+        // Also, some contacts can be destroyed.
+        m_contactManager.FindNewContacts();
+
+        if (m_subStepping) {
+            m_stepComplete = false;
+            break;
+        }
+    }
+}
+
+}  // namespace lockbox

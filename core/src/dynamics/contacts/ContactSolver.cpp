@@ -1,0 +1,309 @@
+// b2ContactSolver: setup, warm starting and the velocity iterations.
+#include "lockbox/dynamics/contacts/ContactSolver.h"
+
+#include "SolverMath.h"
+#include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/Fixture.h"
+#include "lockbox/dynamics/contacts/Contact.h"
+#include "lockbox/fixed/detail/Int128.h"
+
+namespace lockbox {
+
+using solver::WVec2;
+
+namespace {
+
+// Box2D's k_maxConditionNumber: the block solver is used only while the 2x2 K is well
+// conditioned, k11^2 < 1000 (k11 k22 - k12^2). Dimensionless; the comparison is exact.
+constexpr int64_t kMaxConditionNumber = 1000;
+
+// Inverts the symmetric K = [k11 k12; k12 k22] exactly in 128 bits. Returns false when K is
+// too ill-conditioned for the block solver (or singular after rounding).
+bool InvertBlock(const b2WideMat22& K, b2WideMat22* inverse) {
+    using namespace detail;
+    const S128 k11k22 = MulS64(K.k11.Raw(), K.k22.Raw());
+    const S128 k12sq = MulS64(K.k12.Raw(), K.k12.Raw());
+    const S128 det = SubS128(k11k22, k12sq);  // Q64.64, >= 0 in exact arithmetic
+    if (det.negative || IsZero(det)) return false;
+    const S128 k11sq = MulS64(K.k11.Raw(), K.k11.Raw());
+    const S128 bound = MulS128S64(det, kMaxConditionNumber);
+    if (!LessU128(k11sq.mag, bound.mag)) return false;
+    // inverse = adj(K) / det; the Q32.32 raw is round(adj_raw * 2^64 / det_raw).
+    auto entry = [&](int64_t adjRaw) {
+        S128 n = MulS64(adjRaw, 1);
+        n.mag = ShlU128(n.mag, 64);
+        return Wide::FromRaw(NarrowWide(DivRoundS128(n, det), "b2ContactSolver block inverse", adjRaw, 0));
+    };
+    inverse->k11 = entry(K.k22.Raw());
+    inverse->k12 = entry(-K.k12.Raw());
+    inverse->k22 = entry(K.k11.Raw());
+    return true;
+}
+
+}  // namespace
+
+b2ContactSolver::b2ContactSolver(b2ContactSolverDef* def)
+    : m_step(def->step), m_positions(def->positions), m_velocities(def->velocities), m_contacts(def->contacts),
+      m_count(def->count) {
+    m_positionConstraints.resize(static_cast<size_t>(m_count));
+    m_velocityConstraints.resize(static_cast<size_t>(m_count));
+
+    for (int32 i = 0; i < m_count; ++i) {
+        b2Contact* contact = m_contacts[i];
+        const b2Fixture* fixtureA = contact->m_fixtureA;
+        const b2Fixture* fixtureB = contact->m_fixtureB;
+        const b2Body* bodyA = fixtureA->GetBody();
+        const b2Body* bodyB = fixtureB->GetBody();
+        const b2Manifold* manifold = contact->GetManifold();
+        const int32 pointCount = manifold->pointCount;
+
+        b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
+        vc->friction = contact->m_friction;
+        vc->restitution = contact->m_restitution;
+        vc->indexA = bodyA->m_islandIndex;
+        vc->indexB = bodyB->m_islandIndex;
+        vc->invMassA = bodyA->m_invMass;
+        vc->invMassB = bodyB->m_invMass;
+        vc->invIA = bodyA->m_invI;
+        vc->invIB = bodyB->m_invI;
+        vc->contactIndex = i;
+        vc->pointCount = pointCount;
+
+        b2ContactPositionConstraint* pc = &m_positionConstraints[static_cast<size_t>(i)];
+        pc->indexA = bodyA->m_islandIndex;
+        pc->indexB = bodyB->m_islandIndex;
+        pc->invMassA = bodyA->m_invMass;
+        pc->invMassB = bodyB->m_invMass;
+        pc->localCenterA = bodyA->m_sweep.localCenter;
+        pc->localCenterB = bodyB->m_sweep.localCenter;
+        pc->invIA = bodyA->m_invI;
+        pc->invIB = bodyB->m_invI;
+        pc->localNormal = manifold->localNormal;
+        pc->localPoint = manifold->localPoint;
+        pc->pointCount = pointCount;
+        pc->radiusA = fixtureA->GetShape()->m_radius;
+        pc->radiusB = fixtureB->GetShape()->m_radius;
+        pc->type = manifold->type;
+
+        for (int32 j = 0; j < pointCount; ++j) {
+            const b2ManifoldPoint* cp = manifold->points + j;
+            b2VelocityConstraintPoint* vcp = vc->points + j;
+            if (m_step.warmStarting) {
+                // dtRatio is exactly 1 for a fixed step (inv_dt is derived from dt).
+                vcp->normalImpulse = cp->normalImpulse * m_step.dtRatio;
+                vcp->tangentImpulse = cp->tangentImpulse * m_step.dtRatio;
+            }
+            pc->localPoints[j] = cp->localPoint;
+        }
+    }
+}
+
+void b2ContactSolver::InitializeVelocityConstraints() {
+    for (int32 i = 0; i < m_count; ++i) {
+        b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
+        const b2ContactPositionConstraint* pc = &m_positionConstraints[static_cast<size_t>(i)];
+        const b2Manifold* manifold = m_contacts[vc->contactIndex]->GetManifold();
+
+        const Wide mA = vc->invMassA, mB = vc->invMassB;
+        const Wide iA = vc->invIA, iB = vc->invIB;
+        const b2Vec2 cA = m_positions[vc->indexA].c;
+        const Fixed aA = m_positions[vc->indexA].a;
+        const b2Vec2 vA = m_velocities[vc->indexA].v;
+        const Fixed wA = m_velocities[vc->indexA].w;
+        const b2Vec2 cB = m_positions[vc->indexB].c;
+        const Fixed aB = m_positions[vc->indexB].a;
+        const b2Vec2 vB = m_velocities[vc->indexB].v;
+        const Fixed wB = m_velocities[vc->indexB].w;
+
+        b2Transform xfA, xfB;
+        xfA.q.Set(aA);
+        xfB.q.Set(aB);
+        xfA.p = cA - b2Mul(xfA.q, pc->localCenterA);
+        xfB.p = cB - b2Mul(xfB.q, pc->localCenterB);
+
+        b2WorldManifold worldManifold;
+        worldManifold.Initialize(manifold, xfA, pc->radiusA, xfB, pc->radiusB);
+
+        vc->normal = worldManifold.normal;
+        const b2Vec2 tangent = b2Cross(vc->normal, Fixed(1));
+
+        for (int32 j = 0; j < vc->pointCount; ++j) {
+            b2VelocityConstraintPoint* vcp = vc->points + j;
+            vcp->rA = worldManifold.points[j] - cA;
+            vcp->rB = worldManifold.points[j] - cB;
+
+            vcp->rnA = b2Cross(vcp->rA, vc->normal);
+            vcp->rnB = b2Cross(vcp->rB, vc->normal);
+            const Wide kNormal = solver::EffectiveInverseMass(mA, mB, iA, iB, vcp->rnA, vcp->rnB);
+            vcp->normalMass = kNormal > Wide() ? Wide(1) / kNormal : Wide();
+
+            const Fixed rtA = b2Cross(vcp->rA, tangent);
+            const Fixed rtB = b2Cross(vcp->rB, tangent);
+            const Wide kTangent = solver::EffectiveInverseMass(mA, mB, iA, iB, rtA, rtB);
+            vcp->tangentMass = kTangent > Wide() ? Wide(1) / kTangent : Wide();
+
+            // Restitution only above the threshold speed (inelastic resting contact).
+            vcp->velocityBias = Fixed();
+            const b2Vec2 dv = solver::RelativeVelocity(vA, wA, vcp->rA, vB, wB, vcp->rB);
+            const Fixed vRel = b2Dot(vc->normal, dv);
+            if (vRel < -b2_velocityThreshold) vcp->velocityBias = -(vc->restitution * vRel);
+        }
+
+        // Two points: prepare the block solver if K is well conditioned, else keep one point.
+        if (vc->pointCount == 2) {
+            const b2VelocityConstraintPoint& p1 = vc->points[0];
+            const b2VelocityConstraintPoint& p2 = vc->points[1];
+            b2WideMat22 K;
+            K.k11 = solver::EffectiveInverseMass(mA, mB, iA, iB, p1.rnA, p1.rnB);
+            K.k22 = solver::EffectiveInverseMass(mA, mB, iA, iB, p2.rnA, p2.rnB);
+            K.k12 = mA + mB + iA * MulWide(p1.rnA, p2.rnA) + iB * MulWide(p1.rnB, p2.rnB);
+            b2WideMat22 inverse;
+            if (InvertBlock(K, &inverse)) {
+                vc->K = K;
+                vc->normalMass = inverse;
+                vc->useBlock = true;
+            } else {
+                // The constraints are redundant: solve only the first point.
+                vc->pointCount = 1;
+                vc->useBlock = false;
+            }
+        }
+    }
+}
+
+void b2ContactSolver::WarmStart() {
+    for (int32 i = 0; i < m_count; ++i) {
+        const b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
+        b2Vec2 vA = m_velocities[vc->indexA].v;
+        Fixed wA = m_velocities[vc->indexA].w;
+        b2Vec2 vB = m_velocities[vc->indexB].v;
+        Fixed wB = m_velocities[vc->indexB].w;
+        const b2Vec2 normal = vc->normal;
+        const b2Vec2 tangent = b2Cross(normal, Fixed(1));
+        for (int32 j = 0; j < vc->pointCount; ++j) {
+            const b2VelocityConstraintPoint* vcp = vc->points + j;
+            const WVec2 P = solver::Add(solver::Scale(vcp->normalImpulse, normal),
+                                        solver::Scale(vcp->tangentImpulse, tangent));
+            solver::ApplyNeg(vA, wA, vc->invMassA, vc->invIA, vcp->rA, P);
+            solver::ApplyPos(vB, wB, vc->invMassB, vc->invIB, vcp->rB, P);
+        }
+        m_velocities[vc->indexA].v = vA;
+        m_velocities[vc->indexA].w = wA;
+        m_velocities[vc->indexB].v = vB;
+        m_velocities[vc->indexB].w = wB;
+    }
+}
+
+void b2ContactSolver::SolveVelocityConstraints() {
+    for (int32 i = 0; i < m_count; ++i) {
+        b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
+        const Wide mA = vc->invMassA, mB = vc->invMassB;
+        const Wide iA = vc->invIA, iB = vc->invIB;
+        b2Vec2 vA = m_velocities[vc->indexA].v;
+        Fixed wA = m_velocities[vc->indexA].w;
+        b2Vec2 vB = m_velocities[vc->indexB].v;
+        Fixed wB = m_velocities[vc->indexB].w;
+        const b2Vec2 normal = vc->normal;
+        const b2Vec2 tangent = b2Cross(normal, Fixed(1));
+
+        // Friction first: non-penetration matters more, so it gets the last word.
+        for (int32 j = 0; j < vc->pointCount; ++j) {
+            b2VelocityConstraintPoint* vcp = vc->points + j;
+            const b2Vec2 dv = solver::RelativeVelocity(vA, wA, vcp->rA, vB, wB, vcp->rB);
+            const Fixed vt = b2Dot(dv, tangent);
+            Wide lambda = vcp->tangentMass * (-vt);
+            const Wide maxFriction = vcp->normalImpulse * vc->friction;
+            const Wide newImpulse = Clamp(vcp->tangentImpulse + lambda, -maxFriction, maxFriction);
+            lambda = newImpulse - vcp->tangentImpulse;
+            vcp->tangentImpulse = newImpulse;
+            const WVec2 P = solver::Scale(lambda, tangent);
+            solver::ApplyNeg(vA, wA, mA, iA, vcp->rA, P);
+            solver::ApplyPos(vB, wB, mB, iB, vcp->rB, P);
+        }
+
+        if (vc->pointCount == 1) {
+            b2VelocityConstraintPoint* vcp = vc->points;
+            const b2Vec2 dv = solver::RelativeVelocity(vA, wA, vcp->rA, vB, wB, vcp->rB);
+            const Fixed vn = b2Dot(dv, normal);
+            Wide lambda = -(vcp->normalMass * (vn - vcp->velocityBias));
+            const Wide newImpulse = Max(vcp->normalImpulse + lambda, Wide());
+            lambda = newImpulse - vcp->normalImpulse;
+            vcp->normalImpulse = newImpulse;
+            const WVec2 P = solver::Scale(lambda, normal);
+            solver::ApplyNeg(vA, wA, mA, iA, vcp->rA, P);
+            solver::ApplyPos(vB, wB, mB, iB, vcp->rB, P);
+        } else {
+            // Block solver (Box2D's total enumeration of the 2-point LCP):
+            //   vn = K x + b', x >= 0, vn >= 0, x_i vn_i = 0, with b' = vn0 - bias - K a.
+            b2VelocityConstraintPoint* cp1 = vc->points + 0;
+            b2VelocityConstraintPoint* cp2 = vc->points + 1;
+            const Wide a1 = cp1->normalImpulse, a2 = cp2->normalImpulse;
+            const b2Vec2 dv1 = solver::RelativeVelocity(vA, wA, cp1->rA, vB, wB, cp1->rB);
+            const b2Vec2 dv2 = solver::RelativeVelocity(vA, wA, cp2->rA, vB, wB, cp2->rB);
+            const Fixed vn1 = b2Dot(dv1, normal);
+            const Fixed vn2 = b2Dot(dv2, normal);
+            const b2WideMat22& K = vc->K;
+            const Wide b1 = Wide(vn1 - cp1->velocityBias) - (K.k11 * a1 + K.k12 * a2);
+            const Wide b2 = Wide(vn2 - cp2->velocityBias) - (K.k12 * a1 + K.k22 * a2);
+
+            Wide x1, x2;
+            bool solved = false;
+            // Case 1: both points active, vn = 0.
+            x1 = -(vc->normalMass.k11 * b1 + vc->normalMass.k12 * b2);
+            x2 = -(vc->normalMass.k12 * b1 + vc->normalMass.k22 * b2);
+            if (x1 >= Wide() && x2 >= Wide()) solved = true;
+            // Case 2: point 1 active, x2 = 0.
+            if (!solved) {
+                x1 = -(cp1->normalMass * b1);
+                x2 = Wide();
+                const Wide v2 = K.k12 * x1 + b2;
+                if (x1 >= Wide() && v2 >= Wide()) solved = true;
+            }
+            // Case 3: point 2 active, x1 = 0.
+            if (!solved) {
+                x1 = Wide();
+                x2 = -(cp2->normalMass * b2);
+                const Wide v1 = K.k12 * x2 + b1;
+                if (x2 >= Wide() && v1 >= Wide()) solved = true;
+            }
+            // Case 4: both separating.
+            if (!solved) {
+                x1 = Wide();
+                x2 = Wide();
+                if (b1 >= Wide() && b2 >= Wide()) solved = true;
+            }
+            // No solution: give up this iteration (as Box2D; rare and harmless).
+            if (solved) {
+                const WVec2 P1 = solver::Scale(x1 - a1, normal);
+                const WVec2 P2 = solver::Scale(x2 - a2, normal);
+                const WVec2 P = solver::Add(P1, P2);
+                vA.x -= MulToFixed(mA, P.x);
+                vA.y -= MulToFixed(mA, P.y);
+                wA -= MulToFixed(iA, solver::Cross(cp1->rA, P1) + solver::Cross(cp2->rA, P2));
+                vB.x += MulToFixed(mB, P.x);
+                vB.y += MulToFixed(mB, P.y);
+                wB += MulToFixed(iB, solver::Cross(cp1->rB, P1) + solver::Cross(cp2->rB, P2));
+                cp1->normalImpulse = x1;
+                cp2->normalImpulse = x2;
+            }
+        }
+
+        m_velocities[vc->indexA].v = vA;
+        m_velocities[vc->indexA].w = wA;
+        m_velocities[vc->indexB].v = vB;
+        m_velocities[vc->indexB].w = wB;
+    }
+}
+
+void b2ContactSolver::StoreImpulses() {
+    for (int32 i = 0; i < m_count; ++i) {
+        const b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
+        b2Manifold* manifold = m_contacts[vc->contactIndex]->GetManifold();
+        for (int32 j = 0; j < vc->pointCount; ++j) {
+            manifold->points[j].normalImpulse = vc->points[j].normalImpulse;
+            manifold->points[j].tangentImpulse = vc->points[j].tangentImpulse;
+        }
+    }
+}
+
+}  // namespace lockbox

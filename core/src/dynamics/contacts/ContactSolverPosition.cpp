@@ -1,0 +1,133 @@
+// b2ContactSolver: non-linear position correction (discrete and time-of-impact).
+#include "SolverMath.h"
+#include "lockbox/dynamics/contacts/ContactSolver.h"
+
+namespace lockbox {
+
+namespace {
+
+// Box2D's b2PositionSolverManifold: the current normal, point and separation of one manifold
+// point, recomputed from the solver's positions.
+struct PositionSolverManifold {
+    void Initialize(const b2ContactPositionConstraint* pc, const b2Transform& xfA, const b2Transform& xfB,
+                    int32 index) {
+        switch (pc->type) {
+            case b2Manifold::e_circles: {
+                const b2Vec2 pointA = b2Mul(xfA, pc->localPoint);
+                const b2Vec2 pointB = b2Mul(xfB, pc->localPoints[0]);
+                normal = pointB - pointA;
+                normal.Normalize();  // coincident centres keep a zero normal (no push)
+                point = b2Vec2(Fixed(0.5) * (pointA.x + pointB.x), Fixed(0.5) * (pointA.y + pointB.y));
+                separation = b2Dot(pointB - pointA, normal) - pc->radiusA - pc->radiusB;
+                break;
+            }
+            case b2Manifold::e_faceA: {
+                normal = b2Mul(xfA.q, pc->localNormal);
+                const b2Vec2 planePoint = b2Mul(xfA, pc->localPoint);
+                const b2Vec2 clipPoint = b2Mul(xfB, pc->localPoints[index]);
+                separation = b2Dot(clipPoint - planePoint, normal) - pc->radiusA - pc->radiusB;
+                point = clipPoint;
+                break;
+            }
+            case b2Manifold::e_faceB: {
+                normal = b2Mul(xfB.q, pc->localNormal);
+                const b2Vec2 planePoint = b2Mul(xfB, pc->localPoint);
+                const b2Vec2 clipPoint = b2Mul(xfA, pc->localPoints[index]);
+                separation = b2Dot(clipPoint - planePoint, normal) - pc->radiusA - pc->radiusB;
+                point = clipPoint;
+                // Ensure the normal points from A to B.
+                normal = -normal;
+                break;
+            }
+        }
+    }
+
+    b2Vec2 normal;
+    b2Vec2 point;
+    Fixed separation;
+};
+
+// One pass over all constraints; returns the smallest separation seen (m, <= 0).
+Fixed SolvePass(std::vector<b2ContactPositionConstraint>& constraints, b2Position* positions, Fixed baumgarte,
+                bool toi, int32 toiIndexA, int32 toiIndexB) {
+    Fixed minSeparation;
+    for (b2ContactPositionConstraint& pcRef : constraints) {
+        const b2ContactPositionConstraint* pc = &pcRef;
+        const int32 indexA = pc->indexA;
+        const int32 indexB = pc->indexB;
+        Wide mA = pc->invMassA, iA = pc->invIA;
+        Wide mB = pc->invMassB, iB = pc->invIB;
+        if (toi) {
+            // Only the two TOI bodies move; the others act as if static.
+            if (indexA != toiIndexA && indexA != toiIndexB) {
+                mA = Wide();
+                iA = Wide();
+            }
+            if (indexB != toiIndexA && indexB != toiIndexB) {
+                mB = Wide();
+                iB = Wide();
+            }
+        }
+
+        b2Vec2 cA = positions[indexA].c;
+        Fixed aA = positions[indexA].a;
+        b2Vec2 cB = positions[indexB].c;
+        Fixed aB = positions[indexB].a;
+
+        for (int32 j = 0; j < pc->pointCount; ++j) {
+            b2Transform xfA, xfB;
+            xfA.q.Set(aA);
+            xfB.q.Set(aB);
+            xfA.p = cA - b2Mul(xfA.q, pc->localCenterA);
+            xfB.p = cB - b2Mul(xfB.q, pc->localCenterB);
+
+            PositionSolverManifold psm;
+            psm.Initialize(pc, xfA, xfB, j);
+            const b2Vec2 normal = psm.normal;
+            const b2Vec2 rA = psm.point - cA;
+            const b2Vec2 rB = psm.point - cB;
+            minSeparation = Min(minSeparation, psm.separation);
+
+            // Prevent large corrections and allow slop.
+            const Fixed C = Clamp(baumgarte * (psm.separation + b2_linearSlop), -b2_maxLinearCorrection, Fixed());
+            const Fixed rnA = b2Cross(rA, normal);
+            const Fixed rnB = b2Cross(rB, normal);
+            const Wide K = solver::EffectiveInverseMass(mA, mB, iA, iB, rnA, rnB);
+            const Wide impulse = K > Wide() ? -(Wide(C) / K) : Wide();
+
+            // Position changes are rounded once from impulse * inverse mass.
+            const Wide linA = mA * impulse;
+            const Wide linB = mB * impulse;
+            cA.x -= MulToFixed(linA, normal.x);
+            cA.y -= MulToFixed(linA, normal.y);
+            aA -= MulToFixed(iA * impulse, rnA);
+            cB.x += MulToFixed(linB, normal.x);
+            cB.y += MulToFixed(linB, normal.y);
+            aB += MulToFixed(iB * impulse, rnB);
+        }
+
+        positions[indexA].c = cA;
+        positions[indexA].a = aA;
+        positions[indexB].c = cB;
+        positions[indexB].a = aB;
+    }
+    return minSeparation;
+}
+
+}  // namespace
+
+bool b2ContactSolver::SolvePositionConstraints() {
+    const Fixed minSeparation = SolvePass(m_positionConstraints, m_positions, b2_baumgarte, false, -1, -1);
+    // Box2D accepts an overlap of up to 3 linearSlop (m, raw 984) since it is pushing the
+    // separation toward -linearSlop.
+    return minSeparation >= Fixed::FromRaw(-3 * b2_linearSlop.Raw());
+}
+
+bool b2ContactSolver::SolveTOIPositionConstraints(int32 toiIndexA, int32 toiIndexB) {
+    const Fixed minSeparation =
+        SolvePass(m_positionConstraints, m_positions, b2_toiBaugarte, true, toiIndexA, toiIndexB);
+    // TOI tolerance 1.5 linearSlop (m, raw 492), as Box2D.
+    return minSeparation >= Fixed::FromRaw(-3 * b2_linearSlop.Raw() / 2);
+}
+
+}  // namespace lockbox

@@ -1,0 +1,129 @@
+// b2FrictionJoint solver (Box2D 2.2.1 b2FrictionJoint.cpp) with Q32.32 masses and impulses.
+//
+// Linear: Cdot = vB + wB x rB - vA - wA x rA, impulse clamped to a disc of radius
+// h * maxForce. Angular: Cdot = wB - wA, impulse clamped to h * maxTorque.
+#include "lockbox/dynamics/joints/FrictionJoint.h"
+
+#include "JointMath.h"
+
+namespace lockbox {
+
+using namespace jointmath;
+
+void b2FrictionJointDef::Initialize(b2Body* bA, b2Body* bB, const b2Vec2& anchor) {
+    bodyA = bA;
+    bodyB = bB;
+    localAnchorA = bodyA->GetLocalPoint(anchor);
+    localAnchorB = bodyB->GetLocalPoint(anchor);
+}
+
+b2FrictionJoint::b2FrictionJoint(const b2FrictionJointDef* def) : b2Joint(def) {
+    m_localAnchorA = def->localAnchorA;
+    m_localAnchorB = def->localAnchorB;
+    m_maxForce = def->maxForce;
+    m_maxTorque = def->maxTorque;
+}
+
+void b2FrictionJoint::InitVelocityConstraints(const b2SolverData& data) {
+    const BodyData A = Load(m_bodyA), B = Load(m_bodyB);
+    m_indexA = A.index;
+    m_indexB = B.index;
+    m_localCenterA = A.localCenter;
+    m_localCenterB = B.localCenter;
+    m_invMassA = A.invMass;
+    m_invMassB = B.invMass;
+    m_invIA = A.invI;
+    m_invIB = B.invI;
+    const Wide mA = m_invMassA, mB = m_invMassB, iA = m_invIA, iB = m_invIB;
+
+    const Fixed aA = data.positions[m_indexA].a;
+    b2Vec2 vA = data.velocities[m_indexA].v;
+    Fixed wA = data.velocities[m_indexA].w;
+    const Fixed aB = data.positions[m_indexB].a;
+    b2Vec2 vB = data.velocities[m_indexB].v;
+    Fixed wB = data.velocities[m_indexB].w;
+
+    const b2Rot qA(aA), qB(aB);
+    m_rA = b2Mul(qA, m_localAnchorA - m_localCenterA);
+    m_rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
+
+    m_linearK.ex.x = mA + mB + iA * MulWide(m_rA.y, m_rA.y) + iB * MulWide(m_rB.y, m_rB.y);
+    m_linearK.ex.y = -(iA * MulWide(m_rA.x, m_rA.y)) - iB * MulWide(m_rB.x, m_rB.y);
+    m_linearK.ey.x = m_linearK.ex.y;
+    m_linearK.ey.y = mA + mB + iA * MulWide(m_rA.x, m_rA.x) + iB * MulWide(m_rB.x, m_rB.x);
+    m_angularMass = Invert(iA + iB);
+
+    if (data.step.warmStarting) {
+        const Fixed r = data.step.dtRatio;
+        m_linearImpulse = r * m_linearImpulse;
+        m_angularImpulse = m_angularImpulse * r;
+        const b2WideVec2 P = m_linearImpulse;
+        vA.x -= MulToFixed(mA, P.x);
+        vA.y -= MulToFixed(mA, P.y);
+        wA -= MulToFixed(iA, b2Cross(m_rA, P) + m_angularImpulse);
+        vB.x += MulToFixed(mB, P.x);
+        vB.y += MulToFixed(mB, P.y);
+        wB += MulToFixed(iB, b2Cross(m_rB, P) + m_angularImpulse);
+    } else {
+        m_linearImpulse.SetZero();
+        m_angularImpulse = Wide();
+    }
+
+    data.velocities[m_indexA].v = vA;
+    data.velocities[m_indexA].w = wA;
+    data.velocities[m_indexB].v = vB;
+    data.velocities[m_indexB].w = wB;
+}
+
+void b2FrictionJoint::SolveVelocityConstraints(const b2SolverData& data) {
+    b2Vec2 vA = data.velocities[m_indexA].v;
+    Fixed wA = data.velocities[m_indexA].w;
+    b2Vec2 vB = data.velocities[m_indexB].v;
+    Fixed wB = data.velocities[m_indexB].w;
+    const Wide iA = m_invIA, iB = m_invIB;
+    const Fixed h = data.step.dt;
+
+    // Solve angular friction.
+    {
+        const Fixed Cdot = wB - wA;
+        Wide impulse = -(m_angularMass * Cdot);
+        const Wide oldImpulse = m_angularImpulse;
+        const Wide maxImpulse = MulWide(h, m_maxTorque);
+        m_angularImpulse = Clamp(m_angularImpulse + impulse, -maxImpulse, maxImpulse);
+        impulse = m_angularImpulse - oldImpulse;
+        wA -= MulToFixed(iA, impulse);
+        wB += MulToFixed(iB, impulse);
+    }
+
+    // Solve linear friction.
+    {
+        const b2Vec2 Cdot = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
+        const b2WideVec2 oldImpulse = m_linearImpulse;
+        m_linearImpulse += -m_linearK.Solve(Cdot);
+        m_linearImpulse = b2ClampLength(m_linearImpulse, MulWide(h, m_maxForce));
+        const b2WideVec2 impulse = m_linearImpulse - oldImpulse;
+
+        const BodyData A{m_indexA, m_localCenterA, m_invMassA, m_invIA};
+        const BodyData B{m_indexB, m_localCenterB, m_invMassB, m_invIB};
+        ApplyNeg(vA, wA, A, m_rA, impulse);
+        ApplyPos(vB, wB, B, m_rB, impulse);
+    }
+
+    data.velocities[m_indexA].v = vA;
+    data.velocities[m_indexA].w = wA;
+    data.velocities[m_indexB].v = vB;
+    data.velocities[m_indexB].w = wB;
+}
+
+bool b2FrictionJoint::SolvePositionConstraints(const b2SolverData&) { return true; }
+
+b2Vec2 b2FrictionJoint::GetAnchorA() const { return m_bodyA->GetWorldPoint(m_localAnchorA); }
+b2Vec2 b2FrictionJoint::GetAnchorB() const { return m_bodyB->GetWorldPoint(m_localAnchorB); }
+
+b2Vec2 b2FrictionJoint::GetReactionForce(Fixed inv_dt) const {
+    return {MulToFixed(m_linearImpulse.x, inv_dt), MulToFixed(m_linearImpulse.y, inv_dt)};
+}
+
+Fixed b2FrictionJoint::GetReactionTorque(Fixed inv_dt) const { return MulToFixed(m_angularImpulse, inv_dt); }
+
+}  // namespace lockbox

@@ -1,0 +1,76 @@
+#pragma once
+// Internal helpers shared by the joint solvers: applying Q32.32 impulses to Q16.16 velocities
+// and positions with one rounding per component, and the soft-constraint coefficients.
+
+#include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/TimeStep.h"
+#include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/dynamics/joints/WideMatrix.h"
+#include "lockbox/fixed/Math.h"
+
+namespace lockbox::jointmath {
+
+// The solver-side copy of what a joint needs from one body.
+struct BodyData {
+    int32 index = 0;
+    b2Vec2 localCenter;
+    Wide invMass;  // 1/kg
+    Wide invI;     // 1/(kg*m^2)
+};
+
+inline BodyData Load(const b2Body* b) noexcept {
+    return {b->m_islandIndex, b->m_sweep.localCenter, b->m_invMass, b->m_invI};
+}
+
+// v -= invMass * P, w -= invI * (r x P): each velocity component rounded once.
+inline void ApplyNeg(b2Vec2& v, Fixed& w, const BodyData& b, const b2Vec2& r, const b2WideVec2& p) noexcept {
+    v.x -= MulToFixed(b.invMass, p.x);
+    v.y -= MulToFixed(b.invMass, p.y);
+    w -= MulToFixed(b.invI, b2Cross(r, p));
+}
+
+// v += invMass * P, w += invI * (r x P).
+inline void ApplyPos(b2Vec2& v, Fixed& w, const BodyData& b, const b2Vec2& r, const b2WideVec2& p) noexcept {
+    v.x += MulToFixed(b.invMass, p.x);
+    v.y += MulToFixed(b.invMass, p.y);
+    w += MulToFixed(b.invI, b2Cross(r, p));
+}
+
+// Angular-only update: w += invI * L.
+inline void ApplyAngular(Fixed& w, Wide invI, Wide l) noexcept { w += MulToFixed(invI, l); }
+
+// Velocity of the point at arm r: v + w x r (m/s).
+inline b2Vec2 PointVelocity(const b2Vec2& v, Fixed w, const b2Vec2& r) noexcept { return v + b2Cross(w, r); }
+
+// Exact r x d of two Q16.16 vectors, kept in Q32.32 (arm times direction, m).
+inline Wide CrossW(const b2Vec2& r, const b2Vec2& d) noexcept { return b2CrossWide(r, d); }
+
+// invMass + invI * a^2 for an arm term a (m): the scalar effective inverse mass of one body.
+inline Wide InvMassTerm(Wide invMass, Wide invI, Wide armSq) noexcept { return invMass + invI * armSq; }
+
+// 1/k, or 0 for k <= 0 (a constraint between bodies that cannot move).
+inline Wide Invert(Wide k) noexcept { return k > Wide() ? Wide(1) / k : Wide(); }
+
+// Soft-constraint coefficients of Box2D 2.2.1 (Catto's soft step), all in Q32.32:
+//   omega = 2 pi f, d = 2 m zeta omega, k = m omega^2,
+//   gamma = 1 / (h (d + h k)) (1/kg... an inverse effective mass), biasRate = h k gamma (1/s).
+// The Q16.16 forms overflow (k = m omega^2 exceeds 32768 for 1000 kg above 0.91 Hz) or
+// underflow (h (d + h k)), NUMERICS Table 1.
+struct Soft {
+    Wide gamma;     // 1/kg (0 when the spring is rigid)
+    Wide biasRate;  // 1/s: bias velocity = biasRate * C
+};
+
+inline Soft SoftCoefficients(Wide mass, Fixed frequencyHz, Fixed dampingRatio, Fixed h) noexcept {
+    Soft s;
+    const Fixed omega = kTwoPi * frequencyHz;                   // rad/s (<= 188 for 30 Hz)
+    const Wide d = mass * MulWide(Fixed(2) * dampingRatio, omega);  // N*s/m
+    const Wide k = mass * MulWide(omega, omega);                 // N/m
+    const Wide hk = k * h;                                       // N*s/m
+    const Wide denom = (d + hk) * h;                             // kg
+    s.gamma = Invert(denom);
+    s.biasRate = hk * s.gamma;
+    return s;
+}
+
+}  // namespace lockbox::jointmath

@@ -1,0 +1,186 @@
+// b2WeldJoint solver (Box2D 2.2.1 b2WeldJoint.cpp) with a Q32.32 K matrix solved exactly.
+//
+// Point: Cdot1 = vB + wB x rB - vA - wA x rA; angle: Cdot2 = wB - wA. Where 2.2.1 multiplies
+// by K's (2x2 or symmetric 3x3) inverse, this solves with K directly: the same result, with
+// one rounding instead of two.
+#include "lockbox/dynamics/joints/WeldJoint.h"
+
+#include "JointMath.h"
+
+namespace lockbox {
+
+using namespace jointmath;
+
+void b2WeldJointDef::Initialize(b2Body* bA, b2Body* bB, const b2Vec2& anchor) {
+    bodyA = bA;
+    bodyB = bB;
+    localAnchorA = bodyA->GetLocalPoint(anchor);
+    localAnchorB = bodyB->GetLocalPoint(anchor);
+    referenceAngle = bodyB->GetAngle() - bodyA->GetAngle();
+}
+
+b2WeldJoint::b2WeldJoint(const b2WeldJointDef* def) : b2Joint(def) {
+    m_localAnchorA = def->localAnchorA;
+    m_localAnchorB = def->localAnchorB;
+    m_referenceAngle = def->referenceAngle;
+    m_frequencyHz = def->frequencyHz;
+    m_dampingRatio = def->dampingRatio;
+}
+
+namespace {
+b2WideMat33 WeldK(Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA, const b2Vec2& rB) {
+    b2WideMat33 K;
+    K.ex.x = mA + mB + iA * MulWide(rA.y, rA.y) + iB * MulWide(rB.y, rB.y);
+    K.ey.x = -(iA * MulWide(rA.y, rA.x)) - iB * MulWide(rB.y, rB.x);
+    K.ez.x = -(iA * rA.y) - iB * rB.y;
+    K.ex.y = K.ey.x;
+    K.ey.y = mA + mB + iA * MulWide(rA.x, rA.x) + iB * MulWide(rB.x, rB.x);
+    K.ez.y = iA * rA.x + iB * rB.x;
+    K.ex.z = K.ez.x;
+    K.ey.z = K.ez.y;
+    K.ez.z = iA + iB;
+    return K;
+}
+
+void Apply(b2Vec2& vA, Fixed& wA, b2Vec2& vB, Fixed& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA,
+           const b2Vec2& rB, const b2WideVec2& P, Wide L) {
+    vA.x -= MulToFixed(mA, P.x);
+    vA.y -= MulToFixed(mA, P.y);
+    wA -= MulToFixed(iA, b2Cross(rA, P) + L);
+    vB.x += MulToFixed(mB, P.x);
+    vB.y += MulToFixed(mB, P.y);
+    wB += MulToFixed(iB, b2Cross(rB, P) + L);
+}
+}  // namespace
+
+void b2WeldJoint::InitVelocityConstraints(const b2SolverData& data) {
+    const BodyData A = Load(m_bodyA), B = Load(m_bodyB);
+    m_indexA = A.index;
+    m_indexB = B.index;
+    m_localCenterA = A.localCenter;
+    m_localCenterB = B.localCenter;
+    m_invMassA = A.invMass;
+    m_invMassB = B.invMass;
+    m_invIA = A.invI;
+    m_invIB = B.invI;
+    const Wide mA = m_invMassA, mB = m_invMassB, iA = m_invIA, iB = m_invIB;
+
+    const Fixed aA = data.positions[m_indexA].a;
+    b2Vec2 vA = data.velocities[m_indexA].v;
+    Fixed wA = data.velocities[m_indexA].w;
+    const Fixed aB = data.positions[m_indexB].a;
+    b2Vec2 vB = data.velocities[m_indexB].v;
+    Fixed wB = data.velocities[m_indexB].w;
+
+    const b2Rot qA(aA), qB(aB);
+    m_rA = b2Mul(qA, m_localAnchorA - m_localCenterA);
+    m_rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
+    m_K = WeldK(mA, mB, iA, iB, m_rA, m_rB);
+
+    if (m_frequencyHz > Fixed()) {
+        Wide invM = iA + iB;
+        const Wide m = Invert(invM);
+        // Body angles are wrapped independently: wrap the relative angle too.
+        const Fixed C = WrapAngle(aB - aA - m_referenceAngle);
+        const Soft soft = SoftCoefficients(m, m_frequencyHz, m_dampingRatio, data.step.dt);
+        m_gamma = soft.gamma;
+        m_bias = soft.biasRate * C;
+        invM += m_gamma;
+        m_angularMass = Invert(invM);
+    } else {
+        m_gamma = Wide();
+        m_bias = Wide();
+        m_angularMass = Wide();
+    }
+
+    if (data.step.warmStarting) {
+        const Fixed r = data.step.dtRatio;
+        m_impulse = {m_impulse.x * r, m_impulse.y * r, m_impulse.z * r};
+        Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, b2WideVec2(m_impulse.x, m_impulse.y), m_impulse.z);
+    } else {
+        m_impulse.SetZero();
+    }
+
+    data.velocities[m_indexA].v = vA;
+    data.velocities[m_indexA].w = wA;
+    data.velocities[m_indexB].v = vB;
+    data.velocities[m_indexB].w = wB;
+}
+
+void b2WeldJoint::SolveVelocityConstraints(const b2SolverData& data) {
+    const Wide mA = m_invMassA, mB = m_invMassB, iA = m_invIA, iB = m_invIB;
+    b2Vec2 vA = data.velocities[m_indexA].v;
+    Fixed wA = data.velocities[m_indexA].w;
+    b2Vec2 vB = data.velocities[m_indexB].v;
+    Fixed wB = data.velocities[m_indexB].w;
+
+    if (m_frequencyHz > Fixed()) {
+        const Fixed Cdot2 = wB - wA;
+        const Wide impulse2 = -(m_angularMass * (Wide(Cdot2) + m_bias + m_gamma * m_impulse.z));
+        m_impulse.z += impulse2;
+        wA -= MulToFixed(iA, impulse2);
+        wB += MulToFixed(iB, impulse2);
+
+        const b2Vec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
+        const b2WideVec2 impulse1 = -m_K.Solve22(Cdot1);
+        m_impulse.x += impulse1.x;
+        m_impulse.y += impulse1.y;
+        Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, impulse1, Wide());
+    } else {
+        const b2Vec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
+        const Fixed Cdot2 = wB - wA;
+        const b2WideVec3 impulse = -m_K.Solve33(b2Vec3(Cdot1.x, Cdot1.y, Cdot2));
+        m_impulse += impulse;
+        Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, b2WideVec2(impulse.x, impulse.y), impulse.z);
+    }
+
+    data.velocities[m_indexA].v = vA;
+    data.velocities[m_indexA].w = wA;
+    data.velocities[m_indexB].v = vB;
+    data.velocities[m_indexB].w = wB;
+}
+
+bool b2WeldJoint::SolvePositionConstraints(const b2SolverData& data) {
+    const Wide mA = m_invMassA, mB = m_invMassB, iA = m_invIA, iB = m_invIB;
+    b2Vec2 cA = data.positions[m_indexA].c;
+    Fixed aA = data.positions[m_indexA].a;
+    b2Vec2 cB = data.positions[m_indexB].c;
+    Fixed aB = data.positions[m_indexB].a;
+
+    const b2Rot qA(aA), qB(aB);
+    const b2Vec2 rA = b2Mul(qA, m_localAnchorA - m_localCenterA);
+    const b2Vec2 rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
+    const b2WideMat33 K = WeldK(mA, mB, iA, iB, rA, rB);
+
+    const b2Vec2 C1 = cB + rB - cA - rA;
+    const Fixed positionError = C1.Length();
+    Fixed angularError;
+
+    if (m_frequencyHz > Fixed()) {
+        const b2WideVec2 P = -K.Solve22(C1);
+        Apply(cA, aA, cB, aB, mA, mB, iA, iB, rA, rB, P, Wide());
+    } else {
+        const Fixed C2 = WrapAngle(aB - aA - m_referenceAngle);
+        angularError = Abs(C2);
+        const b2WideVec3 impulse = -K.Solve33(b2Vec3(C1.x, C1.y, C2));
+        Apply(cA, aA, cB, aB, mA, mB, iA, iB, rA, rB, b2WideVec2(impulse.x, impulse.y), impulse.z);
+    }
+
+    data.positions[m_indexA].c = cA;
+    data.positions[m_indexA].a = aA;
+    data.positions[m_indexB].c = cB;
+    data.positions[m_indexB].a = aB;
+
+    return positionError <= b2_linearSlop && angularError <= b2_angularSlop;
+}
+
+b2Vec2 b2WeldJoint::GetAnchorA() const { return m_bodyA->GetWorldPoint(m_localAnchorA); }
+b2Vec2 b2WeldJoint::GetAnchorB() const { return m_bodyB->GetWorldPoint(m_localAnchorB); }
+
+b2Vec2 b2WeldJoint::GetReactionForce(Fixed inv_dt) const {
+    return {MulToFixed(m_impulse.x, inv_dt), MulToFixed(m_impulse.y, inv_dt)};
+}
+
+Fixed b2WeldJoint::GetReactionTorque(Fixed inv_dt) const { return MulToFixed(m_impulse.z, inv_dt); }
+
+}  // namespace lockbox

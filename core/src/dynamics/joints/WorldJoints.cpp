@@ -1,0 +1,117 @@
+// b2World::CreateJoint and DestroyJoint (Box2D 2.2.1 b2World.cpp), with lockbox's gear rule:
+// a gear joint never outlives the joints it couples.
+#include "lockbox/dynamics/World.h"
+#include "lockbox/dynamics/contacts/Contact.h"
+#include "lockbox/dynamics/joints/GearJoint.h"
+
+namespace lockbox {
+
+namespace {
+// Links one edge at the head of its body's joint list.
+void LinkEdge(b2JointEdge* edge, b2Joint* joint, b2Body* body, b2Body* other) {
+    edge->joint = joint;
+    edge->other = other;
+    edge->prev = nullptr;
+    edge->next = body->m_jointList;
+    if (body->m_jointList) body->m_jointList->prev = edge;
+    body->m_jointList = edge;
+}
+
+void UnlinkEdge(b2JointEdge* edge, b2Body* body) {
+    if (edge->prev) edge->prev->next = edge->next;
+    if (edge->next) edge->next->prev = edge->prev;
+    if (edge == body->m_jointList) body->m_jointList = edge->next;
+    edge->prev = nullptr;
+    edge->next = nullptr;
+}
+
+// Contacts between the two bodies must be re-filtered when a joint changes whether they may
+// collide.
+void FlagContactsBetween(b2Body* body, const b2Body* other) {
+    for (b2ContactEdge* edge = body->GetContactList(); edge; edge = edge->next) {
+        if (edge->other == other) edge->contact->FlagForFiltering();
+    }
+}
+}  // namespace
+
+b2Joint* b2World::CreateJoint(const b2JointDef* def) {
+    if (CheckLocked("b2World::CreateJoint called inside a Step callback (the world is locked)")) return nullptr;
+    b2Joint* j = b2Joint::Create(def);
+    if (j == nullptr) return nullptr;
+
+    // The smallest free id: ids are small, stable and independent of addresses.
+    std::vector<bool> used(static_cast<size_t>(m_jointCount) + 1, false);
+    for (const b2Joint* k = m_jointList; k; k = k->m_next) {
+        if (k->m_id >= 0 && k->m_id <= m_jointCount) used[static_cast<size_t>(k->m_id)] = true;
+    }
+    int32 id = 0;
+    while (used[static_cast<size_t>(id)]) ++id;
+    j->m_id = id;
+
+    // Connect to the world list, newest first.
+    j->m_prev = nullptr;
+    j->m_next = m_jointList;
+    if (m_jointList) m_jointList->m_prev = j;
+    m_jointList = j;
+    ++m_jointCount;
+
+    // Connect to the bodies' doubly linked lists.
+    LinkEdge(&j->m_edgeA, j, j->m_bodyA, j->m_bodyB);
+    LinkEdge(&j->m_edgeB, j, j->m_bodyB, j->m_bodyA);
+
+    // If the joint prevents collisions, flag any contacts for filtering.
+    if (!def->collideConnected) FlagContactsBetween(j->m_bodyB, j->m_bodyA);
+
+    // Note: creating a joint doesn't wake the bodies (as 2.2.1).
+    return j;
+}
+
+void b2World::DestroyJoint(b2Joint* j) {
+    if (CheckLocked("b2World::DestroyJoint called inside a Step callback (the world is locked)")) return;
+    if (j == nullptr) return;
+
+    // Gears coupling this joint go first (each is told to the destruction listener: it is an
+    // implicit destruction). A gear is never coupled by another gear, so this recursion is
+    // one level deep.
+    if (j->GetType() == e_revoluteJoint || j->GetType() == e_prismaticJoint) {
+        b2Joint* k = m_jointList;
+        while (k) {
+            b2Joint* next = k->m_next;
+            if (k->GetType() == e_gearJoint) {
+                auto* gear = static_cast<b2GearJoint*>(k);
+                if (gear->GetJoint1() == j || gear->GetJoint2() == j) {
+                    if (m_destructionListener) m_destructionListener->SayGoodbye(k);
+                    // The gear may be next in the list: restart the scan after removing it.
+                    DestroyJoint(k);
+                    next = m_jointList;
+                }
+            }
+            k = next;
+        }
+    }
+
+    const bool collideConnected = j->m_collideConnected;
+
+    // Remove from the world list.
+    if (j->m_prev) j->m_prev->m_next = j->m_next;
+    if (j->m_next) j->m_next->m_prev = j->m_prev;
+    if (j == m_jointList) m_jointList = j->m_next;
+
+    b2Body* bodyA = j->m_bodyA;
+    b2Body* bodyB = j->m_bodyB;
+
+    // Wake up the connected bodies.
+    bodyA->SetAwake(true);
+    bodyB->SetAwake(true);
+
+    UnlinkEdge(&j->m_edgeA, bodyA);
+    UnlinkEdge(&j->m_edgeB, bodyB);
+
+    b2Joint::Destroy(j);
+    --m_jointCount;
+
+    // If the joint prevented collisions, flag any contacts for filtering.
+    if (!collideConnected) FlagContactsBetween(bodyB, bodyA);
+}
+
+}  // namespace lockbox

@@ -1,0 +1,188 @@
+#pragma once
+/// The lockbox engine adapter for the scene templates (see Scene.h for the contract).
+///
+/// Joint types are picked up when their headers exist (they arrive with the joints issue):
+/// each `kHas...` flag is true only when the header is present, and scenes that need a joint
+/// type are skipped where the flag is false.
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <type_traits>
+
+#include "lockbox/lockbox.h"
+
+#if __has_include("lockbox/dynamics/joints/RevoluteJoint.h")
+#include "lockbox/dynamics/joints/RevoluteJoint.h"
+#define LOCKBOX_SCENES_HAS_REVOLUTE 1
+#else
+#define LOCKBOX_SCENES_HAS_REVOLUTE 0
+#endif
+#if __has_include("lockbox/dynamics/joints/PrismaticJoint.h")
+#include "lockbox/dynamics/joints/PrismaticJoint.h"
+#define LOCKBOX_SCENES_HAS_PRISMATIC 1
+#else
+#define LOCKBOX_SCENES_HAS_PRISMATIC 0
+#endif
+#if __has_include("lockbox/dynamics/joints/WheelJoint.h")
+#include "lockbox/dynamics/joints/WheelJoint.h"
+#define LOCKBOX_SCENES_HAS_WHEEL 1
+#else
+#define LOCKBOX_SCENES_HAS_WHEEL 0
+#endif
+#if __has_include("lockbox/dynamics/joints/PulleyJoint.h")
+#include "lockbox/dynamics/joints/PulleyJoint.h"
+#define LOCKBOX_SCENES_HAS_PULLEY 1
+#else
+#define LOCKBOX_SCENES_HAS_PULLEY 0
+#endif
+#if __has_include("lockbox/dynamics/joints/GearJoint.h")
+#include "lockbox/dynamics/joints/GearJoint.h"
+#define LOCKBOX_SCENES_HAS_GEAR 1
+#else
+#define LOCKBOX_SCENES_HAS_GEAR 0
+#endif
+
+namespace lockbox::scenes {
+
+/// True once the world can create joints (the joint headers may land before b2World does).
+template <class W>
+concept WorldCreatesJoints = requires(W& w, const b2JointDef* def) { w.CreateJoint(def); };
+
+/// Scene adapter over a lockbox b2World (gravity (0, -10)).
+class LockboxEngine {
+public:
+    using Num = Fixed;
+    using Vec = b2Vec2;
+    using World = b2World;
+    using Body = b2Body;
+    using BodyDef = b2BodyDef;
+    using Fixture = b2Fixture;
+    using FixtureDef = b2FixtureDef;
+    using PolygonShape = b2PolygonShape;
+    using CircleShape = b2CircleShape;
+    using EdgeShape = b2EdgeShape;
+    using ChainShape = b2ChainShape;
+    using Contact = b2Contact;
+    using Manifold = b2Manifold;
+    using WorldManifold = b2WorldManifold;
+    using Joint = b2Joint;
+    static constexpr b2BodyType kStatic = b2_staticBody;
+    static constexpr b2BodyType kDynamic = b2_dynamicBody;
+    static constexpr b2BodyType kKinematic = b2_kinematicBody;
+    static constexpr const char* kName = "lockbox";
+
+    // Joint availability (see the file comment).
+    static constexpr bool kHasJoints = WorldCreatesJoints<b2World>;
+    static constexpr bool kHasRevolute = kHasJoints && LOCKBOX_SCENES_HAS_REVOLUTE != 0;
+    static constexpr bool kHasPrismatic = kHasJoints && LOCKBOX_SCENES_HAS_PRISMATIC != 0;
+    static constexpr bool kHasWheel = kHasJoints && LOCKBOX_SCENES_HAS_WHEEL != 0;
+    static constexpr bool kHasPulley = kHasJoints && LOCKBOX_SCENES_HAS_PULLEY != 0;
+    static constexpr bool kHasGear = kHasJoints && LOCKBOX_SCENES_HAS_GEAR != 0;
+#if LOCKBOX_SCENES_HAS_REVOLUTE
+    using RevoluteJointDef = b2RevoluteJointDef;
+#endif
+#if LOCKBOX_SCENES_HAS_PRISMATIC
+    using PrismaticJointDef = b2PrismaticJointDef;
+#endif
+#if LOCKBOX_SCENES_HAS_WHEEL
+    using WheelJointDef = b2WheelJointDef;
+#endif
+#if LOCKBOX_SCENES_HAS_PULLEY
+    using PulleyJointDef = b2PulleyJointDef;
+#endif
+#if LOCKBOX_SCENES_HAS_GEAR
+    using GearJointDef = b2GearJointDef;
+#endif
+
+    /// num/den rounded once to Q16.16 (to nearest, ties away from zero).
+    static Num R(int64_t num, int64_t den = 1) noexcept { return Fixed::FromRatio(num, den); }
+    /// For display and metrics only.
+    static double D(Num v) noexcept { return v.ToDouble(); }
+    /// A vector from two numbers.
+    static Vec V(Num x, Num y) noexcept { return Vec(x, y); }
+    /// num/den degrees in radians, rounded once: raw = round(num * pi * 2^16 / (180 den)),
+    /// with pi carried as round(pi * 2^32) = 13493037705 so the one rounding is the last.
+    /// Valid for |num/den| <= 10^6 degrees (the product stays below 2^63).
+    static Num Deg(int64_t num, int64_t den = 1) noexcept {
+        constexpr int64_t kPi32 = 13493037705;  // pi * 2^32, rounded
+        const int64_t n = num * kPi32;
+        const int64_t d = 180 * den * 65536;   // back from 2^32 to the 2^16 of Q16.16
+        return Fixed::FromRatio(n, d);
+    }
+    /// A two-sided edge v1-v2 (2.2.1 `Set`).
+    static void SetEdge(EdgeShape& edge, const Vec& v1, const Vec& v2) { edge.Set(v1, v2); }
+    /// An open chain through count vertices (2.2.1 `CreateChain`, no ghost vertices).
+    static void CreateChain(ChainShape& chain, const Vec* vertices, int count) {
+        chain.CreateChain(vertices, count);
+    }
+#if LOCKBOX_SCENES_HAS_WHEEL
+    /// The wheel suspension spring: frequency (Hz) and damping ratio (2.2.1 fields).
+    static void SetWheelSpring(WheelJointDef& def, Num hz, Num dampingRatio) {
+        def.frequencyHz = hz;
+        def.dampingRatio = dampingRatio;
+    }
+#endif
+
+    /// Sets a joint's maxMotorTorque (N m) from an integer; a Q16.16 field saturates at its
+    /// largest value (32767.99998 N m), a Q32.32 field takes it exactly.
+    template <class Def>
+    static void SetMaxMotorTorque(Def& def, int64_t newtonMetres) {
+        using T = std::remove_cvref_t<decltype(def.maxMotorTorque)>;
+        if constexpr (std::is_same_v<T, Fixed>) {
+            def.maxMotorTorque = newtonMetres > 32767 ? Fixed::FromRaw(std::numeric_limits<int32_t>::max())
+                                                      : Fixed(static_cast<int32_t>(newtonMetres));
+        } else {
+            def.maxMotorTorque = T(newtonMetres);
+        }
+    }
+
+    /// A fresh world with gravity (0, -10) m/s^2.
+    LockboxEngine() : world_(std::make_unique<b2World>(b2Vec2(0, -10))) {}
+    LockboxEngine(const LockboxEngine&) = delete;
+    LockboxEngine& operator=(const LockboxEngine&) = delete;
+
+    /// The world.
+    World& world() noexcept { return *world_; }
+    /// The time step for a frequency: round(65536 / hz) / 65536 s (1/60 s is raw 1092).
+    static Num TimeStep(int hz) noexcept { return Fixed::FromRatio(1, hz); }
+    /// One world step at hz steps per second.
+    void Step(int hz, int velocityIterations, int positionIterations) {
+        world_->Step(TimeStep(hz), velocityIterations, positionIterations);
+    }
+    /// Creates a joint from a definition (engines differ only in the return type).
+    /// (W is a dependent alias of b2World, so this compiles before the world has joints.)
+    template <class Def, class W = b2World>
+    Joint* CreateJoint(const Def& def) {
+        W& w = *world_;
+        return w.CreateJoint(&def);
+    }
+
+    /// Called on BeginContact when set (install with InstallListener).
+    std::function<void(Contact*)> onBeginContact;
+    /// Called on PreSolve when set (install with InstallListener).
+    std::function<void(Contact*, const Manifold*)> onPreSolve;
+    /// Registers the forwarding listener with the world (only scenes with hooks call this,
+    /// so other scenes run without callback overhead).
+    void InstallListener() { world_->SetContactListener(&listener_); }
+
+private:
+    class Forwarder : public b2ContactListener {
+    public:
+        explicit Forwarder(LockboxEngine* owner) : owner_(owner) {}
+        void BeginContact(b2Contact* c) override {
+            if (owner_->onBeginContact) owner_->onBeginContact(c);
+        }
+        void PreSolve(b2Contact* c, const b2Manifold* old) override {
+            if (owner_->onPreSolve) owner_->onPreSolve(c, old);
+        }
+
+    private:
+        LockboxEngine* owner_;
+    };
+    std::unique_ptr<b2World> world_;
+    Forwarder listener_{this};
+};
+
+}  // namespace lockbox::scenes
