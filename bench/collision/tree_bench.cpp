@@ -9,7 +9,7 @@
 #include "lockbox/collision/DynamicTree.h"
 
 #include <benchmark/benchmark.h>
-#include <box2d/box2d.h>
+#include "Box2DFloat.h"  // float Box2D without its constant macros
 
 #include <cstdint>
 #include <vector>

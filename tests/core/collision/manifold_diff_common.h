@@ -21,7 +21,7 @@
 
 // After lockbox: Box2D 2.4.1 defines its settings as macros (b2_maxManifoldPoints, ...), which
 // would rewrite lockbox's constants of the same names. Nothing below names those constants.
-#include <box2d/box2d.h>
+#include "Box2DFloat.h"  // float Box2D without its constant macros
 
 namespace manifold_diff {
 

@@ -10,7 +10,7 @@
 
 // After lockbox's headers: Box2D 2.4.1 #defines b2_linearSlop and friends. The tests live in
 // namespace lockbox so that unqualified b2 names mean lockbox's; float Box2D is spelled ::b2.
-#include <box2d/box2d.h>
+#include "Box2DFloat.h"  // float Box2D without its constant macros
 
 namespace lockbox {
 

@@ -182,5 +182,36 @@ TEST(TreeFar, WorldCornersWithHugeBoxesDoNotOverflow) {
     EXPECT_EQ(SaturationCount(), 0u);
 }
 
+TEST(TreeFar, RayLineTestIsExactAtEveryScale) {
+    // The separating-axis test has an int64 fast path and a 128-bit path; both must equal the
+    // exact answer, from millimetre boxes to world-sized rays.
+    __extension__ typedef __int128 i128;
+    Rng rng(99);
+    int misses = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const int32_t scale = i % 4 == 0 ? 16000 : i % 4 == 1 ? 9000 : i % 4 == 2 ? 100 : 1;
+        const b2Vec2 p1{rng.Metres(-scale, scale), rng.Metres(-scale, scale)};
+        const b2Vec2 p2{rng.Metres(-scale, scale), rng.Metres(-scale, scale)};
+        const b2Vec2 c{rng.Metres(-scale, scale), rng.Metres(-scale, scale)};
+        const b2Vec2 h{Fixed::FromRaw(static_cast<int32_t>(rng.Range(0, int64_t{scale} * 16384))),
+                       Fixed::FromRaw(static_cast<int32_t>(rng.Range(0, int64_t{scale} * 16384)))};
+        const b2AABB box{c - h, c + h};
+        const detail::b2TreeRay ray(p1, p2, Fixed(1));
+        const i128 dx = i128{p2.x.Raw()} - p1.x.Raw();
+        const i128 dy = i128{p2.y.Raw()} - p1.y.Raw();
+        const i128 wx = 2 * i128{p1.x.Raw()} - box.lowerBound.x.Raw() - box.upperBound.x.Raw();
+        const i128 wy = 2 * i128{p1.y.Raw()} - box.lowerBound.y.Raw() - box.upperBound.y.Raw();
+        const i128 hx = i128{box.upperBound.x.Raw()} - box.lowerBound.x.Raw();
+        const i128 hy = i128{box.upperBound.y.Raw()} - box.lowerBound.y.Raw();
+        i128 sep = dx * wy - dy * wx;
+        if (sep < 0) sep = -sep;
+        const i128 reach = (dy < 0 ? -dy : dy) * hx + (dx < 0 ? -dx : dx) * hy;
+        ASSERT_EQ(ray.LineMisses(box), sep > reach) << "case " << i;
+        misses += sep > reach;
+    }
+    EXPECT_GT(misses, 1000);
+    EXPECT_LT(misses, 19000);
+}
+
 }  // namespace
 }  // namespace lockbox
