@@ -50,18 +50,19 @@ inline std::string MachineName() {
             break;
         }
     }
+    // Trademark marks and generic words carry no information about the machine.
+    for (const char* noise : {"(R)", "(TM)", "(r)", "(tm)", "Processor", "CPU"}) {
+        for (auto p = model.find(noise); p != std::string::npos; p = model.find(noise))
+            model.erase(p, std::string(noise).size());
+    }
     std::string slug;
     for (char c : model) {
+        if (c == '@') break;  // the nominal clock adds nothing
         const bool alnum = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
         const bool upper = c >= 'A' && c <= 'Z';
         if (alnum) slug += c;
         else if (upper) slug += static_cast<char>(c - 'A' + 'a');
         else if (!slug.empty() && slug.back() != '-') slug += '-';
-        if (c == '@') break;
-    }
-    for (const char* noise : {"-processor", "-cpu", "(r)", "(tm)"}) {
-        const auto p = slug.find(noise);
-        if (p != std::string::npos) slug.erase(p, std::string(noise).size());
     }
     while (!slug.empty() && slug.back() == '-') slug.pop_back();
     const unsigned cores = std::thread::hardware_concurrency();

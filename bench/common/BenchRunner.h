@@ -50,6 +50,7 @@ inline void AddProfile(LockboxEngine& e, std::map<std::string, double>& acc) {
     acc["n_contactConstraints"] += p.contactConstraints;
     acc["n_jointConstraints"] += p.jointConstraints;
     acc["n_velocityIterations"] += p.velocityIterations;
+    acc["n_jointVelocityIterations"] += p.jointVelocityIterations;
     acc["n_positionIterations"] += p.positionIterations;
     acc["n_toiCandidates"] += p.toiCandidates;
     acc["n_toiCalls"] += p.toiCalls;

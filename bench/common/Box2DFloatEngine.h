@@ -10,9 +10,11 @@
 
 #include <box2d/box2d.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace lockbox::scenes {
 
@@ -65,12 +67,16 @@ public:
     }
     /// A two-sided edge v1-v2 (2.4.1 `SetTwoSided`).
     static void SetEdge(EdgeShape& edge, const Vec& v1, const Vec& v2) { edge.SetTwoSided(v1, v2); }
-    /// An open chain; 2.4.1 wants ghost vertices, so the end points are extended along their
-    /// end segments (the same collision as 2.2.1's chain without ghosts, for these terrains).
+    /// An open chain. 2.2.1 chains are two-sided; 2.4.1 chains are one-sided and collide only
+    /// on the right of their direction. Scenes give terrain left to right with the solid side
+    /// below, so the adapter reverses the vertices (solid side down, open side up) and adds
+    /// ghost vertices continuing the end segments.
     static void CreateChain(ChainShape& chain, const Vec* vertices, int count) {
-        const Vec prev = vertices[0] + (vertices[0] - vertices[1]);
-        const Vec next = vertices[count - 1] + (vertices[count - 1] - vertices[count - 2]);
-        chain.CreateChain(vertices, count, prev, next);
+        std::vector<Vec> v(vertices, vertices + count);
+        std::reverse(v.begin(), v.end());
+        const Vec prev = v[0] + (v[0] - v[1]);
+        const Vec next = v[count - 1] + (v[count - 1] - v[count - 2]);
+        chain.CreateChain(v.data(), count, prev, next);
     }
     /// The wheel suspension spring from frequency (Hz) and damping ratio (2.4.1 stiffness and
     /// damping; call after Initialize so the bodies are set).

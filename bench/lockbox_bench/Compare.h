@@ -6,6 +6,8 @@
 /// The geometric mean counts each SCENES.md scene once: bullet's six 60-step variants enter as
 /// one scene whose ratio is their summed lockbox time over their summed float time.
 
+#include <algorithm>
+#include <cinttypes>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -40,19 +42,74 @@ inline std::string TopCosts(const RunResult& r) {
     return os.str();
 }
 
-/// Runs the comparison; returns false when nothing could be compared.
-inline bool RunCompare(int repeat) {
+/// One row of the comparison (what compare.csv stores).
+struct CompareRow {
+    std::string name;
+    int steps = 0, vel = 0, pos = 0, hz = 0;
+    bool lockboxOk = false;
+    double lbMs = 0, lbP95 = 0, flMs = 0, flP95 = 0;
+    int bodies = 0, lbAwake = 0, flAwake = 0, lbContacts = 0, flContacts = 0;
+    std::string hash, topCosts;
+};
+
+/// Splits one CSV line (quoted fields may hold commas).
+inline std::vector<std::string> SplitCsv(const std::string& line) {
+    std::vector<std::string> out(1);
+    bool quoted = false;
+    for (char c : line) {
+        if (c == '"') quoted = !quoted;
+        else if (c == ',' && !quoted) out.emplace_back();
+        else out.back() += c;
+    }
+    return out;
+}
+
+/// Reads the rows of an existing compare.csv (empty when absent).
+inline std::vector<CompareRow> ReadCompareCsv(const std::filesystem::path& path) {
+    std::vector<CompareRow> rows;
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) {
+        const auto f = SplitCsv(line);
+        if (f.size() < 17) continue;
+        CompareRow r;
+        auto num = [](const std::string& t) { return t.empty() ? 0.0 : std::stod(t); };
+        r.name = f[0];
+        r.steps = static_cast<int>(num(f[1])), r.vel = static_cast<int>(num(f[2]));
+        r.pos = static_cast<int>(num(f[3])), r.hz = static_cast<int>(num(f[4]));
+        r.lockboxOk = !f[5].empty();
+        r.lbMs = num(f[5]), r.lbP95 = num(f[6]), r.flMs = num(f[7]), r.flP95 = num(f[8]);
+        r.bodies = static_cast<int>(num(f[10]));
+        r.lbAwake = static_cast<int>(num(f[11])), r.flAwake = static_cast<int>(num(f[12]));
+        r.lbContacts = static_cast<int>(num(f[13])), r.flContacts = static_cast<int>(num(f[14]));
+        r.hash = f[15];
+        r.topCosts = f[16];
+        rows.push_back(r);
+    }
+    return rows;
+}
+
+/// Runs the comparison for `only` (every SCENES.md scene when empty; other rows are kept from
+/// the existing compare.csv) and rewrites compare.csv and the table; false when nothing could
+/// be compared.
+inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}) {
     RunSettings s;
     s.trackMetrics = false;
-    struct Row {
-        std::string name;
-        bool lockboxOk = false;
-        RunResult lb, fl;
-    };
-    std::vector<Row> rows;
+    const std::string machine = MachineName();
+    const std::filesystem::path dir = std::filesystem::path(LOCKBOX_BENCH_RESULTS_DIR) / machine;
+    std::filesystem::create_directories(dir);
+    const std::vector<CompareRow> previous = only.empty() ? std::vector<CompareRow>{} : ReadCompareCsv(dir / "compare.csv");
+    std::vector<CompareRow> rows;
     for (auto name : SharedSceneNames()) {
-        Row row;
-        row.name = std::string(name);
+        const std::string key(name);
+        const bool selected = only.empty() || std::find(only.begin(), only.end(), key) != only.end() ||
+                              (key.rfind("bullet_", 0) == 0 && std::find(only.begin(), only.end(), "bullet") != only.end());
+        if (!selected) {
+            for (const CompareRow& p : previous)
+                if (p.name == key) rows.push_back(p);
+            continue;
+        }
         std::vector<RunResult> lbRuns, flRuns;
         for (int i = 0; i < repeat; ++i) {
             RunResult a, b;
@@ -67,29 +124,40 @@ inline bool RunCompare(int repeat) {
             if (okA) lbRuns.push_back(a);
             flRuns.push_back(b);
         }
-        row.fl = MedianOf(flRuns);
-        PrintLine(row.fl);
+        const RunResult fl = MedianOf(flRuns);
+        PrintLine(fl);
+        CompareRow row;
+        row.name = key;
+        row.steps = fl.settings.steps, row.vel = fl.settings.velocityIterations;
+        row.pos = fl.settings.positionIterations, row.hz = fl.settings.hz;
+        row.flMs = fl.msPerStep, row.flP95 = fl.p95Ms, row.bodies = fl.bodies;
+        row.flAwake = fl.awake, row.flContacts = fl.contacts;
         if (!lbRuns.empty()) {
+            const RunResult lb = MedianOf(lbRuns);
+            PrintLine(lb);
+            PrintProfile(lb);
             row.lockboxOk = true;
-            row.lb = MedianOf(lbRuns);
-            PrintLine(row.lb);
-            PrintProfile(row.lb);
+            row.lbMs = lb.msPerStep, row.lbP95 = lb.p95Ms, row.lbAwake = lb.awake, row.lbContacts = lb.contacts;
+            char hash[32];
+            std::snprintf(hash, sizeof hash, "0x%016" PRIx64, lb.hash);
+            row.hash = hash;
+            row.topCosts = TopCosts(lb);
         } else {
-            std::printf("scene=%s engine=lockbox unavailable (needs joints)\n", row.name.c_str());
+            std::printf("scene=%s engine=lockbox unavailable (needs joints)\n", key.c_str());
         }
         std::fflush(stdout);
-        rows.push_back(std::move(row));
+        rows.push_back(row);
     }
 
     // Ratios per SCENES.md scene (bullet variants summed) and their geometric mean.
     std::map<std::string, std::pair<double, double>> perScene;  // name -> (lockbox, float) ms
     std::vector<std::string> order;
-    for (const Row& r : rows) {
+    for (const CompareRow& r : rows) {
         if (!r.lockboxOk) continue;
         const std::string key = r.name.rfind("bullet_", 0) == 0 ? "bullet" : r.name;
         if (!perScene.count(key)) order.push_back(key);
-        perScene[key].first += r.lb.msPerStep;
-        perScene[key].second += r.fl.msPerStep;
+        perScene[key].first += r.lbMs;
+        perScene[key].second += r.flMs;
     }
     double logSum = 0;
     int n = 0;
@@ -102,27 +170,20 @@ inline bool RunCompare(int repeat) {
     }
     const double geomean = n ? std::exp(logSum / n) : 0;
 
-    const std::string machine = MachineName();
-    const std::filesystem::path dir = std::filesystem::path(LOCKBOX_BENCH_RESULTS_DIR) / machine;
-    std::filesystem::create_directories(dir);
     {
         std::ofstream csv(dir / "compare.csv");
         csv << "scene,steps,vel_iters,pos_iters,hz,lockbox_ms_per_step,lockbox_p95_ms,float_ms_per_step,"
                "float_p95_ms,ratio,bodies,lockbox_awake,float_awake,lockbox_contacts,float_contacts,"
                "lockbox_hash,top_costs\n";
-        for (const Row& r : rows) {
-            csv << r.name << "," << r.fl.settings.steps << "," << r.fl.settings.velocityIterations << ","
-                << r.fl.settings.positionIterations << "," << r.fl.settings.hz << ",";
+        for (const CompareRow& r : rows) {
+            csv << r.name << "," << r.steps << "," << r.vel << "," << r.pos << "," << r.hz << ",";
             if (r.lockboxOk) {
-                char hash[32];
-                std::snprintf(hash, sizeof hash, "0x%016" PRIx64, r.lb.hash);
-                csv << r.lb.msPerStep << "," << r.lb.p95Ms << "," << r.fl.msPerStep << "," << r.fl.p95Ms << ","
-                    << r.lb.msPerStep / r.fl.msPerStep << "," << r.lb.bodies << "," << r.lb.awake << ","
-                    << r.fl.awake << "," << r.lb.contacts << "," << r.fl.contacts << "," << hash << ",\""
-                    << TopCosts(r.lb) << "\"\n";
+                csv << r.lbMs << "," << r.lbP95 << "," << r.flMs << "," << r.flP95 << "," << r.lbMs / r.flMs << ","
+                    << r.bodies << "," << r.lbAwake << "," << r.flAwake << "," << r.lbContacts << ","
+                    << r.flContacts << "," << r.hash << ",\"" << r.topCosts << "\"\n";
             } else {
-                csv << ",," << r.fl.msPerStep << "," << r.fl.p95Ms << ",," << r.fl.bodies << ",,"
-                    << r.fl.awake << ",," << r.fl.contacts << ",,unavailable\n";
+                csv << ",," << r.flMs << "," << r.flP95 << ",," << r.bodies << ",," << r.flAwake << ",,"
+                    << r.flContacts << ",,unavailable\n";
             }
         }
     }
@@ -135,29 +196,23 @@ inline bool RunCompare(int repeat) {
           "bodies | contacts lockbox/float | lockbox top costs |\n";
     md << "| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |\n";
     char buf[512];
-    for (const Row& r : rows) {
+    for (const CompareRow& r : rows) {
         if (r.lockboxOk) {
             std::snprintf(buf, sizeof buf, "| %s | %d | %d/%d | %.4f | %.4f | %.2f | %.4f | %.4f | %d | %d/%d | %s |\n",
-                          r.name.c_str(), r.fl.settings.steps, r.fl.settings.velocityIterations,
-                          r.fl.settings.positionIterations, r.lb.msPerStep, r.fl.msPerStep,
-                          r.lb.msPerStep / r.fl.msPerStep, r.lb.p95Ms, r.fl.p95Ms, r.lb.bodies, r.lb.contacts,
-                          r.fl.contacts, TopCosts(r.lb).c_str());
+                          r.name.c_str(), r.steps, r.vel, r.pos, r.lbMs, r.flMs, r.lbMs / r.flMs, r.lbP95, r.flP95,
+                          r.bodies, r.lbContacts, r.flContacts, r.topCosts.c_str());
         } else {
             std::snprintf(buf, sizeof buf, "| %s | %d | %d/%d | n/a | %.4f | n/a | n/a | %.4f | %d | -/%d | "
                           "needs joints |\n",
-                          r.name.c_str(), r.fl.settings.steps, r.fl.settings.velocityIterations,
-                          r.fl.settings.positionIterations, r.fl.msPerStep, r.fl.p95Ms, r.fl.bodies, r.fl.contacts);
+                          r.name.c_str(), r.steps, r.vel, r.pos, r.flMs, r.flP95, r.bodies, r.flContacts);
         }
         md << buf;
     }
     md << "\n";
-    for (const auto& key : order) {
-        const auto& [lb, fl] = perScene[key];
-        if (key == "bullet") {
-            std::snprintf(buf, sizeof buf, "bullet (six variants summed): %.4f / %.4f ms = ratio %.2f.\n\n", lb, fl,
-                          lb / fl);
-            md << buf;
-        }
+    if (perScene.count("bullet")) {
+        const auto& [lb, fl] = perScene["bullet"];
+        std::snprintf(buf, sizeof buf, "bullet (six variants summed): %.4f / %.4f ms = ratio %.2f.\n\n", lb, fl, lb / fl);
+        md << buf;
     }
     std::snprintf(buf, sizeof buf,
                   "**Geometric mean of the ratios (lockbox / float), %d scenes: %.2f** (goal: <= 1.0).\n", n, geomean);

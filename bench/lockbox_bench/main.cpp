@@ -5,6 +5,8 @@
 //   lockbox_bench --all --compare [--repeat R]   (every SCENES.md scene, both engines,
 //                 alternating; writes bench/results/<machine>/compare.csv and the table in
 //                 docs/benchmarks.md)
+//   lockbox_bench --all --compare --scenes a,b [--repeat R]   (re-measure some scenes, keep
+//                 the other rows of compare.csv)
 //   lockbox_bench --list
 //
 // One line per run (the median over repeats):
@@ -31,7 +33,7 @@ void Usage() {
                  "usage: lockbox_bench --scene NAME [--steps N] [--velocity-iterations V]\n"
                  "         [--position-iterations P] [--hz H] [--engine lockbox|box2d-float]\n"
                  "         [--repeat R] [--metrics] [--no-profile]\n"
-                 "       lockbox_bench --all --compare [--repeat R]\n"
+                 "       lockbox_bench --all --compare [--scenes a,b,...] [--repeat R]\n"
                  "       lockbox_bench --list\n");
 }
 
@@ -67,6 +69,7 @@ int main(int argc, char** argv) {
     s.trackMetrics = false;
     int repeat = 1;
     bool all = false, compare = false, list = false, profile = true;
+    std::vector<std::string> only;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&](int& v) {
@@ -88,6 +91,16 @@ int main(int argc, char** argv) {
         else if (a == "--all") all = true;
         else if (a == "--compare") compare = true;
         else if (a == "--list") list = true;
+        else if (a == "--scenes" && i + 1 < argc) {
+            // Comma-separated subset for --all --compare; the other rows are kept.
+            std::string all_ = argv[++i];
+            size_t p = 0;
+            while (p <= all_.size()) {
+                const size_t q = std::min(all_.find(',', p), all_.size());
+                if (q > p) only.push_back(all_.substr(p, q - p));
+                p = q + 1;
+            }
+        }
         else {
             Usage();
             return 2;
@@ -102,7 +115,7 @@ int main(int argc, char** argv) {
         }
         return 0;
     }
-    if (all && compare) return RunCompare(repeat) ? 0 : 1;
+    if (all && compare) return RunCompare(repeat, only) ? 0 : 1;
     if (scene.empty()) {
         Usage();
         return 2;

@@ -25,3 +25,4 @@
 #include "lockbox/dynamics/WorldCallbacks.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 #include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/dynamics/joints/Joints.h"

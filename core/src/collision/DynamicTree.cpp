@@ -468,6 +468,15 @@ bool b2DynamicTree::Validate() const {
     return visited == m_nodeCount;
 }
 
+// ---- Traversal stack ----------------------------------------------------------------------
+
+void detail::b2TreeStack::PushSpill(int32 v) {
+    const size_t slot = static_cast<size_t>(m_count - kInline);
+    if (m_spill.size() <= slot) m_spill.push_back(v);
+    else m_spill[slot] = v;
+    ++m_count;
+}
+
 // ---- Ray helper -------------------------------------------------------------------------
 
 namespace detail {

@@ -31,7 +31,6 @@ b2AssertHandler b2SetAssertHandler(b2AssertHandler handler) noexcept {
 b2World::b2World(const b2Vec2& gravity) : m_contactManager(&m_fixtures), m_gravity(gravity) {
     m_bounds.lowerBound.Set(-b2_defaultWorldExtent, -b2_defaultWorldExtent);
     m_bounds.upperBound.Set(b2_defaultWorldExtent, b2_defaultWorldExtent);
-    m_contactManager.m_profile = &m_profile;
 }
 
 b2World::~b2World() {
@@ -180,6 +179,9 @@ void b2World::ClearForces() {
 void b2World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
     const Clock::time_point stepTimer = Clock::now();
     m_profile = b2Profile{};
+    // Counters record the work of this Step only (not of SetTransform or DestroyBody calls
+    // made between steps).
+    m_contactManager.m_profile = &m_profile;
 
     // New fixtures need their pairs before the narrow phase.
     if (m_flags & e_newFixture) {
@@ -245,6 +247,7 @@ void b2World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations)
         }
     }
     m_outOfBounds.clear();
+    m_contactManager.m_profile = nullptr;
     m_profile.stepNs = Nanos(stepTimer);
 }
 

@@ -71,6 +71,9 @@ void b2World::Solve(const b2TimeStep& step) {
                 b2Body* other = je->other;
                 // Don't simulate joints connected to inactive bodies.
                 if (!other->IsActive()) continue;
+                // A joint between two bodies without mass (kinematic-static, kinematic-kinematic)
+                // can change nothing: it costs nothing either.
+                if (b->GetType() != b2_dynamicBody && other->GetType() != b2_dynamicBody) continue;
                 m_island.Add(je->joint);
                 je->joint->m_islandFlag = true;
                 if (other->m_flags & b2Body::e_islandFlag) continue;

@@ -67,23 +67,24 @@ class b2TreeStack {
 public:
     /// Pushes a node index.
     void Push(int32 v) {
-        if (m_count < kInline) {
-            m_inline[m_count] = v;
-        } else {
-            if (m_spill.size() <= static_cast<size_t>(m_count - kInline)) m_spill.push_back(v);
-            else m_spill[static_cast<size_t>(m_count - kInline)] = v;
+        if (m_count < kInline) [[likely]] {
+            m_inline[m_count++] = v;
+            return;
         }
-        ++m_count;
+        PushSpill(v);
     }
     /// Pops the last index pushed; the stack must not be empty.
     int32 Pop() {
         --m_count;
-        return m_count < kInline ? m_inline[m_count] : m_spill[static_cast<size_t>(m_count - kInline)];
+        if (m_count < kInline) [[likely]] return m_inline[m_count];
+        return m_spill[static_cast<size_t>(m_count - kInline)];
     }
     /// Number of entries.
     int32 GetCount() const noexcept { return m_count; }
 
 private:
+    void PushSpill(int32 v);  // out of line: keeps Push small enough to inline
+
     static constexpr int32 kInline = 256;
     int32 m_inline[kInline];
     std::vector<int32> m_spill;

@@ -85,9 +85,10 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
     if (!m_enableMotor || fixedRotation) m_motorImpulse = Wide();
 
     Fixed jointAngle = ContinuousAngle(aA, aB);
-    // Beyond kMaxContinuousAngle the turn count restarts from the wrapped angle, so a joint
-    // that spins freely for hours never saturates Q16.16 (limits live within +-5000 rad).
-    if (Abs(jointAngle) > kMaxContinuousAngle) jointAngle = WrapAngle(jointAngle);
+    // Without a limit, beyond kMaxContinuousAngle the turn count restarts from the wrapped
+    // angle, so a joint that spins freely for hours never saturates Q16.16. With a limit the
+    // angle is held near the limits (|limit| <= 16000 rad) and is never reset.
+    if (!m_enableLimit && Abs(jointAngle) > kMaxContinuousAngle) jointAngle = WrapAngle(jointAngle);
     m_angleBase = jointAngle;
     if (m_enableLimit && !fixedRotation) {
         // Equal limits within 2 angularSlop (4 degrees) are solved as a fixed angle.

@@ -9,6 +9,7 @@ namespace lockbox {
 
 /// Distance joint definition. Do not make length too short (below a few linearSlop).
 struct b2DistanceJointDef : b2JointDef {
+    /// Defaults as in Box2D 2.2.1.
     b2DistanceJointDef() { type = e_distanceJoint; }
 
     /// Sets bodies and local anchors from two world anchors (m); length = their distance.
@@ -24,29 +25,40 @@ struct b2DistanceJointDef : b2JointDef {
 /// Distance joint.
 class b2DistanceJoint : public b2Joint {
 public:
+    /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2DistanceJoint(const b2DistanceJointDef* def);
 
+    /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
+    /// Anchor on body B (world), m.
     b2Vec2 GetAnchorB() const override;
     /// Reaction force on B (N): impulse * inv_dt along the joint axis.
     b2Vec2 GetReactionForce(Fixed inv_dt) const override;
     /// Always 0.
     Fixed GetReactionTorque(Fixed inv_dt) const override;
 
+    /// Anchor on body A in A's frame, m.
     const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    /// Anchor on body B in B's frame, m.
     const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
     /// Natural length, m.
     void SetLength(Fixed length) noexcept { m_length = length; }
+    /// Natural length, m.
     Fixed GetLength() const noexcept { return m_length; }
     /// Spring frequency, Hz (0 = rigid).
     void SetFrequency(Fixed hz) noexcept { m_frequencyHz = hz; }
+    /// Spring frequency, Hz.
     Fixed GetFrequency() const noexcept { return m_frequencyHz; }
     /// Damping ratio (dimensionless).
     void SetDampingRatio(Fixed ratio) noexcept { m_dampingRatio = ratio; }
+    /// Damping ratio (dimensionless).
     Fixed GetDampingRatio() const noexcept { return m_dampingRatio; }
 
+    /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island).
     void SolveVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
 private:

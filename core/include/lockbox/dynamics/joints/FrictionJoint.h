@@ -9,6 +9,7 @@ namespace lockbox {
 
 /// Friction joint definition.
 struct b2FrictionJointDef : b2JointDef {
+    /// Defaults as in Box2D 2.2.1.
     b2FrictionJointDef() { type = e_frictionJoint; }
 
     /// Bodies and local anchors from one world anchor (m).
@@ -23,26 +24,36 @@ struct b2FrictionJointDef : b2JointDef {
 /// Friction joint.
 class b2FrictionJoint : public b2Joint {
 public:
+    /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2FrictionJoint(const b2FrictionJointDef* def);
 
+    /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
+    /// Anchor on body B (world), m.
     b2Vec2 GetAnchorB() const override;
     /// Friction force on B, N.
     b2Vec2 GetReactionForce(Fixed inv_dt) const override;
     /// Friction torque on B, N*m.
     Fixed GetReactionTorque(Fixed inv_dt) const override;
 
+    /// Anchor on body A in A's frame, m.
     const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    /// Anchor on body B in B's frame, m.
     const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
     /// Maximum friction force, N (>= 0).
     void SetMaxForce(Fixed force) noexcept { m_maxForce = force; }
+    /// Maximum force, N.
     Fixed GetMaxForce() const noexcept { return m_maxForce; }
     /// Maximum friction torque, N*m (>= 0).
     void SetMaxTorque(Fixed torque) noexcept { m_maxTorque = torque; }
+    /// Maximum torque, N*m.
     Fixed GetMaxTorque() const noexcept { return m_maxTorque; }
 
+    /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island).
     void SolveVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
 private:

@@ -18,6 +18,7 @@ namespace lockbox {
 /// Gear joint definition. bodyA and bodyB are taken from the joints (joint1's and joint2's
 /// bodyB) and need not be set.
 struct b2GearJointDef : b2JointDef {
+    /// Defaults as in Box2D 2.2.1.
     b2GearJointDef() { type = e_gearJoint; }
 
     b2Joint* joint1 = nullptr;  ///< a revolute or prismatic joint
@@ -28,26 +29,35 @@ struct b2GearJointDef : b2JointDef {
 /// Gear joint.
 class b2GearJoint : public b2Joint {
 public:
+    /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2GearJoint(const b2GearJointDef* def);
 
+    /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
+    /// Anchor on body B (world), m.
     b2Vec2 GetAnchorB() const override;
     /// Reaction on B (the body of joint1), N.
     b2Vec2 GetReactionForce(Fixed inv_dt) const override;
     /// Reaction torque, N*m.
     Fixed GetReactionTorque(Fixed inv_dt) const override;
 
+    /// The first coupled joint.
     b2Joint* GetJoint1() noexcept { return m_joint1; }
+    /// The second coupled joint.
     b2Joint* GetJoint2() noexcept { return m_joint2; }
     /// Gear ratio.
     void SetRatio(Fixed ratio) noexcept { m_ratio = ratio; }
+    /// Gear or pulley ratio.
     Fixed GetRatio() const noexcept { return m_ratio; }
     /// The two joint coordinates (rad or m) as the gear sees them now.
     Fixed GetCoordinateA() const;
     Fixed GetCoordinateB() const;
 
+    /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island).
     void SolveVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
 private:

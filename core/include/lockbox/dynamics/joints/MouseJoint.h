@@ -12,6 +12,7 @@ namespace lockbox {
 
 /// Mouse joint definition.
 struct b2MouseJointDef : b2JointDef {
+    /// Defaults as in Box2D 2.2.1.
     b2MouseJointDef() { type = e_mouseJoint; }
 
     b2Vec2 target;                   ///< initial world target, m (also the grab point on B)
@@ -23,6 +24,7 @@ struct b2MouseJointDef : b2JointDef {
 /// Mouse joint.
 class b2MouseJoint : public b2Joint {
 public:
+    /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2MouseJoint(const b2MouseJointDef* def);
 
     /// The target point, m.
@@ -36,21 +38,28 @@ public:
 
     /// Moves the target, m (wakes body B).
     void SetTarget(const b2Vec2& target);
+    /// The target point, m.
     const b2Vec2& GetTarget() const noexcept { return m_targetA; }
     /// Maximum force, N.
     void SetMaxForce(Wide force) noexcept { m_maxForce = force; }
+    /// Maximum force, N.
     Wide GetMaxForce() const noexcept { return m_maxForce; }
     /// Response frequency, Hz.
     void SetFrequency(Fixed hz) noexcept { m_frequencyHz = hz; }
+    /// Spring frequency, Hz.
     Fixed GetFrequency() const noexcept { return m_frequencyHz; }
     /// Damping ratio.
     void SetDampingRatio(Fixed ratio) noexcept { m_dampingRatio = ratio; }
+    /// Damping ratio (dimensionless).
     Fixed GetDampingRatio() const noexcept { return m_dampingRatio; }
     /// Accumulated impulse of the last step, N*s (Q32.32, never saturated).
     const b2WideVec2& GetImpulse() const noexcept { return m_impulse; }
 
+    /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island).
     void SolveVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
 private:

@@ -9,6 +9,7 @@ namespace lockbox {
 
 /// Prismatic joint definition.
 struct b2PrismaticJointDef : b2JointDef {
+    /// Defaults as in Box2D 2.2.1.
     b2PrismaticJointDef() { type = e_prismaticJoint; localAxisA.Set(1, 0); }
 
     /// Bodies, anchors from one world point (m), the axis from a world direction (normalised
@@ -30,18 +31,25 @@ struct b2PrismaticJointDef : b2JointDef {
 /// Prismatic joint.
 class b2PrismaticJoint : public b2Joint {
 public:
+    /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2PrismaticJoint(const b2PrismaticJointDef* def);
 
+    /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
+    /// Anchor on body B (world), m.
     b2Vec2 GetAnchorB() const override;
     /// Perpendicular plus limit/motor reaction on B, N.
     b2Vec2 GetReactionForce(Fixed inv_dt) const override;
     /// Angular reaction on B, N*m.
     Fixed GetReactionTorque(Fixed inv_dt) const override;
 
+    /// Anchor on body A in A's frame, m.
     const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    /// Anchor on body B in B's frame, m.
     const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    /// Axis in body A's frame (unit length).
     const b2Vec2& GetLocalAxisA() const noexcept { return m_localXAxisA; }
+    /// Reference angle angleB - angleA, rad.
     Fixed GetReferenceAngle() const noexcept { return m_referenceAngle; }
 
     /// Translation of B's anchor from A's along the axis, m.
@@ -49,27 +57,37 @@ public:
     /// Translation speed, m/s.
     Fixed GetJointSpeed() const;
 
+    /// Whether the limit is enforced.
     bool IsLimitEnabled() const noexcept { return m_enableLimit; }
     /// Enables or disables the limit (wakes the bodies).
     void EnableLimit(bool flag);
+    /// Lower limit.
     Fixed GetLowerLimit() const noexcept { return m_lowerTranslation; }
+    /// Upper limit.
     Fixed GetUpperLimit() const noexcept { return m_upperTranslation; }
     /// Sets the limits, m (lower <= upper; wakes the bodies).
     void SetLimits(Fixed lower, Fixed upper);
 
+    /// Whether the motor is enabled.
     bool IsMotorEnabled() const noexcept { return m_enableMotor; }
+    /// Enables or disables the motor (wakes the bodies).
     void EnableMotor(bool flag);
     /// Target speed, m/s.
     void SetMotorSpeed(Fixed speed);
+    /// Target motor speed.
     Fixed GetMotorSpeed() const noexcept { return m_motorSpeed; }
     /// Maximum motor force, N.
     void SetMaxMotorForce(Fixed force);
+    /// Maximum motor force, N.
     Fixed GetMaxMotorForce() const noexcept { return m_maxMotorForce; }
     /// Motor force applied in the last step, N.
     Fixed GetMotorForce(Fixed inv_dt) const;
 
+    /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island).
     void SolveVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
     // Read by the gear joint.

@@ -10,6 +10,7 @@ namespace lockbox {
 
 /// Pulley joint definition. collideConnected is true by default, as in 2.2.1.
 struct b2PulleyJointDef : b2JointDef {
+    /// Defaults as in Box2D 2.2.1.
     b2PulleyJointDef() {
         type = e_pulleyJoint;
         groundAnchorA.Set(-1, 1);
@@ -35,16 +36,21 @@ struct b2PulleyJointDef : b2JointDef {
 /// Pulley joint.
 class b2PulleyJoint : public b2Joint {
 public:
+    /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2PulleyJoint(const b2PulleyJointDef* def);
 
+    /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
+    /// Anchor on body B (world), m.
     b2Vec2 GetAnchorB() const override;
     /// Rope tension on B along side B, N.
     b2Vec2 GetReactionForce(Fixed inv_dt) const override;
     /// Always 0.
     Fixed GetReactionTorque(Fixed inv_dt) const override;
 
+    /// Ground anchor of side A (world), m.
     b2Vec2 GetGroundAnchorA() const noexcept { return m_groundAnchorA; }
+    /// Ground anchor of side B (world), m.
     b2Vec2 GetGroundAnchorB() const noexcept { return m_groundAnchorB; }
     /// Current length of side A, m.
     Fixed GetLengthA() const;
@@ -53,8 +59,11 @@ public:
     /// The pulley ratio.
     Fixed GetRatio() const noexcept { return m_ratio; }
 
+    /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island).
     void SolveVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
 private:

@@ -4,20 +4,21 @@
 /// Body angles are wrapped into [-pi, pi) every step (ARCHITECTURE §5), so the joint keeps its
 /// own continuous angle: each step it moves to the branch of aB - aA - referenceAngle nearest
 /// to the previous value (the relative rotation per step is below pi). Limits may therefore
-/// span many turns (within +-5000 rad, the Q16.16 range with margin).
+/// span many turns (keep them within +-16000 rad, half the Q16.16 range).
 
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/dynamics/joints/WideMatrix.h"
 
 namespace lockbox {
 
-/// Range of the continuous joint angle, rad: 8192 rad (1303 turns) leaves a 4x margin to the
-/// Q16.16 limit for the differences formed from it. Past it the angle restarts from its
-/// wrapped value (see b2RevoluteJoint::GetJointAngle).
+/// Range of the continuous joint angle without a limit, rad: 8192 rad (1303 turns) leaves a
+/// 4x margin to the Q16.16 limit for the differences formed from it. Past it a joint without
+/// limit restarts from its wrapped angle (see b2RevoluteJoint::GetJointAngle).
 inline constexpr Fixed kMaxContinuousAngle = 8192;
 
 /// Revolute joint definition.
 struct b2RevoluteJointDef : b2JointDef {
+    /// Defaults as in Box2D 2.2.1.
     b2RevoluteJointDef() { type = e_revoluteJoint; }
 
     /// Bodies, local anchors from one world anchor (m), and the reference angle from the
@@ -28,7 +29,7 @@ struct b2RevoluteJointDef : b2JointDef {
     b2Vec2 localAnchorB;      ///< m, relative to B's origin
     Fixed referenceAngle;     ///< angleB - angleA in the reference state, rad
     bool enableLimit = false; ///< enforce [lowerAngle, upperAngle]?
-    Fixed lowerAngle;         ///< rad, may be many turns (|value| <= 5000)
+    Fixed lowerAngle;         ///< rad, may be many turns (|value| <= 16000)
     Fixed upperAngle;         ///< rad, >= lowerAngle
     bool enableMotor = false; ///< drive the relative angular speed?
     Fixed motorSpeed;         ///< rad/s
@@ -38,47 +39,62 @@ struct b2RevoluteJointDef : b2JointDef {
 /// Revolute joint.
 class b2RevoluteJoint : public b2Joint {
 public:
+    /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2RevoluteJoint(const b2RevoluteJointDef* def);
 
+    /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
+    /// Anchor on body B (world), m.
     b2Vec2 GetAnchorB() const override;
     /// Point reaction on B, N.
     b2Vec2 GetReactionForce(Fixed inv_dt) const override;
     /// Limit reaction torque on B, N*m (the motor torque is GetMotorTorque).
     Fixed GetReactionTorque(Fixed inv_dt) const override;
 
+    /// Anchor on body A in A's frame, m.
     const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    /// Anchor on body B in B's frame, m.
     const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    /// Reference angle angleB - angleA, rad.
     Fixed GetReferenceAngle() const noexcept { return m_referenceAngle; }
 
-    /// Continuous joint angle angleB - angleA - referenceAngle, rad: counts whole turns
-    /// within +-kMaxContinuousAngle, and restarts from the wrapped angle beyond it.
+    /// Continuous joint angle angleB - angleA - referenceAngle, rad: counts whole turns. With
+    /// the limit disabled it restarts from the wrapped angle beyond +-kMaxContinuousAngle.
     Fixed GetJointAngle() const;
     /// Relative angular speed wB - wA, rad/s.
     Fixed GetJointSpeed() const;
 
+    /// Whether the limit is enforced.
     bool IsLimitEnabled() const noexcept { return m_enableLimit; }
     /// Enables or disables the limit (wakes the bodies).
     void EnableLimit(bool flag);
+    /// Lower limit.
     Fixed GetLowerLimit() const noexcept { return m_lowerAngle; }
+    /// Upper limit.
     Fixed GetUpperLimit() const noexcept { return m_upperAngle; }
     /// Sets the limits, rad (lower <= upper; wakes the bodies).
     void SetLimits(Fixed lower, Fixed upper);
 
+    /// Whether the motor is enabled.
     bool IsMotorEnabled() const noexcept { return m_enableMotor; }
     /// Enables or disables the motor (wakes the bodies).
     void EnableMotor(bool flag);
     /// Target relative speed, rad/s (wakes the bodies).
     void SetMotorSpeed(Fixed speed);
+    /// Target motor speed.
     Fixed GetMotorSpeed() const noexcept { return m_motorSpeed; }
     /// Maximum motor torque, N*m (wakes the bodies).
     void SetMaxMotorTorque(Fixed torque);
+    /// Maximum motor torque, N*m.
     Fixed GetMaxMotorTorque() const noexcept { return m_maxMotorTorque; }
     /// Motor torque applied in the last step, N*m.
     Fixed GetMotorTorque(Fixed inv_dt) const;
 
+    /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island).
     void SolveVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
 private:

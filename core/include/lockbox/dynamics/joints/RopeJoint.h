@@ -9,6 +9,7 @@ namespace lockbox {
 
 /// Rope joint definition.
 struct b2RopeJointDef : b2JointDef {
+    /// Defaults as in Box2D 2.2.1.
     b2RopeJointDef() {
         type = e_ropeJoint;
         localAnchorA.Set(-1, 0);
@@ -23,25 +24,34 @@ struct b2RopeJointDef : b2JointDef {
 /// Rope joint.
 class b2RopeJoint : public b2Joint {
 public:
+    /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2RopeJoint(const b2RopeJointDef* def);
 
+    /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
+    /// Anchor on body B (world), m.
     b2Vec2 GetAnchorB() const override;
     /// Rope tension on B, N.
     b2Vec2 GetReactionForce(Fixed inv_dt) const override;
     /// Always 0.
     Fixed GetReactionTorque(Fixed inv_dt) const override;
 
+    /// Anchor on body A in A's frame, m.
     const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    /// Anchor on body B in B's frame, m.
     const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
     /// Maximum length, m.
     void SetMaxLength(Fixed length) noexcept { m_maxLength = length; }
+    /// Maximum length, m.
     Fixed GetMaxLength() const noexcept { return m_maxLength; }
     /// e_atUpperLimit while the rope is taut, else e_inactiveLimit.
     b2LimitState GetLimitState() const noexcept { return m_state; }
 
+    /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island).
     void SolveVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
 private:

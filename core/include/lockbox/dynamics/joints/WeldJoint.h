@@ -9,6 +9,7 @@ namespace lockbox {
 
 /// Weld joint definition.
 struct b2WeldJointDef : b2JointDef {
+    /// Defaults as in Box2D 2.2.1.
     b2WeldJointDef() { type = e_weldJoint; }
 
     /// Bodies, anchors from one world point (m), reference angle from the current angles.
@@ -24,27 +25,38 @@ struct b2WeldJointDef : b2JointDef {
 /// Weld joint.
 class b2WeldJoint : public b2Joint {
 public:
+    /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2WeldJoint(const b2WeldJointDef* def);
 
+    /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
+    /// Anchor on body B (world), m.
     b2Vec2 GetAnchorB() const override;
     /// Point reaction on B, N.
     b2Vec2 GetReactionForce(Fixed inv_dt) const override;
     /// Angular reaction on B, N*m.
     Fixed GetReactionTorque(Fixed inv_dt) const override;
 
+    /// Anchor on body A in A's frame, m.
     const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    /// Anchor on body B in B's frame, m.
     const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    /// Reference angle angleB - angleA, rad.
     Fixed GetReferenceAngle() const noexcept { return m_referenceAngle; }
     /// Angular spring frequency, Hz.
     void SetFrequency(Fixed hz) noexcept { m_frequencyHz = hz; }
+    /// Spring frequency, Hz.
     Fixed GetFrequency() const noexcept { return m_frequencyHz; }
     /// Angular spring damping ratio.
     void SetDampingRatio(Fixed ratio) noexcept { m_dampingRatio = ratio; }
+    /// Damping ratio (dimensionless).
     Fixed GetDampingRatio() const noexcept { return m_dampingRatio; }
 
+    /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island).
     void SolveVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
 private:

@@ -9,6 +9,7 @@ namespace lockbox {
 
 /// Wheel joint definition.
 struct b2WheelJointDef : b2JointDef {
+    /// Defaults as in Box2D 2.2.1.
     b2WheelJointDef() { type = e_wheelJoint; localAxisA.Set(1, 0); }
 
     /// Bodies, anchors from one world point (m) and the axis from a world direction.
@@ -27,17 +28,23 @@ struct b2WheelJointDef : b2JointDef {
 /// Wheel joint.
 class b2WheelJoint : public b2Joint {
 public:
+    /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2WheelJoint(const b2WheelJointDef* def);
 
+    /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
+    /// Anchor on body B (world), m.
     b2Vec2 GetAnchorB() const override;
     /// Line plus spring reaction on B, N.
     b2Vec2 GetReactionForce(Fixed inv_dt) const override;
     /// Motor torque on B, N*m.
     Fixed GetReactionTorque(Fixed inv_dt) const override;
 
+    /// Anchor on body A in A's frame, m.
     const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    /// Anchor on body B in B's frame, m.
     const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    /// Axis in body A's frame (unit length).
     const b2Vec2& GetLocalAxisA() const noexcept { return m_localXAxisA; }
 
     /// Translation along the axis, m.
@@ -45,26 +52,35 @@ public:
     /// Relative angular speed wB - wA, rad/s.
     Fixed GetJointSpeed() const;
 
+    /// Whether the motor is enabled.
     bool IsMotorEnabled() const noexcept { return m_enableMotor; }
+    /// Enables or disables the motor (wakes the bodies).
     void EnableMotor(bool flag);
     /// Target speed, rad/s.
     void SetMotorSpeed(Fixed speed);
+    /// Target motor speed.
     Fixed GetMotorSpeed() const noexcept { return m_motorSpeed; }
     /// Maximum motor torque, N*m.
     void SetMaxMotorTorque(Fixed torque);
+    /// Maximum motor torque, N*m.
     Fixed GetMaxMotorTorque() const noexcept { return m_maxMotorTorque; }
     /// Motor torque applied in the last step, N*m.
     Fixed GetMotorTorque(Fixed inv_dt) const;
 
     /// Suspension frequency, Hz (0 disables the spring).
     void SetSpringFrequencyHz(Fixed hz) noexcept { m_frequencyHz = hz; }
+    /// Suspension frequency, Hz.
     Fixed GetSpringFrequencyHz() const noexcept { return m_frequencyHz; }
     /// Suspension damping ratio.
     void SetSpringDampingRatio(Fixed ratio) noexcept { m_dampingRatio = ratio; }
+    /// Suspension damping ratio.
     Fixed GetSpringDampingRatio() const noexcept { return m_dampingRatio; }
 
+    /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island).
     void SolveVelocityConstraints(const b2SolverData& data) override;
+    /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
 private:

@@ -1,8 +1,8 @@
 #pragma once
 /// car (lockbox's own, after the v2.2.1 testbed Car): a chassis on two wheel joints (axis
 /// (0, 1), spring 4 Hz, damping ratio 0.7) drives over a chain-shape terrain of hills. Terrain:
-/// one open b2ChainShape through x = -20..200 every 5 m with heights cycling through
-/// {0, 0.25, 1, 1.25, 0, 0, -1, -2, -1.25, 0} m. Chassis: a six-vertex polygon (density 1) at
+/// one open b2ChainShape through x = -20..200 every 5 m, flat up to x = 0, then heights
+/// cycling through {0, 0.25, 1, 1.25, 0, 0, -1, -2, -1.25, 0} m. Chassis: a six-vertex polygon (density 1) at
 /// (0, 1); wheels: circles of radius 0.4 (density 1, friction 0.9) at (-1, 0.35) and (1, 0.4);
 /// the rear wheel's motor turns at -10 rad/s with at most 20 N m. 600 steps, 8/3, 60 Hz.
 /// Reports how far the car got (car_x), its final tilt and the usual max_pen.
@@ -27,7 +27,10 @@ public:
             // Heights in quarter metres, repeating every 10 samples (50 m).
             constexpr int kHeights[10] = {0, 1, 4, 5, 0, 0, -4, -8, -5, 0};
             std::vector<typename E::Vec> points;
-            for (int i = 0; i <= 44; ++i) points.push_back(E::V(-20 + 5 * i, E::R(kHeights[i % 10], 4)));
+            for (int i = 0; i <= 44; ++i) {
+                const int h = i < 4 ? 0 : kHeights[(i - 4) % 10];
+                points.push_back(E::V(-20 + 5 * i, E::R(h, 4)));
+            }
             typename E::ChainShape chain;
             E::CreateChain(chain, points.data(), static_cast<int>(points.size()));
             typename E::FixtureDef gfd;

@@ -102,14 +102,14 @@ public:
     static double D(Num v) noexcept { return v.ToDouble(); }
     /// A vector from two numbers.
     static Vec V(Num x, Num y) noexcept { return Vec(x, y); }
-    /// num/den degrees in radians, rounded once: raw = round(num * pi * 2^16 / (180 den)),
-    /// with pi carried as round(pi * 2^32) = 13493037705 so the one rounding is the last.
-    /// Valid for |num/den| <= 10^6 degrees (the product stays below 2^63).
+    /// num/den degrees in radians, rounded once: num * pi / (180 den), with pi carried as
+    /// round(pi * 2^32) = 13493037705 (so the ratio is num * pi * 2^32 / (180 den 2^32) and
+    /// the only rounding is FromRatio's). Valid for |num| <= 3 * 10^8 (the numerator stays
+    /// below 2^62).
     static Num Deg(int64_t num, int64_t den = 1) noexcept {
         constexpr int64_t kPi32 = 13493037705;  // pi * 2^32, rounded
-        const int64_t n = num * kPi32;
-        const int64_t d = 180 * den * 65536;   // back from 2^32 to the 2^16 of Q16.16
-        return Fixed::FromRatio(n, d);
+        constexpr int64_t kTwo32 = int64_t{1} << 32;
+        return Fixed::FromRatio(num * kPi32, 180 * den * kTwo32);
     }
     /// A two-sided edge v1-v2 (2.2.1 `Set`).
     static void SetEdge(EdgeShape& edge, const Vec& v1, const Vec& v2) { edge.Set(v1, v2); }

@@ -112,7 +112,8 @@ public:
         Scene<E>::AfterStep(e, step);
         if (!rack_) return;
         pulleyErr_ = std::max(pulleyErr_, std::fabs(PulleyCoordinate() - pulley0_));
-        const double a1 = E::D(discs_[0]->GetAngle()), a2 = E::D(discs_[1]->GetAngle());
+        const double a1 = Unwrap(0, E::D(discs_[0]->GetAngle()));
+        const double a2 = Unwrap(1, E::D(discs_[1]->GetAngle()));
         const double t = E::D(rack_->GetPosition().x) - 8;
         gearErr_ = std::max(gearErr_, std::fabs(a1 + 2 * a2));
         gearErr_ = std::max(gearErr_, std::fabs(a2 - 0.5 * t));
@@ -126,6 +127,18 @@ public:
     }
 
 private:
+    /// Continuous angle of disc k: lockbox keeps body angles in [-pi, pi), float Box2D does
+    /// not; adding each step's change reduced to [-pi, pi) gives both the same unwrapped angle
+    /// (the discs turn far less than pi per step).
+    double Unwrap(int k, double angle) {
+        const double pi = 3.14159265358979323846;
+        double d = angle - lastAngle_[k];
+        d -= 2 * pi * std::floor((d + pi) / (2 * pi));
+        lastAngle_[k] = angle;
+        unwrapped_[k] += d;
+        return unwrapped_[k];
+    }
+
     /// lengthA + 1.5 lengthB from the bodies' top-centre anchors, m.
     double PulleyCoordinate() const {
         const double ya = E::D(pulleyBodies_[0]->GetPosition().y) + 0.5;
@@ -140,6 +153,7 @@ private:
     typename E::Body* discs_[2] = {nullptr, nullptr};
     typename E::Body* rack_ = nullptr;
     double pulley0_ = 0, pulleyErr_ = 0, gearErr_ = 0;
+    double lastAngle_[2] = {0, 0}, unwrapped_[2] = {0, 0};
 };
 
 }  // namespace lockbox::scenes

@@ -71,13 +71,14 @@ inline Resolved Resolve(const SceneInfo& info, const RunSettings& s) {
                     s.hz > 0 ? s.hz : info.hz};
 }
 
-/// The largest penetration over touching manifold points of the current contacts, m
+/// The largest penetration over touching, enabled manifold points of the current contacts, m
 /// (SCENES.md max_pen: -min(separation), 0 when nothing penetrates).
 template <class E>
 double MaxPenetration(E& e) {
     double pen = 0;
     for (auto* c = e.world().GetContactList(); c; c = c->GetNext()) {
-        if (!c->IsTouching()) continue;
+        // A contact disabled in PreSolve (one-way platforms) is not solved: not a penetration.
+        if (!c->IsTouching() || !c->IsEnabled()) continue;
         typename E::WorldManifold wm;
         c->GetWorldManifold(&wm);
         const int n = c->GetManifold()->pointCount;

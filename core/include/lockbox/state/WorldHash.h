@@ -1,0 +1,74 @@
+#pragma once
+/// World state hash (issue 7, docs/determinism.md "State hash"): an XXH3-64 over a canonical
+/// walk of every field that influences future steps, written as little-endian fixed-width
+/// integers (never raw memory, padding or free slots). Equal hashes on two machines mean, with
+/// overwhelming probability, bit-identical simulations from here on.
+///
+/// The walk is split into categories (settings, bodies, fixtures, contacts, joints,
+/// broad-phase) with their own sub-hashes, and each body has a sub-hash (its fields plus its
+/// fixtures), so a mismatch can be narrowed to a category and then to a body.
+
+#include <string_view>
+#include <vector>
+
+#include "lockbox/common/Settings.h"
+
+namespace lockbox {
+
+class b2World;
+class b2Body;
+
+/// Version of the hash definition; folded into every hash. Bump it whenever the field list,
+/// order or widths in docs/determinism.md change.
+inline constexpr uint32 b2_hashVersion = 1;
+
+/// Hash categories, in the order they are folded into the world hash.
+enum class b2HashCategory : uint32 {
+    e_settings = 0,    ///< world switches, gravity, bounds, step carry-over
+    e_bodies = 1,      ///< body pool and every body in body-list order
+    e_fixtures = 2,    ///< fixture pool and every fixture (body-list order, then fixture list)
+    e_contacts = 3,    ///< contact pool and every contact in contact-list order
+    e_joints = 4,      ///< every joint in joint-list order
+    e_broadphase = 5,  ///< dynamic tree nodes, root, free list, counts, move buffer
+    e_count = 6
+};
+
+/// Name of a category ("settings", "bodies", ...); "none" for e_count.
+std::string_view b2HashCategoryName(b2HashCategory category) noexcept;
+
+/// Sub-hash of one body.
+struct b2BodyHashEntry {
+    int32 bodyId = -1;  ///< b2Body::GetId()
+    uint64 hash = 0;    ///< XXH3-64 of the body's fields then its fixtures' fields
+};
+
+/// The world hash with its breakdown.
+struct b2WorldHashReport {
+    uint64 total = 0;  ///< equals b2WorldHash(world)
+    uint64 categories[static_cast<uint32>(b2HashCategory::e_count)] = {};  ///< by b2HashCategory
+    std::vector<b2BodyHashEntry> bodies;  ///< one per body, in body-list order
+};
+
+/// Where two reports first differ.
+struct b2HashMismatch {
+    b2HashCategory category = b2HashCategory::e_count;  ///< e_count when the reports agree
+    int32 bodyId = -1;  ///< first body (list order) whose sub-hash differs; -1 if none does
+};
+
+/// XXH3-64 of the world's state (definition version b2_hashVersion). Listeners, the contact
+/// filter, the debug draw and the profile are not state and do not enter it. Call it outside
+/// Step. Cost: one pass over the world, no allocation.
+uint64 b2WorldHash(const b2World& world);
+
+/// The world hash with per-category and per-body sub-hashes (allocates the body vector).
+b2WorldHashReport b2WorldHashDetailed(const b2World& world);
+
+/// Sub-hash of one body: its own fields then its fixtures' fields (the b2WorldHashReport
+/// body entry).
+uint64 b2BodyStateHash(const b2Body& body);
+
+/// The first category whose sub-hash differs and the first differing body (by position in
+/// list order; a differing body count reports the first body past the shorter list).
+b2HashMismatch b2CompareHashReports(const b2WorldHashReport& a, const b2WorldHashReport& b) noexcept;
+
+}  // namespace lockbox

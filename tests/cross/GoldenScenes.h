@@ -1,0 +1,107 @@
+#pragma once
+// Golden scene hashes shared by tests/scenes/golden_hash_test.cpp (GoogleTest) and the
+// standalone cross-build driver (tests/cross/cross_driver.cpp): which scenes and steps are
+// recorded, how a scene is run for them, and the line format of tests/golden/hashes.txt:
+//   <scene> step1=0x<16 hex> step60=0x<16 hex> step600=0x<16 hex>
+// (step120 instead of step600 for the heavy scenes). Lines starting with '#' are comments.
+
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "lockbox/scenes/LockboxScenes.h"
+#include "lockbox/state/WorldHash.h"
+
+namespace lockbox::golden {
+
+/// One scene's recorded steps.
+struct ScenePlan {
+    std::string name;
+    std::vector<int> steps;  ///< ascending step counts after which the hash is recorded
+    bool heavy = false;      ///< one of the four heavy SCENES.md scenes
+};
+
+/// True for large_pyramid, many_pyramids, joint_grid and rain (recorded at 1, 60, 120).
+inline bool IsHeavyScene(std::string_view name) {
+    return name == "large_pyramid" || name == "many_pyramids" || name == "joint_grid" || name == "rain";
+}
+
+/// Every scene of the library (registry order) that lockbox can build, with its steps.
+inline std::vector<ScenePlan> GoldenPlan() {
+    std::vector<ScenePlan> plan;
+    for (std::string_view name : scenes::AllSceneNames()) {
+        if (!scenes::MakeLockboxScene(name)) continue;
+        const bool heavy = IsHeavyScene(name);
+        plan.push_back({std::string(name), heavy ? std::vector<int>{1, 60, 120} : std::vector<int>{1, 60, 600},
+                        heavy});
+    }
+    return plan;
+}
+
+/// Runs the scene from a fresh world with its default settings (as RunScene does, without
+/// metrics) and returns b2WorldHash after each step count in `steps`.
+inline std::vector<uint64_t> RunSceneHashes(std::string_view name, const std::vector<int>& steps) {
+    std::vector<uint64_t> out;
+    auto scene = scenes::MakeLockboxScene(name);
+    if (!scene || steps.empty()) return out;
+    scenes::LockboxEngine e;
+    scenes::RunSettings s;
+    s.steps = steps.back();
+    s.trackMetrics = false;
+    const scenes::Resolved r = scenes::Resolve(scene->Info(), s);
+    scenes::ConfigureWorld(e, scene->Info(), s);
+    scene->Prepare(r);
+    scene->Build(e);
+    size_t next = 0;
+    for (int i = 0; i < r.steps && next < steps.size(); ++i) {
+        scene->BeforeStep(e, i);
+        e.Step(r.hz, r.velocityIterations, r.positionIterations);
+        if (i + 1 == steps[next]) {
+            out.push_back(b2WorldHash(e.world()));
+            ++next;
+        }
+    }
+    return out;
+}
+
+/// The golden-file line of one scene.
+inline std::string FormatLine(const ScenePlan& p, const std::vector<uint64_t>& hashes) {
+    std::string line = p.name;
+    for (size_t i = 0; i < p.steps.size() && i < hashes.size(); ++i) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, " step%d=0x%016llx", p.steps[i], static_cast<unsigned long long>(hashes[i]));
+        line += buf;
+    }
+    return line;
+}
+
+/// The golden file as scene name -> whole line (comments and blank lines skipped). Empty
+/// when the file cannot be read.
+inline std::map<std::string, std::string> ReadGolden(const std::string& path) {
+    std::map<std::string, std::string> lines;
+    std::ifstream in(path);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream words(line);
+        std::string name;
+        words >> name;
+        lines[name] = line;
+    }
+    return lines;
+}
+
+/// Header comment of the golden file.
+inline const char* GoldenHeader() {
+    return "# Golden b2WorldHash values (hash definition version 1, docs/determinism.md) of every scene\n"
+           "# after the listed step counts: light scenes 1/60/600, heavy scenes 1/60/120.\n"
+           "# Regenerate: LOCKBOX_REGENERATE_GOLDEN=1 ./lockbox_scenes_tests --gtest_filter='GoldenHash*'\n";
+}
+
+}  // namespace lockbox::golden
