@@ -8,7 +8,7 @@
 set -eu
 build=${1:?usage: callgrind.sh BUILD_DIR}
 bench="$build/bench/lockbox_bench"
-out="$(dirname "$0")/callgrind.csv"
+out="$(dirname "$0")/callgrind.csv"  # move it under <machine>/ to keep it
 ir() {
     valgrind --tool=callgrind --callgrind-out-file=/dev/null "$bench" --no-profile "$@" 2>&1 >/dev/null |
         sed -n 's/.*Collected : \([0-9]*\).*/\1/p'

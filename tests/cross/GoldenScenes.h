@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -95,6 +96,30 @@ inline std::map<std::string, std::string> ReadGolden(const std::string& path) {
         lines[name] = line;
     }
     return lines;
+}
+
+/// Runs scene `p` up to the recorded steps <= maxStep and compares with its golden line (a
+/// shortened run must match the golden line's leading fields). Returns the computed line in
+/// *computed.
+inline bool MatchesGolden(ScenePlan p, int maxStep, const std::string& goldenLine, std::string* computed) {
+    const size_t full = p.steps.size();
+    while (!p.steps.empty() && p.steps.back() > maxStep) p.steps.pop_back();
+    *computed = FormatLine(p, RunSceneHashes(p.name, p.steps));
+    if (p.steps.size() == full) return goldenLine == *computed;
+    return goldenLine.compare(0, computed->size() + 1, *computed + " ") == 0;
+}
+
+/// `relative` resolved against the directory of `sourceFile` (pass __FILE__).
+inline std::string GoldenPathFrom(const std::string& sourceFile, const char* relative) {
+    const size_t slash = sourceFile.find_last_of("/\\");
+    const std::string dir = slash == std::string::npos ? std::string(".") : sourceFile.substr(0, slash);
+    return dir + relative;
+}
+
+/// True when LOCKBOX_REGENERATE_GOLDEN=1: the golden test rewrites the file.
+inline bool Regenerating() {
+    const char* v = std::getenv("LOCKBOX_REGENERATE_GOLDEN");
+    return v != nullptr && std::string(v) == "1";
 }
 
 /// Header comment of the golden file.

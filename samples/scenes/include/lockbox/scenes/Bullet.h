@@ -34,6 +34,7 @@ public:
     };
     /// One of the six variants.
     BulletScene(BulletTarget target, BulletMode mode) : target_(target), mode_(mode) {}
+    /// The defaults above.
     const SceneInfo& Info() const override {
         return kInfos[(target_ == BulletTarget::wall ? 0 : 3) + static_cast<int>(mode_)];
     }

@@ -15,9 +15,12 @@ namespace lockbox::scenes {
 template <class E>
 class CarScene : public Scene<E> {
 public:
+    /// Name, default steps, iterations, Hz and sleep flag of this scene.
     static constexpr SceneInfo kInfo{"car", 600, 8, 3, 60, true, false, false,
                                      "car on wheel-joint springs over chain-shape hills"};
+    /// True when engine E has the joint types this scene needs.
     static constexpr bool kAvailable = E::kHasWheel;
+    /// The defaults above.
     const SceneInfo& Info() const override { return kInfo; }
 
     void Build(E& e) override {

@@ -14,13 +14,15 @@ namespace lockbox::scenes {
 template <class E>
 class JointGridScene : public Scene<E> {
 public:
+    /// Name, default steps, iterations, Hz and sleep flag of this scene.
     static constexpr SceneInfo kInfo{"joint_grid", 500, 8, 3, 60, false, true, true,
                                      "v3 joint_grid: 10000 bodies, 19800 revolute joints"};
-    /// True when the engine has revolute joints.
+    /// True when engine E has the joint types this scene needs.
     static constexpr bool kAvailable = E::kHasRevolute;
     /// n: grid side (100 in SCENES.md; smaller grids for quick tests; static columns are
     /// those with |k - n/2 + 3| <= 3, i.e. 47..53 for n = 100).
     explicit JointGridScene(int n = 100) : n_(n) {}
+    /// The defaults above.
     const SceneInfo& Info() const override { return kInfo; }
 
     void Build(E& e) override {

@@ -13,11 +13,13 @@ namespace lockbox::scenes {
 template <class E>
 class ManyPyramidsScene : public Scene<E> {
 public:
+    /// Name, default steps, iterations, Hz and sleep flag of this scene.
     static constexpr SceneInfo kInfo{"many_pyramids", 200, 8, 3, 60, false, true, true,
                                      "v3 many_pyramids: 400 pyramids, 22000 boxes, sleep off"};
     static constexpr int kBase = 10;
     /// rows, columns: grid size (1..20 each).
     explicit ManyPyramidsScene(int rows = 20, int columns = 20) : rows_(rows), columns_(columns) {}
+    /// The defaults above.
     const SceneInfo& Info() const override { return kInfo; }
 
     void Build(E& e) override {

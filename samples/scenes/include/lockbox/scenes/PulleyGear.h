@@ -20,9 +20,12 @@ namespace lockbox::scenes {
 template <class E>
 class PulleyGearScene : public Scene<E> {
 public:
+    /// Name, default steps, iterations, Hz and sleep flag of this scene.
     static constexpr SceneInfo kInfo{"pulley_gear", 600, 8, 3, 60, true, false, false,
                                      "pulley, gear train and rack-and-pinion machine"};
+    /// True when engine E has the joint types this scene needs.
     static constexpr bool kAvailable = E::kHasRevolute && E::kHasPrismatic && E::kHasPulley && E::kHasGear;
+    /// The defaults above.
     const SceneInfo& Info() const override { return kInfo; }
 
     void Build(E& e) override {

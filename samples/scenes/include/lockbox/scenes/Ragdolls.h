@@ -14,10 +14,13 @@ namespace lockbox::scenes {
 template <class E>
 class RagdollsScene : public Scene<E> {
 public:
+    /// Name, default steps, iterations, Hz and sleep flag of this scene.
     static constexpr SceneInfo kInfo{"ragdolls", 600, 8, 3, 60, true, false, false,
                                      "12 ragdolls with limited revolute joints piled in a box"};
+    /// True when engine E has the joint types this scene needs.
     static constexpr bool kAvailable = E::kHasRevolute;
     static constexpr int kCount = 12;
+    /// The defaults above.
     const SceneInfo& Info() const override { return kInfo; }
 
     void Build(E& e) override {
