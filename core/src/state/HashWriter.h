@@ -9,7 +9,9 @@
 #endif
 #include <xxhash.h>
 
+#include <bit>
 #include <cstddef>
+#include <cstring>
 #include <cstdint>
 
 #include "lockbox/fixed/Math.h"
@@ -30,7 +32,13 @@ public:
     /// One unsigned field of `bytes` bytes (1, 2, 4 or 8), low byte first.
     void Put(uint64_t v, int bytes) noexcept {
         if (used_ + 8 > kBuffer) Flush();
-        for (int i = 0; i < bytes; ++i) buffer_[used_++] = static_cast<unsigned char>(v >> (8 * i));
+        if constexpr (std::endian::native == std::endian::little) {
+            // The host order is the stream order: copy the low `bytes` bytes at once.
+            std::memcpy(buffer_ + used_, &v, 8);
+            used_ += static_cast<size_t>(bytes);
+        } else {
+            for (int i = 0; i < bytes; ++i) buffer_[used_++] = static_cast<unsigned char>(v >> (8 * i));
+        }
     }
     void U8(uint32_t v) noexcept { Put(v, 1); }
     void U16(uint32_t v) noexcept { Put(v, 2); }
@@ -56,8 +64,8 @@ private:
         used_ = 0;
     }
 
-    // 512 bytes amortise the update call over ~30 fields of a body.
-    static constexpr size_t kBuffer = 512;
+    // 2 KiB amortise the update call over ~15 bodies and let XXH3 take whole stripes.
+    static constexpr size_t kBuffer = 2048;
     XXH3_state_t state_;
     unsigned char buffer_[kBuffer];
     size_t used_ = 0;

@@ -10,15 +10,13 @@ namespace lockbox::state_detail {
 namespace {
 
 /// The joint's warm-start impulses. GetReactionForce(inv_dt) rounds inv_dt * impulse to
-/// Q16.16, so inv_dt = 1 keeps the impulse's integer and top 16 fraction bits (N*s), and
-/// inv_dt = 2^14 brings 14 more fraction bits into range for impulses below 2 N*s (larger ones
-/// saturate there, deterministically, and are covered by the first reading).
+/// Q16.16 and traps (checked build) or saturates beyond it, so the scale must keep every
+/// realistic impulse in range: inv_dt = 1/256 covers |impulse| < 8.3e6 N*s and keeps the top
+/// 8 fraction bits (1/256 N*s). Smaller differences show in the bodies' velocities a step later.
 void HashImpulses(HashWriter& w, const b2Joint& j) {
-    const Fixed scales[2] = {Fixed(1), Fixed(16384)};
-    for (const Fixed s : scales) {
-        w.V(j.GetReactionForce(s));
-        w.F(j.GetReactionTorque(s));
-    }
+    const Fixed scale = Fixed::FromRaw(256);  // 1/256, dimensionless (1/s times s)
+    w.V(j.GetReactionForce(scale));
+    w.F(j.GetReactionTorque(scale));
 }
 
 void HashTypeParameters(HashWriter& w, const b2Joint& j) {
