@@ -1,9 +1,8 @@
 #pragma once
 /// The lockbox engine adapter for the scene templates (see Scene.h for the contract).
 ///
-/// Joint types are picked up when their headers exist (they arrive with the joints issue):
-/// each `kHas...` flag is true only when the header is present, and scenes that need a joint
-/// type are skipped where the flag is false.
+/// lockbox has every joint type, so each `kHas...` flag is true; the flags exist for the
+/// adapter contract (Scene.h), which lets a scene skip a joint type an engine lacks.
 
 #include <cstdint>
 #include <functional>
@@ -13,42 +12,9 @@
 
 #include "lockbox/lockbox.h"
 
-#if __has_include("lockbox/dynamics/joints/RevoluteJoint.h")
-#include "lockbox/dynamics/joints/RevoluteJoint.h"
-#define LOCKBOX_SCENES_HAS_REVOLUTE 1
-#else
-#define LOCKBOX_SCENES_HAS_REVOLUTE 0
-#endif
-#if __has_include("lockbox/dynamics/joints/PrismaticJoint.h")
-#include "lockbox/dynamics/joints/PrismaticJoint.h"
-#define LOCKBOX_SCENES_HAS_PRISMATIC 1
-#else
-#define LOCKBOX_SCENES_HAS_PRISMATIC 0
-#endif
-#if __has_include("lockbox/dynamics/joints/WheelJoint.h")
-#include "lockbox/dynamics/joints/WheelJoint.h"
-#define LOCKBOX_SCENES_HAS_WHEEL 1
-#else
-#define LOCKBOX_SCENES_HAS_WHEEL 0
-#endif
-#if __has_include("lockbox/dynamics/joints/PulleyJoint.h")
-#include "lockbox/dynamics/joints/PulleyJoint.h"
-#define LOCKBOX_SCENES_HAS_PULLEY 1
-#else
-#define LOCKBOX_SCENES_HAS_PULLEY 0
-#endif
-#if __has_include("lockbox/dynamics/joints/GearJoint.h")
-#include "lockbox/dynamics/joints/GearJoint.h"
-#define LOCKBOX_SCENES_HAS_GEAR 1
-#else
-#define LOCKBOX_SCENES_HAS_GEAR 0
-#endif
+#include "lockbox/dynamics/joints/Joints.h"
 
 namespace lockbox::scenes {
-
-/// True once the world can create joints (the joint headers may land before b2World does).
-template <class W>
-concept WorldCreatesJoints = requires(W& w, const b2JointDef* def) { w.CreateJoint(def); };
 
 /// Scene adapter over a lockbox b2World (gravity (0, -10)).
 class LockboxEngine {
@@ -74,27 +40,17 @@ public:
     static constexpr const char* kName = "lockbox";
 
     // Joint availability (see the file comment).
-    static constexpr bool kHasJoints = WorldCreatesJoints<b2World>;
-    static constexpr bool kHasRevolute = kHasJoints && LOCKBOX_SCENES_HAS_REVOLUTE != 0;
-    static constexpr bool kHasPrismatic = kHasJoints && LOCKBOX_SCENES_HAS_PRISMATIC != 0;
-    static constexpr bool kHasWheel = kHasJoints && LOCKBOX_SCENES_HAS_WHEEL != 0;
-    static constexpr bool kHasPulley = kHasJoints && LOCKBOX_SCENES_HAS_PULLEY != 0;
-    static constexpr bool kHasGear = kHasJoints && LOCKBOX_SCENES_HAS_GEAR != 0;
-#if LOCKBOX_SCENES_HAS_REVOLUTE
+    static constexpr bool kHasJoints = true;
+    static constexpr bool kHasRevolute = true;
+    static constexpr bool kHasPrismatic = true;
+    static constexpr bool kHasWheel = true;
+    static constexpr bool kHasPulley = true;
+    static constexpr bool kHasGear = true;
     using RevoluteJointDef = b2RevoluteJointDef;
-#endif
-#if LOCKBOX_SCENES_HAS_PRISMATIC
     using PrismaticJointDef = b2PrismaticJointDef;
-#endif
-#if LOCKBOX_SCENES_HAS_WHEEL
     using WheelJointDef = b2WheelJointDef;
-#endif
-#if LOCKBOX_SCENES_HAS_PULLEY
     using PulleyJointDef = b2PulleyJointDef;
-#endif
-#if LOCKBOX_SCENES_HAS_GEAR
     using GearJointDef = b2GearJointDef;
-#endif
 
     /// num/den rounded once to Q16.16 (to nearest, ties away from zero).
     static Num R(int64_t num, int64_t den = 1) noexcept { return Fixed::FromRatio(num, den); }
@@ -117,13 +73,11 @@ public:
     static void CreateChain(ChainShape& chain, const Vec* vertices, int count) {
         chain.CreateChain(vertices, count);
     }
-#if LOCKBOX_SCENES_HAS_WHEEL
     /// The wheel suspension spring: frequency (Hz) and damping ratio (2.2.1 fields).
     static void SetWheelSpring(WheelJointDef& def, Num hz, Num dampingRatio) {
         def.frequencyHz = hz;
         def.dampingRatio = dampingRatio;
     }
-#endif
 
     /// Sets a joint's maxMotorTorque (N m) from an integer; a Q16.16 field saturates at its
     /// largest value (32767.99998 N m), a Q32.32 field takes it exactly.
