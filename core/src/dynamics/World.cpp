@@ -178,6 +178,7 @@ void b2World::ClearForces() {
 
 void b2World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
     const Clock::time_point stepTimer = Clock::now();
+    const uint64 saturationsBefore = SaturationCount();
     m_profile = b2Profile{};
     // Counters record the work of this Step only (not of SetTransform or DestroyBody calls
     // made between steps).
@@ -248,6 +249,13 @@ void b2World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations)
     }
     m_outOfBounds.clear();
     m_contactManager.m_profile = nullptr;
+    m_saturationCount += SaturationCount() - saturationsBefore;
+    if (m_headroomTelemetry) {
+        // Read the step's count before the walk, so the walk itself can never add to it.
+        const int64_t stepSaturations = static_cast<int64_t>(SaturationCount() - saturationsBefore);
+        m_profile.headroom = b2MeasureHeadroom(*this);
+        m_profile.headroom.saturations = stepSaturations;
+    }
     m_profile.stepNs = Nanos(stepTimer);
 }
 

@@ -18,8 +18,6 @@
 
 namespace lockbox {
 
-class b2Joint;
-
 namespace state_detail {
 
 /// Streams little-endian fixed-width fields into XXH3-64. Not copyable (owns the state).
@@ -70,10 +68,6 @@ private:
     unsigned char buffer_[kBuffer];
     size_t used_ = 0;
 };
-
-/// Writes one joint: common fields, then the type's parameters and solver carry-over
-/// (WorldHashJoints.cpp).
-void HashJoint(HashWriter& w, const b2Joint& joint);
 
 }  // namespace state_detail
 }  // namespace lockbox

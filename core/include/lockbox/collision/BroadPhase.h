@@ -103,6 +103,14 @@ public:
     Wide GetTreeQuality() const { return m_tree.GetAreaRatio(); }
 
     /// The tree (read-only), for snapshots and tests.
+    /// Snapshot restore: the tree (see b2DynamicTree::RestoreState), proxy count and move
+    /// buffer of a validated image. The pair buffer is scratch and starts empty.
+    b2DynamicTree& GetTreeForRestore() noexcept { return m_tree; }
+    void RestoreState(int32 proxyCount, const std::vector<int32>& moveBuffer) {
+        m_proxyCount = proxyCount;
+        m_moveBuffer = moveBuffer;
+        m_pairBuffer.clear();
+    }
     const b2DynamicTree& GetTree() const noexcept { return m_tree; }
     /// The pending move buffer (read-only, may contain e_nullProxy), for snapshots and tests.
     const std::vector<int32>& GetMoveBuffer() const noexcept { return m_moveBuffer; }

@@ -181,6 +181,16 @@ public:
 
     /// Read-only view of the node pool (size = capacity). With the four fields below this is
     /// the tree's complete state.
+    /// Snapshot restore: replaces the whole tree (nodes with their free-slot chain, root and
+    /// counters) with a validated image of another tree's state.
+    void RestoreState(const std::vector<b2TreeNode>& nodes, int32 root, int32 freeList, int32 nodeCount,
+                      int32 insertionCount) {
+        m_nodes = nodes;
+        m_root = root;
+        m_freeList = freeList;
+        m_nodeCount = nodeCount;
+        m_insertionCount = insertionCount;
+    }
     const std::vector<b2TreeNode>& GetNodes() const noexcept { return m_nodes; }
     /// Root index, or b2_nullNode when empty.
     int32 GetRoot() const noexcept { return m_root; }

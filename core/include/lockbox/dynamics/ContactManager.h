@@ -37,6 +37,11 @@ public:
     b2Contact* GetContact(int32 id) noexcept { return m_contacts.Get(id); }
     /// The contact pool (ids and free list).
     const b2Pool<b2Contact>& GetPool() const noexcept { return m_contacts; }
+    /// Snapshot restore: the contact pool's slot layout (see b2Pool::RestoreLayout).
+    template <class Make>
+    void RestoreContactLayout(const std::vector<uint8>& live, const std::vector<int32>& freeList, Make make) {
+        m_contacts.RestoreLayout(live, freeList, make);
+    }
 
     b2BroadPhase m_broadPhase;
     b2Contact* m_contactList = nullptr;

@@ -75,6 +75,37 @@ public:
     /// The free-slot stack, bottom first (the next Create takes the back).
     const std::vector<int32>& GetFreeList() const noexcept { return m_free; }
 
+    /// Snapshot restore: makes the slot layout exactly `live` (one flag per id; its size is the
+    /// new capacity) with the free stack `freeList`. Objects in slots that stay live keep their
+    /// address; slots that become free are destroyed; newly live slots are built by
+    /// make(void* slot, int32 id), which must placement-new a T there.
+    template <class Make>
+    void RestoreLayout(const std::vector<uint8>& live, const std::vector<int32>& freeList, Make make) {
+        const int32 capacity = static_cast<int32>(live.size());
+        for (int32 id = 0; id < GetCapacity(); ++id) {
+            if (IsLive(id) && (id >= capacity || live[static_cast<size_t>(id)] == 0)) {
+                Get(id)->~T();
+                m_live[static_cast<size_t>(id)] = 0;
+            }
+        }
+        m_live.resize(static_cast<size_t>(capacity), 0);
+        // Blocks past the new capacity hold no live object now: free them.
+        m_blocks.resize(static_cast<size_t>((capacity + kBlockSize - 1) / kBlockSize));
+        for (auto& block : m_blocks) {
+            if (!block) block = std::make_unique<Slot[]>(kBlockSize);
+        }
+        m_count = 0;
+        for (int32 id = 0; id < capacity; ++id) {
+            if (live[static_cast<size_t>(id)] == 0) continue;
+            if (m_live[static_cast<size_t>(id)] == 0) {
+                make(static_cast<void*>(SlotAt(id)), id);
+                m_live[static_cast<size_t>(id)] = 1;
+            }
+            ++m_count;
+        }
+        m_free = freeList;
+    }
+
     /// Destroys every object and forgets all slots.
     void Clear() {
         for (int32 id = 0; id < GetCapacity(); ++id) {

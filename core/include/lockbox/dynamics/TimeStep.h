@@ -4,6 +4,7 @@
 
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Math.h"
+#include "lockbox/state/Headroom.h"
 
 namespace lockbox {
 
@@ -42,6 +43,11 @@ struct b2Profile {
     int32 toiSubSteps = 0;          ///< TOI islands solved (sub-steps)
     int32 listenerCallbacks = 0;    ///< Begin/End/PreSolve/PostSolve calls made
     int32 boundsViolations = 0;     ///< bodies taken out of the world by the bounds check
+
+    // ---- headroom telemetry (filled only when b2World::SetHeadroomTelemetry(true)) ----
+    /// Largest magnitude per quantity class at the end of the step, and the step's saturation
+    /// count; the maxima stay zero while the telemetry is off. See lockbox/state/Headroom.h.
+    b2Headroom headroom;
 };
 
 /// What the solver needs to know about the current (sub-)step.

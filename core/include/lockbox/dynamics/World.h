@@ -11,6 +11,7 @@
 /// assert handler (b2SetAssertHandler); if the handler returns, or in release builds, the call
 /// does nothing and returns nullptr.
 
+#include <span>
 #include <vector>
 
 #include "lockbox/collision/Collision.h"
@@ -24,6 +25,7 @@
 #include "lockbox/dynamics/TimeStep.h"
 #include "lockbox/dynamics/WorldCallbacks.h"
 #include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/state/Snapshot.h"
 
 namespace lockbox {
 
@@ -107,6 +109,29 @@ public:
     b2Fixture* GetFixture(int32 id) noexcept { return m_fixtures.Get(id); }
     b2Contact* GetContact(int32 id) noexcept { return m_contactManager.GetContact(id); }
 
+    b2Joint* GetJoint(int32 id) noexcept {
+        return id >= 0 && static_cast<size_t>(id) < m_joints.size() ? m_joints[static_cast<size_t>(id)] : nullptr;
+    }
+
+    // ---- state: hash, snapshot, restore (lockbox; docs/determinism.md) ----
+    /// XXH3-64 of everything that influences future steps (b2WorldHash). Call outside Step.
+    uint64 Hash() const;
+    /// Writes the world's state as a portable snapshot image into out (replacing its
+    /// contents; out's capacity is reused, so a ring of buffers saves without allocating).
+    void Save(std::vector<uint8>& out) const;
+    /// The world's state as a new snapshot image.
+    std::vector<uint8> Save() const;
+    /// Byte counts per section of the image Save would write now.
+    b2SnapshotStats SaveStats() const;
+    /// Replaces the world's state with a snapshot image (made by Save, possibly in another
+    /// process or on another machine). In place: bodies, fixtures, contacts and joints whose
+    /// ids exist in both keep their address; the others are destroyed or created without
+    /// listener calls. The whole image is validated first: on any error nothing changes.
+    b2RestoreResult Restore(std::span<const uint8> image);
+    /// Fixed-point saturations counted during this world's Steps (0 in checked builds, which
+    /// trap instead). Part of the state hash, so peers see a numeric limit being hit.
+    uint64 GetSaturationCount() const noexcept { return m_saturationCount; }
+
     /// Sleeping switch; turning it off wakes every body.
     void SetAllowSleeping(bool flag);
     bool GetAllowSleeping() const noexcept { return m_allowSleep; }
@@ -135,6 +160,10 @@ public:
     bool IsLocked() const noexcept { return (m_flags & e_locked) != 0; }
     /// Work counters and timings of the last Step.
     const b2Profile& GetProfile() const noexcept { return m_profile; }
+    /// Headroom telemetry: when on, each Step ends by filling GetProfile().headroom (a walk of
+    /// every body, contact, joint and tree node). Off by default, so a Step costs nothing extra.
+    void SetHeadroomTelemetry(bool flag) noexcept { m_headroomTelemetry = flag; }
+    bool GetHeadroomTelemetry() const noexcept { return m_headroomTelemetry; }
     /// The contact manager (broad phase, contacts).
     const b2ContactManager& GetContactManager() const noexcept { return m_contactManager; }
 
@@ -144,6 +173,8 @@ public:
     bool CheckLocked(const char* what) const;
     b2Fixture* CreateFixtureSlot(b2Body* body, const b2FixtureDef* def);
     void DestroyFixtureSlot(b2Fixture* fixture);
+    /// Frees a joint id in the id table (the joint is being destroyed).
+    void ReleaseJointId(int32 id);
 
     uint32 m_flags = e_clearForces;
     b2ContactManager m_contactManager;
@@ -151,6 +182,10 @@ public:
     b2Pool<b2Fixture> m_fixtures;
     b2Body* m_bodyList = nullptr;
     b2Joint* m_jointList = nullptr;
+    /// Joints by id (nullptr for free ids). Ids are the smallest free ones, so this table is
+    /// derived from the joints' ids and is rebuilt on restore.
+    std::vector<b2Joint*> m_joints;
+    int32 m_jointIdHint = 0;  ///< every joint id below it is taken (a cache, not state)
     int32 m_bodyCount = 0;
     int32 m_jointCount = 0;
     b2Vec2 m_gravity;
@@ -165,7 +200,9 @@ public:
     bool m_autoClearForces = true;
     bool m_stepComplete = true;
     b2AABB m_bounds;
+    uint64 m_saturationCount = 0;  ///< saturations inside this world's Steps (state)
     b2Profile m_profile;
+    bool m_headroomTelemetry = false;  ///< fill m_profile.headroom at the end of each Step
 
 private:
     void Solve(const b2TimeStep& step);

@@ -20,7 +20,14 @@ class b2Body;
 
 /// Version of the hash definition; folded into every hash. Bump it whenever the field list,
 /// order or widths in docs/determinism.md change.
-inline constexpr uint32 b2_hashVersion = 1;
+/// History: 1 first definition; 2 one walk shared with the snapshot (exact joint state through
+/// VisitState, joint edges with their side, the world's saturation count, compact widths).
+inline constexpr uint32 b2_hashVersion = 2;
+
+/// Identifies everything that decides the bits of a step for peers and files: the hash
+/// definition (high 16 bits) and the number formats (low 16: 1 = Q16.16 and Q32.32, round
+/// to nearest with ties away from zero, symmetric saturation). Snapshots and replays carry it.
+inline constexpr uint32 b2_determinismVersion = (b2_hashVersion << 16) | 1u;
 
 /// Hash categories, in the order they are folded into the world hash.
 enum class b2HashCategory : uint32 {

@@ -45,6 +45,24 @@ b2Joint* b2Joint::Create(const b2JointDef* def) {
     return nullptr;
 }
 
+b2Joint* b2Joint::CreateEmpty(b2JointType type) {
+    const b2RestoreTag tag;
+    switch (type) {
+        case e_distanceJoint: return new b2DistanceJoint(tag);
+        case e_mouseJoint: return new b2MouseJoint(tag);
+        case e_prismaticJoint: return new b2PrismaticJoint(tag);
+        case e_revoluteJoint: return new b2RevoluteJoint(tag);
+        case e_pulleyJoint: return new b2PulleyJoint(tag);
+        case e_gearJoint: return new b2GearJoint(tag);
+        case e_wheelJoint: return new b2WheelJoint(tag);
+        case e_weldJoint: return new b2WeldJoint(tag);
+        case e_frictionJoint: return new b2FrictionJoint(tag);
+        case e_ropeJoint: return new b2RopeJoint(tag);
+        case e_unknownJoint: break;
+    }
+    return nullptr;
+}
+
 void b2Joint::Destroy(b2Joint* joint) { delete joint; }
 
 }  // namespace lockbox

@@ -39,14 +39,14 @@ b2Joint* b2World::CreateJoint(const b2JointDef* def) {
     b2Joint* j = b2Joint::Create(def);
     if (j == nullptr) return nullptr;
 
-    // The smallest free id: ids are small, stable and independent of addresses.
-    std::vector<bool> used(static_cast<size_t>(m_jointCount) + 1, false);
-    for (const b2Joint* k = m_jointList; k; k = k->m_next) {
-        if (k->m_id >= 0 && k->m_id <= m_jointCount) used[static_cast<size_t>(k->m_id)] = true;
-    }
-    int32 id = 0;
-    while (used[static_cast<size_t>(id)]) ++id;
-    j->m_id = id;
+    // The smallest free id: ids are small, stable and independent of addresses. Every id
+    // below m_jointIdHint is taken, so the scan starts there.
+    size_t id = static_cast<size_t>(m_jointIdHint);
+    while (id < m_joints.size() && m_joints[id] != nullptr) ++id;
+    if (id == m_joints.size()) m_joints.push_back(nullptr);
+    m_joints[id] = j;
+    j->m_id = static_cast<int32>(id);
+    m_jointIdHint = static_cast<int32>(id) + 1;
 
     // Connect to the world list, newest first.
     j->m_prev = nullptr;
@@ -107,11 +107,19 @@ void b2World::DestroyJoint(b2Joint* j) {
     UnlinkEdge(&j->m_edgeA, bodyA);
     UnlinkEdge(&j->m_edgeB, bodyB);
 
+    ReleaseJointId(j->m_id);
     b2Joint::Destroy(j);
     --m_jointCount;
 
     // If the joint prevented collisions, flag any contacts for filtering.
     if (!collideConnected) FlagContactsBetween(bodyB, bodyA);
+}
+
+void b2World::ReleaseJointId(int32 id) {
+    m_joints[static_cast<size_t>(id)] = nullptr;
+    // Trailing free ids are dropped so the table's size follows the largest live id.
+    while (!m_joints.empty() && m_joints.back() == nullptr) m_joints.pop_back();
+    if (id < m_jointIdHint) m_jointIdHint = id;
 }
 
 }  // namespace lockbox

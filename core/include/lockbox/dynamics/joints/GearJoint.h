@@ -60,6 +60,19 @@ public:
     /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
+    /// Snapshot restore: an empty joint whose state VisitState fills (core/src/state).
+    explicit b2GearJoint(b2RestoreTag tag) : b2Joint(tag, e_gearJoint) {}
+    /// Visits every field that persists between steps (parameters, warm-start impulses,
+    /// carried angles), in the order of the state hash and the snapshot (docs/determinism.md).
+    template <class V>
+    void VisitState(V& v) {
+        v.JointRef(m_joint1);
+        v.JointRef(m_joint2);
+        VisitSide(v, m_sideA);
+        VisitSide(v, m_sideB);
+        v(m_ratio, m_constant, m_impulse);
+    }
+
 private:
     /// One side of the gear: joint (A side: bodies C -> A; B side: bodies D -> B).
     struct Side {
@@ -74,6 +87,13 @@ private:
     };
 
     static Side MakeSide(b2Joint* joint);
+    template <class V>
+    static void VisitSide(V& v, Side& s) {
+        v(s.type);
+        v.BodyRef(s.body);
+        v.BodyRef(s.ground);
+        v(s.localAnchorGround, s.localAnchorBody, s.referenceAngle, s.localAxisGround, s.angleBase);
+    }
     /// Coordinate from body positions (ground at cG, aG; body at c, a).
     static Fixed Coordinate(const Side& s, const b2Vec2& cG, Fixed aG, const b2Vec2& c, Fixed a,
                             const b2Vec2& lcG, const b2Vec2& lc);

@@ -40,6 +40,9 @@ struct b2JointEdge {
     b2JointEdge* next = nullptr;  ///< next edge in the body's joint list
 };
 
+/// Selects the joints' snapshot-restore constructors (empty joints filled from an image).
+struct b2RestoreTag {};
+
 /// Joint definitions derive from this.
 struct b2JointDef {
     b2JointType type = e_unknownJoint;  ///< set by the concrete definition
@@ -92,6 +95,8 @@ public:
     /// Factory used by b2World::CreateJoint: allocates the concrete joint for def->type
     /// (nullptr for e_unknownJoint or a definition without two bodies).
     static b2Joint* Create(const b2JointDef* def);
+    /// An empty joint of the given type for snapshot restore (nullptr for e_unknownJoint).
+    static b2Joint* CreateEmpty(b2JointType type);
     /// Frees a joint made by Create (the world unlinks it first).
     static void Destroy(b2Joint* joint);
 
@@ -110,6 +115,7 @@ public:
     uint64 m_userData = 0;
 
 protected:
+    b2Joint(b2RestoreTag, b2JointType type) : m_type(type) {}
     explicit b2Joint(const b2JointDef* def)
         : m_type(def->type), m_bodyA(def->bodyA), m_bodyB(def->bodyB),
           m_collideConnected(def->collideConnected), m_userData(def->userData) {}

@@ -62,6 +62,15 @@ public:
     /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
+    /// Snapshot restore: an empty joint whose state VisitState fills (core/src/state).
+    explicit b2MouseJoint(b2RestoreTag tag) : b2Joint(tag, e_mouseJoint) {}
+    /// Visits every field that persists between steps (parameters, warm-start impulses,
+    /// carried angles), in the order of the state hash and the snapshot (docs/determinism.md).
+    template <class V>
+    void VisitState(V& v) {
+        v(m_localAnchorB, m_targetA, m_maxForce, m_frequencyHz, m_dampingRatio, m_impulse);
+    }
+
 private:
     b2Vec2 m_localAnchorB;
     b2Vec2 m_targetA;

@@ -97,6 +97,17 @@ public:
     b2Vec2 m_localYAxisA;
     Fixed m_referenceAngle;
 
+    /// Snapshot restore: an empty joint whose state VisitState fills (core/src/state).
+    explicit b2PrismaticJoint(b2RestoreTag tag) : b2Joint(tag, e_prismaticJoint) {}
+    /// Visits every field that persists between steps (parameters, warm-start impulses,
+    /// carried angles), in the order of the state hash and the snapshot (docs/determinism.md).
+    template <class V>
+    void VisitState(V& v) {
+        v(m_localAnchorA, m_localAnchorB, m_localXAxisA, m_localYAxisA, m_referenceAngle, m_enableLimit,
+          m_lowerTranslation, m_upperTranslation, m_enableMotor, m_motorSpeed, m_maxMotorForce, m_impulse,
+          m_motorImpulse, m_limitState);
+    }
+
 private:
     b2WideVec3 m_impulse;  ///< perpendicular (N*s), angular (N*m*s), axial limit (N*s)
     Wide m_motorImpulse;   ///< N*s

@@ -66,6 +66,15 @@ public:
     /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
+    /// Snapshot restore: an empty joint whose state VisitState fills (core/src/state).
+    explicit b2PulleyJoint(b2RestoreTag tag) : b2Joint(tag, e_pulleyJoint) {}
+    /// Visits every field that persists between steps (parameters, warm-start impulses,
+    /// carried angles), in the order of the state hash and the snapshot (docs/determinism.md).
+    template <class V>
+    void VisitState(V& v) {
+        v(m_groundAnchorA, m_groundAnchorB, m_localAnchorA, m_localAnchorB, m_constant, m_ratio, m_impulse);
+    }
+
 private:
     b2Vec2 m_groundAnchorA;
     b2Vec2 m_groundAnchorB;

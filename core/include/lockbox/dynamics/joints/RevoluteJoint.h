@@ -97,6 +97,16 @@ public:
     /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
+    /// Snapshot restore: an empty joint whose state VisitState fills (core/src/state).
+    explicit b2RevoluteJoint(b2RestoreTag tag) : b2Joint(tag, e_revoluteJoint) {}
+    /// Visits every field that persists between steps (parameters, warm-start impulses,
+    /// carried angles), in the order of the state hash and the snapshot (docs/determinism.md).
+    template <class V>
+    void VisitState(V& v) {
+        v(m_localAnchorA, m_localAnchorB, m_referenceAngle, m_enableLimit, m_lowerAngle, m_upperAngle,
+          m_enableMotor, m_motorSpeed, m_maxMotorTorque, m_impulse, m_motorImpulse, m_angleBase, m_limitState);
+    }
+
 private:
     /// The continuous angle for body angles aA, aB: the branch nearest to m_angleBase.
     Fixed ContinuousAngle(Fixed aA, Fixed aB) const noexcept;

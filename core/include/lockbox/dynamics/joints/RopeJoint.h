@@ -54,6 +54,15 @@ public:
     /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
+    /// Snapshot restore: an empty joint whose state VisitState fills (core/src/state).
+    explicit b2RopeJoint(b2RestoreTag tag) : b2Joint(tag, e_ropeJoint) {}
+    /// Visits every field that persists between steps (parameters, warm-start impulses,
+    /// carried angles), in the order of the state hash and the snapshot (docs/determinism.md).
+    template <class V>
+    void VisitState(V& v) {
+        v(m_localAnchorA, m_localAnchorB, m_maxLength, m_length, m_impulse, m_state);
+    }
+
 private:
     b2Vec2 m_localAnchorA;
     b2Vec2 m_localAnchorB;

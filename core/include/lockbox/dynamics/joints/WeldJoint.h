@@ -59,6 +59,15 @@ public:
     /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
+    /// Snapshot restore: an empty joint whose state VisitState fills (core/src/state).
+    explicit b2WeldJoint(b2RestoreTag tag) : b2Joint(tag, e_weldJoint) {}
+    /// Visits every field that persists between steps (parameters, warm-start impulses,
+    /// carried angles), in the order of the state hash and the snapshot (docs/determinism.md).
+    template <class V>
+    void VisitState(V& v) {
+        v(m_localAnchorA, m_localAnchorB, m_referenceAngle, m_frequencyHz, m_dampingRatio, m_impulse);
+    }
+
 private:
     Fixed m_frequencyHz;
     Fixed m_dampingRatio;

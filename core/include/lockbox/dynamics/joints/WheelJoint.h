@@ -83,6 +83,16 @@ public:
     /// Solver hook (called by b2Island); true when within tolerance.
     bool SolvePositionConstraints(const b2SolverData& data) override;
 
+    /// Snapshot restore: an empty joint whose state VisitState fills (core/src/state).
+    explicit b2WheelJoint(b2RestoreTag tag) : b2Joint(tag, e_wheelJoint) {}
+    /// Visits every field that persists between steps (parameters, warm-start impulses,
+    /// carried angles), in the order of the state hash and the snapshot (docs/determinism.md).
+    template <class V>
+    void VisitState(V& v) {
+        v(m_localAnchorA, m_localAnchorB, m_localXAxisA, m_localYAxisA, m_enableMotor, m_motorSpeed,
+          m_maxMotorTorque, m_frequencyHz, m_dampingRatio, m_impulse, m_motorImpulse, m_springImpulse);
+    }
+
 private:
     Fixed m_frequencyHz;
     Fixed m_dampingRatio;

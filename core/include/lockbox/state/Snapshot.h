@@ -1,0 +1,69 @@
+#pragma once
+/// World snapshots (issue 7, docs/determinism.md "Snapshot format"): b2World::Save writes
+/// every field that influences future steps as a portable byte image (Cereal portable binary,
+/// little-endian, fixed widths), and b2World::Restore reads one back, either in place
+/// (rollback: surviving bodies, fixtures, contacts and joints keep their address and id) or
+/// into a fresh world (late join). Stepping after a restore gives exactly the bits the saved
+/// world gave. Listeners, the contact filter, the debug draw and the profile are not state:
+/// a restore leaves them as they are.
+///
+/// Restore validates the whole image before it touches the world: a truncated, corrupted,
+/// foreign or wrong-version image returns an error naming the problem and leaves the world
+/// (and its hash) unchanged.
+
+#include <string>
+
+#include "lockbox/common/Settings.h"
+
+namespace lockbox {
+
+/// The engine version written into every snapshot header (major.minor.patch).
+inline constexpr uint16 lockbox_versionMajor = 0;
+inline constexpr uint16 lockbox_versionMinor = 7;
+inline constexpr uint16 lockbox_versionPatch = 0;
+
+/// Version of the snapshot layout; bump on any change to docs/determinism.md's format table.
+inline constexpr uint16 b2_snapshotFormatVersion = 1;
+
+/// The four magic bytes that open every snapshot payload header ("LBSN").
+inline constexpr uint32 b2_snapshotMagic = 0x4E53424Cu;  // 'L' 'B' 'S' 'N', low byte first
+
+/// Why a restore was refused.
+enum class b2SnapshotError : uint32 {
+    e_ok = 0,               ///< restored
+    e_truncated,            ///< the image ends before a field or a section it announces
+    e_badEndianFlag,        ///< the first byte is not Cereal's little-endian flag (1)
+    e_badMagic,             ///< not a lockbox snapshot
+    e_badFormatVersion,     ///< written by another snapshot format version
+    e_badDeterminismVersion,///< written under another hash/number-format definition
+    e_badChecksum,          ///< the payload does not match its XXH3-64 checksum
+    e_corrupt,              ///< well formed but inconsistent (the message names the field)
+    e_trailingBytes,        ///< bytes after the last section
+    e_locked,               ///< Restore called inside Step
+};
+
+/// Short name of an error ("truncated", "bad magic", ...).
+const char* b2SnapshotErrorName(b2SnapshotError error) noexcept;
+
+/// Result of b2World::Restore.
+struct b2RestoreResult {
+    b2SnapshotError error = b2SnapshotError::e_ok;
+    std::string message;  ///< what is wrong, naming the section, field and value; empty when ok
+    /// True when the world now holds the image's state.
+    bool ok() const noexcept { return error == b2SnapshotError::e_ok; }
+    explicit operator bool() const noexcept { return ok(); }
+};
+
+/// Byte counts of one snapshot by section (b2World::SaveStats), for size reports.
+struct b2SnapshotStats {
+    uint32 headerBytes = 0;      ///< fixed header including the endianness flag
+    uint32 settingsBytes = 0;    ///< world switches and carry-over
+    uint32 bodyBytes = 0;        ///< body pool and bodies
+    uint32 fixtureBytes = 0;     ///< fixture pool, fixtures and shapes
+    uint32 contactBytes = 0;     ///< contact pool and contacts with manifolds
+    uint32 jointBytes = 0;       ///< joints
+    uint32 broadPhaseBytes = 0;  ///< dynamic tree and move buffer
+    uint32 totalBytes = 0;       ///< the whole image
+};
+
+}  // namespace lockbox

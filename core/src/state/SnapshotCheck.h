@@ -1,0 +1,38 @@
+#pragma once
+// Internal to the snapshot reader: how a check failure travels (an exception caught in
+// ParseSnapshot and turned into a b2RestoreResult) and how messages name values.
+
+#include <cstdio>
+#include <string>
+
+#include "lockbox/state/Snapshot.h"
+
+namespace lockbox::state_detail {
+
+struct Image;
+
+/// A refused image: the error and a message naming the field.
+struct SnapshotFailure {
+    b2SnapshotError error;
+    std::string message;
+};
+
+[[noreturn]] inline void Fail(b2SnapshotError error, std::string message) {
+    throw SnapshotFailure{error, std::move(message)};
+}
+
+/// Fails with e_corrupt "what: problem (value V)" unless ok.
+inline void Check(bool ok, const char* what, const char* problem, int64_t value) {
+    if (!ok) Fail(b2SnapshotError::e_corrupt, std::string(what) + ": " + problem + " (value " + std::to_string(value) + ")");
+}
+
+inline std::string Hex(uint64 v) {
+    char text[24];
+    std::snprintf(text, sizeof text, "0x%llx", static_cast<unsigned long long>(v));
+    return text;
+}
+
+/// Cross-reference checks of a parsed image (SnapshotValidate.cpp): ids, lists, the tree.
+void ValidateImage(Image& image);
+
+}  // namespace lockbox::state_detail

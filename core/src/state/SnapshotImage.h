@@ -1,0 +1,159 @@
+#pragma once
+// Internal to the snapshot: a parsed and fully validated image, held apart from the world so
+// that Restore can refuse a bad image before it touches anything (SnapshotParse.cpp reads
+// and checks it, SnapshotApply.cpp installs it).
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "lockbox/collision/Collision.h"
+#include "lockbox/collision/DynamicTree.h"
+#include "lockbox/dynamics/Fixture.h"
+#include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/state/Snapshot.h"
+
+namespace lockbox::state_detail {
+
+/// Fixed header size: Cereal's endianness flag, magic, format version, engine version,
+/// determinism version, payload size, payload checksum.
+inline constexpr size_t kHeaderBytes = 1 + 4 + 2 + 3 * 2 + 4 + 8 + 8;
+/// Offsets of the patched header fields.
+inline constexpr size_t kPayloadSizeOffset = 17;
+inline constexpr size_t kChecksumOffset = 25;
+
+/// Section tags, in image order.
+enum SectionTag : uint32 {
+    e_sectionSettings = 1,
+    e_sectionBodies = 2,
+    e_sectionFixtures = 3,
+    e_sectionContacts = 4,
+    e_sectionJoints = 5,
+    e_sectionBroadPhase = 6,
+};
+inline constexpr uint32 kSectionCount = 6;
+
+struct PoolImage {
+    int32 capacity = 0;
+    int32 count = 0;
+    std::vector<int32> free;   ///< free-slot stack, bottom first
+    std::vector<uint8> live;   ///< derived: 1 for every id not on the free stack
+};
+
+struct SettingsImage {
+    b2Vec2 gravity;
+    bool allowSleep = true, warmStarting = true, continuous = true, subStepping = false, autoClear = true;
+    b2AABB bounds;
+    uint32 flags = 0;
+    Fixed invDt0;
+    bool stepComplete = true;
+    uint64 saturations = 0;
+    int32 bodyCount = 0, jointCount = 0, contactCount = 0;
+};
+
+struct BodyImage {
+    int32 id = -1;
+    uint8 type = 0;
+    uint16 flags = 0;
+    b2Transform xf;
+    b2Sweep sweep;
+    b2Vec2 v;
+    Fixed w;
+    b2Vec2 force;
+    Fixed torque;
+    int32 sleepSteps = 0;
+    Wide mass, invMass, I, invI;
+    Fixed linearDamping, angularDamping, gravityScale, minExtent, maxExtent;
+    uint64 userData = 0;
+    int32 fixtureCount = 0;
+    int32 contactEdgeBegin = 0, contactEdgeCount = 0;  ///< range in Image::contactEdges
+    int32 jointEdgeBegin = 0, jointEdgeCount = 0;      ///< range in Image::jointEdges
+};
+
+struct ShapeImage {
+    uint8 type = 0;
+    Fixed radius;
+    b2Vec2 p;                 ///< circle centre or polygon centroid
+    b2Vec2 v0, v1, v2, v3;    ///< edge
+    bool has0 = false, has3 = false;
+    int32 count = 0;          ///< polygon or chain vertex count
+    b2Vec2 vertices[b2_maxPolygonVertices];
+    b2Vec2 normals[b2_maxPolygonVertices];
+    int32 chainBegin = 0;     ///< range start in Image::chainVertices (count entries)
+    b2Vec2 prev, next;        ///< chain ghosts
+    bool hasPrev = false, hasNext = false;
+};
+
+struct ProxyImage {
+    b2AABB aabb;
+    int32 proxyId = -1;
+};
+
+struct FixtureImage {
+    int32 id = -1;
+    int32 bodyId = -1;
+    Fixed density, friction, restitution;
+    bool sensor = false;
+    b2Filter filter;
+    uint64 userData = 0;
+    ShapeImage shape;
+    int32 childCount = 0;     ///< derived from the shape
+    int32 proxyCount = 0;
+    int32 proxyBegin = 0;     ///< range in Image::proxies
+};
+
+struct ContactImage {
+    int32 id = -1;
+    int32 fixtureA = -1, indexA = 0, fixtureB = -1, indexB = 0;
+    uint32 flags = 0;
+    int32 toiCount = 0;
+    Fixed toi, friction, restitution;
+    b2Manifold manifold;
+};
+
+struct JointImage {
+    int32 id = -1;
+    b2JointType type = e_unknownJoint;
+    int32 bodyA = -1, bodyB = -1;
+    bool collideConnected = false;
+    uint64 userData = 0;
+    std::unique_ptr<b2Joint> state;  ///< an empty joint of `type` holding the visited fields
+    int32 refBegin = 0, refCount = 0;  ///< body/joint references in Image::refs
+};
+
+/// A reference read by a joint's VisitState (gear joints), resolved after parsing.
+struct RefImage {
+    bool isJoint = false;
+    int32 id = -1;
+    void* slot = nullptr;  ///< the b2Body** or b2Joint** inside JointImage::state
+};
+
+struct TreeImage {
+    int32 proxyCount = 0, root = -1, freeList = -1, nodeCount = 0, insertionCount = 0;
+    std::vector<b2TreeNode> nodes;
+    std::vector<int32> moveBuffer;
+};
+
+struct Image {
+    SettingsImage settings;
+    PoolImage bodyPool, fixturePool, contactPool;
+    std::vector<BodyImage> bodies;  ///< body-list order
+    std::vector<int32> contactEdges;
+    std::vector<int32> jointEdges;  ///< 2 * joint id + side
+    std::vector<FixtureImage> fixtures;  ///< grouped by body, body-list order
+    std::vector<b2Vec2> chainVertices;
+    std::vector<ProxyImage> proxies;
+    std::vector<ContactImage> contacts;  ///< contact-list order
+    std::vector<JointImage> joints;      ///< joint-list order
+    std::vector<RefImage> refs;
+    TreeImage tree;
+};
+
+/// Reads and validates a whole image. On error the result names the problem and `image` is
+/// unspecified; the world is never involved.
+b2RestoreResult ParseSnapshot(std::span<const uint8> bytes, Image& image);
+
+/// Installs a validated image into the world (SnapshotApply.cpp).
+void ApplySnapshot(Image& image, b2World& world);
+
+}  // namespace lockbox::state_detail

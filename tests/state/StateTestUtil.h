@@ -1,0 +1,53 @@
+#pragma once
+// Helpers shared by the world-state tests: build a library scene, step it, and compare two
+// worlds field by field through their hash reports.
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "lockbox/lockbox.h"
+#include "lockbox/scenes/LockboxScenes.h"
+#include "lockbox/state/WorldHash.h"
+
+namespace lockbox::testing_state {
+
+/// A built scene with its engine adapter.
+struct SceneRun {
+    std::unique_ptr<scenes::LockboxScene> scene;
+    std::unique_ptr<scenes::LockboxEngine> engine;
+    int step = 0;
+
+    /// build = false leaves the world empty (a late joiner restores into it).
+    explicit SceneRun(std::string_view name, bool build = true) : scene(scenes::MakeLockboxScene(name)) {
+        if (!scene) return;
+        engine = std::make_unique<scenes::LockboxEngine>();
+        scenes::ConfigureWorld(*engine, scene->Info(), scenes::RunSettings{});
+        scene->Prepare(scenes::Resolve(scene->Info(), scenes::RunSettings{}));
+        if (build) scene->Build(*engine);
+    }
+    b2World& world() { return engine->world(); }
+    /// One frame as the scene defines it (its pre-step action, then Step).
+    void Advance() {
+        const auto& info = scene->Info();
+        scene->BeforeStep(*engine, step);
+        engine->Step(info.hz, info.velocityIterations, info.positionIterations);
+        ++step;
+    }
+    void Advance(int n) {
+        for (int i = 0; i < n; ++i) Advance();
+    }
+};
+
+/// Names the first category and body where two worlds differ ("" when equal).
+inline std::string DescribeDifference(const b2World& a, const b2World& b) {
+    const b2WorldHashReport ra = b2WorldHashDetailed(a);
+    const b2WorldHashReport rb = b2WorldHashDetailed(b);
+    if (ra.total == rb.total) return "";
+    const b2HashMismatch m = b2CompareHashReports(ra, rb);
+    return "category " + std::string(b2HashCategoryName(m.category)) + ", body " + std::to_string(m.bodyId);
+}
+
+}  // namespace lockbox::testing_state
