@@ -3,7 +3,10 @@
 // length and the state walk of StateWalk.h, all through Cereal's portable binary archive.
 // docs/determinism.md ("Snapshot format") is the layout's reference.
 
+#include <cereal/archives/portable_binary.hpp>
 #include <xxhash.h>
+
+#include <ostream>
 
 #include "ByteStreams.h"
 #include "SnapshotImage.h"
@@ -17,7 +20,7 @@ using namespace state_detail;
 namespace {
 
 template <class WriteFn>
-void WriteSection(SnapshotWriter& w, uint32 tag, WriteFn write) {
+void WriteSection(FieldWriter& w, uint32 tag, WriteFn write) {
     w.U32(tag);
     const size_t lengthAt = w.Position();
     w.U32(0);
@@ -43,29 +46,43 @@ const char* b2SnapshotErrorName(b2SnapshotError error) noexcept {
     return "unknown";
 }
 
+void state_detail::ImageDeleter::operator()(Image* image) const noexcept { delete image; }
+
+uint64 state_detail::SnapshotChecksum(std::span<const uint8> image, size_t payloadBytes) noexcept {
+    const uint64 seed = XXH3_64bits(image.data(), kChecksumOffset);
+    return XXH3_64bits_withSeed(image.data() + kHeaderBytes, payloadBytes, seed);
+}
+
+void b2SealSnapshot(std::span<uint8> image) noexcept {
+    if (image.size() < kHeaderBytes) return;
+    const uint64 sum = SnapshotChecksum(image, image.size() - kHeaderBytes);
+    for (size_t i = 0; i < 8; ++i) image[kChecksumOffset + i] = static_cast<uint8>(sum >> (8 * i));
+}
+
 uint64 b2World::Hash() const { return b2WorldHash(*this); }
 
 void b2World::Save(std::vector<uint8>& out) const {
-    out.clear();
-    SnapshotWriter w(out);  // Cereal writes its endianness flag (1: little-endian) first
-    w.U32(b2_snapshotMagic);
-    w.U16(b2_snapshotFormatVersion);
-    w.U16(lockbox_versionMajor);
-    w.U16(lockbox_versionMinor);
-    w.U16(lockbox_versionPatch);
-    w.U32(b2_determinismVersion);
-    w.U64(0);  // payload size, patched below
-    w.U64(0);  // payload checksum, patched below
+    // Sections first, after room for the header: their size goes into the header.
+    FieldWriter w(out, kHeaderBytes);
     WriteSection(w, e_sectionSettings, [&] { WriteSettings(w, *this); });
     WriteSection(w, e_sectionBodies, [&] { WriteBodies(w, *this); });
     WriteSection(w, e_sectionFixtures, [&] { WriteFixtures(w, *this); });
     WriteSection(w, e_sectionContacts, [&] { WriteContacts(w, *this); });
     WriteSection(w, e_sectionJoints, [&] { WriteJoints(w, *this); });
     WriteSection(w, e_sectionBroadPhase, [&] { WriteBroadPhase(w, *this); });
-    const size_t payload = w.Position() - kHeaderBytes;
-    w.Patch64(kPayloadSizeOffset, payload);
-    w.Patch64(kChecksumOffset, XXH3_64bits(w.Data(kHeaderBytes), payload));
+    const uint64 payload = w.Position() - kHeaderBytes;
     w.Finish();
+    {
+        // The header through Cereal's portable binary archive: its endianness flag (1), then
+        // the fields little-endian; the checksum is patched in last.
+        HeaderSink sink(out.data(), kHeaderBytes);
+        std::ostream stream(&sink);
+        cereal::PortableBinaryOutputArchive archive(stream, cereal::PortableBinaryOutputArchive::Options::LittleEndian());
+        archive(b2_snapshotMagic, b2_snapshotFormatVersion, lockbox_versionMajor, lockbox_versionMinor,
+                lockbox_versionPatch, b2_determinismVersion, payload, uint64{0});
+    }
+    const uint64 sum = SnapshotChecksum(out, static_cast<size_t>(payload));
+    for (size_t i = 0; i < 8; ++i) out[kChecksumOffset + i] = static_cast<uint8>(sum >> (8 * i));
 }
 
 std::vector<uint8> b2World::Save() const {
@@ -102,7 +119,8 @@ b2RestoreResult b2World::Restore(std::span<const uint8> image) {
         CheckLocked("b2World::Restore called inside a Step callback (the world is locked)");
         return {b2SnapshotError::e_locked, "the world is locked (inside Step)"};
     }
-    Image parsed;
+    if (!m_restoreScratch) m_restoreScratch.reset(new Image());
+    Image& parsed = *m_restoreScratch;
     b2RestoreResult result = ParseSnapshot(image, parsed);
     if (!result.ok()) return result;
     ApplySnapshot(parsed, *this);

@@ -22,6 +22,10 @@ inline constexpr size_t kHeaderBytes = 1 + 4 + 2 + 3 * 2 + 4 + 8 + 8;
 inline constexpr size_t kPayloadSizeOffset = 17;
 inline constexpr size_t kChecksumOffset = 25;
 
+/// The checksum of an image: XXH3-64 of the payload, seeded with XXH3-64 of the header bytes
+/// before the checksum field (flag, magic, versions, payload size).
+uint64 SnapshotChecksum(std::span<const uint8> image, size_t payloadBytes) noexcept;
+
 /// Section tags, in image order.
 enum SectionTag : uint32 {
     e_sectionSettings = 1,
@@ -147,6 +151,19 @@ struct Image {
     std::vector<JointImage> joints;      ///< joint-list order
     std::vector<RefImage> refs;
     TreeImage tree;
+
+    // Validation scratch (id -> record position, or -1), reused between restores.
+    std::vector<int32> bodyIndex, fixtureIndex, contactIndex, jointIndex;
+    std::vector<uint8> seen;
+
+    /// Empties the lists before a parse; capacity is kept.
+    void Clear() {
+        contactEdges.clear();
+        jointEdges.clear();
+        chainVertices.clear();
+        proxies.clear();
+        refs.clear();
+    }
 };
 
 /// Reads and validates a whole image. On error the result names the problem and `image` is

@@ -3,8 +3,9 @@
 // the tree's shape) are checked afterwards in SnapshotValidate.cpp. Nothing here touches a
 // world.
 
-#include <xxhash.h>
+#include <cereal/archives/portable_binary.hpp>
 
+#include <istream>
 #include <string>
 
 #include "ByteStreams.h"
@@ -19,7 +20,7 @@
 namespace lockbox::state_detail {
 namespace {
 
-bool ReadBool(SnapshotReader& r, const char* what) {
+bool ReadBool(FieldReader& r, const char* what) {
     const uint8 b = r.U8();
     Check(b <= 1, what, "is not 0 or 1", b);
     return b != 0;
@@ -27,7 +28,7 @@ bool ReadBool(SnapshotReader& r, const char* what) {
 
 /// A count of records that take at least minBytes each: never more than the bytes left, so
 /// a hostile count cannot make us allocate.
-int32 ReadCount(SnapshotReader& r, size_t minBytes, const char* what) {
+int32 ReadCount(FieldReader& r, size_t minBytes, const char* what) {
     const int32 n = r.I32();
     Check(n >= 0, what, "is negative", n);
     if (static_cast<uint64>(n) * minBytes > r.Remaining()) {
@@ -37,14 +38,14 @@ int32 ReadCount(SnapshotReader& r, size_t minBytes, const char* what) {
     return n;
 }
 
-b2AABB ReadAABB(SnapshotReader& r) {
+b2AABB ReadAABB(FieldReader& r) {
     b2AABB box;
     box.lowerBound = r.V();
     box.upperBound = r.V();
     return box;
 }
 
-void ReadPool(SnapshotReader& r, PoolImage& pool, size_t minRecordBytes, const char* what) {
+void ReadPool(FieldReader& r, PoolImage& pool, size_t minRecordBytes, const char* what) {
     pool.capacity = r.I32();
     pool.count = ReadCount(r, minRecordBytes, what);
     const int32 freeCount = ReadCount(r, 4, what);
@@ -60,7 +61,7 @@ void ReadPool(SnapshotReader& r, PoolImage& pool, size_t minRecordBytes, const c
     }
 }
 
-void ReadSettings(SnapshotReader& r, SettingsImage& s) {
+void ReadSettings(FieldReader& r, SettingsImage& s) {
     s.gravity = r.V();
     s.allowSleep = ReadBool(r, "settings.allowSleep");
     s.warmStarting = ReadBool(r, "settings.warmStarting");
@@ -87,7 +88,7 @@ void ReadSettings(SnapshotReader& r, SettingsImage& s) {
 // 40, a contact 48, a joint 22, a tree node 8.
 constexpr size_t kMinBody = 150, kMinFixture = 40, kMinContact = 48, kMinJoint = 22, kMinNode = 8;
 
-void ReadBodies(SnapshotReader& r, Image& img) {
+void ReadBodies(FieldReader& r, Image& img) {
     ReadPool(r, img.bodyPool, kMinBody, "bodies.pool");
     Check(img.bodyPool.count == img.settings.bodyCount, "bodies.pool", "count differs from settings.bodyCount",
           img.bodyPool.count);
@@ -132,7 +133,7 @@ void ReadBodies(SnapshotReader& r, Image& img) {
     }
 }
 
-void ReadShape(SnapshotReader& r, Image& img, ShapeImage& s) {
+void ReadShape(FieldReader& r, Image& img, ShapeImage& s) {
     s.type = r.U8();
     Check(s.type < b2Shape::e_typeCount, "shape.type", "is not a shape type", s.type);
     s.radius = r.F();
@@ -176,7 +177,7 @@ int32 ChildCount(const ShapeImage& s) {
     return 1;
 }
 
-void ReadFixtures(SnapshotReader& r, Image& img) {
+void ReadFixtures(FieldReader& r, Image& img) {
     ReadPool(r, img.fixturePool, kMinFixture, "fixtures.pool");
     int64_t expected = 0;
     for (const BodyImage& b : img.bodies) expected += b.fixtureCount;
@@ -217,7 +218,7 @@ void ReadFixtures(SnapshotReader& r, Image& img) {
     }
 }
 
-void ReadContacts(SnapshotReader& r, Image& img) {
+void ReadContacts(FieldReader& r, Image& img) {
     ReadPool(r, img.contactPool, kMinContact, "contacts.pool");
     Check(img.contactPool.count == img.settings.contactCount, "contacts.pool",
           "count differs from settings.contactCount", img.contactPool.count);
@@ -259,7 +260,7 @@ void ReadContacts(SnapshotReader& r, Image& img) {
 
 /// Reads a joint's VisitState fields into an empty joint; references are queued.
 struct JointFieldReader {
-    SnapshotReader& r;
+    FieldReader& r;
     Image& img;
     template <class... T>
     void operator()(T&... fields) {
@@ -292,7 +293,7 @@ struct JointFieldReader {
     void JointRef(b2Joint*& slot) { img.refs.push_back({true, r.I32(), &slot}); }
 };
 
-void ReadJoints(SnapshotReader& r, Image& img) {
+void ReadJoints(FieldReader& r, Image& img) {
     const int32 n = img.settings.jointCount;
     if (static_cast<uint64>(n) * kMinJoint > r.Remaining()) {
         Fail(b2SnapshotError::e_truncated, "joints: settings.jointCount " + std::to_string(n) + " exceeds the bytes left");
@@ -307,7 +308,9 @@ void ReadJoints(SnapshotReader& r, Image& img) {
         j.bodyB = r.I32();
         j.collideConnected = ReadBool(r, "joint.collideConnected");
         j.userData = r.U64();
-        j.state.reset(b2Joint::CreateEmpty(j.type));
+        // A reused scratch joint of the right type is refilled (VisitState sets every
+        // persistent field); the solver temporaries it keeps are recomputed before use.
+        if (!j.state || j.state->GetType() != j.type) j.state.reset(b2Joint::CreateEmpty(j.type));
         j.refBegin = static_cast<int32>(img.refs.size());
         JointFieldReader reader{r, img};
         VisitJointState(*j.state, reader);
@@ -315,7 +318,7 @@ void ReadJoints(SnapshotReader& r, Image& img) {
     }
 }
 
-void ReadBroadPhase(SnapshotReader& r, Image& img) {
+void ReadBroadPhase(FieldReader& r, Image& img) {
     TreeImage& t = img.tree;
     t.proxyCount = r.I32();
     t.root = r.I32();
@@ -345,7 +348,7 @@ void ReadBroadPhase(SnapshotReader& r, Image& img) {
 
 /// Reads one section header and runs its reader, checking the announced length.
 template <class ReadFn>
-void ReadSection(SnapshotReader& r, uint32 tag, const char* name, ReadFn read) {
+void ReadSection(FieldReader& r, uint32 tag, const char* name, ReadFn read) {
     const uint32 found = r.U32();
     Check(found == tag, name, "section tag is wrong", found);
     const uint32 length = r.U32();
@@ -362,6 +365,7 @@ void ReadSection(SnapshotReader& r, uint32 tag, const char* name, ReadFn read) {
 
 b2RestoreResult ParseSnapshot(std::span<const uint8> bytes, Image& img) {
     b2RestoreResult result;
+    img.Clear();
     try {
         if (bytes.size() < kHeaderBytes) {
             Fail(b2SnapshotError::e_truncated, "image of " + std::to_string(bytes.size()) +
@@ -372,24 +376,28 @@ b2RestoreResult ParseSnapshot(std::span<const uint8> bytes, Image& img) {
             Fail(b2SnapshotError::e_badEndianFlag,
                  "first byte is " + std::to_string(bytes[0]) + ", expected 1 (little-endian portable binary)");
         }
-        SnapshotReader r(bytes);
-        const uint32 magic = r.U32();
+        // The header, through Cereal's portable binary archive (little-endian).
+        uint32 magic = 0, determinism = 0;
+        uint16 format = 0, major = 0, minor = 0, patch = 0;
+        uint64 payload = 0, checksum = 0;
+        {
+            HeaderSource source(bytes.first(kHeaderBytes));
+            std::istream stream(&source);
+            cereal::PortableBinaryInputArchive archive(stream);
+            archive(magic, format, major, minor, patch, determinism, payload, checksum);
+        }
         if (magic != b2_snapshotMagic) Fail(b2SnapshotError::e_badMagic, "magic " + Hex(magic) + " is not 'LBSN'");
-        const uint16 format = r.U16();
         if (format != b2_snapshotFormatVersion) {
             Fail(b2SnapshotError::e_badFormatVersion, "format version " + std::to_string(format) + ", this build reads " +
                                                           std::to_string(b2_snapshotFormatVersion));
         }
-        r.U16();  // engine version: informative (the format and determinism versions decide)
-        r.U16();
-        r.U16();
-        const uint32 determinism = r.U32();
+        // The engine version (major.minor.patch) is informative: the format and determinism
+        // versions decide whether this build can continue the simulation.
         if (determinism != b2_determinismVersion) {
             Fail(b2SnapshotError::e_badDeterminismVersion, "determinism version " + Hex(determinism) +
                                                                ", this build is " + Hex(b2_determinismVersion));
         }
-        const uint64 payload = r.U64();
-        const uint64 checksum = r.U64();
+        FieldReader r(bytes, kHeaderBytes);
         if (payload > r.Remaining()) {
             Fail(b2SnapshotError::e_truncated, "payload of " + std::to_string(payload) + " bytes announced, " +
                                                    std::to_string(r.Remaining()) + " present");
@@ -397,7 +405,7 @@ b2RestoreResult ParseSnapshot(std::span<const uint8> bytes, Image& img) {
         if (payload < r.Remaining()) {
             Fail(b2SnapshotError::e_trailingBytes, std::to_string(r.Remaining() - payload) + " bytes after the payload");
         }
-        const uint64 actual = XXH3_64bits(bytes.data() + kHeaderBytes, static_cast<size_t>(payload));
+        const uint64 actual = SnapshotChecksum(bytes, static_cast<size_t>(payload));
         if (actual != checksum) {
             Fail(b2SnapshotError::e_badChecksum,
                  "payload checksum " + Hex(actual) + " differs from the header's " + Hex(checksum));

@@ -18,16 +18,15 @@ namespace {
 constexpr int32 kMaxJointId = 1 << 22;
 
 /// Maps live pool ids to record positions; each id may be claimed once.
-std::vector<int32> IndexByIds(const PoolImage& pool, size_t records, int32 (*idOf)(const Image&, size_t),
-                              const Image& img, const char* what) {
-    std::vector<int32> index(static_cast<size_t>(pool.capacity), -1);
+void IndexByIds(std::vector<int32>& index, const PoolImage& pool, size_t records,
+                int32 (*idOf)(const Image&, size_t), const Image& img, const char* what) {
+    index.assign(static_cast<size_t>(pool.capacity), -1);
     for (size_t i = 0; i < records; ++i) {
         const int32 id = idOf(img, i);
         Check(id >= 0 && id < pool.capacity && pool.live[static_cast<size_t>(id)] == 1, what, "id is not live in its pool", id);
         Check(index[static_cast<size_t>(id)] < 0, what, "id is listed twice", id);
         index[static_cast<size_t>(id)] = static_cast<int32>(i);
     }
-    return index;
 }
 
 void ValidateContacts(const Image& img, const std::vector<int32>& fixtureIndex) {
@@ -50,10 +49,10 @@ void ValidateContacts(const Image& img, const std::vector<int32>& fixtureIndex) 
     }
 }
 
-void ValidateContactEdges(const Image& img, const std::vector<int32>& contactIndex,
-                          const std::vector<int32>& fixtureIndex) {
+void ValidateContactEdges(Image& img, const std::vector<int32>& contactIndex, const std::vector<int32>& fixtureIndex) {
     // Each contact appears once in its body A's list and once in its body B's.
-    std::vector<uint8> seen(img.contacts.size(), 0);
+    std::vector<uint8>& seen = img.seen;
+    seen.assign(img.contacts.size(), 0);
     for (const BodyImage& b : img.bodies) {
         for (int32 i = 0; i < b.contactEdgeCount; ++i) {
             const int32 id = img.contactEdges[static_cast<size_t>(b.contactEdgeBegin + i)];
@@ -85,7 +84,8 @@ void ValidateJoints(Image& img, const std::vector<int32>& bodyIndex) {
         Check(liveBody(j.bodyA) && liveBody(j.bodyB), "joint.body", "is not a live body", liveBody(j.bodyA) ? j.bodyB : j.bodyA);
         Check(j.bodyA != j.bodyB || j.type == e_gearJoint, "joint", "joins a body to itself", j.bodyA);
     }
-    std::vector<int32> jointIndex(static_cast<size_t>(maxId + 1), -1);
+    std::vector<int32>& jointIndex = img.jointIndex;
+    jointIndex.assign(static_cast<size_t>(maxId + 1), -1);
     for (size_t i = 0; i < img.joints.size(); ++i) {
         int32& slot = jointIndex[static_cast<size_t>(img.joints[i].id)];
         Check(slot < 0, "joint.id", "is listed twice", img.joints[i].id);
@@ -113,7 +113,8 @@ void ValidateJoints(Image& img, const std::vector<int32>& bodyIndex) {
         }
     }
     // Joint edges: each (joint, side) once, in the list of the body on that side.
-    std::vector<uint8> seen(img.joints.size(), 0);
+    std::vector<uint8>& seen = img.seen;
+    seen.assign(img.joints.size(), 0);
     for (const BodyImage& b : img.bodies) {
         for (int32 i = 0; i < b.jointEdgeCount; ++i) {
             const int32 code = img.jointEdges[static_cast<size_t>(b.jointEdgeBegin + i)];
@@ -200,18 +201,16 @@ void ValidateTree(const Image& img, const std::vector<int32>& fixtureIndex) {
 }  // namespace
 
 void ValidateImage(Image& img) {
-    const std::vector<int32> bodyIndex = IndexByIds(
-        img.bodyPool, img.bodies.size(), [](const Image& m, size_t i) { return m.bodies[i].id; }, img, "body.id");
-    const std::vector<int32> fixtureIndex = IndexByIds(
-        img.fixturePool, img.fixtures.size(), [](const Image& m, size_t i) { return m.fixtures[i].id; }, img,
-        "fixture.id");
-    const std::vector<int32> contactIndex = IndexByIds(
-        img.contactPool, img.contacts.size(), [](const Image& m, size_t i) { return m.contacts[i].id; }, img,
-        "contact.id");
-    ValidateContacts(img, fixtureIndex);
-    ValidateContactEdges(img, contactIndex, fixtureIndex);
-    ValidateJoints(img, bodyIndex);
-    ValidateTree(img, fixtureIndex);
+    IndexByIds(img.bodyIndex, img.bodyPool, img.bodies.size(), [](const Image& m, size_t i) { return m.bodies[i].id; },
+               img, "body.id");
+    IndexByIds(img.fixtureIndex, img.fixturePool, img.fixtures.size(),
+               [](const Image& m, size_t i) { return m.fixtures[i].id; }, img, "fixture.id");
+    IndexByIds(img.contactIndex, img.contactPool, img.contacts.size(),
+               [](const Image& m, size_t i) { return m.contacts[i].id; }, img, "contact.id");
+    ValidateContacts(img, img.fixtureIndex);
+    ValidateContactEdges(img, img.contactIndex, img.fixtureIndex);
+    ValidateJoints(img, img.bodyIndex);
+    ValidateTree(img, img.fixtureIndex);
 }
 
 }  // namespace lockbox::state_detail

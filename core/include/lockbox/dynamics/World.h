@@ -11,6 +11,7 @@
 /// assert handler (b2SetAssertHandler); if the handler returns, or in release builds, the call
 /// does nothing and returns nullptr.
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -28,6 +29,14 @@
 #include "lockbox/state/Snapshot.h"
 
 namespace lockbox {
+
+namespace state_detail {
+struct Image;
+/// Frees a restore scratch image (defined where Image is complete).
+struct ImageDeleter {
+    void operator()(Image* image) const noexcept;
+};
+}  // namespace state_detail
 
 
 /// Called for programmer errors such as modifying a locked world. expr names the check, msg
@@ -201,6 +210,8 @@ public:
     bool m_stepComplete = true;
     b2AABB m_bounds;
     uint64 m_saturationCount = 0;  ///< saturations inside this world's Steps (state)
+    /// Parsed-image scratch kept between restores, so a rollback restore reuses its buffers.
+    std::unique_ptr<state_detail::Image, state_detail::ImageDeleter> m_restoreScratch;
     b2Profile m_profile;
     bool m_headroomTelemetry = false;  ///< fill m_profile.headroom at the end of each Step
 

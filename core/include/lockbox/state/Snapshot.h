@@ -11,6 +11,7 @@
 /// foreign or wrong-version image returns an error naming the problem and leaves the world
 /// (and its hash) unchanged.
 
+#include <span>
 #include <string>
 
 #include "lockbox/common/Settings.h"
@@ -41,6 +42,11 @@ enum class b2SnapshotError : uint32 {
     e_trailingBytes,        ///< bytes after the last section
     e_locked,               ///< Restore called inside Step
 };
+
+/// Recomputes the checksum of an image after its bytes were edited (tools, tests, fuzzing);
+/// does nothing to a span shorter than the header. The checksum covers the header fields
+/// before it and the whole payload, so any flipped bit of a sealed image is detected.
+void b2SealSnapshot(std::span<uint8> image) noexcept;
 
 /// Short name of an error ("truncated", "bad magic", ...).
 const char* b2SnapshotErrorName(b2SnapshotError error) noexcept;

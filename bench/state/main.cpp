@@ -1,0 +1,140 @@
+// lockbox_state_bench: what the world state costs (issue 7). For scenes from ~200 to ~5000
+// bodies it measures, in the same run, the median time of a step, of a state hash, of a save
+// and of an in-place restore, and the snapshot's bytes per section; it prints a table and
+// writes bench/results/<machine>/state.csv.
+//
+// Usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE]
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "lockbox/lockbox.h"
+#include "lockbox/scenes/LockboxScenes.h"
+
+namespace {
+
+using namespace lockbox;
+using Clock = std::chrono::steady_clock;
+
+double MedianMs(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0 : v[v.size() / 2];
+}
+
+template <class F>
+double TimeMs(F&& f) {
+    const auto t0 = Clock::now();
+    f();
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+struct Case {
+    const char* scene;
+    int warmup;  ///< frames before measuring (rain: until ~1000 bodies have spawned)
+};
+
+struct Row {
+    std::string scene;
+    int bodies = 0, awake = 0, contacts = 0, joints = 0;
+    double stepMs = 0, hashMs = 0, saveMs = 0, restoreMs = 0;
+    b2SnapshotStats stats;
+};
+
+Row Measure(const Case& c, int reps) {
+    Row row;
+    row.scene = c.scene;
+    auto scene = scenes::MakeLockboxScene(c.scene);
+    scenes::LockboxEngine engine;
+    scenes::ConfigureWorld(engine, scene->Info(), scenes::RunSettings{});
+    scene->Prepare(scenes::Resolve(scene->Info(), scenes::RunSettings{}));
+    scene->Build(engine);
+    const auto& info = scene->Info();
+    int frame = 0;
+    auto advance = [&] {
+        scene->BeforeStep(engine, frame++);
+        engine.Step(info.hz, info.velocityIterations, info.positionIterations);
+    };
+    for (int i = 0; i < c.warmup; ++i) advance();
+    b2World& world = engine.world();
+
+    std::vector<double> step, hash, save, restore;
+    std::vector<uint8> image;
+    image.reserve(1 << 20);
+    volatile uint64 sink = 0;
+    for (int r = 0; r < reps; ++r) {
+        // The same state is saved, hashed, restored, then stepped: every figure is for the
+        // world as it is at that frame, and the ratios come from interleaved measurements.
+        save.push_back(TimeMs([&] { world.Save(image); }));
+        hash.push_back(TimeMs([&] { sink = sink + world.Hash(); }));
+        restore.push_back(TimeMs([&] {
+            if (!world.Restore(image).ok()) std::abort();
+        }));
+        step.push_back(TimeMs(advance));
+    }
+    row.stepMs = MedianMs(step);
+    row.hashMs = MedianMs(hash);
+    row.saveMs = MedianMs(save);
+    row.restoreMs = MedianMs(restore);
+    row.stats = world.SaveStats();
+    row.bodies = world.GetBodyCount();
+    row.contacts = world.GetContactCount();
+    row.joints = world.GetJointCount();
+    for (const b2Body* b = world.GetBodyList(); b; b = b->GetNext()) row.awake += b->IsAwake() ? 1 : 0;
+    return row;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int reps = 31;
+    std::string only;
+    std::string out = std::string(LOCKBOX_BENCH_RESULTS_DIR) + "/intel-xeon-2c/state.csv";
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = std::atoi(argv[++i]);
+        else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) out = argv[++i];
+        else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
+        else {
+            std::fprintf(stderr, "usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE]\n");
+            return 2;
+        }
+    }
+    const Case cases[] = {{"pyramid20", 120}, {"ragdolls", 60}, {"rain", 320}, {"tumbler", 60},
+                          {"joint_grid", 10}, {"large_pyramid", 10}};
+    std::FILE* csv = std::fopen(out.c_str(), "w");
+    if (csv == nullptr) {
+        std::fprintf(stderr, "cannot write %s\n", out.c_str());
+        return 1;
+    }
+    std::fprintf(csv,
+                 "scene,bodies,awake,contacts,joints,step_ms,hash_ms,save_ms,restore_ms,hash_pct_of_step,"
+                 "save_restore_pct_of_step,image_bytes,body_bytes,fixture_bytes,contact_bytes,joint_bytes,"
+                 "broadphase_bytes,bytes_per_body,bytes_per_contact,bytes_per_joint\n");
+    std::printf("%-14s %6s %6s %6s %9s %8s %8s %9s %7s %9s %9s %8s %8s %8s\n", "scene", "bodies", "contct", "joints",
+                "step ms", "hash ms", "save ms", "restor ms", "hash %", "s+r %", "image KB", "B/body", "B/cont",
+                "B/joint");
+    for (const Case& c : cases) {
+        if (!only.empty() && only != c.scene) continue;
+        const Row r = Measure(c, reps);
+        const double hashPct = 100 * r.hashMs / r.stepMs;
+        const double srPct = 100 * (r.saveMs + r.restoreMs) / r.stepMs;
+        // Bodies carry their fixtures (shapes, proxies) in these per-body figures.
+        const double perBody = r.bodies ? double(r.stats.bodyBytes + r.stats.fixtureBytes) / r.bodies : 0;
+        const double perContact = r.contacts ? double(r.stats.contactBytes) / r.contacts : 0;
+        const double perJoint = r.joints ? double(r.stats.jointBytes) / r.joints : 0;
+        std::printf("%-14s %6d %6d %6d %9.3f %8.3f %8.3f %9.3f %7.2f %9.2f %9.1f %8.1f %8.1f %8.1f\n",
+                    r.scene.c_str(), r.bodies, r.contacts, r.joints, r.stepMs, r.hashMs, r.saveMs, r.restoreMs,
+                    hashPct, srPct, r.stats.totalBytes / 1024.0, perBody, perContact, perJoint);
+        std::fprintf(csv, "%s,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%u,%u,%u,%u,%u,%u,%.1f,%.1f,%.1f\n",
+                     r.scene.c_str(), r.bodies, r.awake, r.contacts, r.joints, r.stepMs, r.hashMs, r.saveMs,
+                     r.restoreMs, hashPct, srPct, r.stats.totalBytes, r.stats.bodyBytes, r.stats.fixtureBytes,
+                     r.stats.contactBytes, r.stats.jointBytes, r.stats.broadPhaseBytes, perBody, perContact,
+                     perJoint);
+    }
+    std::fclose(csv);
+    std::printf("wrote %s (medians of %d interleaved repetitions)\n", out.c_str(), reps);
+    return 0;
+}

@@ -1,0 +1,92 @@
+// libFuzzer target for b2World::Restore (issue 7). The first input byte picks how the rest
+// becomes an image, so the fuzzer reaches every layer of the reader:
+//   0: the bytes as they are (header checks, truncation, checksum);
+//   1: the bytes, resealed (the structural checks see arbitrary payloads);
+//   2: edits (offset, value) applied to a real image of a scene with joints, gears and
+//      contacts, resealed (near-valid images: the cross-reference checks);
+//   3: a real image cut to a length taken from the input.
+// Every refused image must leave the world's hash unchanged; every accepted one must step.
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include "lockbox/lockbox.h"
+#include "lockbox/scenes/LockboxScenes.h"
+
+namespace {
+
+using namespace lockbox;
+
+struct Base {
+    std::unique_ptr<scenes::LockboxScene> scene = scenes::MakeLockboxScene("pulley_gear");
+    scenes::LockboxEngine engine;
+    std::vector<uint8> image;
+    uint64 hash = 0;
+    Base() {
+        scene->Build(engine);
+        for (int i = 0; i < 20; ++i) engine.Step(60, 8, 3);
+        image = engine.world().Save();
+        hash = engine.world().Hash();
+    }
+};
+
+Base& TheBase() {
+    static Base base;
+    return base;
+}
+
+std::vector<uint8> MakeImage(const uint8_t* data, size_t size, const std::vector<uint8>& real) {
+    const uint8_t mode = data[0] % 4;
+    ++data;
+    --size;
+    std::vector<uint8> image;
+    switch (mode) {
+        case 0:
+        case 1:
+            image.assign(data, data + size);
+            if (mode == 1) b2SealSnapshot(image);
+            break;
+        case 2:
+            image = real;
+            for (size_t i = 0; i + 3 <= size; i += 3) {
+                const size_t at = (size_t{data[i]} | (size_t{data[i + 1]} << 8)) * 7 % image.size();
+                image[at] = data[i + 2];
+            }
+            b2SealSnapshot(image);
+            break;
+        default: {
+            size_t len = 0;
+            for (size_t i = 0; i < size && i < 4; ++i) len = (len << 8) | data[i];
+            image.assign(real.begin(), real.begin() + static_cast<std::ptrdiff_t>(len % (real.size() + 1)));
+            break;
+        }
+    }
+    return image;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    if (size == 0) return 0;
+    Base& base = TheBase();
+    b2World& world = base.engine.world();
+    const std::vector<uint8> image = MakeImage(data, size, base.image);
+    const b2RestoreResult result = world.Restore(image);
+    if (!result.ok()) {
+        if (world.Hash() != base.hash) {
+            std::fprintf(stderr, "refused image changed the world: %s\n", result.message.c_str());
+            std::abort();
+        }
+        return 0;
+    }
+    for (int i = 0; i < 3; ++i) world.Step(Fixed::FromRatio(1, 60), 8, 3);
+    // Back to the base state for the next input.
+    if (!world.Restore(base.image).ok() || world.Hash() != base.hash) {
+        std::fprintf(stderr, "the base image no longer restores\n");
+        std::abort();
+    }
+    return 0;
+}

@@ -1,0 +1,52 @@
+#pragma once
+// A library scene as a SyncTestGame: each frame runs the scene's pre-step action and one
+// Step with the scene's settings. Scenes keep no state outside the world that a later frame
+// reads, so there is no user state to save.
+
+#include <string_view>
+
+#include "StateTestUtil.h"
+#include "lockbox/state/SyncTest.h"
+
+namespace lockbox::testing_state {
+
+class SceneSyncGame : public SyncTestGame {
+public:
+    explicit SceneSyncGame(SceneRun& run) : run_(run) {}
+    void Advance(b2World& world, int32 frame) override {
+        const auto& info = run_.scene->Info();
+        run_.scene->BeforeStep(*run_.engine, frame);
+        world.Step(scenes::LockboxEngine::TimeStep(info.hz), info.velocityIterations, info.positionIterations);
+    }
+
+private:
+    SceneRun& run_;
+};
+
+/// The scenes the sync tests treat as heavy (120 frames, rollback windows tiling the run):
+/// the four (large_pyramid, many_pyramids, joint_grid, rain) plus tumbler, whose
+/// 2000 bodies cost as much per step as rain's.
+inline bool IsLargeScene(const scenes::LockboxScene& scene) {
+    const auto name = scene.Info().name;
+    return scene.Info().heavy || name == "rain" || name == "joint_grid" || name == "tumbler";
+}
+
+/// Runs the sync test on a freshly built scene; returns its result. stride as in
+/// SyncTestConfig.
+inline SyncTestResult RunSceneSyncTest(std::string_view name, int32 frames, bool mispredict, int32 stride = 1) {
+    SceneRun run(name);
+    if (!run.scene) {
+        SyncTestResult missing;
+        missing.ok = false;
+        missing.message = "no such scene";
+        return missing;
+    }
+    SceneSyncGame game(run);
+    SyncTestConfig config;
+    config.mispredict = mispredict;
+    config.stride = stride;
+    SyncTest test(run.world(), game, config);
+    return test.Run(frames);
+}
+
+}  // namespace lockbox::testing_state

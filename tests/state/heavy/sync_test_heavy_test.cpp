@@ -1,0 +1,45 @@
+// SyncTest over every scene of the library at full length (issue 7): 600 frames for the light
+// scenes and 120 for the heavy ones, with and without mispredicted branches.
+
+#include <gtest/gtest.h>
+
+#include "../SceneSyncGame.h"
+
+namespace lockbox {
+namespace {
+
+using testing_state::RunSceneSyncTest;
+
+class SceneSyncFull : public ::testing::TestWithParam<std::string_view> {};
+
+// Light scenes: 600 frames, a rollback after every frame. Large scenes: 120 frames, rollback
+// windows of 8 tiling the run (every frame re-simulated and checked once; a rollback after
+// every frame would take many_pyramids ~30 minutes).
+struct Plan {
+    int32 frames;
+    int32 stride;
+};
+Plan PlanFor(std::string_view name) {
+    auto scene = scenes::MakeLockboxScene(name);
+    if (scene && testing_state::IsLargeScene(*scene)) return {120, 8};
+    return {600, 1};
+}
+
+TEST_P(SceneSyncFull, Rollback) {
+    const Plan p = PlanFor(GetParam());
+    const SyncTestResult r = RunSceneSyncTest(GetParam(), p.frames, false, p.stride);
+    EXPECT_TRUE(r.ok) << r.message;
+    EXPECT_EQ(r.framesResimulated, p.stride == 1 ? (p.frames - 7) * 8 : (p.frames / 8) * 8);
+}
+
+TEST_P(SceneSyncFull, Mispredict) {
+    const Plan p = PlanFor(GetParam());
+    const SyncTestResult r = RunSceneSyncTest(GetParam(), p.frames, true, p.stride);
+    EXPECT_TRUE(r.ok) << r.message;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllScenes, SceneSyncFull, ::testing::ValuesIn(scenes::AllSceneNames()),
+                         [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
+
+}  // namespace
+}  // namespace lockbox
