@@ -123,8 +123,9 @@ inline bool Regenerating() {
 }
 
 /// Header comment of the golden file.
-inline const char* GoldenHeader() {
-    return "# Golden b2WorldHash values (hash definition version 1, docs/determinism.md) of every scene\n"
+inline std::string GoldenHeader() {
+    return "# Golden b2WorldHash values (hash definition version " + std::to_string(b2_hashVersion) +
+           ", docs/determinism.md) of every scene\n"
            "# after the listed step counts: light scenes 1/60/600, heavy scenes 1/60/120.\n"
            "# Regenerate: LOCKBOX_REGENERATE_GOLDEN=1 ./lockbox_scenes_tests --gtest_filter='GoldenHash*'\n";
 }

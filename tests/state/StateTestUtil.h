@@ -51,3 +51,35 @@ inline std::string DescribeDifference(const b2World& a, const b2World& b) {
 }
 
 }  // namespace lockbox::testing_state
+
+namespace lockbox::testing_state {
+
+/// The invariant snapshots rely on (StateWalk.h): every body's contact edges are in world
+/// contact-list order, and its joint edges in world joint-list order.
+inline ::testing::AssertionResult EdgesFollowWorldLists(b2World& world) {
+    for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
+        const b2ContactEdge* e = b->GetContactList();
+        for (b2Contact* c = world.GetContactList(); c; c = c->GetNext()) {
+            if (c->GetFixtureA()->GetBody() != b && c->GetFixtureB()->GetBody() != b) continue;
+            if (e == nullptr || e->contact != c)
+                return ::testing::AssertionFailure() << "body " << b->GetId() << ": contact edges out of list order";
+            e = e->next;
+        }
+        if (e != nullptr) return ::testing::AssertionFailure() << "body " << b->GetId() << ": extra contact edges";
+        const b2JointEdge* je = b->GetJointList();
+        for (b2Joint* j = world.GetJointList(); j; j = j->GetNext()) {
+            // CreateJoint links edge A then edge B at the head: B comes first when both sides
+            // are on this body (a gear joint may do that).
+            for (int side = 1; side >= 0; --side) {
+                if ((side == 0 ? j->GetBodyA() : j->GetBodyB()) != b) continue;
+                if (je == nullptr || je->joint != j)
+                    return ::testing::AssertionFailure() << "body " << b->GetId() << ": joint edges out of list order";
+                je = je->next;
+            }
+        }
+        if (je != nullptr) return ::testing::AssertionFailure() << "body " << b->GetId() << ": extra joint edges";
+    }
+    return ::testing::AssertionSuccess();
+}
+
+}  // namespace lockbox::testing_state

@@ -40,6 +40,35 @@ TEST_P(SceneSync, MispredictedBranchLeavesNoTrace) {
     EXPECT_EQ(r.rollbacks, kFrames - 7);
 }
 
+// After create/destroy churn (the mispredicted branches) and restores, every body's edge lists
+// still follow the world lists: the invariant that lets snapshots leave them out.
+TEST(SyncTestTool, EdgeListsFollowWorldListsAfterChurn) {
+    for (const char* name : {"ragdolls", "pulley_gear", "bullet_stack_dynamic", "car"}) {
+        testing_state::SceneRun run(name);
+        testing_state::SceneSyncGame game(run);
+        SyncTest test(run.world(), game, SyncTestConfig{4, 1, true, 99});
+        const SyncTestResult r = test.Run(40);
+        EXPECT_TRUE(r.ok) << name << ": " << r.message;
+        EXPECT_TRUE(testing_state::EdgesFollowWorldLists(run.world())) << name;
+        // And in the middle of a mispredicted branch (bodies and joints made and destroyed).
+        for (int i = 0; i < 10; ++i) {
+            b2BodyDef bd;
+            bd.type = b2_dynamicBody;
+            bd.position.Set(i, 3);
+            b2Body* body = run.world().CreateBody(&bd);
+            b2CircleShape circle;
+            circle.m_radius = Fixed(1) / 2;
+            body->CreateFixture(&circle, 1);
+            b2DistanceJointDef jd;
+            jd.Initialize(body, run.world().GetBodyList()->GetNext(), body->GetPosition(), b2Vec2(0, 0));
+            if (run.world().GetBodyList()->GetNext() != body) run.world().CreateJoint(&jd);
+            game.Advance(run.world(), 40 + i);
+            if (i % 3 == 0) run.world().DestroyBody(run.world().GetBodyList()->GetNext());
+        }
+        EXPECT_TRUE(testing_state::EdgesFollowWorldLists(run.world())) << name;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Light, SceneSync, ::testing::ValuesIn(LightScenes()),
                          [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 

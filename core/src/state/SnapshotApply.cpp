@@ -148,9 +148,13 @@ void ApplyFixtures(const Image& img, b2World& world) {
     }
 }
 
-/// The edge of contact c that lives in body b's list.
-b2ContactEdge* ContactEdgeOf(b2Contact* c, const b2Body* b) {
-    return c->m_fixtureA->m_body == b ? &c->m_nodeA : &c->m_nodeB;
+/// Links an edge (contact or joint) at the head of a body's list.
+template <class Edge>
+void PrependEdge(Edge* e, Edge*& head) {
+    e->prev = nullptr;
+    e->next = head;
+    if (head != nullptr) head->prev = e;
+    head = e;
 }
 
 void ApplyContacts(const Image& img, b2World& world) {
@@ -188,19 +192,12 @@ void ApplyContacts(const Image& img, b2World& world) {
     }
     if (previous == nullptr) cm.m_contactList = nullptr;
     cm.m_contactCount = static_cast<int32>(img.contacts.size());
-    // Each body's contact edges in image order.
-    for (const BodyImage& bi : img.bodies) {
-        b2Body* b = world.m_bodies.Get(bi.id);
-        b2ContactEdge* last = nullptr;
-        for (int32 i = 0; i < bi.contactEdgeCount; ++i) {
-            b2Contact* c = cm.GetContact(img.contactEdges[static_cast<size_t>(bi.contactEdgeBegin + i)]);
-            b2ContactEdge* e = ContactEdgeOf(c, b);
-            e->prev = last;
-            e->next = nullptr;
-            if (last != nullptr) last->next = e;
-            else b->m_contactList = e;
-            last = e;
-        }
+    // Each body's edges are in world-list order (StateWalk.h): prepending in reverse list
+    // order rebuilds them.
+    for (auto it = img.contacts.rbegin(); it != img.contacts.rend(); ++it) {
+        b2Contact* c = cm.GetContact(it->id);
+        PrependEdge(&c->m_nodeA, c->m_fixtureA->m_body->m_contactList);
+        PrependEdge(&c->m_nodeB, c->m_fixtureB->m_body->m_contactList);
     }
 }
 
@@ -272,19 +269,10 @@ void ApplyJoints(Image& img, b2World& world) {
     }
     if (previous == nullptr) world.m_jointList = nullptr;
     world.m_jointCount = static_cast<int32>(img.joints.size());
-    for (const BodyImage& bi : img.bodies) {
-        b2Body* b = world.m_bodies.Get(bi.id);
-        b2JointEdge* last = nullptr;
-        for (int32 i = 0; i < bi.jointEdgeCount; ++i) {
-            const int32 code = img.jointEdges[static_cast<size_t>(bi.jointEdgeBegin + i)];
-            b2Joint* j = world.m_joints[static_cast<size_t>(code >> 1)];
-            b2JointEdge* e = (code & 1) == 0 ? &j->m_edgeA : &j->m_edgeB;
-            e->prev = last;
-            e->next = nullptr;
-            if (last != nullptr) last->next = e;
-            else b->m_jointList = e;
-            last = e;
-        }
+    for (auto it = img.joints.rbegin(); it != img.joints.rend(); ++it) {
+        b2Joint* j = world.m_joints[static_cast<size_t>(it->id)];
+        PrependEdge(&j->m_edgeA, j->m_bodyA->m_jointList);
+        PrependEdge(&j->m_edgeB, j->m_bodyB->m_jointList);
     }
 }
 

@@ -70,8 +70,6 @@ struct BodyImage {
     Fixed linearDamping, angularDamping, gravityScale, minExtent, maxExtent;
     uint64 userData = 0;
     int32 fixtureCount = 0;
-    int32 contactEdgeBegin = 0, contactEdgeCount = 0;  ///< range in Image::contactEdges
-    int32 jointEdgeBegin = 0, jointEdgeCount = 0;      ///< range in Image::jointEdges
 };
 
 struct ShapeImage {
@@ -142,8 +140,6 @@ struct Image {
     SettingsImage settings;
     PoolImage bodyPool, fixturePool, contactPool;
     std::vector<BodyImage> bodies;  ///< body-list order
-    std::vector<int32> contactEdges;
-    std::vector<int32> jointEdges;  ///< 2 * joint id + side
     std::vector<FixtureImage> fixtures;  ///< grouped by body, body-list order
     std::vector<b2Vec2> chainVertices;
     std::vector<ProxyImage> proxies;
@@ -158,8 +154,6 @@ struct Image {
 
     /// Empties the lists before a parse; capacity is kept.
     void Clear() {
-        contactEdges.clear();
-        jointEdges.clear();
         chainVertices.clear();
         proxies.clear();
         refs.clear();

@@ -124,12 +124,6 @@ void ReadBodies(FieldReader& r, Image& img) {
         b.maxExtent = r.F();
         b.userData = r.U64();
         b.fixtureCount = ReadCount(r, kMinFixture, "body.fixtureCount");
-        b.contactEdgeCount = ReadCount(r, 4, "body.contactEdges");
-        b.contactEdgeBegin = static_cast<int32>(img.contactEdges.size());
-        for (int32 i = 0; i < b.contactEdgeCount; ++i) img.contactEdges.push_back(r.I32());
-        b.jointEdgeCount = ReadCount(r, 4, "body.jointEdges");
-        b.jointEdgeBegin = static_cast<int32>(img.jointEdges.size());
-        for (int32 i = 0; i < b.jointEdgeCount; ++i) img.jointEdges.push_back(r.I32());
     }
 }
 

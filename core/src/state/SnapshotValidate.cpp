@@ -49,30 +49,6 @@ void ValidateContacts(const Image& img, const std::vector<int32>& fixtureIndex) 
     }
 }
 
-void ValidateContactEdges(Image& img, const std::vector<int32>& contactIndex, const std::vector<int32>& fixtureIndex) {
-    // Each contact appears once in its body A's list and once in its body B's.
-    std::vector<uint8>& seen = img.seen;
-    seen.assign(img.contacts.size(), 0);
-    for (const BodyImage& b : img.bodies) {
-        for (int32 i = 0; i < b.contactEdgeCount; ++i) {
-            const int32 id = img.contactEdges[static_cast<size_t>(b.contactEdgeBegin + i)];
-            Check(id >= 0 && id < static_cast<int32>(contactIndex.size()) && contactIndex[static_cast<size_t>(id)] >= 0,
-                  "body.contactEdge", "is not a live contact", id);
-            const size_t k = static_cast<size_t>(contactIndex[static_cast<size_t>(id)]);
-            const ContactImage& c = img.contacts[k];
-            const int32 bodyA = img.fixtures[static_cast<size_t>(fixtureIndex[static_cast<size_t>(c.fixtureA)])].bodyId;
-            const int32 bodyB = img.fixtures[static_cast<size_t>(fixtureIndex[static_cast<size_t>(c.fixtureB)])].bodyId;
-            const uint8 side = b.id == bodyA ? 1 : (b.id == bodyB ? 2 : 0);
-            Check(side != 0, "body.contactEdge", "names a contact of other bodies", id);
-            Check((seen[k] & side) == 0, "body.contactEdge", "lists a contact twice", id);
-            seen[k] |= side;
-        }
-    }
-    for (size_t k = 0; k < seen.size(); ++k) {
-        Check(seen[k] == 3, "contact", "is missing from a body's contact list", img.contacts[k].id);
-    }
-}
-
 void ValidateJoints(Image& img, const std::vector<int32>& bodyIndex) {
     auto liveBody = [&](int32 id) {
         return id >= 0 && id < static_cast<int32>(bodyIndex.size()) && bodyIndex[static_cast<size_t>(id)] >= 0;
@@ -111,26 +87,6 @@ void ValidateJoints(Image& img, const std::vector<int32>& bodyIndex) {
             Check(body.id == geared.bodyB && ground.id == geared.bodyA, "gear.side", "bodies differ from its joint's", id);
             Check((s == 0 ? j.bodyA : j.bodyB) == body.id, "gear.body", "differs from its side's body", body.id);
         }
-    }
-    // Joint edges: each (joint, side) once, in the list of the body on that side.
-    std::vector<uint8>& seen = img.seen;
-    seen.assign(img.joints.size(), 0);
-    for (const BodyImage& b : img.bodies) {
-        for (int32 i = 0; i < b.jointEdgeCount; ++i) {
-            const int32 code = img.jointEdges[static_cast<size_t>(b.jointEdgeBegin + i)];
-            const int32 id = code >> 1;
-            Check(code >= 0 && id <= maxId && jointIndex[static_cast<size_t>(id)] >= 0, "body.jointEdge",
-                  "is not a live joint", code);
-            const size_t k = static_cast<size_t>(jointIndex[static_cast<size_t>(id)]);
-            const int32 side = code & 1;
-            const JointImage& j = img.joints[k];
-            Check((side == 0 ? j.bodyA : j.bodyB) == b.id, "body.jointEdge", "names a joint side of another body", code);
-            Check((seen[k] & (1 << side)) == 0, "body.jointEdge", "lists a joint side twice", code);
-            seen[k] |= static_cast<uint8>(1 << side);
-        }
-    }
-    for (size_t k = 0; k < seen.size(); ++k) {
-        Check(seen[k] == 3, "joint", "is missing from a body's joint list", img.joints[k].id);
     }
 }
 
@@ -208,7 +164,6 @@ void ValidateImage(Image& img) {
     IndexByIds(img.contactIndex, img.contactPool, img.contacts.size(),
                [](const Image& m, size_t i) { return m.contacts[i].id; }, img, "contact.id");
     ValidateContacts(img, img.fixtureIndex);
-    ValidateContactEdges(img, img.contactIndex, img.fixtureIndex);
     ValidateJoints(img, img.bodyIndex);
     ValidateTree(img, img.fixtureIndex);
 }

@@ -122,18 +122,9 @@ void WriteBody(W& w, const b2Body& b) {
     w.F(b.m_maxExtent);
     w.U64(b.m_userData);
     w.I32(b.m_fixtureCount);
-    // Edge list order decides the island walk, hence the solver order: written as ids.
-    int32 contactEdges = 0;
-    for (const b2ContactEdge* e = b.m_contactList; e; e = e->next) ++contactEdges;
-    w.I32(contactEdges);
-    for (const b2ContactEdge* e = b.m_contactList; e; e = e->next) w.I32(e->contact->GetId());
-    // Joint edges as 2 * id + side (0: the joint's edgeA, 1: its edgeB).
-    int32 jointEdges = 0;
-    for (const b2JointEdge* e = b.m_jointList; e; e = e->next) ++jointEdges;
-    w.I32(jointEdges);
-    for (const b2JointEdge* e = b.m_jointList; e; e = e->next) {
-        w.I32(2 * e->joint->GetId() + (e == &e->joint->m_edgeA ? 0 : 1));
-    }
+    // The body's contact and joint edge lists are not written: both are always in world-list
+    // order (every create prepends to the world list and to both bodies' lists, every destroy
+    // unlinks), so the contact and joint sections already fix them. Restore rebuilds them.
 }
 
 template <class W>
