@@ -262,11 +262,24 @@ void WriteBroadPhase(W& w, const b2World& world) {
     for (const int32 id : moves) w.I32(id);
 }
 
+/// Starts loading the object after next while the current one is written: list order is
+/// not memory order, and waiting for each object's cache lines dominated the walk.
+template <class T>
+inline void PrefetchAhead(const T* node) noexcept {
+    if (node != nullptr && node->GetNext() != nullptr) {
+        const char* p = reinterpret_cast<const char*>(node->GetNext());
+        for (size_t line = 0; line < sizeof(T); line += 64) __builtin_prefetch(p + line);
+    }
+}
+
 /// The body section: pool, then every body in body-list order.
 template <class W>
 void WriteBodies(W& w, const b2World& world) {
     WritePool(w, world.m_bodies);
-    for (const b2Body* b = world.GetBodyList(); b; b = b->GetNext()) WriteBody(w, *b);
+    for (const b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
+        PrefetchAhead(b->GetNext());
+        WriteBody(w, *b);
+    }
 }
 
 /// The fixture section: pool, then each body's fixtures (body-list order, fixture-list order).
@@ -281,7 +294,10 @@ void WriteFixtures(W& w, const b2World& world) {
 template <class W>
 void WriteContacts(W& w, const b2World& world) {
     WritePool(w, world.GetContactManager().GetPool());
-    for (const b2Contact* c = world.GetContactList(); c; c = c->GetNext()) WriteContact(w, *c);
+    for (const b2Contact* c = world.GetContactList(); c; c = c->GetNext()) {
+        PrefetchAhead(c->GetNext());
+        WriteContact(w, *c);
+    }
 }
 
 /// The joint section: every joint in joint-list order.
