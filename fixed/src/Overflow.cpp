@@ -8,7 +8,8 @@
 namespace lockbox {
 namespace {
 
-void DefaultTrap(const char* op, int64_t a, int64_t b) {
+// Used only when kOverflowTraps (checked builds); [[maybe_unused]] keeps clang quiet elsewhere.
+[[maybe_unused]] void DefaultTrap(const char* op, int64_t a, int64_t b) {
     std::fprintf(stderr, "lockbox: fixed-point overflow in %s (operands raw %" PRId64 ", %" PRId64 ")\n",
                  op, a, b);
     std::fflush(stderr);

@@ -57,8 +57,9 @@ namespace detail {
 /// b2TestOverlap without short-circuits: the same answer, but one branch instead of four,
 /// which is what a tree walk over mostly-disjoint boxes wants.
 constexpr bool b2TreeOverlap(const b2AABB& a, const b2AABB& b) noexcept {
-    return !((b.lowerBound.x > a.upperBound.x) | (b.lowerBound.y > a.upperBound.y) |
-             (a.lowerBound.x > b.upperBound.x) | (a.lowerBound.y > b.upperBound.y));
+    const int separated = int{b.lowerBound.x > a.upperBound.x} | int{b.lowerBound.y > a.upperBound.y} |
+                          int{a.lowerBound.x > b.upperBound.x} | int{a.lowerBound.y > b.upperBound.y};
+    return separated == 0;
 }
 
 /// Traversal stack of Query and RayCast: 256 entries inline (a balanced tree of 2^100 leaves
