@@ -19,7 +19,7 @@ constexpr int64_t kMaxConditionNumber = 1000;
 
 // Inverts the symmetric K = [k11 k12; k12 k22] exactly in 128 bits. Returns false when K is
 // too ill-conditioned for the block solver (or singular after rounding).
-bool InvertBlock(const b2WideMat22& K, b2WideMat22* inverse) {
+bool InvertBlock(const b2WideSym22& K, b2WideSym22* inverse) {
     using namespace detail;
     const S128 k11k22 = MulS64(K.k11.Raw(), K.k22.Raw());
     const S128 k12sq = MulS64(K.k12.Raw(), K.k12.Raw());
@@ -153,11 +153,11 @@ void b2ContactSolver::InitializeVelocityConstraints() {
         if (vc->pointCount == 2) {
             const b2VelocityConstraintPoint& p1 = vc->points[0];
             const b2VelocityConstraintPoint& p2 = vc->points[1];
-            b2WideMat22 K;
+            b2WideSym22 K;
             K.k11 = solver::EffectiveInverseMass(mA, mB, iA, iB, p1.rnA, p1.rnB);
             K.k22 = solver::EffectiveInverseMass(mA, mB, iA, iB, p2.rnA, p2.rnB);
             K.k12 = mA + mB + iA * MulWide(p1.rnA, p2.rnA) + iB * MulWide(p1.rnB, p2.rnB);
-            b2WideMat22 inverse;
+            b2WideSym22 inverse;
             if (InvertBlock(K, &inverse)) {
                 vc->K = K;
                 vc->normalMass = inverse;
@@ -242,7 +242,7 @@ void b2ContactSolver::SolveVelocityConstraints() {
             const b2Vec2 dv2 = solver::RelativeVelocity(vA, wA, cp2->rA, vB, wB, cp2->rB);
             const Fixed vn1 = b2Dot(dv1, normal);
             const Fixed vn2 = b2Dot(dv2, normal);
-            const b2WideMat22& K = vc->K;
+            const b2WideSym22& K = vc->K;
             const Wide b1 = Wide(vn1 - cp1->velocityBias) - (K.k11 * a1 + K.k12 * a2);
             const Wide b2 = Wide(vn2 - cp2->velocityBias) - (K.k12 * a1 + K.k22 * a2);
 

@@ -20,7 +20,7 @@ namespace lockbox {
 class b2Contact;
 
 /// A symmetric 2x2 matrix of Wide entries (the block solver's K and its inverse).
-struct b2WideMat22 {
+struct b2WideSym22 {
     Wide k11, k12, k22;
 };
 
@@ -40,8 +40,8 @@ struct b2VelocityConstraintPoint {
 struct b2ContactVelocityConstraint {
     b2VelocityConstraintPoint points[b2_maxManifoldPoints];
     b2Vec2 normal;
-    b2WideMat22 normalMass;  ///< inverse of K (block solver only)
-    b2WideMat22 K;           ///< block solver matrix, 1/kg
+    b2WideSym22 normalMass;  ///< inverse of K (block solver only)
+    b2WideSym22 K;           ///< block solver matrix, 1/kg
     int32 indexA = 0, indexB = 0;
     Wide invMassA, invMassB;
     Wide invIA, invIB;
