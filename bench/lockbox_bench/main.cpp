@@ -8,6 +8,9 @@
 //   lockbox_bench --all --compare --scenes a,b [--repeat R]   (re-measure some scenes, keep
 //                 the other rows of compare.csv)
 //   lockbox_bench --list
+//   lockbox_bench --scene NAME --headroom   (after the timed runs, one untimed lockbox run with
+//                 headroom telemetry on: per quantity class, the largest magnitude as a
+//                 fraction of its format's limit, and the saturation count; docs/stability.md)
 //
 // One line per run (the median over repeats):
 //   scene=NAME engine=E steps=N ms_per_step=M p95_ms=Q bodies=B awake=A contacts=C hash=0x...
@@ -32,7 +35,7 @@ void Usage() {
     std::fprintf(stderr,
                  "usage: lockbox_bench --scene NAME [--steps N] [--velocity-iterations V]\n"
                  "         [--position-iterations P] [--hz H] [--engine lockbox|box2d-float]\n"
-                 "         [--repeat R] [--metrics] [--no-profile]\n"
+                 "         [--repeat R] [--metrics] [--no-profile] [--headroom]\n"
                  "       lockbox_bench --all --compare [--scenes a,b,...] [--repeat R]\n"
                  "       lockbox_bench --list\n");
 }
@@ -61,6 +64,32 @@ bool RunAndPrint(std::string_view name, const RunSettings& s, int repeat, bool p
     return true;
 }
 
+/// One untimed lockbox run of the scene with headroom telemetry on (b2World::
+/// SetHeadroomTelemetry); prints the running maximum of b2Profile::headroom per class.
+void PrintHeadroom(std::string_view name, const RunSettings& s) {
+    auto sc = MakeLockboxScene(name);
+    if (!sc) return;
+    LockboxEngine e;
+    e.world().SetHeadroomTelemetry(true);
+    const Resolved r = Resolve(sc->Info(), s);
+    ConfigureWorld(e, sc->Info(), s);
+    sc->Prepare(r);
+    sc->Build(e);
+    lockbox::b2Headroom h;
+    for (int i = 0; i < r.steps; ++i) {
+        sc->BeforeStep(e, i);
+        e.Step(r.hz, r.velocityIterations, r.positionIterations);
+        h.Merge(e.world().GetProfile().headroom);
+    }
+    std::printf("  headroom (fraction of format limit):");
+    for (int c = 0; c < static_cast<int>(lockbox::b2HeadroomClass::e_count); ++c) {
+        const auto cls = static_cast<lockbox::b2HeadroomClass>(c);
+        std::printf(" %s=%.3g", lockbox::b2HeadroomClassName(cls), h[cls].Fraction());
+    }
+    std::printf(" saturations=%lld tightest=%s\n", static_cast<long long>(h.saturations),
+                lockbox::b2HeadroomClassName(h.Tightest()));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -68,7 +97,7 @@ int main(int argc, char** argv) {
     RunSettings s;
     s.trackMetrics = false;
     int repeat = 1;
-    bool all = false, compare = false, list = false, profile = true;
+    bool all = false, compare = false, list = false, profile = true, headroom = false;
     std::vector<std::string> only;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -88,6 +117,7 @@ int main(int argc, char** argv) {
         else if (a == "--repeat") next(repeat);
         else if (a == "--metrics") s.trackMetrics = true;
         else if (a == "--no-profile") profile = false;
+        else if (a == "--headroom") headroom = true;
         else if (a == "--all") all = true;
         else if (a == "--compare") compare = true;
         else if (a == "--list") list = true;
@@ -129,8 +159,10 @@ int main(int argc, char** argv) {
     }
     bool ok = true;
     for (auto n : names) {
-        if (engine == "lockbox") ok = RunAndPrint<LockboxEngine>(n, s, repeat, profile) && ok;
-        else if (engine == "box2d-float") ok = RunAndPrint<Box2DFloatEngine>(n, s, repeat, profile) && ok;
+        if (engine == "lockbox") {
+            ok = RunAndPrint<LockboxEngine>(n, s, repeat, profile) && ok;
+            if (headroom) PrintHeadroom(n, s);
+        } else if (engine == "box2d-float") ok = RunAndPrint<Box2DFloatEngine>(n, s, repeat, profile) && ok;
         else {
             Usage();
             return 2;

@@ -213,6 +213,7 @@ void b2World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations)
         m_contactManager.Collide();
         m_profile.collideNs = Nanos(timer);
     }
+    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_collide, *this);
 
     // Integrate velocities, solve velocity constraints, integrate positions.
     if (m_stepComplete && step.dt > Fixed()) {
@@ -226,6 +227,7 @@ void b2World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations)
         const Clock::time_point timer = Clock::now();
         SolveTOI(step);
         m_profile.solveTOINs = Nanos(timer);
+        if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solveTOI, *this);
     }
 
     if (step.dt > Fixed()) m_inv_dt0 = step.inv_dt;

@@ -92,6 +92,8 @@ void b2World::Solve(const b2TimeStep& step) {
         }
     }
 
+    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solve, *this);
+
     const Clock::time_point timer = Clock::now();
     // Synchronise fixtures of bodies that moved, keep angles bounded, flag fast bodies and
     // collect bodies that left the world.
@@ -107,6 +109,7 @@ void b2World::Solve(const b2TimeStep& step) {
     }
     m_contactManager.FindNewContacts();
     m_profile.broadphaseNs += Nanos(timer);
+    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_broadPhase, *this);
 }
 
 void b2World::SolveTOI(const b2TimeStep& step) {

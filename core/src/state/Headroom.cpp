@@ -66,6 +66,16 @@ const char* b2HeadroomClassName(b2HeadroomClass c) noexcept {
     return "none";
 }
 
+int64_t b2HeadroomEntry::PartsPerMillion() const noexcept {
+    if (limit == 0) return 0;
+    detail::S128 n;
+    n.mag = detail::MulU64(maxRaw, 1000000);  // < 2^64 * 2^20: fits 128 bits
+    detail::S128 d;
+    d.mag = detail::U128{0, limit};
+    // maxRaw <= limit + 1 for every class, so the quotient is at most about 1e6.
+    return static_cast<int64_t>(detail::DivRoundS128(n, d).mag.lo);
+}
+
 b2Headroom::b2Headroom() noexcept {
     // The format of each class, in b2HeadroomClass order (Q16.16 state, Q32.32 mass
     // properties, impulses and costs).

@@ -23,6 +23,7 @@
 #include "lockbox/dynamics/Fixture.h"
 #include "lockbox/dynamics/Island.h"
 #include "lockbox/dynamics/Pool.h"
+#include "lockbox/dynamics/StepObserver.h"
 #include "lockbox/dynamics/TimeStep.h"
 #include "lockbox/dynamics/WorldCallbacks.h"
 #include "lockbox/dynamics/joints/Joint.h"
@@ -175,6 +176,10 @@ public:
     bool GetHeadroomTelemetry() const noexcept { return m_headroomTelemetry; }
     /// The contact manager (broad phase, contacts).
     const b2ContactManager& GetContactManager() const noexcept { return m_contactManager; }
+    /// Step fenceposts (StepObserver.h): the observer hears every stage of every Step; nullptr
+    /// (the default) turns them off. Not state: snapshots and the hash ignore it.
+    void SetStepObserver(b2StepObserver* observer) noexcept { m_stepObserver = observer; }
+    b2StepObserver* GetStepObserver() const noexcept { return m_stepObserver; }
 
     // ---- internal (bodies and fixtures call back into the world) ----
     enum : uint32 { e_newFixture = 0x0001, e_locked = 0x0002, e_clearForces = 0x0004 };
@@ -214,6 +219,7 @@ public:
     std::unique_ptr<state_detail::Image, state_detail::ImageDeleter> m_restoreScratch;
     b2Profile m_profile;
     bool m_headroomTelemetry = false;  ///< fill m_profile.headroom at the end of each Step
+    b2StepObserver* m_stepObserver = nullptr;  ///< step fenceposts (not state)
 
 private:
     void Solve(const b2TimeStep& step);

@@ -43,12 +43,9 @@ struct b2HeadroomEntry {
     uint64 maxRaw = 0;  ///< largest |raw| observed (0 when nothing of this class exists)
     uint64 limit = 0;   ///< largest |raw| of the format (Fixed::kMaxRaw or Wide::kMaxRaw)
 
-    /// maxRaw / limit in parts per million, rounded down (integer, deterministic).
-    constexpr int64_t PartsPerMillion() const noexcept {
-        if (limit == 0) return 0;
-        // maxRaw <= 2^63, so split the product to stay inside 64 bits.
-        return static_cast<int64_t>((maxRaw / limit) * 1000000 + ((maxRaw % limit) * 1000000) / limit);
-    }
+    /// maxRaw / limit in parts per million, rounded to nearest (ties away from zero); exact
+    /// integer arithmetic (128-bit product), so deterministic. 0 when limit is 0.
+    int64_t PartsPerMillion() const noexcept;
     /// maxRaw / limit as a double, for display only (never fed back into a simulation).
     double Fraction() const noexcept {
         return limit == 0 ? 0.0 : static_cast<double>(maxRaw) / static_cast<double>(limit);

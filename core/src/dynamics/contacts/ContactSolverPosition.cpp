@@ -17,7 +17,9 @@ struct PositionSolverManifold {
                 const b2Vec2 pointB = b2Mul(xfB, pc->localPoints[0]);
                 normal = pointB - pointA;
                 normal.Normalize();  // coincident centres keep a zero normal (no push)
-                point = b2Vec2(Fixed(0.5) * (pointA.x + pointB.x), Fixed(0.5) * (pointA.y + pointB.y));
+                // The midpoint as A plus half the (translation-invariant) difference: halving
+                // A + B would round ties by the sign of the world coordinate.
+                point = pointA + Fixed(0.5) * (pointB - pointA);
                 separation = b2Dot(pointB - pointA, normal) - pc->radiusA - pc->radiusB;
                 break;
             }

@@ -17,19 +17,11 @@ struct b2Transform {
     void Set(const b2Vec2& position, Fixed angle) noexcept { p = position; q.Set(angle); }
 };
 
-namespace detail {
-/// c1*a + c2*b + offset with the products exact and one rounding (offset is Q16.16).
-constexpr Fixed RotateAndOffset(int64_t exactQ32, Fixed offset) noexcept {
-    return (Wide::FromRaw(exactQ32) + Wide(offset)).ToFixed();
-}
-}  // namespace detail
-
-/// T * v: rotate then translate; each component is rounded once.
-constexpr b2Vec2 b2Mul(const b2Transform& T, const b2Vec2& v) noexcept {
-    const b2Rot& q = T.q;
-    return {detail::RotateAndOffset(detail::DiffOfProducts(q.c.Raw(), v.x.Raw(), q.s.Raw(), v.y.Raw()), T.p.x),
-            detail::RotateAndOffset(detail::SumOfProducts(q.s.Raw(), v.x.Raw(), q.c.Raw(), v.y.Raw()), T.p.y)};
-}
+/// T * v: rotate (rounded once), then translate (exact). Rounding R v before adding p keeps
+/// the result translation invariant: moving a scene by any offset moves every point by exactly
+/// that offset. Rounding R v + p together would round ties by the sign of the world
+/// coordinate, so a scene moved across an axis would drift by a raw (docs/stability.md).
+constexpr b2Vec2 b2Mul(const b2Transform& T, const b2Vec2& v) noexcept { return b2Mul(T.q, v) + T.p; }
 /// inverse(T) * v.
 constexpr b2Vec2 b2MulT(const b2Transform& T, const b2Vec2& v) noexcept { return b2MulT(T.q, v - T.p); }
 /// A * B: the frame B expressed through A.

@@ -1,0 +1,41 @@
+#pragma once
+/// The game side of a replay (issue 9): what an input means is the game's business. The
+/// recorder and the player call Apply before every Step with that frame's inputs, and save and
+/// load the game's own state (beyond the world) with every seed and keyframe, so a game with
+/// state outside the physics still replays and seeks exactly (ARCHITECTURE §4).
+
+#include <span>
+#include <vector>
+
+#include "lockbox/common/Settings.h"
+
+namespace lockbox {
+class b2World;
+}
+
+namespace lockbox::replay {
+
+/// Applies recorded inputs; mirror of SyncTestGame with the step taken by the replay.
+class Game {
+public:
+    virtual ~Game() = default;
+    /// Applies frame `frame`'s inputs (0-based frame number) to the world, which is unlocked.
+    /// `inputs` holds playerCount * inputBytes bytes: player 0's bytes first.
+    virtual void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) = 0;
+    /// State beyond the world that influences later frames (default: none). LoadUserState
+    /// gets back exactly these bytes.
+    virtual void SaveUserState(std::vector<uint8>& out) const { out.clear(); }
+    virtual void LoadUserState(std::span<const uint8> in) { (void)in; }
+};
+
+/// Called by a player at every stored fencepost of a frame (stage numbers as in Format.h's
+/// StageName: 0 inputs applied, 1 collide, 2 solve, 3 broadphase, 4 toi), before the stage is
+/// hashed. For debugging and for tests that inject a fault at a known point; the world is
+/// locked for stages 1 to 4, so only field edits are allowed there.
+class StageHook {
+public:
+    virtual ~StageHook() = default;
+    virtual void OnStage(int32 frame, uint32 stage, b2World& world) = 0;
+};
+
+}  // namespace lockbox::replay

@@ -1,0 +1,123 @@
+#pragma once
+/// Recording a replay (issue 9): the Recorder owns the frame loop of a world and a game. Each
+/// Advance applies the frame's inputs through the game, steps the world with the recorded
+/// settings, hashes the result and appends it; blocks of frames are written as compressed
+/// chunks to a sink (memory or file) as they fill, so a crash loses at most one block.
+
+#include <cstdio>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "lockbox/dynamics/World.h"
+#include "lockbox/replay/Format.h"
+#include "lockbox/replay/Game.h"
+
+namespace lockbox::replay {
+
+/// Where the bytes of a replay go.
+class Sink {
+public:
+    virtual ~Sink() = default;
+    /// Appends bytes; false on failure (the recorder then reports e_io).
+    virtual bool Write(std::span<const uint8> bytes) = 0;
+};
+
+/// A replay kept in memory.
+class MemorySink : public Sink {
+public:
+    bool Write(std::span<const uint8> bytes) override {
+        bytes_.insert(bytes_.end(), bytes.begin(), bytes.end());
+        return true;
+    }
+    const std::vector<uint8>& bytes() const noexcept { return bytes_; }
+    std::vector<uint8>& bytes() noexcept { return bytes_; }
+
+private:
+    std::vector<uint8> bytes_;
+};
+
+/// A replay streamed to a file (created or truncated).
+class FileSink : public Sink {
+public:
+    explicit FileSink(const std::string& path);
+    ~FileSink() override;
+    FileSink(const FileSink&) = delete;
+    FileSink& operator=(const FileSink&) = delete;
+    /// False when the file could not be opened.
+    bool ok() const noexcept { return file_ != nullptr; }
+    bool Write(std::span<const uint8> bytes) override;
+    /// Flushes and closes; false on a write error.
+    bool Close();
+
+private:
+    std::FILE* file_ = nullptr;
+};
+
+/// Recording settings.
+struct RecorderConfig {
+    std::string gameName;            ///< stored in META; tells a player what to build
+    std::vector<uint8> gameParams;   ///< stored in META, opaque
+    uint16 tickRate = 60;            ///< frames per second; the step is round(65536 / tickRate) raw
+    uint16 velocityIterations = 8;
+    uint16 positionIterations = 3;
+    uint16 playerCount = 1;          ///< 1 .. 64
+    uint16 inputBytes = 8;           ///< per player per frame, 0 .. 1024
+    uint32 hashInterval = 1;         ///< store a hash after every this-many frames (>= 1)
+    uint32 keyframeInterval = 600;   ///< a keyframe every this-many frames; 0: none
+    bool stageHashes = false;        ///< store the fencepost hashes of every frame (for bisect)
+    uint32 blockFrames = 60;         ///< frames per INPT/HASH/STAG chunk (>= 1)
+    int compressionLevel = 3;        ///< zstd level; 0 stores chunks raw
+};
+
+/// Records frames of a world driven by a game.
+class Recorder {
+public:
+    /// The world and game must outlive the recorder. Nothing is written before Begin.
+    Recorder(b2World& world, Game& game, Sink& sink, RecorderConfig config);
+    ~Recorder();
+    Recorder(const Recorder&) = delete;
+    Recorder& operator=(const Recorder&) = delete;
+
+    /// Writes the header, META and the seed snapshot (the world's current state).
+    Error Begin();
+    /// One frame: Apply(inputs) then Step. `inputs` must hold playerCount * inputBytes bytes
+    /// (shorter is zero-padded, longer is cut). Returns the state hash after the frame when it
+    /// is stored, else 0.
+    uint64 Advance(std::span<const uint8> inputs);
+    /// One frame that a session has already simulated and confirmed (rollback netcode: the
+    /// world may already be ahead). `hashAfter` must be b2World::Hash of the state after the
+    /// frame; it is stored when the hash interval asks for it. When a keyframe is due,
+    /// `worldAtFrame` (the state after the frame, e.g. a confirmed-state copy) is saved with the
+    /// game's user state; nullptr skips that keyframe. Stage hashes cannot be recorded this way.
+    void AppendConfirmed(std::span<const uint8> inputs, uint64 hashAfter, const b2World* worldAtFrame);
+    /// Writes the pending block and the END record. Further calls do nothing.
+    Error Finish();
+    /// Frames recorded so far.
+    int32 Frames() const noexcept { return frames_; }
+    /// The first write error (e_ok while all writes succeeded).
+    const Error& WriteError() const noexcept { return writeError_; }
+
+private:
+    void Flush();
+    std::span<const uint8> PushInputs(std::span<const uint8> inputs);
+    void Record(uint64 hash, const b2World* keyframeWorld);
+    void Emit(uint32 type, std::span<const uint8> payload);
+
+    b2World& world_;
+    Game& game_;
+    Sink& sink_;
+    RecorderConfig config_;
+    Header header_;
+    bool begun_ = false, finished_ = false;
+    int32 frames_ = 0;
+    int32 blockStart_ = 0;  ///< first frame of the pending block
+    std::vector<uint8> inputBlock_;
+    std::vector<uint64> hashBlock_;
+    int32 hashBlockStart_ = -1;  ///< frame of the first pending hash
+    std::vector<uint64> stageBlock_;
+    std::vector<uint8> scratch_, chunk_, user_;
+    Error writeError_;
+};
+
+}  // namespace lockbox::replay
