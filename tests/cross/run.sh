@@ -2,53 +2,130 @@
 # Cross-compiler / cross-architecture determinism check (issue 7, docs/determinism.md).
 #
 # Builds tests/cross/cross_driver.cpp together with the fixed/, core/ and scene-library sources
-# (no CMake, xxHash header-only via -DXXH_INLINE_ALL) for every configuration of
+# (no CMake; a jumbo build planned by tests/cross/unity.py; xxHash header-only through
+# -DXXH_INLINE_ALL) for every configuration ("cell") of
 #   {g++, clang++} x {-O0, -O2, -O3 (+ -march=native -ffast-math natively, -ffast-math cross)}
 #   x {x86-64 native, i686 (static, runs natively), aarch64 and s390x (qemu-user)}
-# runs each one against tests/golden/hashes.txt and the fixed-function golden values, prints a
-# pass/fail matrix, and exits non-zero on any mismatch or build failure.
+# runs each one against tests/golden/hashes.txt, the fixed-function golden values and
+# tests/cross/snapshot_golden.txt, checks that all cells printed the same values, prints a
+# pass/fail matrix with per-cell times, and exits non-zero on any mismatch, build failure or
+# missing toolchain.
 #
-# Usage: tests/cross/run.sh [--quick] [--no-install] [--jobs N]
-#   --quick       every architecture and compiler, one flag set each, rotating by day of year
+# Usage: tests/cross/run.sh [--ci | --quick] [--no-install] [--jobs N] [--only LIST]
+#                           [--no-unity] [--keep DIR] [--rev REV]
+#   --ci          the CI mode (.ci/run): every architecture and compiler, one flag set each,
+#                 rotating by day of year; tumbler stops at step 1 in emulated cells and at
+#                 step 60 in native -O0 and i686 cells (see $qemu_ci_limits below);
+#                 LOCKBOX_CROSS_CLANG_CROSS=0 is ignored (every cell must build and run).
+#   --quick       like --ci but without the tumbler limits.
 #   --no-install  skip scripts/install-deps.sh --cross (toolchains already present)
-#   --jobs N      parallel compile jobs per configuration (default 2)
+#   --jobs N      cells built and run at the same time (default 2: on a 2-core machine one
+#                 cell compiles while another runs)
 #   --only LIST   only these cells, e.g. "s390x/gcc/1 x86_64/clang/2" (arch/compiler/flag index:
-#                 0 = -O0, 1 = -O2, 2 = -O3 fast), in the given order
-# Environment: LOCKBOX_CROSS_CLANG_CROSS=0 skips clang for the non-native architectures;
-#   LOCKBOX_CROSS_QEMU_O0_MAX_STEP (default 60) limits the steps checked by emulated -O0 builds.
+#                 0 = -O0, 1 = -O2, 2 = -O3 fast)
+#   --no-unity    compile one object per source instead of the jumbo TUs (for comparison)
+#   --keep DIR    keep the work directory (logs, unity TUs, executables) in DIR
+#   --rev REV     take fixed/, core/, samples/scenes/ and tests/golden/ from git revision REV
+#                 (e.g. HEAD) instead of the working tree; tests/cross/ always comes from the
+#                 working tree (for a long run while the tree is being edited)
+# Environment: LOCKBOX_CROSS_CLANG_CROSS=0 skips clang for the non-native architectures
+#   (not in --ci); LOCKBOX_CROSS_QEMU_O0_MAX_STEP (default 60) limits the steps checked by
+#   emulated -O0 builds; LOCKBOX_CROSS_SCENES (driver --scenes syntax, "a,b:N") limits every
+#   cell, LOCKBOX_CROSS_QEMU_SCENES the emulated cells, to those scenes. A toolchain that
+#   cannot be found is always a failure.
 set -u
-
+# The whole script is one brace group: bash parses it completely before running it, so editing
+# this file during a long run cannot change the running script.
+{
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-quick=0
+mode=full
 only=""
 install=1
 jobs=2
+unity=1
+keep=""
+rev=""
 while [ $# -gt 0 ]; do
     case "$1" in
-        --quick) quick=1 ;;
+        --ci) mode=ci ;;
+        --quick) mode=quick ;;
         --no-install) install=0 ;;
         --jobs) shift; jobs=$1 ;;
         --only) shift; only=$1 ;;
+        --no-unity) unity=0 ;;
+        --keep) shift; keep=$1 ;;
+        --rev) shift; rev=$1 ;;
         *) echo "run.sh: unknown argument '$1'" >&2; exit 2 ;;
     esac
     shift
 done
+
+# Step limits in --ci. tumbler (2,025 boxes in a rotating drum) takes nine tenths of the light
+# scenes' time: about 370 s to step 600 under qemu at -O2 (aarch64), 200 s to step 60 under
+# qemu at -O0 (s390x), 500 s to step 600 natively at -O0 (x86-64), and i686 (no native 128-bit
+# integers) is about four times slower than x86-64 at any level (figures from a loaded
+# machine; docs/determinism.md). So emulated cells check its step 1 only, native -O0 cells and
+# every i686 cell its steps 1 and 60; x86-64 -O2/-O3 cells run it in full, and every other
+# light scene runs to step 600 everywhere (60 in emulated -O0 cells).
+qemu_ci_limits="tumbler:1"
+native_slow_ci_limits="tumbler:60"
 
 start=$(date +%s)
 if [ "$install" -eq 1 ]; then
     bash "$root/scripts/install-deps.sh" --cross || { echo "run.sh: install-deps.sh --cross failed" >&2; exit 2; }
 fi
 
-work=$(mktemp -d /tmp/lockbox-cross.XXXXXX)
-trap 'rm -rf "$work"' EXIT
+if [ -n "$keep" ]; then
+    work=$keep
+    rm -rf "$work" && mkdir -p "$work" || exit 2
+else
+    work=$(mktemp -d /tmp/lockbox-cross.XXXXXX)
+    trap 'rm -rf "$work"' EXIT
+fi
 
-# The cross compilers do not search /usr/include (x86 packages): give them xxhash.h alone.
+# A private copy of the sources: a run takes minutes to hours, and the working tree may change
+# meanwhile; every cell must build the same code.
+src="$work/src"
+mkdir -p "$src/tests" "$src/samples/scenes"
+if [ -n "$rev" ]; then
+    git -C "$root" archive "$rev" fixed core samples/scenes/include samples/scenes/src tests/golden |
+        tar -x -C "$src" && cp -r "$root/tests/cross" "$src/tests/" ||
+        { echo "run.sh: cannot extract the sources of $rev" >&2; exit 2; }
+    echo "[cross] sources: $(git -C "$root" rev-parse --short "$rev") ($rev), tests/cross from the working tree"
+else
+    cp -r "$root/fixed" "$root/core" "$src/" &&
+        cp -r "$root/samples/scenes/include" "$root/samples/scenes/src" "$src/samples/scenes/" &&
+        cp -r "$root/tests/cross" "$root/tests/golden" "$src/tests/" ||
+        { echo "run.sh: cannot copy the sources" >&2; exit 2; }
+fi
+
+# The cross compilers do not search /usr/include (x86 packages): give them the header-only
+# dependencies of core/ (xxHash, Cereal for snapshots) alone.
 mkdir -p "$work/include"
 cp /usr/include/xxhash.h "$work/include/" || { echo "run.sh: /usr/include/xxhash.h missing (libxxhash-dev)" >&2; exit 2; }
+[ -d /usr/include/cereal ] && cp -r /usr/include/cereal "$work/include/"
 
-sources=$(cd "$root" && find fixed/src core/src samples/scenes/src -name '*.cpp' | LC_ALL=C sort)
+sources=$(cd "$src" && find fixed/src core/src samples/scenes/src -name '*.cpp' | LC_ALL=C sort)
 sources="$sources tests/cross/cross_driver.cpp"
-includes="-I$root/fixed/include -I$root/core/include -I$root/samples/scenes/include -I$root/tests/cross -I$work/include"
+incdirs="fixed/include core/include samples/scenes/include tests/cross"
+includes="-I$work/include"
+for d in $incdirs; do includes="$includes -I$src/$d"; done
+defines="-DXXH_INLINE_ALL"
+# The snapshot comparison needs b2World::Save (issue 7); it compiles in once core defines it.
+if grep -rqs 'b2World::Save' "$src/core/src"; then defines="$defines -DLOCKBOX_CROSS_SNAPSHOT"; fi
+
+if [ "$unity" -eq 1 ]; then
+    uargs=""
+    for d in $incdirs; do uargs="$uargs -I $d"; done
+    # shellcheck disable=SC2086
+    tus=$(cd "$src" && python3 tests/cross/unity.py --root . --out "$work/unity" --report $uargs $sources 2> "$work/unity.log") ||
+        { cat "$work/unity.log" >&2; echo "run.sh: tests/cross/unity.py failed" >&2; exit 2; }
+    echo "[cross] jumbo build: $(echo "$tus" | wc -w) TUs from $(echo "$sources" | wc -w) sources"
+    sed 's/^/    /' "$work/unity.log"
+else
+    tus=""
+    for s in $sources; do tus="$tus $src/$s"; done
+fi
 
 # Flag sets; index 2 differs natively (-march=native) and across architectures.
 flagset() {  # $1 arch, $2 index
@@ -60,7 +137,7 @@ flagset() {  # $1 arch, $2 index
 }
 flaglabel() { case "$1" in 0) echo "-O0" ;; 1) echo "-O2" ;; 2) echo "-O3fast" ;; esac; }
 
-compiler() {  # $1 arch, $2 family -> compiler command (empty: unavailable)
+compiler() {  # $1 arch, $2 family -> compiler command (empty: switched off)
     case "$1/$2" in
         x86_64/gcc) echo "g++" ;;
         x86_64/clang) echo "clang++" ;;
@@ -68,7 +145,7 @@ compiler() {  # $1 arch, $2 family -> compiler command (empty: unavailable)
         aarch64/gcc) echo "aarch64-linux-gnu-g++" ;;
         s390x/gcc) echo "s390x-linux-gnu-g++" ;;
         */clang)
-            if [ "${LOCKBOX_CROSS_CLANG_CROSS:-1}" = 1 ]; then
+            if [ "${LOCKBOX_CROSS_CLANG_CROSS:-1}" = 1 ] || [ "$mode" = ci ]; then
                 local extra=""
                 [ "$1" = i686 ] && extra=" -static"
                 echo "clang++ --target=$1-linux-gnu$extra"
@@ -84,85 +161,204 @@ runner() {  # $1 arch
     esac
 }
 
-build_and_run() {  # $1 arch, $2 family, $3 flag index -> prints status, returns 0 on pass
-    local arch=$1 fam=$2 idx=$3
-    local cxx flags dir exe
-    cxx=$(compiler "$arch" "$fam")
-    [ -z "$cxx" ] && { echo "SKIP"; return 0; }
-    flags=$(flagset "$arch" "$idx")
+# Missing pieces of a cell's toolchain, empty when complete.
+missing_tools() {  # $1 arch, $2 compiler command, $3 runner command
+    local m=""
+    command -v "${2%% *}" > /dev/null 2>&1 || m="$m ${2%% *}"
+    [ -n "$3" ] && { command -v "${3%% *}" > /dev/null 2>&1 || m="$m ${3%% *}"; }
+    [ "$1" != x86_64 ] && [ ! -d "/usr/$1-linux-gnu" ] && m="$m /usr/$1-linux-gnu"
+    echo "$m"
+}
+
+report_cell() {  # $1 cell: prints its line (and the tail of its logs on failure)
+    local arch fam idx dir status bs rs
+    IFS=/ read -r arch fam idx <<< "$1"
     dir="$work/$arch-$fam-$idx"
+    status=NO-RESULT bs=0 rs=0
+    [ -s "$dir/result" ] && read -r status bs rs < "$dir/result"
+    # One write, so that the reports of cells finishing together do not interleave.
+    local text
+    text="[cross] $arch $fam $(flaglabel "$idx"): $status (build $bs s, run $rs s)"
+    if [ "$status" != pass ] && [ "$status" != SKIP ]; then
+        text="$text
+$(tail -n 20 "$dir/build.log" "$dir/run.log" 2>/dev/null | sed 's/^/    /')"
+    fi
+    printf '%s\n' "$text"
+}
+
+# Builds and runs one cell; writes "status build_s run_s" to $dir/result and reports it.
+run_cell() {
+    build_and_run "$@"
+    report_cell "$1/$2/$3"
+}
+
+build_and_run() {  # $1 arch, $2 family, $3 flag index
+    local arch=$1 fam=$2 idx=$3
+    local dir="$work/$arch-$fam-$idx" cxx flags run t0 t1 t2 miss
     mkdir -p "$dir"
-    exe="$dir/cross_driver"
-    # One object per source, $jobs at a time; the link step uses the same flags.
-    # shellcheck disable=SC2086
-    if ! printf '%s\n' $sources | xargs -P "$jobs" -I{} sh -c \
-        'o="$0/$(echo "{}" | tr / _).o"; cd "$1" && $2 -std=c++20 $3 -DXXH_INLINE_ALL $4 -c "{}" -o "$o"' \
-        "$dir" "$root" "$cxx" "$flags" "$includes" > "$dir/build.log" 2>&1; then
-        echo "BUILD-FAIL"; return 1
-    fi
-    # shellcheck disable=SC2086
-    if ! $cxx -std=c++20 $flags "$dir"/*.o -o "$exe" >> "$dir/build.log" 2>&1; then
-        echo "LINK-FAIL"; return 1
-    fi
-    local run limit=""
+    cxx=$(compiler "$arch" "$fam")
     run=$(runner "$arch")
-    # Emulated unoptimised builds are the slowest cell by far: they check steps <= 60 only
-    # (LOCKBOX_CROSS_QEMU_O0_MAX_STEP overrides; 600 gives the full lines).
-    if [ -n "$run" ] && [ "$idx" = 0 ]; then limit="--max-step ${LOCKBOX_CROSS_QEMU_O0_MAX_STEP:-60}"; fi
-    # shellcheck disable=SC2086
-    if $run "$exe" "$root/tests/golden/hashes.txt" $limit > "$dir/run.log" 2>&1; then
-        echo "pass"; return 0
+    [ -z "$cxx" ] && { echo "SKIP 0 0" > "$dir/result"; return; }
+    miss=$(missing_tools "$arch" "$cxx" "$run")
+    if [ -n "$miss" ]; then
+        echo "missing:$miss" > "$dir/build.log"
+        echo "NO-TOOLCHAIN 0 0" > "$dir/result"; return
     fi
-    echo "FAIL"; return 1
+    flags=$(flagset "$arch" "$idx")
+    t0=$(date +%s)
+    local tu n=0 objs=""
+    for tu in $tus; do
+        # shellcheck disable=SC2086
+        if ! $cxx -std=c++20 $flags $defines $includes -c "$tu" -o "$dir/$n.o" >> "$dir/build.log" 2>&1; then
+            echo "BUILD-FAIL $(( $(date +%s) - t0 )) 0" > "$dir/result"; return
+        fi
+        objs="$objs $dir/$n.o"
+        n=$((n + 1))
+    done
+    # shellcheck disable=SC2086
+    if ! $cxx -std=c++20 $flags $objs -o "$dir/cross_driver" >> "$dir/build.log" 2>&1; then
+        echo "LINK-FAIL $(( $(date +%s) - t0 )) 0" > "$dir/result"; return
+    fi
+    t1=$(date +%s)
+    local args=()
+    [ -n "${LOCKBOX_CROSS_SCENES:-}" ] && args+=(--scenes "$LOCKBOX_CROSS_SCENES")
+    if [ -n "$run" ]; then
+        # Emulated unoptimised builds are the slowest cells by far: they check steps <= 60
+        # only (LOCKBOX_CROSS_QEMU_O0_MAX_STEP overrides; 600 gives the full lines).
+        [ "$idx" = 0 ] && args+=(--max-step "${LOCKBOX_CROSS_QEMU_O0_MAX_STEP:-60}")
+        [ -n "${LOCKBOX_CROSS_QEMU_SCENES:-}" ] && args+=(--scenes "$LOCKBOX_CROSS_QEMU_SCENES")
+        [ "$mode" = ci ] && args+=(--limits "$qemu_ci_limits")
+    elif [ "$mode" = ci ] && { [ "$idx" = 0 ] || [ "$arch" = i686 ]; }; then
+        args+=(--limits "$native_slow_ci_limits")
+    fi
+    local status=FAIL
+    # shellcheck disable=SC2086
+    if $run "$dir/cross_driver" "$src/tests/golden/hashes.txt" --snapshot-golden "$src/tests/cross/snapshot_golden.txt" \
+        "${args[@]}" > "$dir/run.log" 2> "$dir/time.log"; then
+        status=pass
+    fi
+    t2=$(date +%s)
+    echo "$status $((t1 - t0)) $((t2 - t1))" > "$dir/result"
 }
 
 arches="x86_64 i686 aarch64 s390x"
 families="gcc clang"
 day=$((10#$(date +%j)))
-failures=0
-declare -A result
-declare -A secs
 cells=""
 k=0
 for arch in $arches; do
     for fam in $families; do
-        if [ "$quick" -eq 1 ]; then
-            cells="$cells $arch/$fam/$(( (day + k) % 3 ))"
-        else
+        if [ "$mode" = full ]; then
             cells="$cells $arch/$fam/0 $arch/$fam/1 $arch/$fam/2"
+        else
+            cells="$cells $arch/$fam/$(( (day + k) % 3 ))"
         fi
         k=$((k + 1))
     done
 done
 [ -n "$only" ] && cells=$only
+
+# Longest first (emulated, then unoptimised), so the short native cells fill the gaps at the
+# end; ties keep the listed order.
+order=$(for cell in $cells; do
+    IFS=/ read -r arch fam idx <<< "$cell"
+    w=0
+    [ -n "$(runner "$arch")" ] && w=2
+    [ "$idx" = 0 ] && w=$((w + 1))
+    echo "$((9 - w)) $cell"
+done | sort -s -k1,1n | cut -d' ' -f2)
+
+# $jobs cells at a time: each compiles its TUs one after the other, then runs, so on two
+# cores one cell's compile overlaps another's (usually emulated) run.
+running=0
+for cell in $order; do
+    if [ "$running" -ge "$jobs" ]; then
+        wait -n
+        running=$((running - 1))
+    fi
+    IFS=/ read -r arch fam idx <<< "$cell"
+    run_cell "$arch" "$fam" "$idx" &
+    running=$((running + 1))
+done
+wait
+
+failures=0
+declare -A result
+declare -A secs
 for cell in $cells; do
     IFS=/ read -r arch fam idx <<< "$cell"
-    t0=$(date +%s)
-    status=$(build_and_run "$arch" "$fam" "$idx")
-    [ "$status" = pass ] || [ "$status" = SKIP ] || failures=$((failures + 1))
-    result[$arch/$fam/$idx]=$status
-    secs[$arch/$fam/$idx]=$(( $(date +%s) - t0 ))
-    echo "[cross] $arch $fam $(flaglabel "$idx"): $status (${secs[$arch/$fam/$idx]} s)"
-    if [ "$status" != pass ] && [ "$status" != SKIP ]; then
-        tail -n 20 "$work/$arch-$fam-$idx/build.log" "$work/$arch-$fam-$idx/run.log" 2>/dev/null | sed 's/^/    /'
-    fi
+    # A cell that wrote no result (killed, or its shell failed) is a failure too.
+    status=NO-RESULT bs=0 rs=0
+    [ -s "$work/$arch-$fam-$idx/result" ] && read -r status bs rs < "$work/$arch-$fam-$idx/result"
+    result[$cell]=$status
+    secs[$cell]=$((bs + rs))
+    # A missing toolchain (NO-TOOLCHAIN) is a failure: only LOCKBOX_CROSS_CLANG_CROSS=0
+    # outside --ci gives SKIP.
+    case "$status" in
+        pass | SKIP) ;;
+        *) failures=$((failures + 1)) ;;
+    esac
 done
+
+# Every value printed by any two cells for the same item (function, scene step, snapshot) must
+# agree, whatever the golden file says: this separates a stale golden file (all cells agree
+# on new values) from a real cross-build difference.
+logs=""
+for cell in $cells; do
+    IFS=/ read -r arch fam idx <<< "$cell"
+    [ -s "$work/$arch-$fam-$idx/run.log" ] && logs="$logs $work/$arch-$fam-$idx/run.log"
+done
+divergent=0
+if [ -n "$logs" ]; then
+    # shellcheck disable=SC2086
+    awk -v work="$work/" '
+        $1 == "PASS:" || $1 == "FAIL:" { next }
+        {
+            cell = substr(FILENAME, length(work) + 1); sub("/run.log$", "", cell)
+            item = ($2 == "function" || $2 == "snapshot") ? $2 " " $3 : $2
+            for (i = 2; i <= NF; ++i) {
+                if (index($i, "=") == 0) continue
+                split($i, kv, "=")
+                key = item " " kv[1]
+                if (!(key in value)) { value[key] = kv[2]; first[key] = cell }
+                else if (value[key] != kv[2] && !(key in reported)) {
+                    reported[key] = 1; ++n
+                    printf "[cross] DIVERGENCE %s: %s=%s in %s, %s in %s\n", item, kv[1], value[key], first[key], kv[2], cell
+                }
+            }
+        }
+        END { exit n > 0 }' $logs || divergent=1
+fi
+
+# The snapshot line (all cells printed the same one unless a DIVERGENCE was reported above).
+if [ -n "$logs" ]; then
+    # shellcheck disable=SC2086
+    grep -h ' snapshot ' $logs | sort | uniq -c | while read -r n line; do
+        echo "[cross] $n cell(s) printed: $line"
+    done
+fi
+
 echo
-printf '%-8s %-6s %-12s %-12s %-12s\n' arch cc "-O0" "-O2" "-O3fast"
+printf '%-8s %-6s %-18s %-18s %-18s\n' arch cc "-O0" "-O2" "-O3fast"
 for arch in $arches; do
     for fam in $families; do
         printf '%-8s %-6s' "$arch" "$fam"
         for idx in 0 1 2; do
             cell=${result[$arch/$fam/$idx]:--}
             [ "$cell" != - ] && cell="$cell(${secs[$arch/$fam/$idx]}s)"
-            printf ' %-12s' "$cell"
+            printf ' %-18s' "$cell"
         done
         printf '\n'
     done
 done
-echo "total time: $(( $(date +%s) - start )) s; mode: $([ "$quick" -eq 1 ] && echo quick || echo full)"
-if [ "$failures" -ne 0 ]; then
+echo "total time: $(( $(date +%s) - start )) s; mode: $mode; $(echo "$tus" | wc -w) TU(s) per cell; jobs: $jobs"
+if [ "$divergent" -ne 0 ]; then
+    echo "cross: cells DISAGREE with each other (see DIVERGENCE lines): a real cross-build difference"
+fi
+if [ "$failures" -ne 0 ] || [ "$divergent" -ne 0 ]; then
     echo "cross: $failures configuration(s) FAILED"
     exit 1
 fi
-echo "cross: all configurations match the golden hashes"
+echo "cross: all configurations match the golden hashes and each other"
+exit 0
+}
