@@ -4,6 +4,7 @@
 // reads, so there is no user state to save.
 
 #include <string_view>
+#include <vector>
 
 #include "StateTestUtil.h"
 #include "lockbox/state/SyncTest.h"
@@ -29,6 +30,16 @@ private:
 inline bool IsLargeScene(const scenes::LockboxScene& scene) {
     const auto name = scene.Info().name;
     return scene.Info().heavy || name == "rain" || name == "joint_grid" || name == "tumbler";
+}
+
+/// The library scenes on one side of IsLargeScene, in library order.
+inline std::vector<std::string_view> SceneNames(bool large) {
+    std::vector<std::string_view> names;
+    for (auto name : scenes::AllSceneNames()) {
+        auto scene = scenes::MakeLockboxScene(name);
+        if (scene && IsLargeScene(*scene) == large) names.push_back(name);
+    }
+    return names;
 }
 
 /// Runs the sync test on a freshly built scene; returns its result. stride as in

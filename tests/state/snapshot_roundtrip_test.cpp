@@ -71,17 +71,8 @@ TEST_P(SnapshotRoundTrip, InPlaceRollbackKeepsAddressesAndBits) {
     EXPECT_EQ(run.world().Hash(), endHash);
 }
 
-// The large scenes (many thousand bodies) are round-tripped by the heavy suite.
-std::vector<std::string_view> LightScenes() {
-    std::vector<std::string_view> names;
-    for (auto name : scenes::AllSceneNames()) {
-        auto scene = scenes::MakeLockboxScene(name);
-        if (scene && !testing_state::IsLargeScene(*scene)) names.push_back(name);
-    }
-    return names;
-}
 
-INSTANTIATE_TEST_SUITE_P(Scenes, SnapshotRoundTrip, ::testing::ValuesIn(LightScenes()),
+INSTANTIATE_TEST_SUITE_P(Scenes, SnapshotRoundTrip, ::testing::ValuesIn(testing_state::SceneNames(/*large=*/false)),
                          [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 
 }  // namespace

@@ -10,14 +10,6 @@ namespace {
 
 using testing_state::RunSceneSyncTest;
 
-std::vector<std::string_view> LightScenes() {
-    std::vector<std::string_view> names;
-    for (auto name : scenes::AllSceneNames()) {
-        auto scene = scenes::MakeLockboxScene(name);
-        if (scene && !testing_state::IsLargeScene(*scene)) names.push_back(name);
-    }
-    return names;
-}
 
 class SceneSync : public ::testing::TestWithParam<std::string_view> {};
 
@@ -69,7 +61,7 @@ TEST(SyncTestTool, EdgeListsFollowWorldListsAfterChurn) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Light, SceneSync, ::testing::ValuesIn(LightScenes()),
+INSTANTIATE_TEST_SUITE_P(Light, SceneSync, ::testing::ValuesIn(testing_state::SceneNames(/*large=*/false)),
                          [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 
 // A game that keeps a counter outside the world but does not save it: the sync test must

@@ -96,10 +96,8 @@ b2SnapshotStats b2World::SaveStats() const {
     b2SnapshotStats stats;
     stats.headerBytes = static_cast<uint32>(kHeaderBytes);
     stats.totalBytes = static_cast<uint32>(image.size());
-    uint32* bySection[kSectionCount] = {&stats.settingsBytes, &stats.fixtureBytes, &stats.bodyBytes,
+    uint32* bySection[kSectionCount] = {&stats.settingsBytes, &stats.bodyBytes, &stats.fixtureBytes,
                                         &stats.contactBytes, &stats.jointBytes, &stats.broadPhaseBytes};
-    bySection[1] = &stats.bodyBytes;
-    bySection[2] = &stats.fixtureBytes;
     // Walk the section headers: tag, length (little-endian), contents. The 8 header bytes
     // count toward their section.
     size_t at = kHeaderBytes;

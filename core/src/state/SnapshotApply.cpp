@@ -13,11 +13,22 @@
 namespace lockbox::state_detail {
 namespace {
 
+/// Appends a node at the tail of a doubly linked world list (bodies, contacts, joints).
+template <class T>
+void AppendToWorldList(T* node, T*& head, T*& tail) {
+    node->m_prev = tail;
+    node->m_next = nullptr;
+    if (tail != nullptr) tail->m_next = node;
+    else head = node;
+    tail = node;
+}
+
 void ApplyBodies(const Image& img, b2World& world) {
     const b2BodyDef def;
     world.m_bodies.RestoreLayout(img.bodyPool.live, img.bodyPool.free,
                                  [&](void* slot, int32 id) { ::new (slot) b2Body(&def, &world, id); });
     b2Body* previous = nullptr;
+    world.m_bodyList = nullptr;
     for (const BodyImage& bi : img.bodies) {
         b2Body* b = world.m_bodies.Get(bi.id);
         b->m_type = static_cast<b2BodyType>(bi.type);
@@ -47,13 +58,8 @@ void ApplyBodies(const Image& img, b2World& world) {
         b->m_contactList = nullptr;
         b->m_jointList = nullptr;
         // World body list in image order.
-        b->m_prev = previous;
-        b->m_next = nullptr;
-        if (previous != nullptr) previous->m_next = b;
-        else world.m_bodyList = b;
-        previous = b;
+        AppendToWorldList(b, world.m_bodyList, previous);
     }
-    if (previous == nullptr) world.m_bodyList = nullptr;
     world.m_bodyCount = static_cast<int32>(img.bodies.size());
 }
 
@@ -168,6 +174,7 @@ void ApplyContacts(const Image& img, b2World& world) {
         ::new (slot) b2Contact(fixtures.Get(ci.fixtureA), ci.indexA, fixtures.Get(ci.fixtureB), ci.indexB, id);
     });
     b2Contact* previous = nullptr;
+    cm.m_contactList = nullptr;
     for (const ContactImage& ci : img.contacts) {
         b2Contact* c = cm.GetContact(ci.id);
         c->m_fixtureA = fixtures.Get(ci.fixtureA);
@@ -184,13 +191,8 @@ void ApplyContacts(const Image& img, b2World& world) {
         b2Body* bodyB = c->m_fixtureB->m_body;
         c->m_nodeA = b2ContactEdge{bodyB, c, nullptr, nullptr};
         c->m_nodeB = b2ContactEdge{bodyA, c, nullptr, nullptr};
-        c->m_prev = previous;
-        c->m_next = nullptr;
-        if (previous != nullptr) previous->m_next = c;
-        else cm.m_contactList = c;
-        previous = c;
+        AppendToWorldList(c, cm.m_contactList, previous);
     }
-    if (previous == nullptr) cm.m_contactList = nullptr;
     cm.m_contactCount = static_cast<int32>(img.contacts.size());
     // Each body's edges are in world-list order (StateWalk.h): prepending in reverse list
     // order rebuilds them.
@@ -247,6 +249,7 @@ void ApplyJoints(Image& img, b2World& world) {
     world.m_joints.assign(static_cast<size_t>(maxId + 1), nullptr);
     world.m_jointIdHint = 0;
     b2Joint* previous = nullptr;
+    world.m_jointList = nullptr;
     for (JointImage& ji : img.joints) {
         b2Joint* j = target[static_cast<size_t>(ji.id)];
         if (j == ji.state.get()) (void)ji.state.release();  // the world owns it now
@@ -261,13 +264,8 @@ void ApplyJoints(Image& img, b2World& world) {
         j->m_edgeA = b2JointEdge{j->m_bodyB, j, nullptr, nullptr};
         j->m_edgeB = b2JointEdge{j->m_bodyA, j, nullptr, nullptr};
         world.m_joints[static_cast<size_t>(ji.id)] = j;
-        j->m_prev = previous;
-        j->m_next = nullptr;
-        if (previous != nullptr) previous->m_next = j;
-        else world.m_jointList = j;
-        previous = j;
+        AppendToWorldList(j, world.m_jointList, previous);
     }
-    if (previous == nullptr) world.m_jointList = nullptr;
     world.m_jointCount = static_cast<int32>(img.joints.size());
     for (auto it = img.joints.rbegin(); it != img.joints.rend(); ++it) {
         b2Joint* j = world.m_joints[static_cast<size_t>(it->id)];

@@ -29,16 +29,8 @@ TEST_P(SnapshotLarge, FreshWorldMatches) {
     }
 }
 
-std::vector<std::string_view> LargeScenes() {
-    std::vector<std::string_view> names;
-    for (auto name : scenes::AllSceneNames()) {
-        auto scene = scenes::MakeLockboxScene(name);
-        if (scene && testing_state::IsLargeScene(*scene)) names.push_back(name);
-    }
-    return names;
-}
 
-INSTANTIATE_TEST_SUITE_P(Large, SnapshotLarge, ::testing::ValuesIn(LargeScenes()),
+INSTANTIATE_TEST_SUITE_P(Large, SnapshotLarge, ::testing::ValuesIn(testing_state::SceneNames(/*large=*/true)),
                          [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 
 }  // namespace
