@@ -21,6 +21,14 @@ struct Point {
     const Keyframe* snapshot;  // nullptr for the end record
 };
 
+// The first velocity/position phase whose hash differs, when the file stores them.
+int32 FirstSolvePhase(const uint64* want, const uint64* got) {
+    if (want == nullptr) return -1;
+    for (uint32 p = 0; p < kSolvePhasesPerFrame; ++p)
+        if (want[p] != got[p]) return static_cast<int32>(p);
+    return -1;
+}
+
 }  // namespace
 
 BisectResult Bisect(Player& player) {
@@ -86,6 +94,7 @@ BisectResult Bisect(Player& player) {
                 r.stage = static_cast<int32>(s);
                 r.expected = want[s];
                 r.actual = got[s];
+                if (s == 2) r.solvePhase = FirstSolvePhase(file.SolvePhases(frame), player.LastSolvePhases());
                 player.SetStageHashing(false);
                 return finish();
             }
@@ -119,6 +128,7 @@ std::string BisectResult::Describe() const {
         s = "DIVERGED at frame " + std::to_string(frame) + (frameExact ? "" : " (or earlier in its hash interval)");
         if (stage >= 0 && stage < kStageAfterToi) {
             s += ", stage " + std::string(StageName(static_cast<uint32>(stage)));
+            if (solvePhase >= 0) s += " (" + std::string(SolvePhaseName(static_cast<uint32>(solvePhase))) + ")";
             s += stage == 0 ? " (the inputs or the state before the step)" : "";
         } else if (stage == kStageAfterToi) {
             s += ", after the toi stage (force clearing, world bounds)";

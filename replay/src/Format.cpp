@@ -8,6 +8,11 @@ const char* StageName(uint32 stage) noexcept {
     return stage < kStagesPerFrame ? kNames[stage] : "none";
 }
 
+const char* SolvePhaseName(uint32 phase) noexcept {
+    static const char* const kNames[kSolvePhasesPerFrame] = {"velocity solve", "position solve"};
+    return phase < kSolvePhasesPerFrame ? kNames[phase] : "none";
+}
+
 const char* ErrorCodeName(ErrorCode code) noexcept {
     switch (code) {
         case ErrorCode::e_ok: return "ok";

@@ -70,6 +70,7 @@ bool Player::Step() {
         world_.Step(dt, file_.header.velocityIterations, file_.header.positionIterations);
         world_.SetStepObserver(previous);
         for (uint32 i = 0; i < kStagesPerFrame; ++i) lastStages_[i] = stages.stages[i];
+        for (uint32 i = 0; i < kSolvePhasesPerFrame; ++i) lastSolve_[i] = stages.solve[i];
     } else {
         world_.Step(dt, file_.header.velocityIterations, file_.header.positionIterations);
     }

@@ -16,10 +16,20 @@ std::span<const uint8> ReplayFile::Inputs(int32 frame) const noexcept {
     return std::span<const uint8>(inputs.data() + static_cast<size_t>(frame) * n, n);
 }
 
-const uint64* ReplayFile::Stages(int32 frame) const noexcept {
+namespace {
+const uint64* PerFrame(const std::vector<uint64>& all, int32 frame, int32 frameCount, uint32 per) noexcept {
     if (frame < 0 || frame >= frameCount) return nullptr;
-    const size_t at = static_cast<size_t>(frame) * kStagesPerFrame;
-    return at + kStagesPerFrame <= stageHashes.size() ? stageHashes.data() + at : nullptr;
+    const size_t at = static_cast<size_t>(frame) * per;
+    return at + per <= all.size() ? all.data() + at : nullptr;
+}
+}  // namespace
+
+const uint64* ReplayFile::Stages(int32 frame) const noexcept {
+    return PerFrame(stageHashes, frame, frameCount, kStagesPerFrame);
+}
+
+const uint64* ReplayFile::SolvePhases(int32 frame) const noexcept {
+    return PerFrame(solveHashes, frame, frameCount, kSolvePhasesPerFrame);
 }
 
 const Keyframe& ReplayFile::NearestKeyframe(int32 frame) const noexcept {
@@ -38,6 +48,7 @@ struct Parser {
     int32 index = 0;
     int32 inputFrames = 0;
     int32 stageFrames = 0;
+    int32 solveFrames = 0;
     bool haveMeta = false, haveSeed = false, haveEnd = false;
 
     Error Fail(ErrorCode code, int32 frame, std::string message) const {
@@ -49,6 +60,22 @@ struct Parser {
         e.frame = frame;
         e.message = std::move(message);
         return e;
+    }
+
+    // A block of per-frame hashes (STAG, SOLV): {first frame, count, values per frame, values}.
+    Error FrameHashes(detail::ByteReader& r, const char* name, uint32 expectPer, int32& framesSoFar,
+                      std::vector<uint64>& into) const {
+        const uint32 first = r.U32();
+        const uint32 count = r.U32();
+        const uint32 per = r.U32();
+        if (r.failed() || per != expectPer || static_cast<uint64>(count) * per * 8 != r.Remaining())
+            return Fail(ErrorCode::e_badChunk, -1, std::string(name) + " chunk sizes do not add up");
+        if (first != static_cast<uint32>(framesSoFar) || static_cast<uint64>(first) + count > static_cast<uint64>(inputFrames))
+            return Fail(ErrorCode::e_badChunk, static_cast<int32>(std::min<uint32>(first, INT32_MAX)),
+                        std::string(name) + " hashes out of sequence");
+        for (uint64 i = 0; i < static_cast<uint64>(count) * per; ++i) into.push_back(r.U64());
+        framesSoFar += static_cast<int32>(count);
+        return {};
     }
 
     Error Snapshot(detail::ByteReader& r, Keyframe& k) {
@@ -126,20 +153,10 @@ struct Parser {
                 }
                 return {};
             }
-            case e_chunkStages: {
-                const uint32 first = r.U32();
-                const uint32 count = r.U32();
-                const uint32 per = r.U32();
-                if (r.failed() || per != kStagesPerFrame || static_cast<uint64>(count) * per * 8 != r.Remaining())
-                    return Fail(ErrorCode::e_badChunk, -1, "STAG chunk sizes do not add up");
-                if (first != static_cast<uint32>(stageFrames) ||
-                    static_cast<uint64>(first) + count > static_cast<uint64>(inputFrames))
-                    return Fail(ErrorCode::e_badChunk, static_cast<int32>(std::min<uint32>(first, INT32_MAX)),
-                                "stage hashes out of sequence");
-                for (uint64 i = 0; i < static_cast<uint64>(count) * per; ++i) out.stageHashes.push_back(r.U64());
-                stageFrames += static_cast<int32>(count);
-                return {};
-            }
+            case e_chunkStages:
+                return FrameHashes(r, "STAG", kStagesPerFrame, stageFrames, out.stageHashes);
+            case e_chunkSolve:
+                return FrameHashes(r, "SOLV", kSolvePhasesPerFrame, solveFrames, out.solveHashes);
             case e_chunkKeyframe: {
                 Keyframe k;
                 if (Error e = Snapshot(r, k)) return e;
@@ -161,6 +178,8 @@ struct Parser {
                                     std::to_string(inputFrames));
                 if (stageFrames != 0 && stageFrames != inputFrames)
                     return Fail(ErrorCode::e_badChunk, stageFrames, "stage hashes stop before the last frame");
+                if (solveFrames != 0 && solveFrames != inputFrames)
+                    return Fail(ErrorCode::e_badChunk, solveFrames, "solve-phase hashes stop before the last frame");
                 out.frameCount = frames;
                 haveEnd = true;
                 return {};

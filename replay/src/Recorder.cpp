@@ -132,6 +132,7 @@ uint64 Recorder::Advance(std::span<const uint8> inputs) {
         world_.Step(dt, config_.velocityIterations, config_.positionIterations);
         world_.SetStepObserver(previous);
         stageBlock_.insert(stageBlock_.end(), std::begin(stages.stages), std::end(stages.stages));
+        solveBlock_.insert(solveBlock_.end(), std::begin(stages.solve), std::end(stages.solve));
     } else {
         world_.Step(dt, config_.velocityIterations, config_.positionIterations);
     }
@@ -147,6 +148,7 @@ void Recorder::AppendConfirmed(std::span<const uint8> inputs, uint64 hashAfter, 
     if (config_.stageHashes) {
         // Unknown fenceposts are stored as 0 (a frame not covered); bisect then names no stage.
         stageBlock_.insert(stageBlock_.end(), kStagesPerFrame, 0);
+        solveBlock_.insert(solveBlock_.end(), kSolvePhasesPerFrame, 0);
     }
     Record(hashAfter, worldAtFrame);
 }
@@ -191,20 +193,25 @@ void Recorder::Flush() {
         for (uint64 h : hashBlock_) w.U64(h);
         Emit(e_chunkHashes, scratch_);
     }
-    if (!stageBlock_.empty()) {
-        scratch_.clear();
-        detail::ByteWriter w(scratch_);
-        w.U32(static_cast<uint32>(blockStart_));
-        w.U32(static_cast<uint32>(count));
-        w.U32(kStagesPerFrame);
-        for (uint64 h : stageBlock_) w.U64(h);
-        Emit(e_chunkStages, scratch_);
-    }
+    EmitFrameHashes(e_chunkStages, count, kStagesPerFrame, stageBlock_);
+    EmitFrameHashes(e_chunkSolve, count, kSolvePhasesPerFrame, solveBlock_);
     inputBlock_.clear();
     hashBlock_.clear();
     stageBlock_.clear();
+    solveBlock_.clear();
     hashBlockStart_ = -1;
     blockStart_ = frames_;
+}
+
+void Recorder::EmitFrameHashes(uint32 type, int32 count, uint32 per, const std::vector<uint64>& block) {
+    if (block.empty()) return;
+    scratch_.clear();
+    detail::ByteWriter w(scratch_);
+    w.U32(static_cast<uint32>(blockStart_));
+    w.U32(static_cast<uint32>(count));
+    w.U32(per);
+    for (uint64 h : block) w.U64(h);
+    Emit(type, scratch_);
 }
 
 Error Recorder::Finish() {

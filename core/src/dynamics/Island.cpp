@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/StepObserver.h"
 #include "lockbox/dynamics/WorldCallbacks.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 #include "lockbox/dynamics/contacts/ContactSolver.h"
@@ -53,6 +54,13 @@ void b2Island::Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapac
 void b2Island::Add(b2Body* body) {
     body->m_islandIndex = m_bodyCount;
     m_bodies[static_cast<size_t>(m_bodyCount++)] = body;
+}
+
+void b2Island::Observe(b2IslandPhase phase) {
+    if (m_observer == nullptr) return;
+    const size_t n = static_cast<size_t>(m_bodyCount);
+    m_observer->OnIsland(phase, std::span<b2Body* const>(m_bodies.data(), n), std::span<b2Position>(m_positions.data(), n),
+                         std::span<b2Velocity>(m_velocities.data(), n));
 }
 
 void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep) {
@@ -127,6 +135,7 @@ void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     profile->jointVelocityIterations += step.velocityIterations * m_jointCount;
     contactSolver.StoreImpulses();
     profile->solveVelocityNs += Nanos(timer);
+    Observe(b2IslandPhase::e_velocity);
 
     timer = Clock::now();
     for (int32 i = 0; i < m_bodyCount; ++i) {
@@ -150,6 +159,8 @@ void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
             break;
         }
     }
+
+    Observe(b2IslandPhase::e_position);
 
     // Copy state buffers back to the bodies.
     for (int32 i = 0; i < m_bodyCount; ++i) {

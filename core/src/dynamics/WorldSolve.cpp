@@ -26,6 +26,7 @@ bool IsSensorContact(const b2Contact* c) { return c->GetFixtureA()->IsSensor() |
 void b2World::Solve(const b2TimeStep& step) {
     // Size the island for the worst case and clear the graph flags.
     m_island.Reset(m_bodyCount, m_contactManager.m_contactCount, m_jointCount, m_contactManager.m_contactListener);
+    m_island.m_observer = m_stepObserver;
     for (b2Body* b = m_bodyList; b; b = b->m_next) b->m_flags &= ~(b2Body::e_islandFlag | b2Body::e_fastFlag);
     for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) c->m_flags &= ~b2Contact::e_islandFlag;
     for (b2Joint* j = m_jointList; j; j = j->m_next) j->m_islandFlag = false;
@@ -128,6 +129,7 @@ void b2World::SolveTOI(const b2TimeStep& step) {
     }
 
     m_island.Reset(2 * b2_maxTOIContacts, b2_maxTOIContacts, 0, m_contactManager.m_contactListener);
+    m_island.m_observer = nullptr;  // the island fenceposts cover the discrete solve only
 
     if (m_stepComplete) {
         for (b2Body* b = m_bodyList; b; b = b->m_next) {

@@ -14,6 +14,8 @@ class b2Body;
 class b2Contact;
 class b2Joint;
 class b2ContactListener;
+class b2StepObserver;
+enum class b2IslandPhase : uint32;
 class b2ContactSolver;
 struct b2ContactVelocityConstraint;
 
@@ -42,10 +44,14 @@ public:
     void Add(b2Contact* contact) { m_contacts[static_cast<size_t>(m_contactCount++)] = contact; }
     void Add(b2Joint* joint) { m_joints[static_cast<size_t>(m_jointCount++)] = joint; }
 
+    /// Reports one phase of the discrete solve to m_observer, if any.
+    void Observe(b2IslandPhase phase);
+
     /// Calls PostSolve for every contact with the impulses of its constraint.
     void Report(b2Profile* profile, const b2ContactVelocityConstraint* constraints);
 
     b2ContactListener* m_listener = nullptr;
+    b2StepObserver* m_observer = nullptr;  ///< island fenceposts of the discrete solve (not state)
     std::vector<b2Body*> m_bodies;
     std::vector<b2Contact*> m_contacts;
     std::vector<b2Joint*> m_joints;

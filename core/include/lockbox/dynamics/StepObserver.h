@@ -6,11 +6,15 @@
 /// The observer must not modify the world through the const reference it gets, and must not
 /// call anything that needs an unlocked world (the world is locked during the calls).
 
+#include <span>
+
 #include "lockbox/common/Settings.h"
+#include "lockbox/dynamics/TimeStep.h"
 
 namespace lockbox {
 
 class b2World;
+class b2Body;
 
 /// The fenceposts of one b2World::Step, in the order they are reached.
 enum class b2StepStage : uint32 {
@@ -20,6 +24,13 @@ enum class b2StepStage : uint32 {
     e_broadPhase = 2,  ///< after the fixtures' synchronisation and FindNewContacts ending Solve
     e_solveTOI = 3,    ///< after the continuous (time of impact) phase
     e_count = 4
+};
+
+/// The two halves of one island's discrete solve (b2Island::Solve), reported inside the
+/// e_solve stage so a divergence can be placed in the velocity or the position solve.
+enum class b2IslandPhase : uint32 {
+    e_velocity = 0,  ///< after the velocity iterations (impulses stored), before positions are integrated
+    e_position = 1,  ///< after the position iterations, before the bodies get the results
 };
 
 /// Short name of a stage ("collide", "solve", "broadphase", "toi"); "none" for e_count.
@@ -33,6 +44,17 @@ public:
     virtual ~b2StepObserver() = default;
     /// Called at each fencepost reached by the step, in b2StepStage order.
     virtual void OnStage(b2StepStage stage, const b2World& world) = 0;
+    /// Called twice per island of the discrete solve (velocity, then position phase) with the
+    /// island's bodies and its solver buffers (same order; positions and velocities of body i at
+    /// index i). The buffers are mutable only so that a test can inject a fault at a known point;
+    /// an observer that changes them changes the simulation. Default: nothing.
+    virtual void OnIsland(b2IslandPhase phase, std::span<b2Body* const> bodies, std::span<b2Position> positions,
+                          std::span<b2Velocity> velocities) {
+        (void)phase;
+        (void)bodies;
+        (void)positions;
+        (void)velocities;
+    }
 };
 
 }  // namespace lockbox

@@ -21,6 +21,8 @@ struct BisectResult {
     bool frameExact = true;  ///< false when hashes are sparse: the frame is the first checked
                              ///< frame that differs, the divergence lies within the interval
     int32 stage = -1;        ///< first differing fencepost (StageName, or kStageAfterToi); -1: unknown
+    int32 solvePhase = -1;   ///< inside the solve stage: first differing phase (SolvePhaseName); -1: not
+                             ///< the solve stage, or no solve-phase hashes stored
     uint64 expected = 0;     ///< recorded hash (of the stage, or of the frame)
     uint64 actual = 0;       ///< re-simulated hash
     int32 lowKeyframe = 0;   ///< last stored state known to re-simulate correctly (a frame)

@@ -41,6 +41,8 @@ enum ChunkType : uint32 {
     e_chunkInputs = ChunkTag('I', 'N', 'P', 'T'),    ///< a block of consecutive frames' inputs
     e_chunkHashes = ChunkTag('H', 'A', 'S', 'H'),    ///< state hashes at the hash interval
     e_chunkStages = ChunkTag('S', 'T', 'A', 'G'),    ///< per-frame fencepost hashes (optional)
+    e_chunkSolve = ChunkTag('S', 'O', 'L', 'V'),     ///< per-frame velocity/position solve hashes (optional;
+                                                     ///< added after STAG: older readers skip it)
     e_chunkKeyframe = ChunkTag('K', 'E', 'Y', 'F'),  ///< a snapshot for seeking
     e_chunkEnd = ChunkTag('E', 'N', 'D', '.'),       ///< end record (last chunk)
 };
@@ -62,6 +64,14 @@ enum WorldFlag : uint32 {
 inline constexpr uint32 kStagesPerFrame = 5;
 /// Name of stored stage i ("inputs", "collide", "solve", "broadphase", "toi").
 const char* StageName(uint32 stage) noexcept;
+
+/// Hashes of one frame's discrete solve stored in a SOLV chunk, in b2IslandPhase order: the
+/// velocity phase (every island's body ids and solver velocities after its velocity
+/// iterations) and the position phase (ids and solver positions after its position
+/// iterations), each one XXH3-64 over all islands in solve order. 0: no solve that frame.
+inline constexpr uint32 kSolvePhasesPerFrame = 2;
+/// Name of solve phase i ("velocity solve", "position solve").
+const char* SolvePhaseName(uint32 phase) noexcept;
 
 /// The fixed header.
 struct Header {

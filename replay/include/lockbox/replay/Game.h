@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lockbox/common/Settings.h"
+#include "lockbox/dynamics/StepObserver.h"
 
 namespace lockbox {
 class b2World;
@@ -36,6 +37,16 @@ class StageHook {
 public:
     virtual ~StageHook() = default;
     virtual void OnStage(int32 frame, uint32 stage, b2World& world) = 0;
+    /// Called inside the solve stage for every island's velocity and position phase, before
+    /// the phase is hashed (b2StepObserver::OnIsland: changing the buffers injects a fault).
+    virtual void OnIsland(int32 frame, b2IslandPhase phase, std::span<b2Body* const> bodies,
+                          std::span<b2Position> positions, std::span<b2Velocity> velocities) {
+        (void)frame;
+        (void)phase;
+        (void)bodies;
+        (void)positions;
+        (void)velocities;
+    }
 };
 
 }  // namespace lockbox::replay

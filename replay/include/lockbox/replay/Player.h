@@ -63,6 +63,8 @@ public:
     void SetStageHashing(bool on) noexcept { stageHashing_ = on; }
     /// The fencepost hashes of the last frame played with stage hashing on.
     const uint64* LastStages() const noexcept { return lastStages_; }
+    /// The solve-phase hashes of the last frame played with stage hashing on.
+    const uint64* LastSolvePhases() const noexcept { return lastSolve_; }
 
     /// Snapshots restored so far (seed included).
     int32 Restores() const noexcept { return restores_; }
@@ -76,6 +78,7 @@ private:
     StageHook* hook_ = nullptr;
     bool stageHashing_ = false;
     uint64 lastStages_[kStagesPerFrame] = {};
+    uint64 lastSolve_[kSolvePhasesPerFrame] = {};
     int32 frame_ = 0;
     int32 restores_ = 0;
     int64_t framesPlayed_ = 0;

@@ -103,6 +103,7 @@ private:
     std::span<const uint8> PushInputs(std::span<const uint8> inputs);
     void Record(uint64 hash, const b2World* keyframeWorld);
     void Emit(uint32 type, std::span<const uint8> payload);
+    void EmitFrameHashes(uint32 type, int32 count, uint32 per, const std::vector<uint64>& block);
 
     b2World& world_;
     Game& game_;
@@ -116,6 +117,7 @@ private:
     std::vector<uint64> hashBlock_;
     int32 hashBlockStart_ = -1;  ///< frame of the first pending hash
     std::vector<uint64> stageBlock_;
+    std::vector<uint64> solveBlock_;
     std::vector<uint8> scratch_, chunk_, user_;
     Error writeError_;
 };

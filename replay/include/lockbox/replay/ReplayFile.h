@@ -38,6 +38,7 @@ struct ReplayFile {
     std::vector<uint64> hashes;     ///< by frame: state hash after that frame (0 if not stored)
     std::vector<uint8> hashStored;  ///< by frame: 1 where hashes[] holds a stored hash
     std::vector<uint64> stageHashes;  ///< frameCount * kStagesPerFrame, or empty
+    std::vector<uint64> solveHashes;  ///< frameCount * kSolvePhasesPerFrame, or empty
     std::vector<Keyframe> keyframes;  ///< increasing frame order, seed excluded
     uint64 finalHash = 0;             ///< hash after the last frame (END record)
     std::vector<ChunkStat> chunkStats;  ///< by first appearance
@@ -56,6 +57,8 @@ struct ReplayFile {
     }
     /// Stored fencepost hashes of frame `frame` (kStagesPerFrame values), or nullptr.
     const uint64* Stages(int32 frame) const noexcept;
+    /// Stored solve-phase hashes of frame `frame` (kSolvePhasesPerFrame values), or nullptr.
+    const uint64* SolvePhases(int32 frame) const noexcept;
     /// The latest stored state at or before `frame` frames: a keyframe or the seed.
     const Keyframe& NearestKeyframe(int32 frame) const noexcept;
 };
