@@ -2,7 +2,15 @@
 #include "Chunks.h"
 
 #include <xxhash.h>
+// LOCKBOX_REPLAY_ZSTD=0 builds a reader and writer without zstd (tests/cross/run.sh, whose
+// cross toolchains have no zstd library): chunks are then written raw, and a compressed chunk
+// is refused with an error that says why.
+#ifndef LOCKBOX_REPLAY_ZSTD
+#define LOCKBOX_REPLAY_ZSTD 1
+#endif
+#if LOCKBOX_REPLAY_ZSTD
 #include <zstd.h>
+#endif
 
 #include "Bytes.h"
 
@@ -110,6 +118,7 @@ Error DecodeHeader(std::span<const uint8> bytes, Header& h) {
 void EncodeChunk(uint32 type, std::span<const uint8> raw, int level, std::vector<uint8>& out) {
     std::vector<uint8> packed;
     uint32 flags = 0;
+#if LOCKBOX_REPLAY_ZSTD
     if (level > 0 && raw.size() > 32) {
         packed.resize(ZSTD_compressBound(raw.size()));
         const size_t n = ZSTD_compress(packed.data(), packed.size(), raw.data(), raw.size(), level);
@@ -118,6 +127,9 @@ void EncodeChunk(uint32 type, std::span<const uint8> raw, int level, std::vector
             flags |= kChunkCompressed;
         }
     }
+#else
+    (void)level;
+#endif
     const std::span<const uint8> stored = (flags & kChunkCompressed) ? std::span<const uint8>(packed) : raw;
     const size_t start = out.size();
     ByteWriter w(out);
@@ -156,12 +168,17 @@ Error ReadChunk(std::span<const uint8> file, uint64& offset, int32 index, RawChu
     if ((chunk.flags & ~kChunkCompressed) != 0)
         return Fail(ErrorCode::e_badChunk, offset, index, chunk.type, "unknown chunk flags");
     if (chunk.flags & kChunkCompressed) {
+#if !LOCKBOX_REPLAY_ZSTD
+        return Fail(ErrorCode::e_badChunk, offset, index, chunk.type,
+                    "compressed chunk, but this build has no zstd (LOCKBOX_REPLAY_ZSTD=0): record with --level 0");
+#else
         payload.resize(chunk.rawBytes);
         const size_t n = ZSTD_decompress(payload.data(), payload.size(), stored.data(), stored.size());
         if (ZSTD_isError(n) || n != chunk.rawBytes)
             return Fail(ErrorCode::e_badChunk, offset, index, chunk.type,
                         std::string("zstd payload does not decompress to the announced size") +
                             (ZSTD_isError(n) ? std::string(" (") + ZSTD_getErrorName(n) + ")" : std::string()));
+#endif
     } else {
         if (chunk.rawBytes != chunk.storedBytes)
             return Fail(ErrorCode::e_badChunk, offset, index, chunk.type, "uncompressed chunk with raw size != stored size");

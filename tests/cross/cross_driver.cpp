@@ -15,6 +15,7 @@
 //                        order); `name:N` also limits that scene to the steps <= N.
 //   --limits LIST        `name:N` entries: limit these scenes to the steps <= N (the other
 //                        scenes run as usual).
+//   --replays LIST       comma-separated replay files to verify (ReplayVerify.h)
 //   --snapshot-golden F  the file holding the golden `snapshot ...` line (SnapshotHash.h). A
 //                        missing line prints "new " and is not a failure (run.sh still
 //                        requires every cell to print the same line).
@@ -27,6 +28,7 @@
 
 #include "FunctionHash.h"
 #include "GoldenScenes.h"
+#include "ReplayVerify.h"
 #include "SnapshotHash.h"
 
 namespace {
@@ -71,12 +73,14 @@ int main(int argc, char** argv) {
     std::string scenesList;
     std::string limitsList;
     std::string snapshotGolden;
+    std::string replays;
     for (int i = 2; i < argc; ++i) {
         if (std::strcmp(argv[i], "--with-heavy") == 0) withHeavy = true;
         if (std::strcmp(argv[i], "--max-step") == 0 && i + 1 < argc) maxStep = std::atoi(argv[++i]);
         if (std::strcmp(argv[i], "--scenes") == 0 && i + 1 < argc) scenesList = argv[++i];
         if (std::strcmp(argv[i], "--limits") == 0 && i + 1 < argc) limitsList = argv[++i];
         if (std::strcmp(argv[i], "--snapshot-golden") == 0 && i + 1 < argc) snapshotGolden = argv[++i];
+        if (std::strcmp(argv[i], "--replays") == 0 && i + 1 < argc) replays = argv[++i];
     }
     int mismatches = 0;
 
@@ -125,6 +129,24 @@ int main(int argc, char** argv) {
     }
 #else
     (void)snapshotGolden;
+#endif
+
+#if defined(LOCKBOX_CROSS_HAS_REPLAY)
+    for (std::string_view list = replays; !list.empty();) {
+        const size_t comma = list.find(',');
+        t0 = std::chrono::steady_clock::now();
+        const std::string path(list.substr(0, comma));
+        mismatches += lockbox::replay_verify::VerifyLine(path) ? 0 : 1;
+        std::fflush(stdout);
+        std::fprintf(stderr, "time replay %s %.2f s\n", path.c_str(), Since(t0));
+        if (comma == std::string_view::npos) break;
+        list.remove_prefix(comma + 1);
+    }
+#else
+    if (!replays.empty()) {
+        std::printf("FAIL replays given, but this build has no replay support\n");
+        ++mismatches;
+    }
 #endif
 
     std::printf("%s: %d mismatch(es)\n", mismatches == 0 ? "PASS" : "FAIL", mismatches);

@@ -88,12 +88,12 @@ fi
 src="$work/src"
 mkdir -p "$src/tests" "$src/samples/scenes"
 if [ -n "$rev" ]; then
-    git -C "$root" archive "$rev" fixed core samples/scenes/include samples/scenes/src tests/golden |
+    git -C "$root" archive "$rev" fixed core replay samples/scenes/include samples/scenes/src tests/golden |
         tar -x -C "$src" && cp -r "$root/tests/cross" "$src/tests/" ||
         { echo "run.sh: cannot extract the sources of $rev" >&2; exit 2; }
     echo "[cross] sources: $(git -C "$root" rev-parse --short "$rev") ($rev), tests/cross from the working tree"
 else
-    cp -r "$root/fixed" "$root/core" "$src/" &&
+    cp -r "$root/fixed" "$root/core" "$root/replay" "$src/" &&
         cp -r "$root/samples/scenes/include" "$root/samples/scenes/src" "$src/samples/scenes/" &&
         cp -r "$root/tests/cross" "$root/tests/golden" "$src/tests/" ||
         { echo "run.sh: cannot copy the sources" >&2; exit 2; }
@@ -106,13 +106,25 @@ cp /usr/include/xxhash.h "$work/include/" || { echo "run.sh: /usr/include/xxhash
 [ -d /usr/include/cereal ] && cp -r /usr/include/cereal "$work/include/"
 
 sources=$(cd "$src" && find fixed/src core/src samples/scenes/src -name '*.cpp' | LC_ALL=C sort)
-sources="$sources tests/cross/cross_driver.cpp"
 incdirs="fixed/include core/include samples/scenes/include tests/cross"
+# The golden replays recorded uncompressed (the cross toolchains have no zstd: replay/ is built
+# with LOCKBOX_REPLAY_ZSTD=0) are verified in every cell (tests/cross/ReplayVerify.h).
+replay_files=""
+if [ -d "$src/replay/src" ]; then
+    sources="$sources $(cd "$src" && find replay/src -name '*.cpp' | LC_ALL=C sort)"
+    incdirs="$incdirs replay/include replay/scenes/include"
+    for f in "$src"/tests/golden/replays/*.lbr; do
+        # record.sh records these with --level 0 (chunks stored raw) and names them *_raw.lbr.
+        case "$f" in *_raw.lbr) replay_files="$replay_files${replay_files:+,}$f" ;; esac
+    done
+fi
+sources="$sources tests/cross/cross_driver.cpp"
 includes="-I$work/include"
 for d in $incdirs; do includes="$includes -I$src/$d"; done
 defines="-DXXH_INLINE_ALL"
 # The snapshot comparison needs b2World::Save (issue 7); it compiles in once core defines it.
 if grep -rqs 'b2World::Save' "$src/core/src"; then defines="$defines -DLOCKBOX_CROSS_SNAPSHOT"; fi
+[ -n "$replay_files" ] && defines="$defines -DLOCKBOX_CROSS_REPLAY -DLOCKBOX_REPLAY_ZSTD=0"
 
 if [ "$unity" -eq 1 ]; then
     uargs=""
@@ -233,6 +245,7 @@ build_and_run() {  # $1 arch, $2 family, $3 flag index
     fi
     local status=FAIL
     # shellcheck disable=SC2086
+    [ -n "$replay_files" ] && args+=(--replays "$replay_files")
     if $run "$dir/cross_driver" "$src/tests/golden/hashes.txt" --snapshot-golden "$src/tests/cross/snapshot_golden.txt" \
         "${args[@]}" > "$dir/run.log" 2> "$dir/time.log"; then
         status=pass
@@ -315,7 +328,7 @@ if [ -n "$logs" ]; then
         $1 == "PASS:" || $1 == "FAIL:" { next }
         {
             cell = substr(FILENAME, length(work) + 1); sub("/run.log$", "", cell)
-            item = ($2 == "function" || $2 == "snapshot") ? $2 " " $3 : $2
+            item = ($2 == "function" || $2 == "snapshot" || $2 == "replay") ? $2 " " $3 : $2
             for (i = 2; i <= NF; ++i) {
                 if (index($i, "=") == 0) continue
                 split($i, kv, "=")
@@ -330,10 +343,11 @@ if [ -n "$logs" ]; then
         END { exit n > 0 }' $logs || divergent=1
 fi
 
-# The snapshot line (all cells printed the same one unless a DIVERGENCE was reported above).
+# The snapshot and replay lines (all cells printed the same ones unless a DIVERGENCE was
+# reported above).
 if [ -n "$logs" ]; then
     # shellcheck disable=SC2086
-    grep -h ' snapshot ' $logs | sort | uniq -c | while read -r n line; do
+    grep -hE ' (snapshot|replay) ' $logs | sort | uniq -c | while read -r n line; do
         echo "[cross] $n cell(s) printed: $line"
     done
 fi

@@ -32,7 +32,8 @@ TEST_P(GoldenReplay, Verifies) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Corpus, GoldenReplay,
-                         ::testing::Values("hello.lbr", "car.lbr", "rain.lbr", "bullet_stack_bullet.lbr"));
+                         ::testing::Values("hello.lbr", "car.lbr", "rain.lbr", "bullet_stack_bullet.lbr",
+                                           "ragdolls_raw.lbr", "vertical_stack_raw.lbr"));
 
 }  // namespace
 }  // namespace lockbox::replay::testing
