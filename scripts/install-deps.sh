@@ -26,6 +26,12 @@ PACKAGES=(
     libbox2d-dev        # lockbox_dep::box2d_float: float Box2D, differential tests and benchmarks only
     python3-matplotlib  # plotting benchmark / drift results
     valgrind            # memcheck and callgrind instruction counts
+    libglfw3-dev        # GLFW window and OpenGL context: the testbed (samples/testbed, optional)
+    libimgui-dev        # Dear ImGui 1.86 with GLFW/OpenGL2 backends: the testbed (pulls libstb-dev)
+    libstb-dev          # stb_image_write / stb_image: the testbed's PNG screenshots and their check
+    libgl1-mesa-dri     # Mesa software OpenGL, so the testbed renders under Xvfb
+    xvfb                # xvfb-run: virtual X server for the testbed smoke test (ctest -L testbed)
+    xauth               # needed by xvfb-run
 )
 
 # Installed with --cross: other architectures for cross-machine determinism checks.

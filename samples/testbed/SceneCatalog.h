@@ -1,0 +1,47 @@
+#pragma once
+/// The testbed's list of scenes: every scene of the scene library (samples/scenes), then the
+/// testbed-only scenes in samples/testbed/scenes/.
+///
+/// Adding a testbed-only scene takes one file: write a scenes::LockboxScene subclass in
+/// samples/testbed/scenes/<name>.cpp and register it there with a namespace-scope
+/// `SceneRegistration` object. The build globs that folder, so nothing else changes.
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "lockbox/scenes/LockboxScenes.h"
+
+namespace lockbox::testbed {
+
+/// Makes a new, unbuilt testbed-only scene.
+using SceneFactory = std::unique_ptr<scenes::LockboxScene> (*)();
+
+/// Registers a testbed-only scene when the program starts (define one per scene file).
+struct SceneRegistration {
+    /// `name` must be unique among all scenes, library ones included.
+    SceneRegistration(std::string_view name, SceneFactory make);
+};
+
+/// One entry of the scene list.
+struct CatalogEntry {
+    std::string name;     ///< command-line name
+    std::string summary;  ///< one line from the scene's SceneInfo
+    bool library = true;  ///< from the scene library (false: testbed-only)
+};
+
+/// Every scene: library scenes in library order, then testbed-only scenes by name.
+const std::vector<CatalogEntry>& SceneCatalog();
+
+/// A new scene by name from either source; nullptr when unknown.
+std::unique_ptr<scenes::LockboxScene> MakeCatalogScene(std::string_view name);
+
+/// True when `name` is a scene of the scene library (replays of it use "scene:NAME", which
+/// lockbox_replay can play too).
+bool IsLibraryScene(std::string_view name);
+
+/// Index of a name in SceneCatalog(), or -1.
+int CatalogIndex(std::string_view name);
+
+}  // namespace lockbox::testbed

@@ -1,0 +1,54 @@
+#pragma once
+/// The testbed's scenes as replay games.
+///
+/// TestbedGame runs any catalog scene (library or testbed-only) the way the recorder and the
+/// player expect: Apply runs the scene's own pre-step action for the frame and nothing else,
+/// because the testbed records no inputs (every input is zero, "no action"). With zero inputs
+/// this is exactly what replay::SceneGame does, so a library scene recorded here is named
+/// "scene:NAME" and lockbox_replay verifies it; a testbed-only scene is "testbed:NAME" and only
+/// the testbed can play it.
+
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "lockbox/replay/Game.h"
+#include "lockbox/scenes/LockboxScenes.h"
+
+namespace lockbox::testbed {
+
+/// A built catalog scene driven through the replay::Game interface.
+class TestbedGame : public replay::Game {
+public:
+    /// Builds scene `name` with the world switches and step settings of `settings` (check ok()).
+    TestbedGame(std::string_view name, const scenes::RunSettings& settings);
+
+    /// False when the name is unknown.
+    bool ok() const noexcept { return scene_ != nullptr; }
+    /// The scene's world (valid when ok()).
+    b2World& world() noexcept { return engine_->world(); }
+    /// The scene's defaults.
+    const scenes::SceneInfo& info() const noexcept { return scene_->Info(); }
+    /// The game name a replay of this scene carries ("scene:NAME" or "testbed:NAME").
+    std::string GameName() const;
+
+    /// The scene's pre-step action for `frame`; inputs are ignored (the testbed records none).
+    void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override;
+
+private:
+    std::unique_ptr<scenes::LockboxScene> scene_;
+    std::unique_ptr<scenes::LockboxEngine> engine_;
+};
+
+/// A game able to play a replay with this game name, with its world: replay::SceneGame for
+/// "scene:NAME" (inputs mean what lockbox_replay recorded), TestbedGame for "testbed:NAME".
+struct ReplayGame {
+    std::unique_ptr<replay::Game> game;  ///< nullptr when the name is not playable here
+    b2World* world = nullptr;            ///< the game's world
+};
+
+/// Builds the game for a replay's game name (see ReplayGame).
+ReplayGame MakeReplayGame(const std::string& gameName);
+
+}  // namespace lockbox::testbed
