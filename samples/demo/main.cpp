@@ -1,102 +1,109 @@
 // lockbox_demo: the main demo (README's first command).
 //
-// For now: the manual's Hello World (60 lines of x, y, angle), then one scene from the scene
-// library run to its default length, printing the world's state hash every 60 steps. The hash
-// is the same on every machine, compiler and architecture: compare it across builds.
+// By default a lockstep match on loopback (LockstepMatch.h): a server and 4 clients on their
+// own threads and sockets play a library scene for 600 frames with scripted inputs; every
+// second it prints each client's frame, RTT, input delay and state hash, then whether all
+// clients agree, and it writes and verifies a replay of the match.
 //
-//   lockbox_demo [--scene NAME] [--steps N]
+//   lockbox_demo [--scene NAME] [--clients N] [--frames N] [--transport udp|enet]
+//                [--authoritative] [--input-delay N] [--seed S] [--replay FILE]
+//   lockbox_demo --mode rollback [--scene NAME] [--frames N] [--input-delay N] [--window N]
+//                [--latency-ms N] [--seed S]                 a 2-player rollback match (RollbackMatch.h)
+//   lockbox_demo --offline [--scene NAME] [--steps N]   Hello World, then one scene, no network
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 
-#include "lockbox/lockbox.h"
-#include "lockbox/scenes/LockboxScenes.h"
-
-using namespace lockbox;
+#include "LockstepMatch.h"
+#include "RollbackMatch.h"
+#include "OfflineRun.h"
 
 namespace {
 
-void HelloWorld() {
-    std::printf("== Hello World (the manual's, on Q16.16) ==\n");
-    b2World world(b2Vec2(0.0f, -10.0f));
-
-    b2BodyDef groundBodyDef;
-    groundBodyDef.position.Set(0.0f, -10.0f);
-    b2Body* groundBody = world.CreateBody(&groundBodyDef);
-    b2PolygonShape groundBox;
-    groundBox.SetAsBox(50.0f, 10.0f);
-    groundBody->CreateFixture(&groundBox, 0.0f);
-
-    b2BodyDef bodyDef;
-    bodyDef.type = b2_dynamicBody;
-    bodyDef.position.Set(0.0f, 4.0f);
-    b2Body* body = world.CreateBody(&bodyDef);
-    b2PolygonShape dynamicBox;
-    dynamicBox.SetAsBox(1.0f, 1.0f);
-    b2FixtureDef fixtureDef;
-    fixtureDef.shape = &dynamicBox;
-    fixtureDef.density = 1.0f;
-    fixtureDef.friction = 0.3f;
-    body->CreateFixture(&fixtureDef);
-
-    const Fixed timeStep = 1.0f / 60.0f;  // compile-time conversion: 1092/65536 s
-    const int32 velocityIterations = 6;
-    const int32 positionIterations = 2;
-    for (int32 i = 0; i < 60; ++i) {
-        world.Step(timeStep, velocityIterations, positionIterations);
-        const b2Vec2 position = body->GetPosition();
-        const Fixed angle = body->GetAngle();
-        std::printf("%4.2f %4.2f %4.2f\n", position.x.ToDouble(), position.y.ToDouble(), angle.ToDouble());
-    }
+int Usage() {
+    std::fprintf(stderr,
+                 "usage: lockbox_demo [--scene NAME] [--clients 1..16] [--frames N] [--transport udp|enet]\n"
+                 "                    [--authoritative] [--input-delay N] [--seed S] [--replay FILE]\n"
+                 "       lockbox_demo --mode rollback [--scene NAME] [--frames N] [--input-delay N] [--window N]\n"
+                 "                    [--latency-ms N] [--seed S]\n"
+                 "       lockbox_demo --offline [--scene NAME] [--steps N]\n");
+    return 2;
 }
 
-int RunScene(const std::string& name, int steps) {
-    auto scene = scenes::MakeLockboxScene(name);
-    if (!scene) {
-        std::fprintf(stderr, "lockbox_demo: unknown scene '%s'\n", name.c_str());
-        return 2;
-    }
-    scenes::LockboxEngine engine;
-    scenes::RunSettings settings;
-    const scenes::Resolved r = scenes::Resolve(scene->Info(), settings);
-    if (steps < 0) steps = r.steps;
-    scenes::ConfigureWorld(engine, scene->Info(), settings);
-    scene->Prepare(r);
-    scene->Build(engine);
-    std::printf("\n== Scene %s: %d steps at %d Hz, %d/%d iterations ==\n", name.c_str(), steps, r.hz,
-                r.velocityIterations, r.positionIterations);
-    for (int i = 0; i < steps; ++i) {
-        scene->BeforeStep(engine, i);
-        engine.Step(r.hz, r.velocityIterations, r.positionIterations);
-        scene->AfterStep(engine, i);
-        if ((i + 1) % 60 == 0 || i + 1 == steps) {
-            std::printf("step %4d  bodies %4d  contacts %5d  hash 0x%016llx\n", i + 1,
-                        engine.world().GetBodyCount(), engine.world().GetContactCount(),
-                        static_cast<unsigned long long>(scenes::HashWorld(engine.world())));
-        }
-    }
-    std::vector<scenes::Metric> metrics;
-    scene->Report(engine, metrics);
-    for (const auto& m : metrics) std::printf("  %s = %g\n", m.name.c_str(), m.value);
-    return 0;
+// Parses a whole decimal argument in [lo, hi]; false otherwise.
+bool ParseInt(const char* text, long lo, long hi, long& out) {
+    char* end = nullptr;
+    const long v = std::strtol(text, &end, 10);
+    if (end == text || *end != '\0' || v < lo || v > hi) return false;
+    out = v;
+    return true;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string scene = "pyramid20";
-    int steps = -1;
+    lockbox::demo::MatchOptions match;
+    bool offline = false;
+    bool rollback = false;
+    lockbox::demo::RollbackOptions roll;
+    long delay = -1, window = -1, latency = -1;
+    std::string scene;
+    long steps = -1;
     for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--scene") == 0 && i + 1 < argc) {
+        const std::string a = argv[i];
+        const bool hasValue = i + 1 < argc;
+        long v = 0;
+        if (a == "--offline") {
+            offline = true;
+        } else if (a == "--mode" && hasValue && (std::strcmp(argv[i + 1], "rollback") == 0 ||
+                                                 std::strcmp(argv[i + 1], "lockstep") == 0)) {
+            rollback = std::strcmp(argv[++i], "rollback") == 0;
+        } else if (a == "--window" && hasValue && ParseInt(argv[i + 1], 1, 64, v)) {
+            window = v;
+            ++i;
+        } else if (a == "--latency-ms" && hasValue && ParseInt(argv[i + 1], 0, 1000, v)) {
+            latency = v;
+            ++i;
+        } else if (a == "--authoritative") {
+            match.authoritative = true;
+        } else if (a == "--scene" && hasValue) {
             scene = argv[++i];
-        } else if (std::strcmp(argv[i], "--steps") == 0 && i + 1 < argc) {
-            steps = std::atoi(argv[++i]);
+        } else if (a == "--steps" && hasValue && ParseInt(argv[i + 1], -1, 1000000, v)) {
+            steps = v;
+            ++i;
+        } else if (a == "--clients" && hasValue && ParseInt(argv[i + 1], 1, 16, v)) {
+            match.clients = static_cast<int>(v);
+            ++i;
+        } else if (a == "--frames" && hasValue && ParseInt(argv[i + 1], 1, 1000000, v)) {
+            match.frames = static_cast<int>(v);
+            ++i;
+        } else if (a == "--input-delay" && hasValue && ParseInt(argv[i + 1], 0, 255, v)) {
+            delay = v;
+            ++i;
+        } else if (a == "--seed" && hasValue && ParseInt(argv[i + 1], 0, 2147483647, v)) {
+            match.seed = static_cast<uint64_t>(v);
+            ++i;
+        } else if (a == "--transport" && hasValue &&
+                   (std::strcmp(argv[i + 1], "udp") == 0 || std::strcmp(argv[i + 1], "enet") == 0)) {
+            match.transport = argv[++i];
+        } else if (a == "--replay" && hasValue) {
+            match.replayPath = argv[++i];
         } else {
-            std::fprintf(stderr, "usage: lockbox_demo [--scene NAME] [--steps N]\n");
-            return 2;
+            return Usage();
         }
     }
-    HelloWorld();
-    return RunScene(scene, steps);
+    if (offline) return RunOffline(scene.empty() ? "pyramid20" : scene, static_cast<int>(steps));
+    if (rollback) {
+        if (!scene.empty()) roll.scene = scene;
+        roll.frames = match.frames;
+        roll.seed = match.seed;
+        if (delay >= 0) roll.inputDelay = static_cast<int>(delay);
+        if (window >= 0) roll.window = static_cast<int>(window);
+        if (latency >= 0) roll.latencyMs = static_cast<int>(latency);
+        return lockbox::demo::RunRollbackMatch(roll);
+    }
+    if (delay >= 0) match.inputDelay = static_cast<int>(delay);
+    if (!scene.empty()) match.scene = scene;
+    return lockbox::demo::RunLockstepMatch(match);
 }

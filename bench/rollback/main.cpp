@@ -1,0 +1,193 @@
+// lockbox_rollback_bench: the rollback budget of issue 11. One rollback of depth 8 is a
+// restore of the oldest saved state, then 8 steps each followed by a save (the session saves
+// every re-simulated frame so a later rollback can start from it). The bar: at most 8 ms p99
+// for a 256-body scene on the CI machine (MK11 fits 8 frames in 16 ms; half is left to the
+// game). Prints a table and writes bench/results/intel-xeon-2c/rollback.csv.
+//
+// Scenes (all about 256 bodies):
+//  - pyramid22: large_pyramid with a base of 22 rows, 253 touching boxes + ground, sleep off:
+//    every body awake and in contact, the worst case for the solver;
+//  - many_pyramids_1x5: 5 pyramids of 55 boxes (275 boxes + ground), sleep off;
+//  - rain256: the rain scene once about 256 bodies have spawned (bodies falling, piling up,
+//    sleep on as the scene defines); every rep rolls back to that same state.
+//
+// Usage: lockbox_rollback_bench [--reps N] [--depth D] [--out FILE] [--only SCENE]
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lockbox/lockbox.h"
+#include "lockbox/scenes/LockboxScenes.h"
+
+namespace {
+
+using namespace lockbox;
+
+// Thread CPU time excludes the time this thread was descheduled on a shared machine; wall
+// time is what a player would feel. Both are reported.
+int64_t ThreadNs() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+int64_t WallNs() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
+double Percentile(std::vector<int64_t> v, int pct) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    // Nearest rank: the smallest value with at least pct % of the samples at or below it.
+    size_t rank = (v.size() * static_cast<size_t>(pct) + 99) / 100;
+    if (rank == 0) rank = 1;
+    return static_cast<double>(v[rank - 1]) / 1e6;
+}
+
+struct Case {
+    std::string name;
+    std::unique_ptr<scenes::LockboxScene> scene;
+    int targetBodies = 0;  ///< > 0: warm up until the world has this many bodies (rain)
+    int warmup = 0;        ///< frames before measuring
+    /// Each rep starts one frame later (the scene evolves between reps); false: every rep
+    /// rolls back to the same state (rain spawns bodies every frame, so its body count would
+    /// drift far from 256 over the reps).
+    bool moveOn = true;
+};
+
+struct Row {
+    std::string name;
+    int bodies = 0, contacts = 0;  ///< at the first rep
+    int bodiesEnd = 0;             ///< after the last rep (rain keeps spawning)
+    size_t imageBytes = 0;
+    double cpuP50 = 0, cpuP99 = 0, cpuMax = 0, wallP50 = 0, wallP99 = 0;
+    double restoreP50 = 0, stepP50 = 0, saveP50 = 0;  ///< per operation, CPU, medians
+};
+
+Row Measure(Case& c, int reps, int depth) {
+    scenes::LockboxEngine engine;
+    const auto& info = c.scene->Info();
+    scenes::ConfigureWorld(engine, info, scenes::RunSettings{});
+    c.scene->Prepare(scenes::Resolve(info, scenes::RunSettings{}));
+    c.scene->Build(engine);
+    b2World& world = engine.world();
+    int frame = 0;
+    auto advance = [&] {
+        c.scene->BeforeStep(engine, frame++);
+        engine.Step(info.hz, info.velocityIterations, info.positionIterations);
+    };
+    for (int i = 0; i < c.warmup; ++i) advance();
+    for (int i = 0; i < 2000 && c.targetBodies > 0 && world.GetBodyCount() < c.targetBodies; ++i) advance();
+
+    // A ring of depth + 1 images as a session keeps; the bench rolls back to the oldest one
+    // each rep, then keeps moving forward one frame so the scene evolves between reps.
+    std::vector<std::vector<uint8>> ring(static_cast<size_t>(depth) + 1);
+    for (auto& image : ring) image.reserve(1 << 20);
+    world.Save(ring[0]);
+
+    std::vector<int64_t> cpu, wall, restoreNs, stepNs, saveNs;
+    Row row;
+    row.name = c.name;
+    row.bodies = world.GetBodyCount();
+    row.contacts = world.GetContactCount();
+    for (int r = 0; r < reps; ++r) {
+        const int startFrame = frame;
+        const int64_t c0 = ThreadNs();
+        const int64_t w0 = WallNs();
+        if (!world.Restore(ring[0]).ok()) std::abort();
+        const int64_t c1 = ThreadNs();
+        int64_t stepSum = 0, saveSum = 0;
+        for (int k = 0; k < depth; ++k) {
+            const int64_t s0 = ThreadNs();
+            advance();
+            const int64_t s1 = ThreadNs();
+            world.Save(ring[static_cast<size_t>(k) + 1]);
+            saveSum += ThreadNs() - s1;
+            stepSum += s1 - s0;
+        }
+        cpu.push_back(ThreadNs() - c0);
+        wall.push_back(WallNs() - w0);
+        restoreNs.push_back(c1 - c0);
+        stepNs.push_back(stepSum / depth);
+        saveNs.push_back(saveSum / depth);
+        if (c.moveOn) {
+            // Next rep starts one frame further: the image after the first re-simulated frame.
+            std::swap(ring[0], ring[1]);
+            frame = startFrame + 1;
+        } else {
+            frame = startFrame;
+        }
+    }
+    row.bodiesEnd = world.GetBodyCount();
+    row.imageBytes = ring[0].size();
+    row.cpuP50 = Percentile(cpu, 50);
+    row.cpuP99 = Percentile(cpu, 99);
+    row.cpuMax = Percentile(cpu, 100);
+    row.wallP50 = Percentile(wall, 50);
+    row.wallP99 = Percentile(wall, 99);
+    row.restoreP50 = Percentile(restoreNs, 50);
+    row.stepP50 = Percentile(stepNs, 50);
+    row.saveP50 = Percentile(saveNs, 50);
+    return row;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int reps = 300;
+    int depth = 8;
+    std::string only;
+    std::string out = std::string(LOCKBOX_BENCH_RESULTS_DIR) + "/intel-xeon-2c/rollback.csv";
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = std::atoi(argv[++i]);
+        else if (std::strcmp(argv[i], "--depth") == 0 && i + 1 < argc) depth = std::atoi(argv[++i]);
+        else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) out = argv[++i];
+        else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
+        else {
+            std::fprintf(stderr, "usage: lockbox_rollback_bench [--reps N] [--depth D] [--out FILE] [--only SCENE]\n");
+            return 2;
+        }
+    }
+    if (reps < 1 || depth < 1 || depth > 64) {
+        std::fprintf(stderr, "--reps must be >= 1 and --depth in 1..64\n");
+        return 2;
+    }
+    std::vector<Case> cases;
+    cases.push_back({"pyramid22", std::make_unique<scenes::LargePyramidScene<scenes::LockboxEngine>>(22), 0, 60});
+    cases.push_back(
+        {"many_pyramids_1x5", std::make_unique<scenes::ManyPyramidsScene<scenes::LockboxEngine>>(1, 5), 0, 60});
+    cases.push_back({"rain256", scenes::MakeLockboxScene("rain"), 256, 0, false});
+
+    std::FILE* csv = std::fopen(out.c_str(), "w");
+    if (csv == nullptr) {
+        std::fprintf(stderr, "cannot write %s\n", out.c_str());
+        return 1;
+    }
+    std::fprintf(csv,
+                 "scene,bodies,bodies_end,contacts,depth,reps,image_bytes,cpu_p50_ms,cpu_p99_ms,cpu_max_ms,wall_p50_ms,"
+                 "wall_p99_ms,restore_p50_ms,step_p50_ms,save_p50_ms,budget_ms,within_budget\n");
+    std::printf("rollback of depth %d = restore + %d steps + %d saves, %d reps\n", depth, depth, depth, reps);
+    std::printf("%-18s %6s %6s %9s %9s %9s %9s %9s %9s %9s %9s %6s\n", "scene", "bodies", "contct", "cpu p50",
+                "cpu p99", "cpu max", "wall p50", "wall p99", "restore", "step", "save", "<=8ms");
+    for (Case& c : cases) {
+        if (!only.empty() && only != c.name) continue;
+        const Row r = Measure(c, reps, depth);
+        const bool within = r.cpuP99 <= 8.0;
+        std::printf("%-18s %6d %6d %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %6s\n", r.name.c_str(), r.bodies,
+                    r.contacts, r.cpuP50, r.cpuP99, r.cpuMax, r.wallP50, r.wallP99, r.restoreP50, r.stepP50,
+                    r.saveP50, within ? "yes" : "NO");
+        std::fprintf(csv, "%s,%d,%d,%d,%d,%d,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,8,%d\n", r.name.c_str(),
+                     r.bodies, r.bodiesEnd, r.contacts, depth, reps, r.imageBytes, r.cpuP50, r.cpuP99, r.cpuMax, r.wallP50,
+                     r.wallP99, r.restoreP50, r.stepP50, r.saveP50, within ? 1 : 0);
+    }
+    std::fclose(csv);
+    std::printf("wrote %s (ms; cpu = thread CPU time; restore/step/save are per-operation medians)\n", out.c_str());
+    return 0;
+}

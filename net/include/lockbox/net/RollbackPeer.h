@@ -1,0 +1,109 @@
+#pragma once
+/// RollbackPeer (issue 11, docs/rollback.md): carries one RollbackSession's inputs, acks,
+/// time-sync reports and final hashes over a Transport to the other peers of a peer-to-peer
+/// match, and the confirmed input stream to spectators (RollbackSpectator.h).
+///
+/// Each tick the game calls Poll (datagrams in: remote inputs and hashes go to the session),
+/// then AddLocalInput / AdvanceFrame on the session and executes the requests, then Flush (one
+/// datagram out per remote and spectator). Every datagram repeats all local inputs the remote
+/// has not acknowledged, so a lost datagram costs nothing but the wait for the next one.
+///
+/// Time sync: every datagram carries the sender's frame and its frame advantage (how far it
+/// believes it is ahead of the receiver, RTT taken into account). The peer that is ahead
+/// idles one tick at a time, spread out (WaitThisTick), until the peers line up.
+
+#include <cstdint>
+#include <vector>
+
+#include "lockbox/net/Protocol.h"
+#include "lockbox/net/RollbackProtocol.h"
+#include "lockbox/net/RollbackSession.h"
+#include "lockbox/net/Transport.h"
+
+namespace lockbox::net {
+
+/// Another machine of the match and the players whose inputs it adds.
+struct RollbackRemote {
+    PeerId peer = kNoPeer;           ///< its PeerId on the transport
+    std::vector<uint32_t> players;   ///< players local to it (each remote in the session)
+};
+
+/// Settings of a RollbackPeer.
+struct RollbackPeerConfig {
+    uint32_t matchId = 1;                        ///< same on every peer of the match
+    uint32_t tickRate = 60;                      ///< frames per second, >= 1
+    uint64_t disconnectTimeoutMicros = 2000000;  ///< silence after which a remote's players leave
+    std::vector<RollbackRemote> remotes;
+    std::vector<PeerId> spectators;              ///< receive the confirmed inputs (RbConfirmed)
+    /// Ticks between two waits of WaitThisTick (the "gently" of time sync), >= 1.
+    uint32_t waitSpacingTicks = 8;
+};
+
+/// Counters of a RollbackPeer.
+struct RollbackPeerStats {
+    uint64_t datagramsSent = 0;
+    uint64_t datagramsReceived = 0;
+    uint64_t refused = 0;          ///< malformed, other match, unknown sender
+    uint64_t waitsRecommended = 0; ///< WaitThisTick returned true
+};
+
+class RollbackPeer {
+public:
+    /// `session` and `transport` must outlive the peer; every remote player must be a
+    /// non-local player of the session (others are ignored).
+    RollbackPeer(RollbackSession& session, Transport& transport, RollbackPeerConfig config);
+    ~RollbackPeer();
+    RollbackPeer(const RollbackPeer&) = delete;
+    RollbackPeer& operator=(const RollbackPeer&) = delete;
+
+    /// Reads every datagram that has arrived and hands inputs and hashes to the session;
+    /// disconnects the players of remotes silent past the timeout.
+    void Poll();
+    /// Sends one datagram to every live remote and spectator.
+    void Flush();
+    /// Tells every remote this peer leaves (a few datagrams), then stops sending.
+    void Leave();
+
+    /// This peer's smoothed frame advantage over the remotes minus theirs over it, halved:
+    /// how many thousandths of a frame it should idle to line up (<= 0: none).
+    int32_t RecommendedWaitMilli() const noexcept;
+    /// Whole frames of RecommendedWaitMilli (rounded down, >= 0).
+    int32_t RecommendedWaitFrames() const noexcept;
+    /// True when the game should skip this tick (no AddLocalInput, no AdvanceFrame; still Poll
+    /// and Flush): the recommended wait is at least one frame and the last wait is at least
+    /// waitSpacingTicks ticks ago. Call once per tick.
+    bool WaitThisTick();
+
+    /// Smoothed RTT to remote `index` (config order), microseconds; 0 before the first sample.
+    uint64_t RttMicros(size_t index) const noexcept;
+    bool RemoteAlive(size_t index) const noexcept;
+    const RollbackPeerStats& Stats() const noexcept { return stats_; }
+
+private:
+    struct Remote;
+    struct Spectator {
+        PeerId peer = kNoPeer;
+        int32_t acked = 0;
+    };
+    Remote* Find(PeerId peer);
+    void Handle(Remote& r, const RollbackMessage& m, uint64_t now);
+    void SendTo(Remote& r, uint64_t now);
+    void SendSpectator(Spectator& s);
+    int32_t LocalAdvantageMilli(const Remote& r, uint64_t now) const;
+
+    RollbackSession& session_;
+    Transport& transport_;
+    RollbackPeerConfig config_;
+    RollbackShape shape_;
+    std::vector<Remote> remotes_;
+    std::vector<Spectator> spectators_;
+    std::vector<uint32_t> localPlayers_;
+    RollbackDatagramWriter writer_;
+    std::vector<Datagram> inbox_;
+    std::vector<RollbackMessage> messages_;
+    RollbackPeerStats stats_;
+    uint32_t ticksSinceWait_ = 0;
+    bool left_ = false;
+};
+
+}  // namespace lockbox::net

@@ -1,0 +1,143 @@
+#pragma once
+/// The rollback wire protocol (issue 11, docs/rollback.md): what RollbackPeer sessions and
+/// their spectators exchange. Same conventions as the lockstep codec (Protocol.h): a header,
+/// then one or more messages, each a type byte and its fields; little-endian fixed widths,
+/// minimal LEB128 varints for frames, times and counts; input runs with the repeat bitmap.
+///
+/// Header (7 bytes): magic u16 'R' 'B', protocol version u8, match id u32 (both peers are
+/// given the same id; a datagram of another match is refused before its messages are read).
+///
+/// Decoding never reads past the buffer and checks every field; a datagram with any malformed
+/// message is refused whole, with a DecodeError (Protocol.h) saying why. Encoding is
+/// canonical: decoding and encoding again gives the same bytes.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <variant>
+#include <vector>
+
+#include "lockbox/net/Protocol.h"
+
+namespace lockbox::net {
+
+/// First two bytes of every rollback datagram: 'R' 'B'.
+inline constexpr uint16_t kRollbackMagic = 0x4252u;
+/// Bumped whenever a message layout changes.
+inline constexpr uint8_t kRollbackProtocolVersion = 1;
+/// Bytes of the header.
+inline constexpr size_t kRollbackHeaderBytes = 7;
+/// Largest frame count of one input run.
+inline constexpr uint32_t kRollbackMaxRun = 128;
+
+/// The datagram header.
+struct RollbackHeader {
+    uint8_t version = kRollbackProtocolVersion;
+    uint32_t matchId = 0;  ///< the match both peers were configured with
+    bool operator==(const RollbackHeader&) const = default;
+};
+
+/// One player's inputs for frames [firstFrame, firstFrame + count): the frames the receiver
+/// has not acknowledged yet, resent in every datagram until acked.
+struct RbInputs {
+    uint8_t player = 0;           ///< < players
+    int32_t firstFrame = 0;       ///< >= 0
+    std::vector<uint8_t> bytes;   ///< count * inputBytes, count in 1 .. kRollbackMaxRun
+    bool operator==(const RbInputs&) const = default;
+};
+
+/// Every input of `player` before nextFrame has arrived.
+struct RbInputAck {
+    uint8_t player = 0;
+    int32_t nextFrame = 0;  ///< >= 0
+    bool operator==(const RbInputAck&) const = default;
+};
+
+/// Time sync and RTT: the sender's current frame, its frame advantage over the receiver as it
+/// sees it (thousandths of a frame, positive: the sender is ahead), and its clock for the
+/// receiver to echo.
+struct RbQuality {
+    int32_t frame = 0;                 ///< >= 0
+    int32_t advantageMilli = 0;        ///< any int32 (zigzag varint)
+    uint64_t time = 0;                 ///< sender clock, microseconds
+    bool operator==(const RbQuality&) const = default;
+};
+
+/// Answer to RbQuality: its time and how long the answerer held it (microseconds).
+struct RbQualityReply {
+    uint64_t echoTime = 0;
+    uint64_t holdMicros = 0;
+    bool operator==(const RbQualityReply&) const = default;
+};
+
+/// The sender's final state hash of `frame` (all inputs before it confirmed, no rollback
+/// pending). Sent several times; duplicates are harmless.
+struct RbHash {
+    int32_t frame = 0;  ///< >= 0
+    uint64_t hash = 0;
+    bool operator==(const RbHash&) const = default;
+};
+
+/// Every player's confirmed inputs of [firstFrame, firstFrame + count), for spectators
+/// (players * inputBytes per frame, player 0 first), resent until acked.
+struct RbConfirmed {
+    int32_t firstFrame = 0;       ///< >= 0
+    std::vector<uint8_t> bytes;   ///< count * players * inputBytes, count in 1 .. kRollbackMaxRun
+    bool operator==(const RbConfirmed&) const = default;
+};
+
+/// Spectator -> host: every confirmed frame before nextFrame has arrived.
+struct RbConfirmedAck {
+    int32_t nextFrame = 0;
+    bool operator==(const RbConfirmedAck&) const = default;
+};
+
+/// Nothing to say, still here.
+struct RbKeepAlive {
+    bool operator==(const RbKeepAlive&) const = default;
+};
+
+/// The sender leaves the match.
+struct RbDisconnect {
+    bool operator==(const RbDisconnect&) const = default;
+};
+
+/// Any rollback message.
+using RollbackMessage = std::variant<RbInputs, RbInputAck, RbQuality, RbQualityReply, RbHash, RbConfirmed,
+                                     RbConfirmedAck, RbKeepAlive, RbDisconnect>;
+
+/// Type byte of each message (the variant index + 1).
+enum class RollbackMessageType : uint8_t {
+    e_inputs = 1, e_inputAck, e_quality, e_qualityReply, e_hash, e_confirmed, e_confirmedAck, e_keepAlive,
+    e_disconnect, e_end
+};
+
+/// What the decoder must know to size input runs.
+struct RollbackShape {
+    uint32_t players = 0;     ///< 1 .. kRollbackMaxPlayers (RollbackSession.h); 0 refuses inputs
+    uint32_t inputBytes = 0;  ///< 1 .. kRollbackMaxInputBytes
+};
+
+/// Decodes a whole datagram (messages appended to `out` after clearing it; empty on error).
+DecodeError DecodeRollbackDatagram(std::span<const uint8_t> datagram, const RollbackShape& shape,
+                                   RollbackHeader& header, std::vector<RollbackMessage>& out);
+
+/// Builds one datagram: the header, then messages appended one by one.
+class RollbackDatagramWriter {
+public:
+    /// Starts a datagram (replaces any previous contents).
+    void Begin(const RollbackHeader& header);
+    /// Appends a message whose fields are in range; false (datagram unchanged) when a field is
+    /// out of range or the datagram would exceed `limit` bytes.
+    bool Add(const RollbackMessage& message, const RollbackShape& shape, size_t limit = 1200);
+    size_t MessageCount() const noexcept { return messages_; }
+    std::span<const uint8_t> Bytes() const noexcept { return bytes_; }
+    size_t Size() const noexcept { return bytes_.size(); }
+
+private:
+    std::vector<uint8_t> bytes_;
+    std::vector<uint8_t> scratch_;
+    size_t messages_ = 0;
+};
+
+}  // namespace lockbox::net

@@ -1,0 +1,210 @@
+#pragma once
+/// The rollback session core (issue 11, docs/rollback.md): inputs in, requests out. The game
+/// adds its local inputs, calls AdvanceFrame once per tick and executes the requests it gets
+/// back, in order: SaveState (save the current state as frame f), LoadState (restore frame f)
+/// and Advance (apply these inputs, step once). The session never calls into the game, so any
+/// game state (a lockbox world, a user blob, anything else) rolls back the way the game wants.
+///
+/// Frames: the state "at frame f" is the state before frame f's inputs are applied (after f
+/// steps from the start); Advance{f} moves it to frame f + 1. Frame 0 is the start.
+///
+/// This class knows nothing about the network: remote inputs and hashes are handed to it
+/// (AddRemoteInput, AddRemoteHash), by RollbackPeer (RollbackPeer.h) over a Transport or by a
+/// test directly. It predicts missing remote inputs, rolls back when a prediction was wrong,
+/// waits at the prediction window's edge (never dropping an input), and compares state hashes
+/// of frames whose inputs were all confirmed once no rollback is pending.
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace lockbox::net {
+
+/// Largest player count of a rollback session.
+inline constexpr uint32_t kRollbackMaxPlayers = 8;
+/// Largest input per player per frame, in bytes.
+inline constexpr uint32_t kRollbackMaxInputBytes = 64;
+/// Largest prediction window, in frames.
+inline constexpr uint32_t kRollbackMaxWindow = 64;
+/// Largest input delay, in frames.
+inline constexpr uint32_t kRollbackMaxInputDelay = 16;
+
+/// How one player's input of one Advance came to be.
+enum class InputStatus : uint8_t {
+    e_confirmed = 0,     ///< the player's real input
+    e_predicted = 1,     ///< guessed; a rollback follows if the guess was wrong
+    e_disconnected = 2,  ///< the player left; all zero bytes
+};
+
+/// Save the state as it is now as the state at `frame`. When `wantHash` is set the game must
+/// hand the state's hash to ReportHash(frame, hash) (desync detection); otherwise it may.
+struct SaveState {
+    int32_t frame = 0;
+    bool wantHash = false;
+};
+/// Replace the state with the one saved at `frame` (always one the session asked to save).
+struct LoadState {
+    int32_t frame = 0;
+};
+/// Apply frame `frame`'s inputs and step once.
+struct AdvanceRequest {
+    int32_t frame = 0;
+    std::vector<uint8_t> inputs;       ///< players * inputBytes bytes, player 0 first
+    std::vector<InputStatus> status;   ///< one per player
+};
+/// One thing AdvanceFrame asks the game to do.
+using RollbackRequest = std::variant<SaveState, LoadState, AdvanceRequest>;
+
+/// Something the game should know about (drained by TakeEvents).
+struct RollbackEvent {
+    enum class Kind : uint8_t {
+        e_desync = 0,        ///< a remote peer's hash of `frame` differs from ours (once per peer)
+        e_disconnected = 1,  ///< `player` left; its input is zero from `frame` on
+        e_waiting = 2,       ///< AdvanceFrame stalled at the window edge from `frame` (once per stall)
+    };
+    Kind kind = Kind::e_desync;
+    int32_t frame = 0;
+    uint32_t player = 0;      ///< the player (disconnected) or the remote peer tag (desync)
+    uint64_t localHash = 0;   ///< desync: ours
+    uint64_t remoteHash = 0;  ///< desync: theirs
+};
+
+/// Guesses a remote input: `last` is the player's latest confirmed input before `frame` (all
+/// zeros when there is none), `lastFrame` its frame (-1 when none); fill `out` (inputBytes).
+/// Must be a pure function of its arguments: every peer may predict differently, but the
+/// same session must get the same guess for the same arguments.
+using InputPredictor =
+    std::function<void(uint32_t player, int32_t frame, std::span<const uint8_t> last, int32_t lastFrame,
+                       std::span<uint8_t> out)>;
+
+/// What AddLocalInput / AddRemoteInput said.
+enum class InputResult : uint8_t {
+    e_ok = 0,
+    e_badPlayer,      ///< no such player, or not local (local call) / local (remote call)
+    e_badSize,        ///< not inputBytes bytes
+    e_alreadyAdded,   ///< local: this tick's input is queued already (the session is waiting)
+    e_duplicate,      ///< remote: this frame arrived before (ignored, not an error)
+    e_gap,            ///< remote: an earlier frame is missing (ignored; the sender resends)
+    e_disconnected,   ///< the player left
+    e_tooFarAhead,    ///< remote: beyond what the window can ever need (ignored)
+};
+
+/// Running figures.
+struct RollbackStats {
+    uint64_t framesAdvanced = 0;      ///< Advance requests for new frames
+    uint64_t rollbacks = 0;           ///< LoadState requests
+    uint64_t framesResimulated = 0;   ///< Advance requests inside rollbacks
+    uint32_t deepestRollback = 0;     ///< frames re-simulated by the deepest rollback
+    uint64_t waits = 0;               ///< AdvanceFrame calls that could not advance
+    uint64_t predictedInputs = 0;     ///< player inputs predicted in new frames
+    uint64_t hashesCompared = 0;      ///< local/remote hash pairs compared
+};
+
+/// Settings checked by RollbackSessionBuilder.
+struct RollbackConfig {
+    uint32_t players = 2;                ///< 1 .. kRollbackMaxPlayers
+    uint32_t inputBytes = 8;             ///< 1 .. kRollbackMaxInputBytes
+    std::vector<uint32_t> localPlayers;  ///< players whose inputs this machine adds
+    uint32_t predictionWindow = 8;       ///< frames past the last confirmed one, 1 .. kRollbackMaxWindow
+    uint32_t inputDelay = 0;             ///< frames, 0 .. kRollbackMaxInputDelay
+    uint32_t checkDistance = 8;          ///< sync test: frames re-simulated per check (>= 1)
+    uint32_t desyncInterval = 10;        ///< compare hashes of frames f with f % interval == 0; 0: never
+    InputPredictor predictor;            ///< empty: repeat the last confirmed input
+};
+
+class RollbackSession;
+
+/// Collects and checks the settings of a session.
+class RollbackSessionBuilder {
+public:
+    /// Number of players, 1 .. kRollbackMaxPlayers (default 2).
+    RollbackSessionBuilder& Players(uint32_t players) { config_.players = players; return *this; }
+    /// Bytes of one player's input per frame, 1 .. kRollbackMaxInputBytes (default 8).
+    RollbackSessionBuilder& InputBytes(uint32_t bytes) { config_.inputBytes = bytes; return *this; }
+    /// Marks `player` as local (its inputs come from AddLocalInput). Call once per local player.
+    RollbackSessionBuilder& LocalPlayer(uint32_t player) { config_.localPlayers.push_back(player); return *this; }
+    /// Frames the session may run ahead of the last confirmed frame (default 8).
+    RollbackSessionBuilder& PredictionWindow(uint32_t frames) { config_.predictionWindow = frames; return *this; }
+    /// Frames between adding a local input and the frame it is applied in (default 0).
+    RollbackSessionBuilder& InputDelay(uint32_t frames) { config_.inputDelay = frames; return *this; }
+    /// Sync test check distance (default 8).
+    RollbackSessionBuilder& CheckDistance(uint32_t frames) { config_.checkDistance = frames; return *this; }
+    /// Hash comparison interval in frames (default 10; 0 turns desync detection off).
+    RollbackSessionBuilder& DesyncInterval(uint32_t frames) { config_.desyncInterval = frames; return *this; }
+    /// A custom predictor (default: repeat the last confirmed input).
+    RollbackSessionBuilder& Predictor(InputPredictor predictor) { config_.predictor = std::move(predictor); return *this; }
+
+    /// Empty when the settings are valid, else a one-line reason.
+    std::string_view Check() const noexcept;
+    /// A new session; nullptr when Check() is not empty.
+    std::unique_ptr<RollbackSession> Build() const;
+    const RollbackConfig& Config() const noexcept { return config_; }
+
+private:
+    RollbackConfig config_;
+};
+
+class RollbackSession {
+public:
+    /// Use RollbackSessionBuilder; `config` must pass its Check.
+    explicit RollbackSession(RollbackConfig config);
+    ~RollbackSession();
+    RollbackSession(const RollbackSession&) = delete;
+    RollbackSession& operator=(const RollbackSession&) = delete;
+
+    /// Queues local `player`'s input for frame CurrentFrame() + inputDelay. Once per tick per
+    /// local player; e_alreadyAdded while the session waits at the window edge (that tick's
+    /// input is not taken: the previous one is still queued).
+    InputResult AddLocalInput(uint32_t player, std::span<const uint8_t> input);
+
+    /// The requests of one tick, to be executed in order before the next call: any rollback
+    /// first (LoadState, then Advance + SaveState for every frame up to the current one),
+    /// then one new frame (Advance, SaveState) unless the session must wait: at the window's
+    /// edge, or while a local player's input for the frame is missing. The very first call
+    /// starts with SaveState{0}.
+    std::vector<RollbackRequest> AdvanceFrame();
+
+    /// The game's hash of the state it saved for `frame` (after a SaveState request). Ignored
+    /// for a frame the session no longer keeps.
+    void ReportHash(int32_t frame, uint64_t hash);
+
+    /// A remote player's input for `frame` (from the network). Frames must arrive in order per
+    /// player; a duplicate or out-of-order frame is ignored (the sender resends).
+    InputResult AddRemoteInput(uint32_t player, int32_t frame, std::span<const uint8_t> input);
+    /// A remote peer's final hash of `frame` (peerTag names the peer in desync events).
+    void AddRemoteHash(uint32_t peerTag, int32_t frame, uint64_t hash);
+    /// `player` left: its input is zero, with status disconnected, from the first frame not
+    /// received yet. Frames already simulated with other guesses are rolled back.
+    void DisconnectPlayer(uint32_t player);
+
+    /// The frame the next Advance will step (the number of frames simulated).
+    int32_t CurrentFrame() const noexcept;
+    /// First frame whose inputs are not all confirmed (every frame before it is final).
+    int32_t ConfirmedFrame() const noexcept;
+    /// Frames of `player`'s inputs received or added: every frame before this one is known.
+    int32_t ReceivedFrame(uint32_t player) const noexcept;
+    /// A confirmed input of `player` at `frame` (< ReceivedFrame(player) and not older than
+    /// the kept history); empty span when not kept.
+    std::span<const uint8_t> ConfirmedInput(uint32_t player, int32_t frame) const noexcept;
+    /// The latest final local hashes (frame, hash), oldest first, at most 8.
+    const std::deque<std::pair<int32_t, uint64_t>>& FinalHashes() const noexcept;
+    bool IsLocal(uint32_t player) const noexcept;
+    bool IsDisconnected(uint32_t player) const noexcept;
+    /// Events since the last call, oldest first.
+    std::vector<RollbackEvent> TakeEvents();
+    const RollbackStats& Stats() const noexcept;
+    const RollbackConfig& Config() const noexcept;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lockbox::net

@@ -1,0 +1,55 @@
+#pragma once
+/// SyncTestSession (issue 11): the sync test as a session type. It drives a replay::Game on a
+/// lockbox world through core's lockbox::SyncTest (state/SyncTest.h): every frame is run,
+/// hashed, then the last `checkDistance` frames are rolled back and re-simulated (in
+/// mispredict mode first with wrong inputs, then again with the right ones) and every
+/// re-simulated hash must equal the first. Run it in a game's debug build: a mismatch names
+/// state that the game's save misses, before any network is involved.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+
+#include "lockbox/net/RollbackSession.h"
+#include "lockbox/net/RollbackWorldAdapter.h"
+#include "lockbox/state/SyncTest.h"
+
+namespace lockbox::net {
+
+/// Fills frame `frame`'s inputs (players * inputBytes bytes). May be called more than once
+/// per frame: the session asks once and keeps the answer for every re-simulation.
+using SyncTestInputSource = std::function<void(int32_t frame, std::span<uint8_t> out)>;
+
+/// Settings of a sync test session.
+struct SyncTestSessionConfig {
+    uint32_t players = 2;         ///< 1 .. kRollbackMaxPlayers
+    uint32_t inputBytes = 8;      ///< 1 .. kRollbackMaxInputBytes
+    uint32_t checkDistance = 8;   ///< frames re-simulated after each frame, 1 .. kRollbackMaxWindow
+    bool mispredict = false;      ///< re-simulate with wrong inputs first
+    uint64_t seed = 0x5eed;       ///< wrong-input generator (mispredict mode)
+    WorldStepSettings step;       ///< how each frame steps the world
+};
+
+/// The sync test settings of a session built with RollbackSessionBuilder (players, input
+/// bytes and CheckDistance), so one builder describes both the real and the test session.
+SyncTestSessionConfig SyncTestConfigFrom(const RollbackConfig& config, WorldStepSettings step, bool mispredict);
+
+class SyncTestSession {
+public:
+    /// `world`, `game` and the source must outlive the session; the world must be in its
+    /// starting state (frame 0).
+    SyncTestSession(b2World& world, replay::Game& game, SyncTestInputSource inputs, SyncTestSessionConfig config);
+    ~SyncTestSession();
+    SyncTestSession(const SyncTestSession&) = delete;
+    SyncTestSession& operator=(const SyncTestSession&) = delete;
+
+    /// Runs frames [0, frames); stops at the first mismatch (SyncTestResult says where).
+    SyncTestResult Run(int32_t frames);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lockbox::net

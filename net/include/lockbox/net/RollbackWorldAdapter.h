@@ -1,0 +1,61 @@
+#pragma once
+/// WorldGameAdapter (issue 11): executes a RollbackSession's requests for a game whose whole
+/// state is one lockbox world plus the replay::Game's user blob. SaveState keeps a world image
+/// (b2World::Save) and the blob (Game::SaveUserState) in a ring slot and reports the folded
+/// hash when asked; LoadState restores both; Advance calls Game::Apply then steps once.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "lockbox/net/RollbackSession.h"
+
+namespace lockbox {
+class b2World;
+}
+namespace lockbox::replay {
+class Game;
+}
+
+namespace lockbox::net {
+
+/// How the adapter steps the world.
+struct WorldStepSettings {
+    uint32_t tickRate = 60;            ///< frames per second, >= 1 (time step 1/tickRate s)
+    uint32_t velocityIterations = 8;
+    uint32_t positionIterations = 3;
+};
+
+/// Runs rollback requests against a world and a game. Both must outlive the adapter.
+class WorldGameAdapter {
+public:
+    /// `slots`: saved states kept, at least the session's prediction window + 2.
+    WorldGameAdapter(b2World& world, replay::Game& game, WorldStepSettings settings, uint32_t slots = 66);
+
+    /// Executes `requests` in order, reporting hashes to `session` for SaveState requests that
+    /// want one. False when a LoadState names a frame not kept or the restore failed (the
+    /// world is then in an unknown state; the match cannot go on).
+    bool Execute(RollbackSession& session, std::span<const RollbackRequest> requests);
+
+    /// The world hash folded with the game's user state (what ReportHash gets).
+    uint64_t StateHash() const;
+    /// Advance requests executed inside rollbacks (after a LoadState in the same batch).
+    uint64_t FramesResimulated() const noexcept { return resimulated_; }
+    /// Frame of the last Advance executed (-1 before any).
+    int32_t LastAdvanced() const noexcept { return lastAdvanced_; }
+
+private:
+    struct Slot {
+        int32_t frame = -1;
+        std::vector<uint8_t> image;
+        std::vector<uint8_t> user;
+    };
+    b2World& world_;
+    replay::Game& game_;
+    WorldStepSettings settings_;
+    std::vector<Slot> slots_;
+    uint64_t resimulated_ = 0;
+    int32_t lastAdvanced_ = -1;
+};
+
+}  // namespace lockbox::net

@@ -1,0 +1,293 @@
+// RollbackPeer: a rollback session's datagrams over a Transport (RollbackPeer.h).
+
+#include "lockbox/net/RollbackPeer.h"
+
+#include <algorithm>
+#include <array>
+#include <deque>
+#include <map>
+
+#include "SessionCommon.h"
+
+namespace lockbox::net {
+
+namespace {
+
+// Advantage samples averaged for time sync: enough to smooth jitter, few enough to follow a
+// change within a fraction of a second at 60 Hz.
+constexpr size_t kAdvantageSamples = 16;
+// Each final hash goes out in this many datagrams to each remote: at 20 % loss all copies
+// are lost 0.8 % of the time, which only skips that comparison, and no acks are needed.
+constexpr uint8_t kHashCopies = 3;
+// Raw input bytes of one spectator run, so a datagram stays under the 1200-byte limit.
+constexpr size_t kSpectatorRunBytes = 960;
+
+int32_t ClampMilli(int64_t v) noexcept {
+    return static_cast<int32_t>(std::clamp<int64_t>(v, -1000000000, 1000000000));
+}
+
+int32_t Average(const std::deque<int32_t>& v) noexcept {
+    if (v.empty()) return 0;
+    int64_t sum = 0;
+    for (int32_t x : v) sum += x;
+    return static_cast<int32_t>(sum / static_cast<int64_t>(v.size()));
+}
+
+void Push(std::deque<int32_t>& v, int32_t x) {
+    v.push_back(x);
+    while (v.size() > kAdvantageSamples) v.pop_front();
+}
+
+}  // namespace
+
+struct RollbackPeer::Remote {
+    PeerId peer = kNoPeer;
+    uint32_t index = 0;
+    std::vector<uint32_t> players;
+    bool alive = true;
+    uint64_t lastHeard = 0;
+    std::array<int32_t, kRollbackMaxPlayers> acked{};  // per local player: frames before are received
+    RttEstimator rtt;
+    bool heardFrame = false;
+    int32_t remoteFrame = 0;
+    uint64_t remoteFrameAt = 0;
+    bool echoPending = false;
+    uint64_t echoTime = 0, echoReceivedAt = 0;
+    std::deque<int32_t> localAdvantage, remoteAdvantage;
+    std::map<int32_t, uint8_t> hashCopies;  // final hash frame -> datagrams that carried it
+};
+
+RollbackPeer::RollbackPeer(RollbackSession& session, Transport& transport, RollbackPeerConfig config)
+    : session_(session), transport_(transport), config_(std::move(config)) {
+    if (config_.tickRate == 0) config_.tickRate = 1;
+    if (config_.waitSpacingTicks == 0) config_.waitSpacingTicks = 1;
+    shape_ = RollbackShape{session_.Config().players, session_.Config().inputBytes};
+    const uint64_t now = transport_.NowMicros();
+    for (const RollbackRemote& rr : config_.remotes) {
+        Remote r;
+        r.peer = rr.peer;
+        r.index = static_cast<uint32_t>(remotes_.size());
+        for (uint32_t p : rr.players)
+            if (p < session_.Config().players && !session_.IsLocal(p)) r.players.push_back(p);
+        r.lastHeard = now;
+        remotes_.push_back(std::move(r));
+    }
+    for (PeerId s : config_.spectators) spectators_.push_back(Spectator{s, 0});
+    localPlayers_ = session_.Config().localPlayers;
+}
+
+RollbackPeer::~RollbackPeer() = default;
+
+RollbackPeer::Remote* RollbackPeer::Find(PeerId peer) {
+    for (Remote& r : remotes_)
+        if (r.peer == peer) return &r;
+    return nullptr;
+}
+
+void RollbackPeer::Poll() {
+    inbox_.clear();
+    transport_.Poll(inbox_);
+    const uint64_t now = transport_.NowMicros();
+    for (const Datagram& d : inbox_) {
+        RollbackHeader header;
+        if (DecodeRollbackDatagram(d.bytes, shape_, header, messages_) != DecodeError::e_ok ||
+            header.matchId != config_.matchId) {
+            ++stats_.refused;
+            continue;
+        }
+        if (Remote* r = Find(d.peer)) {
+            ++stats_.datagramsReceived;
+            if (!r->alive) continue;
+            r->lastHeard = now;
+            for (const RollbackMessage& m : messages_) Handle(*r, m, now);
+            continue;
+        }
+        auto spec = std::find_if(spectators_.begin(), spectators_.end(),
+                                 [&](const Spectator& s) { return s.peer == d.peer; });
+        if (spec == spectators_.end()) {
+            ++stats_.refused;
+            continue;
+        }
+        ++stats_.datagramsReceived;
+        for (const RollbackMessage& m : messages_)
+            if (const auto* ack = std::get_if<RbConfirmedAck>(&m))
+                spec->acked = std::max(spec->acked, std::min(ack->nextFrame, session_.ConfirmedFrame()));
+    }
+    for (Remote& r : remotes_) {
+        if (!r.alive || now - r.lastHeard <= config_.disconnectTimeoutMicros) continue;
+        r.alive = false;
+        for (uint32_t p : r.players) session_.DisconnectPlayer(p);
+    }
+}
+
+void RollbackPeer::Handle(Remote& r, const RollbackMessage& m, uint64_t now) {
+    if (const auto* in = std::get_if<RbInputs>(&m)) {
+        if (std::find(r.players.begin(), r.players.end(), in->player) == r.players.end()) return;
+        const size_t width = shape_.inputBytes;
+        const size_t count = in->bytes.size() / width;
+        for (size_t i = 0; i < count; ++i) {
+            const int64_t f = int64_t{in->firstFrame} + static_cast<int64_t>(i);
+            if (f > INT32_MAX) break;
+            const std::span<const uint8_t> one(in->bytes.data() + i * width, width);
+            const InputResult res = session_.AddRemoteInput(in->player, static_cast<int32_t>(f), one);
+            // A gap or a frame too far ahead: the rest of the run cannot be taken either.
+            if (res != InputResult::e_ok && res != InputResult::e_duplicate) break;
+        }
+    } else if (const auto* ack = std::get_if<RbInputAck>(&m)) {
+        if (ack->player < kRollbackMaxPlayers && session_.IsLocal(ack->player)) {
+            const int32_t known = std::min(ack->nextFrame, session_.ReceivedFrame(ack->player));
+            r.acked[ack->player] = std::max(r.acked[ack->player], known);
+        }
+    } else if (const auto* q = std::get_if<RbQuality>(&m)) {
+        r.heardFrame = true;
+        r.remoteFrame = q->frame;
+        r.remoteFrameAt = now;
+        Push(r.remoteAdvantage, q->advantageMilli);
+        r.echoPending = true;
+        r.echoTime = q->time;
+        r.echoReceivedAt = now;
+    } else if (const auto* reply = std::get_if<RbQualityReply>(&m)) {
+        if (reply->echoTime <= now) {
+            const uint64_t elapsed = now - reply->echoTime;
+            r.rtt.Sample(reply->holdMicros < elapsed ? elapsed - reply->holdMicros : 0);
+        }
+    } else if (const auto* h = std::get_if<RbHash>(&m)) {
+        session_.AddRemoteHash(r.index, h->frame, h->hash);
+    } else if (std::holds_alternative<RbDisconnect>(m)) {
+        r.alive = false;
+        for (uint32_t p : r.players) session_.DisconnectPlayer(p);
+    }
+}
+
+int32_t RollbackPeer::LocalAdvantageMilli(const Remote& r, uint64_t now) const {
+    if (!r.heardFrame) return 0;
+    // Where the remote should be now: its last reported frame, plus the time since it
+    // reported (half an RTT in flight, then the time since arrival) at the tick rate.
+    const uint64_t since = now - r.remoteFrameAt + r.rtt.Srtt() / 2;
+    const int64_t sinceMilli = static_cast<int64_t>(std::min<uint64_t>(since, 1000000000ull) * config_.tickRate / 1000);
+    const int64_t estimate = int64_t{r.remoteFrame} * 1000 + sinceMilli;
+    return ClampMilli(int64_t{session_.CurrentFrame()} * 1000 - estimate);
+}
+
+void RollbackPeer::Flush() {
+    if (left_) return;
+    const uint64_t now = transport_.NowMicros();
+    for (Remote& r : remotes_)
+        if (r.alive) SendTo(r, now);
+    for (Spectator& s : spectators_) SendSpectator(s);
+}
+
+void RollbackPeer::SendTo(Remote& r, uint64_t now) {
+    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+    const int32_t advantage = LocalAdvantageMilli(r, now);
+    if (r.heardFrame) Push(r.localAdvantage, advantage);
+    writer_.Add(RbQuality{session_.CurrentFrame(), advantage, now}, shape_);
+    if (r.echoPending && writer_.Add(RbQualityReply{r.echoTime, now - r.echoReceivedAt}, shape_))
+        r.echoPending = false;
+    for (uint32_t p : r.players)
+        writer_.Add(RbInputAck{static_cast<uint8_t>(p), session_.ReceivedFrame(p)}, shape_);
+    const size_t width = shape_.inputBytes;
+    for (uint32_t lp : localPlayers_) {
+        const int32_t end = session_.ReceivedFrame(lp);
+        const int32_t from = r.acked[lp];
+        int32_t count = std::min<int32_t>(end - from, static_cast<int32_t>(kRollbackMaxRun));
+        RbInputs in;
+        in.player = static_cast<uint8_t>(lp);
+        in.firstFrame = from;
+        for (int32_t i = 0; i < count; ++i) {
+            const auto one = session_.ConfirmedInput(lp, from + i);
+            if (one.size() != width) {
+                count = i;
+                break;
+            }
+            in.bytes.insert(in.bytes.end(), one.begin(), one.end());
+        }
+        // Halve the run until it fits beside the other messages.
+        while (count > 0 && !writer_.Add(in, shape_)) {
+            count /= 2;
+            in.bytes.resize(static_cast<size_t>(count) * width);
+        }
+    }
+    const auto& finals = session_.FinalHashes();
+    for (const auto& [frame, hash] : finals) {
+        uint8_t& copies = r.hashCopies[frame];
+        if (copies < kHashCopies && writer_.Add(RbHash{frame, hash}, shape_)) ++copies;
+    }
+    // Forget frames that left the session's list (they are never offered again).
+    while (!r.hashCopies.empty() && (finals.empty() || r.hashCopies.begin()->first < finals.front().first))
+        r.hashCopies.erase(r.hashCopies.begin());
+    if (transport_.Send(r.peer, writer_.Bytes())) ++stats_.datagramsSent;
+}
+
+void RollbackPeer::SendSpectator(Spectator& s) {
+    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+    const size_t width = shape_.inputBytes;
+    const size_t row = width * shape_.players;
+    const int32_t confirmed = session_.ConfirmedFrame();
+    const int32_t maxRun = static_cast<int32_t>(std::min<size_t>(kRollbackMaxRun, kSpectatorRunBytes / row));
+    RbConfirmed c;
+    c.firstFrame = s.acked;
+    int32_t count = 0;
+    for (int32_t f = s.acked; f < confirmed && count < maxRun; ++f, ++count) {
+        bool kept = true;
+        for (uint32_t p = 0; p < shape_.players && kept; ++p) {
+            const auto one = session_.ConfirmedInput(p, f);
+            if (one.size() == width) {
+                c.bytes.insert(c.bytes.end(), one.begin(), one.end());
+            } else if (session_.IsDisconnected(p) && f >= session_.ReceivedFrame(p)) {
+                c.bytes.insert(c.bytes.end(), width, 0);
+            } else {
+                kept = false;
+            }
+        }
+        if (!kept) {
+            c.bytes.resize(static_cast<size_t>(count) * row);
+            break;
+        }
+    }
+    if (count > 0) writer_.Add(c, shape_);
+    else writer_.Add(RbKeepAlive{}, shape_);
+    if (transport_.Send(s.peer, writer_.Bytes())) ++stats_.datagramsSent;
+}
+
+void RollbackPeer::Leave() {
+    if (left_) return;
+    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+    writer_.Add(RbDisconnect{}, shape_);
+    // Several copies: one of them gets through a lossy link; the remote times out otherwise.
+    for (int copy = 0; copy < 3; ++copy)
+        for (Remote& r : remotes_)
+            if (r.alive && transport_.Send(r.peer, writer_.Bytes())) ++stats_.datagramsSent;
+    left_ = true;
+}
+
+int32_t RollbackPeer::RecommendedWaitMilli() const noexcept {
+    int32_t wait = 0;
+    for (const Remote& r : remotes_) {
+        if (!r.alive || r.localAdvantage.empty() || r.remoteAdvantage.empty()) continue;
+        const int64_t w = (int64_t{Average(r.localAdvantage)} - int64_t{Average(r.remoteAdvantage)}) / 2;
+        wait = std::max(wait, ClampMilli(w));
+    }
+    return wait;
+}
+
+int32_t RollbackPeer::RecommendedWaitFrames() const noexcept { return RecommendedWaitMilli() / 1000; }
+
+bool RollbackPeer::WaitThisTick() {
+    if (ticksSinceWait_ < UINT32_MAX) ++ticksSinceWait_;
+    if (ticksSinceWait_ < config_.waitSpacingTicks || RecommendedWaitMilli() < 1000) return false;
+    ticksSinceWait_ = 0;
+    ++stats_.waitsRecommended;
+    // Samples taken before the wait describe a lead this tick just gave back.
+    for (Remote& r : remotes_) r.localAdvantage.clear();
+    return true;
+}
+
+uint64_t RollbackPeer::RttMicros(size_t index) const noexcept {
+    return index < remotes_.size() ? remotes_[index].rtt.Srtt() : 0;
+}
+bool RollbackPeer::RemoteAlive(size_t index) const noexcept {
+    return index < remotes_.size() && remotes_[index].alive;
+}
+
+}  // namespace lockbox::net

@@ -1,0 +1,221 @@
+// The rollback message codec (RollbackProtocol.h) on the lockstep codec's primitives
+// (WireIO.h): fixed little-endian widths, minimal varints, repeat-bitmap input runs.
+
+#include <type_traits>
+
+#include "WireIO.h"
+#include "lockbox/net/RollbackProtocol.h"
+#include "lockbox/net/RollbackSession.h"
+
+namespace lockbox::net {
+
+namespace {
+
+using wire::Reader;
+using wire::Writer;
+
+bool ShapeOk(const RollbackShape& s) noexcept {
+    return s.players >= 1 && s.players <= kRollbackMaxPlayers && s.inputBytes >= 1 &&
+           s.inputBytes <= kRollbackMaxInputBytes;
+}
+
+// Zigzag: small magnitudes of either sign become small varints; computed in uint32 so no
+// signed shift or overflow happens.
+uint64_t Zig(int32_t v) noexcept {
+    const uint32_t u = static_cast<uint32_t>(v);
+    return static_cast<uint64_t>((u << 1) ^ (v < 0 ? 0xFFFFFFFFu : 0u));
+}
+int32_t Unzig(uint64_t z) noexcept {
+    const uint32_t u = static_cast<uint32_t>(z);
+    const uint32_t v = (u >> 1) ^ (0u - (u & 1u));
+    // Two's complement reinterpretation without a signed overflow.
+    return v <= 0x7FFFFFFFu ? static_cast<int32_t>(v) : -static_cast<int32_t>(~v) - 1;
+}
+
+// Frame counts of a run: bytes must hold 1 .. kRollbackMaxRun whole rows.
+size_t RunCount(size_t bytes, size_t row) noexcept {
+    if (row == 0 || bytes == 0 || bytes % row != 0) return 0;
+    const size_t n = bytes / row;
+    return n <= kRollbackMaxRun ? n : 0;
+}
+
+bool Enc(Writer& w, const RbInputs& m, const RollbackShape& s) {
+    if (m.player >= s.players || m.firstFrame < 0) return false;
+    const size_t n = RunCount(m.bytes.size(), s.inputBytes);
+    if (n == 0) return false;
+    w.U8(m.player);
+    w.Var(static_cast<uint64_t>(m.firstFrame));
+    w.Var(n);
+    wire::WriteRun(w, m.bytes, n, s.inputBytes, 1);
+    return true;
+}
+void Dec(Reader& r, RbInputs& m, const RollbackShape& s) {
+    m.player = r.U8();
+    if (r.ok() && m.player >= s.players) r.Fail(DecodeError::e_badValue);
+    m.firstFrame = r.Frame();
+    const uint64_t n = r.Var();
+    if (r.ok() && (n < 1 || n > kRollbackMaxRun)) r.Fail(DecodeError::e_badValue);
+    if (r.ok()) wire::ReadRun(r, m.bytes, static_cast<size_t>(n), s.inputBytes, 1);
+}
+
+bool Enc(Writer& w, const RbInputAck& m, const RollbackShape& s) {
+    if (m.player >= s.players || m.nextFrame < 0) return false;
+    w.U8(m.player);
+    w.Var(static_cast<uint64_t>(m.nextFrame));
+    return true;
+}
+void Dec(Reader& r, RbInputAck& m, const RollbackShape& s) {
+    m.player = r.U8();
+    if (r.ok() && m.player >= s.players) r.Fail(DecodeError::e_badValue);
+    m.nextFrame = r.Frame();
+}
+
+bool Enc(Writer& w, const RbQuality& m, const RollbackShape&) {
+    if (m.frame < 0) return false;
+    w.Var(static_cast<uint64_t>(m.frame));
+    w.Var(Zig(m.advantageMilli));
+    w.Var(m.time);
+    return true;
+}
+void Dec(Reader& r, RbQuality& m, const RollbackShape&) {
+    m.frame = r.Frame();
+    const uint64_t z = r.Var();
+    if (r.ok() && z > 0xFFFFFFFFull) r.Fail(DecodeError::e_badValue);
+    m.advantageMilli = Unzig(z);
+    m.time = r.Var();
+}
+
+bool Enc(Writer& w, const RbQualityReply& m, const RollbackShape&) {
+    w.Var(m.echoTime);
+    w.Var(m.holdMicros);
+    return true;
+}
+void Dec(Reader& r, RbQualityReply& m, const RollbackShape&) {
+    m.echoTime = r.Var();
+    m.holdMicros = r.Var();
+}
+
+bool Enc(Writer& w, const RbHash& m, const RollbackShape&) {
+    if (m.frame < 0) return false;
+    w.Var(static_cast<uint64_t>(m.frame));
+    w.U64(m.hash);
+    return true;
+}
+void Dec(Reader& r, RbHash& m, const RollbackShape&) {
+    m.frame = r.Frame();
+    m.hash = r.U64();
+}
+
+bool Enc(Writer& w, const RbConfirmed& m, const RollbackShape& s) {
+    if (m.firstFrame < 0) return false;
+    const size_t n = RunCount(m.bytes.size(), static_cast<size_t>(s.players) * s.inputBytes);
+    if (n == 0) return false;
+    w.Var(static_cast<uint64_t>(m.firstFrame));
+    w.Var(n);
+    wire::WriteRun(w, m.bytes, n * s.players, s.inputBytes, s.players);
+    return true;
+}
+void Dec(Reader& r, RbConfirmed& m, const RollbackShape& s) {
+    m.firstFrame = r.Frame();
+    const uint64_t n = r.Var();
+    if (r.ok() && (n < 1 || n > kRollbackMaxRun)) r.Fail(DecodeError::e_badValue);
+    if (r.ok()) wire::ReadRun(r, m.bytes, static_cast<size_t>(n) * s.players, s.inputBytes, s.players);
+}
+
+bool Enc(Writer& w, const RbConfirmedAck& m, const RollbackShape&) {
+    if (m.nextFrame < 0) return false;
+    w.Var(static_cast<uint64_t>(m.nextFrame));
+    return true;
+}
+void Dec(Reader& r, RbConfirmedAck& m, const RollbackShape&) { m.nextFrame = r.Frame(); }
+
+bool Enc(Writer&, const RbKeepAlive&, const RollbackShape&) { return true; }
+void Dec(Reader&, RbKeepAlive&, const RollbackShape&) {}
+bool Enc(Writer&, const RbDisconnect&, const RollbackShape&) { return true; }
+void Dec(Reader&, RbDisconnect&, const RollbackShape&) {}
+
+// Input-carrying messages need a valid shape to be sized at all.
+template <class M>
+constexpr bool kNeedsShape = std::is_same_v<M, RbInputs> || std::is_same_v<M, RbInputAck> ||
+                             std::is_same_v<M, RbConfirmed>;
+
+template <size_t I = 0>
+bool DecodeIndexed(Reader& r, size_t index, const RollbackShape& s, RollbackMessage& out) {
+    if constexpr (I < std::variant_size_v<RollbackMessage>) {
+        if (index == I) {
+            using M = std::variant_alternative_t<I, RollbackMessage>;
+            if constexpr (kNeedsShape<M>) {
+                if (!ShapeOk(s)) {
+                    r.Fail(DecodeError::e_noShape);
+                    return false;
+                }
+            }
+            M m;
+            Dec(r, m, s);
+            if (!r.ok()) return false;
+            out = std::move(m);
+            return true;
+        }
+        return DecodeIndexed<I + 1>(r, index, s, out);
+    } else {
+        r.Fail(DecodeError::e_badType);
+        return false;
+    }
+}
+
+}  // namespace
+
+DecodeError DecodeRollbackDatagram(std::span<const uint8_t> datagram, const RollbackShape& shape,
+                                   RollbackHeader& header, std::vector<RollbackMessage>& out) {
+    out.clear();
+    if (datagram.size() < kRollbackHeaderBytes + 1) return DecodeError::e_tooShort;
+    Reader r(datagram);
+    if (r.U16() != kRollbackMagic) return DecodeError::e_badMagic;
+    header.version = r.U8();
+    header.matchId = r.U32();
+    if (header.version != kRollbackProtocolVersion) return DecodeError::e_badVersion;
+    while (!r.AtEnd()) {
+        const uint8_t type = r.U8();
+        if (type < 1 || type >= static_cast<uint8_t>(RollbackMessageType::e_end)) {
+            out.clear();
+            return DecodeError::e_badType;
+        }
+        RollbackMessage m;
+        if (!DecodeIndexed(r, static_cast<size_t>(type - 1), shape, m)) {
+            out.clear();
+            return r.ok() ? DecodeError::e_badValue : r.error();
+        }
+        out.push_back(std::move(m));
+    }
+    return DecodeError::e_ok;
+}
+
+void RollbackDatagramWriter::Begin(const RollbackHeader& header) {
+    bytes_.clear();
+    messages_ = 0;
+    Writer w(bytes_);
+    w.U16(kRollbackMagic);
+    w.U8(header.version);
+    w.U32(header.matchId);
+}
+
+bool RollbackDatagramWriter::Add(const RollbackMessage& message, const RollbackShape& shape, size_t limit) {
+    scratch_.clear();
+    Writer w(scratch_);
+    w.U8(static_cast<uint8_t>(message.index() + 1));
+    const bool ok = std::visit(
+        [&](const auto& m) {
+            using M = std::decay_t<decltype(m)>;
+            if constexpr (kNeedsShape<M>) {
+                if (!ShapeOk(shape)) return false;
+            }
+            return Enc(w, m, shape);
+        },
+        message);
+    if (!ok || bytes_.size() + scratch_.size() > limit) return false;
+    bytes_.insert(bytes_.end(), scratch_.begin(), scratch_.end());
+    ++messages_;
+    return true;
+}
+
+}  // namespace lockbox::net

@@ -1,0 +1,49 @@
+// WorldGameAdapter: rollback requests on a lockbox world and a replay::Game.
+
+#include "lockbox/net/RollbackWorldAdapter.h"
+
+#include <variant>
+
+#include "SessionCommon.h"
+#include "lockbox/lockbox.h"
+#include "lockbox/replay/Game.h"
+
+namespace lockbox::net {
+
+WorldGameAdapter::WorldGameAdapter(b2World& world, replay::Game& game, WorldStepSettings settings, uint32_t slots)
+    : world_(world), game_(game), settings_(settings), slots_(slots < 3 ? 3 : slots) {
+    if (settings_.tickRate == 0) settings_.tickRate = 1;
+}
+
+uint64_t WorldGameAdapter::StateHash() const { return FoldedStateHash(world_, game_); }
+
+bool WorldGameAdapter::Execute(RollbackSession& session, std::span<const RollbackRequest> requests) {
+    bool rollingBack = false;
+    for (const RollbackRequest& r : requests) {
+        if (const auto* save = std::get_if<SaveState>(&r)) {
+            if (save->frame < 0) return false;
+            Slot& s = slots_[static_cast<size_t>(save->frame) % slots_.size()];
+            s.frame = save->frame;
+            world_.Save(s.image);
+            game_.SaveUserState(s.user);
+            // A hash of every kept state costs little against a step and makes a later
+            // desync report name the first bad frame the session compares.
+            if (save->wantHash) session.ReportHash(save->frame, StateHash());
+        } else if (const auto* load = std::get_if<LoadState>(&r)) {
+            if (load->frame < 0) return false;
+            Slot& s = slots_[static_cast<size_t>(load->frame) % slots_.size()];
+            if (s.frame != load->frame) return false;
+            if (!world_.Restore(s.image).ok()) return false;
+            game_.LoadUserState(s.user);
+            rollingBack = true;
+        } else if (const auto* adv = std::get_if<AdvanceRequest>(&r)) {
+            StepConfirmedFrame(world_, game_, adv->frame, adv->inputs, settings_.tickRate,
+                               settings_.velocityIterations, settings_.positionIterations);
+            lastAdvanced_ = adv->frame;
+            if (rollingBack) ++resimulated_;
+        }
+    }
+    return true;
+}
+
+}  // namespace lockbox::net

@@ -1,0 +1,56 @@
+#pragma once
+// Pieces shared by LockstepServer and LockstepClient: integer RTT smoothing, frame timing and
+// the step of one confirmed frame.
+
+#include <cstdint>
+#include <span>
+
+#include "lockbox/net/Protocol.h"
+
+namespace lockbox {
+class b2World;
+}
+namespace lockbox::replay {
+class Game;
+}
+
+namespace lockbox::net {
+
+/// RFC 6298-style smoothing in integer microseconds: srtt += (sample - srtt) / 8,
+/// rttvar += (|sample - srtt| - rttvar) / 4.
+class RttEstimator {
+public:
+    void Sample(uint64_t micros) noexcept {
+        if (samples_ == 0) {
+            srtt_ = micros;
+            var_ = micros / 2;
+        } else {
+            const uint64_t dev = micros > srtt_ ? micros - srtt_ : srtt_ - micros;
+            var_ = var_ - var_ / 4 + dev / 4;
+            srtt_ = srtt_ - srtt_ / 8 + micros / 8;
+        }
+        ++samples_;
+    }
+    uint64_t Srtt() const noexcept { return srtt_; }
+    uint64_t Var() const noexcept { return var_; }
+    uint32_t Samples() const noexcept { return samples_; }
+
+private:
+    uint64_t srtt_ = 0, var_ = 0;
+    uint32_t samples_ = 0;
+};
+
+/// Microseconds per frame, rounded down (tickRate >= 1).
+inline uint64_t TickMicros(uint32_t tickRate) noexcept { return 1'000'000u / (tickRate == 0 ? 1u : tickRate); }
+
+/// Applies `inputs` through the game and steps the world once at 1/tickRate seconds.
+void StepConfirmedFrame(b2World& world, replay::Game& game, int32_t frame, std::span<const uint8_t> inputs,
+                        uint32_t tickRate, uint32_t velocityIterations, uint32_t positionIterations);
+
+/// b2World::Hash folded with the game's user state (FNV-1a then a 64-bit mix), so state
+/// outside the physics also takes part in the comparison.
+uint64_t FoldedStateHash(const b2World& world, const replay::Game& game);
+/// The same fold from an already computed b2World::Hash.
+uint64_t FoldUserState(uint64_t worldHash, const replay::Game& game);
+
+}  // namespace lockbox::net

@@ -1,0 +1,88 @@
+// Chunked snapshot transfer (SnapshotTransfer.h).
+
+#include "SnapshotTransfer.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace lockbox::net {
+
+void SnapshotSender::Start(int32_t frame, std::vector<uint8_t> blob) {
+    active_ = !blob.empty() && blob.size() <= kMaxSnapshotBytes;
+    frame_ = frame;
+    blob_ = std::move(blob);
+    chunkCount_ = active_ ? static_cast<uint32_t>((blob_.size() + kSnapshotChunkBytes - 1) / kSnapshotChunkBytes) : 0;
+    acked_ = 0;
+    ackedFlags_.assign(chunkCount_, 0);
+    sentAt_.assign(chunkCount_, 0);
+    cursor_ = 0;
+}
+
+void SnapshotSender::Stop() noexcept {
+    active_ = false;
+    blob_.clear();
+    chunkCount_ = acked_ = 0;
+}
+
+void SnapshotSender::OnAck(const SnapshotAck& ack) noexcept {
+    if (!active_ || ack.frame != frame_ || ack.index >= chunkCount_ || ackedFlags_[ack.index]) return;
+    ackedFlags_[ack.index] = 1;
+    ++acked_;
+}
+
+size_t SnapshotSender::Pump(uint64_t now, uint64_t resendMicros, size_t window,
+                            const std::function<void(const SnapshotChunk&)>& send) {
+    if (!active_ || Done()) return 0;
+    size_t sent = 0;
+    for (uint32_t step = 0; step < chunkCount_ && sent < window; ++step) {
+        const uint32_t i = (cursor_ + step) % chunkCount_;
+        if (ackedFlags_[i]) continue;
+        // sentAt_ 0 means never; a resend waits resendMicros after the last send.
+        if (sentAt_[i] != 0 && now - sentAt_[i] < resendMicros) continue;
+        const size_t offset = size_t{i} * kSnapshotChunkBytes;
+        const size_t len = std::min<size_t>(kSnapshotChunkBytes, blob_.size() - offset);
+        chunk_.frame = frame_;
+        chunk_.totalSize = static_cast<uint32_t>(blob_.size());
+        chunk_.index = i;
+        chunk_.bytes.assign(blob_.begin() + static_cast<std::ptrdiff_t>(offset),
+                            blob_.begin() + static_cast<std::ptrdiff_t>(offset + len));
+        send(chunk_);
+        sentAt_[i] = now == 0 ? 1 : now;
+        ++sent;
+        cursor_ = (i + 1) % chunkCount_;
+    }
+    return sent;
+}
+
+bool SnapshotReceiver::Accept(const SnapshotChunk& chunk) {
+    if (active_ && chunk.frame < frame_) return false;
+    if (!active_ || chunk.frame != frame_ || chunk.totalSize != total_) {
+        // A newer snapshot (the old source may have restarted): assemble that one instead.
+        active_ = true;
+        frame_ = chunk.frame;
+        total_ = chunk.totalSize;
+        chunkCount_ = (total_ + kSnapshotChunkBytes - 1) / kSnapshotChunkBytes;
+        received_ = 0;
+        blob_.assign(total_, 0);
+        have_.assign(chunkCount_, 0);
+    }
+    const size_t offset = size_t{chunk.index} * kSnapshotChunkBytes;
+    // The codec already checked index and length against totalSize; check again before copying.
+    if (chunk.index >= chunkCount_ || offset + chunk.bytes.size() > blob_.size()) return false;
+    if (!have_[chunk.index]) {
+        if (!chunk.bytes.empty()) std::memcpy(blob_.data() + offset, chunk.bytes.data(), chunk.bytes.size());
+        have_[chunk.index] = 1;
+        ++received_;
+    }
+    return true;
+}
+
+void SnapshotReceiver::Reset() noexcept {
+    active_ = false;
+    frame_ = 0;
+    total_ = chunkCount_ = received_ = 0;
+    blob_.clear();
+    have_.clear();
+}
+
+}  // namespace lockbox::net

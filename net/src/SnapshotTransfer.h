@@ -1,0 +1,64 @@
+#pragma once
+// Chunked snapshot transfer over an unreliable transport (late join, docs/net.md "Late
+// join"): the sender keeps a window of chunks in flight and resends each until its
+// SnapshotAck arrives; the receiver reassembles chunks in any order and acks every one.
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "lockbox/net/Protocol.h"
+
+namespace lockbox::net {
+
+/// Sends one snapshot blob in kSnapshotChunkBytes pieces.
+class SnapshotSender {
+public:
+    /// Starts sending `blob` (1 .. kMaxSnapshotBytes bytes) as the snapshot of `frame`.
+    void Start(int32_t frame, std::vector<uint8_t> blob);
+    /// Forgets the current snapshot.
+    void Stop() noexcept;
+    bool Active() const noexcept { return active_; }
+    /// True when every chunk was acknowledged.
+    bool Done() const noexcept { return active_ && acked_ == chunkCount_; }
+    int32_t Frame() const noexcept { return frame_; }
+    /// Marks a chunk delivered (acks of another frame or out of range are ignored).
+    void OnAck(const SnapshotAck& ack) noexcept;
+    /// Calls `send` for each chunk that is due: never sent, or unacked for resendMicros; at
+    /// most `window` chunks per call. Returns how many were sent.
+    size_t Pump(uint64_t now, uint64_t resendMicros, size_t window, const std::function<void(const SnapshotChunk&)>& send);
+
+private:
+    bool active_ = false;
+    int32_t frame_ = 0;
+    std::vector<uint8_t> blob_;
+    uint32_t chunkCount_ = 0, acked_ = 0;
+    std::vector<uint8_t> ackedFlags_;
+    std::vector<uint64_t> sentAt_;  ///< 0: never sent
+    uint32_t cursor_ = 0;           ///< round-robin start, so resends do not starve later chunks
+    SnapshotChunk chunk_;
+};
+
+/// Reassembles one snapshot.
+class SnapshotReceiver {
+public:
+    /// Takes a chunk. A chunk of a newer frame (or a different size) restarts the assembly; one
+    /// of an older frame is ignored. Returns true when the chunk belongs to the current
+    /// snapshot (the caller acks it).
+    bool Accept(const SnapshotChunk& chunk);
+    bool Active() const noexcept { return active_; }
+    bool Complete() const noexcept { return active_ && received_ == chunkCount_; }
+    int32_t Frame() const noexcept { return frame_; }
+    std::span<const uint8_t> Blob() const noexcept { return blob_; }
+    void Reset() noexcept;
+
+private:
+    bool active_ = false;
+    int32_t frame_ = 0;
+    uint32_t total_ = 0, chunkCount_ = 0, received_ = 0;
+    std::vector<uint8_t> blob_;
+    std::vector<uint8_t> have_;
+};
+
+}  // namespace lockbox::net

@@ -1,0 +1,240 @@
+// The rollback match of the main demo (RollbackMatch.h). Two player threads, each owning its
+// socket, world and session; the main thread only prints what they publish and, at the end,
+// compares their final hashes.
+#include "RollbackMatch.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <variant>
+#include <vector>
+
+#include "lockbox/net/RollbackPeer.h"
+#include "lockbox/net/RollbackSession.h"
+#include "lockbox/net/RollbackWorldAdapter.h"
+#include "lockbox/net/UdpTransport.h"
+#include "lockbox/replay/SceneGame.h"
+
+namespace lockbox::demo {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Holds every outgoing datagram for a fixed delay before handing it to the socket: a long
+/// cable on loopback, so predictions miss and rollbacks happen.
+class DelayedTransport final : public net::Transport {
+public:
+    DelayedTransport(std::unique_ptr<net::Transport> inner, uint64_t delayMicros)
+        : inner_(std::move(inner)), delay_(delayMicros) {}
+    bool Send(net::PeerId peer, std::span<const uint8_t> bytes, net::Delivery delivery) override {
+        if (delay_ == 0) return inner_->Send(peer, bytes, delivery);
+        queue_.push_back(Held{NowMicros() + delay_, peer, std::vector<uint8_t>(bytes.begin(), bytes.end())});
+        return true;
+    }
+    size_t Poll(std::vector<net::Datagram>& out) override {
+        Pump();
+        return inner_->Poll(out);
+    }
+    uint64_t NowMicros() const override { return inner_->NowMicros(); }
+    const net::TransportStats& Stats() const noexcept override { return inner_->Stats(); }
+    /// Sends every held datagram that is due.
+    void Pump() {
+        const uint64_t now = NowMicros();
+        while (!queue_.empty() && queue_.front().due <= now) {
+            inner_->Send(queue_.front().peer, queue_.front().bytes);
+            queue_.pop_front();
+        }
+    }
+
+private:
+    struct Held {
+        uint64_t due;
+        net::PeerId peer;
+        std::vector<uint8_t> bytes;
+    };
+    std::unique_ptr<net::Transport> inner_;
+    uint64_t delay_;
+    std::deque<Held> queue_;
+};
+
+/// What a player thread publishes.
+struct Board {
+    std::atomic<int32_t> frame{0}, confirmed{0};
+    std::atomic<uint64_t> rollbacks{0}, resimulated{0}, resimNanos{0}, rollbackSteps{0};
+    std::atomic<uint32_t> deepest{0};
+    std::atomic<bool> done{false}, failed{false}, desync{false};
+    std::mutex lock;
+    std::map<int32_t, uint64_t> finals;  // frame -> final hash (under lock)
+};
+
+void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net::PeerId other,
+                  const RollbackOptions o, Board& board, Clock::time_point deadline) {
+    replay::SceneGame game(o.scene);
+    auto session = net::RollbackSessionBuilder()
+                       .Players(2)
+                       .InputBytes(replay::SceneInput::kBytes)
+                       .LocalPlayer(me)
+                       .InputDelay(static_cast<uint32_t>(o.inputDelay))
+                       .PredictionWindow(static_cast<uint32_t>(o.window))
+                       .DesyncInterval(30)
+                       .Build();
+    const auto& info = game.info();
+    net::WorldGameAdapter adapter(game.world(), game,
+                                  net::WorldStepSettings{static_cast<uint32_t>(info.hz),
+                                                         static_cast<uint32_t>(info.velocityIterations),
+                                                         static_cast<uint32_t>(info.positionIterations)});
+    net::RollbackPeerConfig cfg;
+    cfg.matchId = 0x524F4C4Cu;
+    cfg.remotes.push_back(net::RollbackRemote{other, {1 - me}});
+    net::RollbackPeer peer(*session, *transport, cfg);
+    replay::ScriptedInputs script(o.seed * 1000 + me, 1);
+    std::vector<uint8_t> input;
+    const auto tick = std::chrono::microseconds(1000000 / 60);
+    auto next = Clock::now();
+    // Play past `frames` until both sides have confirmed it, then a little longer so the
+    // other side hears our last inputs and hashes too.
+    int32_t lingerTicks = 30;
+    while (Clock::now() < deadline && lingerTicks > 0) {
+        peer.Poll();
+        if (!peer.WaitThisTick()) {
+            if (session->ReceivedFrame(me) <= session->CurrentFrame() + o.inputDelay) {
+                script.Next(input);
+                session->AddLocalInput(me, input);
+            }
+            const auto reqs = session->AdvanceFrame();
+            const bool rollback = std::any_of(reqs.begin(), reqs.end(), [](const net::RollbackRequest& r) {
+                return std::holds_alternative<net::LoadState>(r);
+            });
+            const auto t0 = Clock::now();
+            if (!adapter.Execute(*session, reqs)) board.failed = true;
+            if (rollback) {
+                // Every Advance of a rollback batch (the re-simulated frames and the new one)
+                // with its save: the cost per frame of catching up.
+                board.rollbackSteps += static_cast<uint64_t>(std::count_if(
+                    reqs.begin(), reqs.end(),
+                    [](const net::RollbackRequest& r) { return std::holds_alternative<net::AdvanceRequest>(r); }));
+                board.resimNanos += static_cast<uint64_t>(
+                    std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count());
+            }
+        }
+        peer.Flush();
+        const net::RollbackStats& s = session->Stats();
+        board.frame = session->CurrentFrame();
+        board.confirmed = session->ConfirmedFrame();
+        board.rollbacks = s.rollbacks;
+        board.resimulated = s.framesResimulated;
+        board.deepest = s.deepestRollback;
+        {
+            std::lock_guard<std::mutex> guard(board.lock);
+            for (const auto& [f, h] : session->FinalHashes()) board.finals[f] = h;
+        }
+        for (const net::RollbackEvent& e : session->TakeEvents())
+            if (e.kind == net::RollbackEvent::Kind::e_desync) board.desync = true;
+        if (session->ConfirmedFrame() >= o.frames) --lingerTicks;
+        // Sleep to the next tick in 1 ms steps so delayed datagrams leave on time.
+        next += tick;
+        while (Clock::now() < next) {
+            transport->Pump();
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+    }
+    board.done = true;
+}
+
+}  // namespace
+
+int RunRollbackMatch(const RollbackOptions& o) {
+    if (o.frames < 1 || o.frames > 1000000 || o.inputDelay < 0 || o.inputDelay > 16 || o.window < 1 ||
+        o.window > 64 || o.latencyMs < 0 || o.latencyMs > 1000) {
+        std::fprintf(stderr, "rollback: frames 1..1000000, delay 0..16, window 1..64, latency 0..1000 ms\n");
+        return 2;
+    }
+    if (!replay::SceneGame(o.scene).ok()) {
+        std::fprintf(stderr, "rollback: unknown scene %s\n", o.scene.c_str());
+        return 2;
+    }
+    std::string error;
+    auto a = net::UdpTransport::Open("127.0.0.1", 0, &error);
+    auto b = a ? net::UdpTransport::Open("127.0.0.1", 0, &error) : nullptr;
+    if (!a || !b) {
+        std::fprintf(stderr, "rollback: cannot open a socket: %s\n", error.c_str());
+        return 1;
+    }
+    const net::PeerId aToB = a->AddPeer("127.0.0.1", b->LocalPort(), &error);
+    const net::PeerId bToA = b->AddPeer("127.0.0.1", a->LocalPort(), &error);
+    if (aToB == net::kNoPeer || bToA == net::kNoPeer) {
+        std::fprintf(stderr, "rollback: %s\n", error.c_str());
+        return 1;
+    }
+    const uint64_t delay = static_cast<uint64_t>(o.latencyMs) * 1000;
+    std::printf("rollback match: scene %s, %d frames, input delay %d, window %d, one-way latency %d ms (loopback UDP)\n",
+                o.scene.c_str(), o.frames, o.inputDelay, o.window, o.latencyMs);
+    const auto start = Clock::now();
+    // Three times real time plus slack: the match always ends.
+    const auto deadline = start + std::chrono::milliseconds(int64_t{o.frames} * 50 + 15000);
+    Board boards[2];
+    std::thread ta(PlayerThread, 0u, std::make_unique<DelayedTransport>(std::move(a), delay), aToB, o,
+                   std::ref(boards[0]), deadline);
+    std::thread tb(PlayerThread, 1u, std::make_unique<DelayedTransport>(std::move(b), delay), bToA, o,
+                   std::ref(boards[1]), deadline);
+    uint64_t lastRollbacks[2] = {0, 0};
+    auto nextPrint = start + std::chrono::seconds(1);
+    while (!(boards[0].done && boards[1].done)) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        if (Clock::now() < nextPrint) continue;
+        nextPrint += std::chrono::seconds(1);
+        for (int i = 0; i < 2; ++i) {
+            const Board& bd = boards[i];
+            const uint64_t rb = bd.rollbacks;
+            const uint64_t resim = bd.rollbackSteps;
+            std::printf("  player %d: frame %5d confirmed %5d  rollbacks/s %3llu  deepest %u  resim %.3f ms/frame\n", i,
+                        bd.frame.load(), bd.confirmed.load(), static_cast<unsigned long long>(rb - lastRollbacks[i]),
+                        bd.deepest.load(), resim ? static_cast<double>(bd.resimNanos) / 1e6 / static_cast<double>(resim) : 0.0);
+            lastRollbacks[i] = rb;
+        }
+        std::fflush(stdout);
+    }
+    ta.join();
+    tb.join();
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    // Compare every frame both players finalized; the agreed hash is the newest common one.
+    int32_t compared = 0, agreedFrame = -1;
+    uint64_t agreed = 0;
+    bool mismatch = false;
+    for (const auto& [f, h] : boards[0].finals) {
+        auto it = boards[1].finals.find(f);
+        if (it == boards[1].finals.end()) continue;
+        ++compared;
+        if (it->second != h) mismatch = true;
+        agreedFrame = f;
+        agreed = h;
+    }
+    bool ok = !mismatch && compared > 0;
+    for (int i = 0; i < 2; ++i) {
+        const Board& bd = boards[i];
+        const uint64_t resim = bd.rollbackSteps;
+        std::printf("player %d: %d frames in %.1f s, %llu rollbacks (%.1f/s), deepest %u, %llu frames resimulated, "
+                    "resim %.3f ms/frame%s%s\n",
+                    i, bd.frame.load(), seconds, static_cast<unsigned long long>(bd.rollbacks.load()),
+                    static_cast<double>(bd.rollbacks) / seconds, bd.deepest.load(),
+                    static_cast<unsigned long long>(bd.resimulated.load()),
+                    resim ? static_cast<double>(bd.resimNanos) / 1e6 / static_cast<double>(resim) : 0.0,
+                    bd.failed ? ", RESTORE FAILED" : "", bd.desync ? ", DESYNC" : "");
+        ok = ok && !bd.failed && !bd.desync && bd.confirmed >= o.frames;
+    }
+    if (ok)
+        std::printf("agreed hash %016llx at frame %d (%d frames compared)\n", static_cast<unsigned long long>(agreed),
+                    agreedFrame, compared);
+    else
+        std::printf("players did NOT agree (%d frames compared%s)\n", compared, mismatch ? ", mismatch" : "");
+    return ok ? 0 : 1;
+}
+
+}  // namespace lockbox::demo

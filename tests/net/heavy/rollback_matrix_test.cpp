@@ -1,0 +1,103 @@
+// The issue 11 SimNet matrix for rollback: {2, 4} peers x RTT {0, 50, 150 ms} x loss {0, 5,
+// 20 %} x jitter {0, 30 ms}, plus one 10,000-frame match with no false desync. Each cell
+// prints one line of figures (rollbacks, depth, waits, frame-advantage spread) for
+// docs/rollback.md; the assertions are behaviour only.
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "../rollback_harness.h"
+
+namespace lockbox::net::rbtest {
+namespace {
+
+struct Cell {
+    uint32_t peers, rtt, loss, jitter;
+};
+
+void CheckAndPrint(const RbSpec& spec, const RbResult& r) {
+    SCOPED_TRACE(spec.Describe());
+    EXPECT_TRUE(r.finished) << "ticks=" << r.ticks;
+    size_t compared = SIZE_MAX;
+    for (size_t i = 0; i < r.peers.size(); ++i) {
+        const RbPeer& p = r.peers[i];
+        EXPECT_FALSE(p.executeFailed) << "peer " << i;
+        EXPECT_FALSE(p.finalChanged) << "peer " << i;
+        for (const RollbackEvent& e : p.events)
+            EXPECT_NE(e.kind, RollbackEvent::Kind::e_desync) << "peer " << i << " false desync at " << e.frame;
+        for (size_t j = i + 1; j < r.peers.size(); ++j) {
+            int32_t mismatch = -1;
+            const size_t common = CompareFinals(p, r.peers[j], mismatch);
+            EXPECT_EQ(mismatch, -1) << "peers " << i << "," << j;
+            EXPECT_GE(common, static_cast<size_t>(spec.frames / static_cast<int32_t>(spec.desyncInterval)) * 8 / 10);
+            compared = std::min(compared, common);
+        }
+    }
+    if (spec.rttMs * 500u > spec.inputDelay * kTickMicros) {
+        EXPECT_GT(r.Rollbacks(), 0u);
+    }
+    EXPECT_LE(r.SpreadP95(), 1);
+    uint64_t resim = 0, waits = 0, advanced = 0;
+    uint32_t deepest = 0;
+    for (const RbPeer& p : r.peers) {
+        const RollbackStats& s = p.session->Stats();
+        resim += s.framesResimulated;
+        waits += s.waits;
+        advanced += s.framesAdvanced;
+        deepest = std::max(deepest, s.deepestRollback);
+    }
+    int32_t spreadMax = 0;
+    for (int32_t v : r.spread) spreadMax = std::max(spreadMax, v);
+    // peers rtt loss jitter | rollbacks/peer/100f resim/frame deepest waits/peer p95 max compared
+    uint64_t bytes = 0;
+    for (uint64_t b : r.wireBytesSent) bytes += b;
+    // kbit/s upstream per peer: bytes * 8 / (ticks / 60 s) / 1000 / peers.
+    const double kbps = static_cast<double>(bytes) * 8.0 * 60.0 / static_cast<double>(r.ticks) / 1000.0 /
+                        static_cast<double>(spec.peers);
+    std::printf("RBCELL %u,%u,%u,%u,%llu,%.3f,%u,%llu,%d,%d,%zu,%lld,%.1f\n", spec.peers, spec.rttMs, spec.lossPct,
+                spec.jitterMs, static_cast<unsigned long long>(r.Rollbacks()),
+                advanced ? static_cast<double>(resim) / static_cast<double>(advanced) : 0.0, deepest,
+                static_cast<unsigned long long>(waits), r.SpreadP95(), spreadMax, compared,
+                static_cast<long long>(r.ticks), kbps);
+}
+
+class RollbackMatrix : public ::testing::TestWithParam<Cell> {};
+
+TEST_P(RollbackMatrix, PeersAgree) {
+    const Cell c = GetParam();
+    RbSpec spec;
+    spec.seed = 7000 + c.peers * 1000 + c.rtt * 10 + c.loss + c.jitter;
+    spec.peers = c.peers;
+    spec.rttMs = c.rtt;
+    spec.lossPct = c.loss;
+    spec.jitterMs = c.jitter;
+    spec.frames = 900;
+    CheckAndPrint(spec, RunRbMatch(spec));
+}
+
+std::vector<Cell> AllCells() {
+    std::vector<Cell> cells;
+    for (uint32_t peers : {2u, 4u})
+        for (uint32_t rtt : {0u, 50u, 150u})
+            for (uint32_t loss : {0u, 5u, 20u})
+                for (uint32_t jitter : {0u, 30u}) cells.push_back(Cell{peers, rtt, loss, jitter});
+    return cells;
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue11, RollbackMatrix, ::testing::ValuesIn(AllCells()));
+
+TEST(RollbackLong, TenThousandFramesNoFalseDesync) {
+    RbSpec spec;
+    spec.seed = 10000;
+    spec.peers = 2;
+    spec.rttMs = 150;
+    spec.lossPct = 5;
+    spec.jitterMs = 30;
+    spec.frames = 10000;
+    spec.desyncInterval = 1;  // every frame compared
+    CheckAndPrint(spec, RunRbMatch(spec));
+}
+
+}  // namespace
+}  // namespace lockbox::net::rbtest

@@ -1,0 +1,260 @@
+#pragma once
+// A peer-to-peer rollback match on a SimNet for the rollback tests: N peers, each with its own
+// replay::SceneGame world, RollbackSession, WorldGameAdapter and RollbackPeer, one local
+// player each with seeded scripted inputs. The virtual clock moves one 60 Hz tick (16,666 us)
+// per loop; every run is bounded in ticks.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "lockbox/net/RollbackPeer.h"
+#include "lockbox/net/RollbackSession.h"
+#include "lockbox/net/RollbackSpectator.h"
+#include "lockbox/net/RollbackWorldAdapter.h"
+#include "lockbox/net/SimNet.h"
+#include "lockbox/replay/SceneGame.h"
+
+namespace lockbox::net::rbtest {
+
+inline constexpr uint64_t kTickMicros = 16666;
+
+/// One cell of the impairment matrix, and the match settings.
+struct RbSpec {
+    uint64_t seed = 1;
+    uint32_t peers = 2;
+    uint32_t rttMs = 0;        ///< each direction gets rttMs / 2 of fixed latency
+    uint32_t lossPct = 0;      ///< Bernoulli loss per direction
+    uint32_t jitterMs = 0;     ///< extra one-way delay, uniform in [0, jitterMs]
+    int32_t frames = 600;      ///< frames every peer must reach and confirm
+    uint32_t inputDelay = 1;
+    uint32_t window = 8;
+    uint32_t desyncInterval = 10;
+    uint32_t startSkewTicks = 2;  ///< peer i starts i * skew ticks late
+    int32_t steadyFromTick = 240; ///< frame-advantage samples from this tick on
+    int32_t nudgePeer = -1;       ///< forced divergence: this peer's state moves at nudgeFrame
+    int32_t nudgeFrame = -1;
+    uint32_t fastPeerExtraEvery = 0;  ///< > 0: peer 0's clock is fast by one tick in this many
+    bool spectator = false;           ///< a spectator endpoint watches through peer 0
+    bool timeSync = true;             ///< false: WaitThisTick is ignored
+    int32_t downPeer = -1;        ///< this peer's machine goes down at downAtTick
+    int64_t downAtTick = -1;
+    std::string scene = "vertical_stack";
+
+    std::string Describe() const {
+        std::ostringstream s;
+        s << "seed=" << seed << " peers=" << peers << " rtt=" << rttMs << "ms loss=" << lossPct
+          << "% jitter=" << jitterMs << "ms frames=" << frames << " delay=" << inputDelay;
+        return s.str();
+    }
+};
+
+/// A SceneGame nudged at one frame: every time that frame is applied (rollbacks included),
+/// the first dynamic body moves by 1/65536 m first, so the divergence survives rollbacks.
+class RbNudgeGame : public replay::Game {
+public:
+    explicit RbNudgeGame(replay::SceneGame& inner) : inner_(inner) {}
+    void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {
+        if (frame == nudgeFrame) {
+            for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
+                if (b->GetType() != b2_dynamicBody) continue;
+                b2Vec2 p = b->GetPosition();
+                p.x = p.x + Fixed::FromRaw(1);
+                b->SetTransform(p, b->GetAngle());
+                break;
+            }
+        }
+        inner_.Apply(world, frame, inputs);
+    }
+    void SaveUserState(std::vector<uint8>& out) const override { inner_.SaveUserState(out); }
+    void LoadUserState(std::span<const uint8> in) override { inner_.LoadUserState(in); }
+    int32_t nudgeFrame = -1;
+
+private:
+    replay::SceneGame& inner_;
+};
+
+struct RbPeer {
+    std::unique_ptr<replay::SceneGame> scene;
+    std::unique_ptr<RbNudgeGame> game;
+    std::unique_ptr<RollbackSession> session;
+    std::unique_ptr<WorldGameAdapter> adapter;
+    std::unique_ptr<RollbackPeer> net;
+    std::unique_ptr<replay::ScriptedInputs> inputs;
+    std::map<int32_t, uint64_t> finals;  // frame -> final hash
+    std::vector<RollbackEvent> events;
+    bool executeFailed = false;
+    bool finalChanged = false;  // a frame's final hash changed after it was final
+};
+
+struct RbResult {
+    std::vector<RbPeer> peers;
+    int64_t ticks = 0;
+    bool finished = false;                 ///< every peer reached and confirmed `frames`
+    std::vector<int32_t> spread;           ///< per steady tick: max - min current frame
+    std::map<int32_t, uint64_t> spectatorHashes;  ///< frame -> the spectator's state hash
+    int32_t spectatorFrames = 0;
+    std::vector<uint64_t> wireBytesSent;          ///< per peer, IPv4 + UDP headers included
+    int32_t SpreadP95() const {
+        if (spread.empty()) return 0;
+        std::vector<int32_t> s = spread;
+        std::sort(s.begin(), s.end());
+        return s[(s.size() * 95 + 99) / 100 - 1];
+    }
+    uint64_t Rollbacks() const {
+        uint64_t n = 0;
+        for (const RbPeer& p : peers) n += p.session->Stats().rollbacks;
+        return n;
+    }
+};
+
+/// Plays one match; bounded to frames * 6 + 1200 ticks.
+inline RbResult RunRbMatch(const RbSpec& spec) {
+    RbResult out;
+    SimNet net(spec.seed);
+    LinkProfile link;
+    link.latencyMicros = spec.rttMs * 500u;
+    link.jitterMicros = spec.jitterMs * 1000u;
+    link.lossPpm = spec.lossPct * 10000u;
+    std::vector<SimEndpoint*> ends;
+    for (uint32_t i = 0; i < spec.peers; ++i) ends.push_back(&net.AddEndpoint());
+    SimEndpoint* specEnd = spec.spectator ? &net.AddEndpoint() : nullptr;
+    net.SetAllLinks(link);
+    out.peers.resize(spec.peers);
+    std::unique_ptr<replay::SceneGame> specGame;
+    std::unique_ptr<RollbackSpectator> spectator;
+    if (specEnd != nullptr) {
+        specGame = std::make_unique<replay::SceneGame>(spec.scene);
+        RollbackSpectatorConfig sc;
+        sc.matchId = 77;
+        sc.players = spec.peers;
+        sc.inputBytes = replay::SceneInput::kBytes;
+        sc.host = ends[0]->Index();
+        spectator = std::make_unique<RollbackSpectator>(*specEnd, sc);
+    }
+    for (uint32_t i = 0; i < spec.peers; ++i) {
+        RbPeer& p = out.peers[i];
+        p.scene = std::make_unique<replay::SceneGame>(spec.scene);
+        p.game = std::make_unique<RbNudgeGame>(*p.scene);
+        if (static_cast<int32_t>(i) == spec.nudgePeer) p.game->nudgeFrame = spec.nudgeFrame;
+        p.session = RollbackSessionBuilder()
+                        .Players(spec.peers)
+                        .InputBytes(replay::SceneInput::kBytes)
+                        .LocalPlayer(i)
+                        .PredictionWindow(spec.window)
+                        .InputDelay(spec.inputDelay)
+                        .DesyncInterval(spec.desyncInterval)
+                        .Build();
+        const auto& info = p.scene->info();
+        p.adapter = std::make_unique<WorldGameAdapter>(
+            p.scene->world(), *p.game,
+            WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
+                              static_cast<uint32_t>(info.positionIterations)});
+        RollbackPeerConfig cfg;
+        cfg.matchId = 77;
+        for (uint32_t j = 0; j < spec.peers; ++j)
+            if (j != i) cfg.remotes.push_back(RollbackRemote{ends[j]->Index(), {j}});
+        if (i == 0 && specEnd != nullptr) cfg.spectators.push_back(specEnd->Index());
+        p.net = std::make_unique<RollbackPeer>(*p.session, *ends[i], cfg);
+        p.inputs = std::make_unique<replay::ScriptedInputs>(spec.seed * 1000 + i, 1);
+    }
+    const int64_t limit = int64_t{spec.frames} * 6 + 1200;
+    std::vector<uint8_t> input;
+    for (int64_t tick = 0; tick < limit; ++tick) {
+        bool done = true;
+        for (uint32_t i = 0; i < spec.peers; ++i) {
+            RbPeer& p = out.peers[i];
+            if (static_cast<int32_t>(i) == spec.downPeer && tick >= spec.downAtTick) {
+                ends[i]->SetDown(true);
+                continue;
+            }
+            if (tick < int64_t{spec.startSkewTicks} * i) {
+                done = false;
+                continue;
+            }
+            RollbackSession& s = *p.session;
+            // Peer 0 with a fast clock runs one extra tick every fastPeerExtraEvery ticks.
+            const int runs = (i == 0 && spec.fastPeerExtraEvery > 0 && tick % spec.fastPeerExtraEvery == 0) ? 2 : 1;
+            for (int run = 0; run < runs; ++run) {
+                p.net->Poll();
+                const bool wait = p.net->WaitThisTick() && spec.timeSync;
+                if (!wait) {
+                    // An input is drawn only when the session takes it, so frame f always gets
+                    // the f-th draw whatever the waits. Peers keep playing past `frames` until
+                    // every peer has confirmed it.
+                    if (s.ReceivedFrame(i) <= s.CurrentFrame() + static_cast<int32_t>(spec.inputDelay)) {
+                        p.inputs->Next(input);
+                        s.AddLocalInput(i, input);
+                    }
+                    const auto reqs = s.AdvanceFrame();
+                    if (!p.adapter->Execute(s, reqs)) p.executeFailed = true;
+                }
+                p.net->Flush();
+            }
+            for (const auto& [f, h] : s.FinalHashes()) {
+                auto [it, fresh] = p.finals.emplace(f, h);
+                if (!fresh && it->second != h) p.finalChanged = true;
+            }
+            for (const RollbackEvent& e : s.TakeEvents()) p.events.push_back(e);
+            if (s.ConfirmedFrame() < spec.frames) done = false;
+        }
+        if (spectator) {
+            spectator->Poll();
+            int32_t f = 0;
+            const auto& info = specGame->info();
+            while (spectator->Next(f, input)) {
+                specGame->Apply(specGame->world(), f, input);
+                specGame->world().Step(Fixed::FromRatio(1, info.hz), info.velocityIterations, info.positionIterations);
+                if ((f + 1) % static_cast<int32_t>(spec.desyncInterval) == 0) {
+                    // The peers' hash: the world hash folded with the (empty) user state.
+                    out.spectatorHashes[f + 1] = specGame->world().Hash();
+                }
+                out.spectatorFrames = f + 1;
+            }
+            spectator->Flush();
+            if (out.spectatorFrames < spec.frames) done = false;
+        }
+        if (tick >= spec.steadyFromTick) {
+            int32_t lo = INT32_MAX, hi = INT32_MIN;
+            bool running = true;
+            for (uint32_t i = 0; i < spec.peers; ++i) {
+                if (static_cast<int32_t>(i) == spec.downPeer) continue;
+                const RbPeer& p = out.peers[i];
+                lo = std::min(lo, p.session->CurrentFrame());
+                hi = std::max(hi, p.session->CurrentFrame());
+                if (p.session->CurrentFrame() >= spec.frames) running = false;
+            }
+            if (running) out.spread.push_back(hi - lo);
+        }
+        net.Advance(kTickMicros);
+        out.ticks = tick + 1;
+        out.wireBytesSent.assign(spec.peers, 0);
+        for (uint32_t i = 0; i < spec.peers; ++i) out.wireBytesSent[i] = ends[i]->Stats().wireBytesSent;
+        if (done) {
+            out.finished = true;
+            break;
+        }
+    }
+    return out;
+}
+
+/// Frames whose final hash two peers both know, and whether they all agree.
+inline size_t CompareFinals(const RbPeer& a, const RbPeer& b, int32_t& firstMismatch) {
+    size_t common = 0;
+    firstMismatch = -1;
+    for (const auto& [f, h] : a.finals) {
+        auto it = b.finals.find(f);
+        if (it == b.finals.end()) continue;
+        ++common;
+        if (it->second != h && firstMismatch < 0) firstMismatch = f;
+    }
+    return common;
+}
+
+}  // namespace lockbox::net::rbtest

@@ -1,0 +1,134 @@
+// The rollback codec (RollbackProtocol.h): round trips, canonical encoding, and refusal of
+// every truncation and malformed field.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "lockbox/net/RollbackProtocol.h"
+
+namespace lockbox::net {
+namespace {
+
+const RollbackShape kShape{3, 4};
+
+std::vector<RollbackMessage> Sample() {
+    std::vector<RollbackMessage> m;
+    m.push_back(RbInputs{2, 1000, {1, 2, 3, 4, 1, 2, 3, 4, 0, 0, 0, 0, 9, 9, 9, 9}});
+    m.push_back(RbInputAck{1, 77});
+    m.push_back(RbQuality{4000, -2500, 123456789});
+    m.push_back(RbQuality{1, INT32_MIN, 0});
+    m.push_back(RbQuality{2, INT32_MAX, UINT64_MAX});
+    m.push_back(RbQualityReply{99, 12});
+    m.push_back(RbHash{30, 0xDEADBEEFCAFEF00Dull});
+    std::vector<uint8_t> rows(2 * 3 * 4, 0);
+    rows[5] = 7;
+    rows[17] = 7;
+    m.push_back(RbConfirmed{5, rows});
+    m.push_back(RbConfirmedAck{7});
+    m.push_back(RbKeepAlive{});
+    m.push_back(RbDisconnect{});
+    return m;
+}
+
+std::vector<uint8_t> Encode(const std::vector<RollbackMessage>& msgs, uint32_t matchId = 42) {
+    RollbackDatagramWriter w;
+    w.Begin(RollbackHeader{kRollbackProtocolVersion, matchId});
+    for (const auto& m : msgs) EXPECT_TRUE(w.Add(m, kShape));
+    return {w.Bytes().begin(), w.Bytes().end()};
+}
+
+TEST(RollbackWire, RoundTripIsCanonical) {
+    const auto msgs = Sample();
+    const auto bytes = Encode(msgs);
+    RollbackHeader h;
+    std::vector<RollbackMessage> out;
+    ASSERT_EQ(DecodeRollbackDatagram(bytes, kShape, h, out), DecodeError::e_ok);
+    EXPECT_EQ(h.matchId, 42u);
+    EXPECT_EQ(out, msgs);
+    EXPECT_EQ(Encode(out), bytes);
+}
+
+TEST(RollbackWire, EveryTruncationIsRefused) {
+    const auto bytes = Encode(Sample());
+    RollbackHeader h;
+    std::vector<RollbackMessage> out;
+    // Cutting inside a message must fail; cutting exactly between messages is a shorter
+    // valid datagram, so count only the failures and check no decode reads past the end.
+    size_t refused = 0;
+    for (size_t n = 0; n < bytes.size(); ++n) {
+        const std::vector<uint8_t> cut(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(n));
+        if (DecodeRollbackDatagram(cut, kShape, h, out) != DecodeError::e_ok) {
+            ++refused;
+            EXPECT_TRUE(out.empty());
+        }
+    }
+    EXPECT_GT(refused, bytes.size() / 2);
+}
+
+TEST(RollbackWire, MalformedFieldsAreRefused) {
+    RollbackHeader h;
+    std::vector<RollbackMessage> out;
+    auto bytes = Encode({RbKeepAlive{}});
+    auto bad = bytes;
+    bad[0] ^= 1;
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badMagic);
+    bad = bytes;
+    bad[2] = 9;
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badVersion);
+    bad = bytes;
+    bad.back() = 0;
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badType);
+    bad.back() = static_cast<uint8_t>(RollbackMessageType::e_end);
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badType);
+    // A player beyond the shape.
+    bytes = Encode({RbInputAck{2, 1}});
+    bytes[kRollbackHeaderBytes + 1] = 3;
+    EXPECT_EQ(DecodeRollbackDatagram(bytes, kShape, h, out), DecodeError::e_badValue);
+    // A run of zero frames.
+    bytes = Encode({RbInputs{0, 0, {1, 1, 1, 1}}});
+    bytes[kRollbackHeaderBytes + 3] = 0;
+    EXPECT_NE(DecodeRollbackDatagram(bytes, kShape, h, out), DecodeError::e_ok);
+    // Inputs without a shape.
+    bytes = Encode({RbInputs{0, 0, {1, 1, 1, 1}}});
+    EXPECT_EQ(DecodeRollbackDatagram(bytes, RollbackShape{}, h, out), DecodeError::e_noShape);
+    // Out-of-range messages are not encoded.
+    RollbackDatagramWriter w;
+    w.Begin(RollbackHeader{});
+    EXPECT_FALSE(w.Add(RbInputs{3, 0, {1, 1, 1, 1}}, kShape));
+    EXPECT_FALSE(w.Add(RbInputs{0, -1, {1, 1, 1, 1}}, kShape));
+    EXPECT_FALSE(w.Add(RbInputs{0, 0, {1, 1, 1}}, kShape));
+    EXPECT_FALSE(w.Add(RbInputs{0, 0, std::vector<uint8_t>(4 * (kRollbackMaxRun + 1), 1)}, kShape));
+    EXPECT_FALSE(w.Add(RbHash{-1, 0}, kShape));
+    EXPECT_EQ(w.MessageCount(), 0u);
+}
+
+TEST(RollbackWire, RandomBytesNeverCrash) {
+    uint64_t r = 0x5eed;
+    RollbackHeader h;
+    std::vector<RollbackMessage> out;
+    const auto good = Encode(Sample());
+    size_t accepted = 0;
+    for (int i = 0; i < 20000; ++i) {
+        r = r * 6364136223846793005ull + 1442695040888963407ull;
+        std::vector<uint8_t> bytes = good;
+        // Flip one to three bytes of a valid datagram.
+        for (int k = 0; k < 1 + static_cast<int>((r >> 62) % 3); ++k) {
+            r = r * 6364136223846793005ull + 1442695040888963407ull;
+            bytes[(r >> 33) % bytes.size()] = static_cast<uint8_t>(r >> 17);
+        }
+        if (DecodeRollbackDatagram(bytes, kShape, h, out) == DecodeError::e_ok) {
+            ++accepted;
+            // Whatever is accepted re-encodes to the same bytes.
+            RollbackDatagramWriter w;
+            w.Begin(h);
+            for (const auto& m : out) ASSERT_TRUE(w.Add(m, kShape, 1 << 20));
+            EXPECT_EQ(std::vector<uint8_t>(w.Bytes().begin(), w.Bytes().end()), bytes);
+        }
+    }
+    EXPECT_LT(accepted, 20000u);
+}
+
+}  // namespace
+}  // namespace lockbox::net
