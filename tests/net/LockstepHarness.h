@@ -14,9 +14,12 @@
 #include "lockbox/net/LockstepClient.h"
 #include "lockbox/net/LockstepServer.h"
 #include "lockbox/net/SimNet.h"
+#include "NudgeGame.h"
 #include "lockbox/replay/SceneGame.h"
 
 namespace lockbox::net::testing {
+
+using NudgeGame = lockbox::net::test_games::NudgeGame;
 
 /// One cell of the impairment matrix, and the match settings.
 struct MatchSpec {
@@ -51,31 +54,6 @@ struct MatchSpec {
         }
         return p;
     }
-};
-
-/// A SceneGame that can be nudged at one frame (a forced divergence): before that frame's
-/// inputs, the first dynamic body moves by 1/65536 m.
-class NudgeGame : public replay::Game {
-public:
-    explicit NudgeGame(replay::SceneGame& inner) : inner_(inner) {}
-    void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {
-        if (frame == nudgeFrame) {
-            for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
-                if (b->GetType() != b2_dynamicBody) continue;
-                b2Vec2 p = b->GetPosition();
-                p.x = p.x + Fixed::FromRaw(1);
-                b->SetTransform(p, b->GetAngle());
-                break;
-            }
-        }
-        inner_.Apply(world, frame, inputs);
-    }
-    void SaveUserState(std::vector<uint8>& out) const override { inner_.SaveUserState(out); }
-    void LoadUserState(std::span<const uint8> in) override { inner_.LoadUserState(in); }
-    int32_t nudgeFrame = -1;
-
-private:
-    replay::SceneGame& inner_;
 };
 
 /// One client with its world, game and inputs.

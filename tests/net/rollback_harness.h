@@ -19,6 +19,7 @@
 #include "lockbox/net/RollbackSpectator.h"
 #include "lockbox/net/RollbackWorldAdapter.h"
 #include "lockbox/net/SimNet.h"
+#include "NudgeGame.h"
 #include "lockbox/replay/SceneGame.h"
 
 namespace lockbox::net::rbtest {
@@ -55,30 +56,8 @@ struct RbSpec {
     }
 };
 
-/// A SceneGame nudged at one frame: every time that frame is applied (rollbacks included),
-/// the first dynamic body moves by 1/65536 m first, so the divergence survives rollbacks.
-class RbNudgeGame : public replay::Game {
-public:
-    explicit RbNudgeGame(replay::SceneGame& inner) : inner_(inner) {}
-    void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {
-        if (frame == nudgeFrame) {
-            for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
-                if (b->GetType() != b2_dynamicBody) continue;
-                b2Vec2 p = b->GetPosition();
-                p.x = p.x + Fixed::FromRaw(1);
-                b->SetTransform(p, b->GetAngle());
-                break;
-            }
-        }
-        inner_.Apply(world, frame, inputs);
-    }
-    void SaveUserState(std::vector<uint8>& out) const override { inner_.SaveUserState(out); }
-    void LoadUserState(std::span<const uint8> in) override { inner_.LoadUserState(in); }
-    int32_t nudgeFrame = -1;
-
-private:
-    replay::SceneGame& inner_;
-};
+/// The forced-divergence game shared with the lockstep tests (NudgeGame.h).
+using RbNudgeGame = lockbox::net::test_games::NudgeGame;
 
 struct RbPeer {
     std::unique_ptr<replay::SceneGame> scene;
