@@ -3,7 +3,7 @@
 // and of an in-place restore, and the snapshot's bytes per section; it prints a table and
 // writes bench/results/<machine>/state.csv.
 //
-// Usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE]
+// Usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE] [--profile ROUNDS]
 
 #include <algorithm>
 #include <ctime>
@@ -51,6 +51,12 @@ struct Row {
     b2SnapshotStats stats;
 };
 
+/// --profile N: after warmup, N rounds of save, hash, cold-cache hash and restore with no
+/// step in between, printing the minimum and median of each. The state paths alone: for a
+/// sampling profiler, and for A/B comparisons of two builds, where the minimum is steadier
+/// than the stepped medians on a shared machine.
+int g_profileRounds = 0;
+
 Row Measure(const Case& c, int reps) {
     Row row;
     row.scene = c.scene;
@@ -72,6 +78,25 @@ Row Measure(const Case& c, int reps) {
     std::vector<uint8> image;
     image.reserve(1 << 20);
     volatile uint64 sink = 0;
+    if (g_profileRounds > 0) {
+        std::vector<double> ps, ph, pr, ph2;
+        std::vector<char> evict(16u << 20, 0);
+        for (int r = 0; r < g_profileRounds; ++r) {
+            ps.push_back(TimeMs([&] { world.Save(image); }));
+            ph.push_back(TimeMs([&] { sink = sink + world.Hash(); }));
+            // The same hash from a cold cache: a 16 MiB sweep first evicts the world from L1
+            // and L2 (what a step and other processes do between two hashes in a game).
+            for (size_t i = 0; i < evict.size(); i += 64) evict[i] = static_cast<char>(evict[i] + 1);
+            ph2.push_back(TimeMs([&] { sink = sink + world.Hash(); }));
+            pr.push_back(TimeMs([&] {
+                if (!world.Restore(image).ok()) std::abort();
+            }));
+        }
+        auto lo = [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); };
+        std::printf("%s profile: save %.4f / %.4f, hash %.4f / %.4f, restore %.4f / %.4f ms (min / median)\n", c.scene,
+                    lo(ps), MedianMs(ps), lo(ph), MedianMs(ph), lo(pr), MedianMs(pr));
+        std::printf("%s profile: cold-cache hash %.4f / %.4f ms (min / median)\n", c.scene, lo(ph2), MedianMs(ph2));
+    }
     for (int r = 0; r < reps; ++r) {
         // The same state is saved, hashed, restored, then stepped: every figure is for the
         // world as it is at that frame, and the ratios come from interleaved measurements.
@@ -104,8 +129,9 @@ int main(int argc, char** argv) {
         if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = std::atoi(argv[++i]);
         else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) out = argv[++i];
         else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
+        else if (std::strcmp(argv[i], "--profile") == 0 && i + 1 < argc) g_profileRounds = std::atoi(argv[++i]);
         else {
-            std::fprintf(stderr, "usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE]\n");
+            std::fprintf(stderr, "usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE] [--profile ROUNDS]\n");
             return 2;
         }
     }

@@ -14,6 +14,7 @@
 
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Math.h"
+#include "ByteCursor.h"
 
 namespace lockbox::state_detail {
 
@@ -38,29 +39,33 @@ public:
     size_t Consumed() const noexcept { return static_cast<size_t>(gptr() - eback()); }
 };
 
-/// Appends little-endian fixed-width fields to a vector from a start offset, growing it by
-/// doubling (a reused vector keeps its capacity: saving into it does not allocate).
+/// Appends little-endian fixed-width fields to a vector from a start offset, growing it in
+/// steps (a reused vector keeps its capacity: saving into it does not allocate). Hot
+/// records go through Begin/End: one room check per record, then an unchecked cursor.
 class FieldWriter {
 public:
     FieldWriter(std::vector<uint8>& out, size_t start) : out_(out), used_(start) {
-        // Take the whole capacity at once (a reused buffer then never grows or reallocates).
-        const size_t want = start + 4096 > out_.capacity() ? start + 4096 : out_.capacity();
-        if (out_.size() < want) out_.resize(want);
+        if (out_.size() < start) out_.resize(start);
     }
 
-    void U8(uint32 v) { Put<1>(v); }
-    void U16(uint32 v) { Put<2>(v); }
-    void U32(uint32 v) { Put<4>(v); }
-    void U64(uint64 v) { Put<8>(v); }
-    void I32(int32 v) { Put<4>(static_cast<uint32>(v)); }
-    void I64(int64_t v) { Put<8>(static_cast<uint64>(v)); }
-    void Bool(bool v) { Put<1>(v ? 1u : 0u); }
+    /// A cursor with room for `maxBytes` (any size); hand it back to End.
+    ByteCursor Begin(size_t maxBytes) {
+        if (maxBytes > out_.size() - used_) [[unlikely]] Grow(maxBytes);
+        return ByteCursor(out_.data() + used_);
+    }
+    /// Takes the bytes a cursor from Begin wrote.
+    void End(const ByteCursor& c) noexcept { used_ = static_cast<size_t>(c.Position() - out_.data()); }
+
+    void U8(uint32 v) { One([&](ByteCursor& c) { c.U8(v); }); }
+    void U16(uint32 v) { One([&](ByteCursor& c) { c.U16(v); }); }
+    void U32(uint32 v) { One([&](ByteCursor& c) { c.U32(v); }); }
+    void U64(uint64 v) { One([&](ByteCursor& c) { c.U64(v); }); }
+    void I32(int32 v) { One([&](ByteCursor& c) { c.I32(v); }); }
+    void I64(int64_t v) { One([&](ByteCursor& c) { c.I64(v); }); }
+    void Bool(bool v) { One([&](ByteCursor& c) { c.Bool(v); }); }
     void F(Fixed v) { I32(v.Raw()); }
     void W(Wide v) { I64(v.Raw()); }
-    void V(const b2Vec2& v) {
-        F(v.x);
-        F(v.y);
-    }
+    void V(const b2Vec2& v) { One([&](ByteCursor& c) { c.V(v); }); }
 
     size_t Position() const noexcept { return used_; }
     /// Overwrites a 4-byte field written earlier (section lengths).
@@ -71,19 +76,21 @@ public:
     void Finish() { out_.resize(used_); }
 
 private:
-    template <int N>
-    void Put(uint64 v) {
-        if (used_ + 8 > out_.size()) [[unlikely]] Grow();
-        uint8* p = out_.data() + used_;
-        if constexpr (std::endian::native == std::endian::little) {
-            std::memcpy(p, &v, 8);  // the low N bytes are the field; the rest is overwritten next
-        } else {
-            for (int i = 0; i < N; ++i) p[i] = static_cast<uint8>(v >> (8 * i));
-        }
-        used_ += N;
+    template <class Fn>
+    void One(Fn put) {
+        ByteCursor c = Begin(8);
+        put(c);
+        End(c);
     }
 
-    [[gnu::noinline]] void Grow() { out_.resize(out_.size() * 2); }
+    /// Extends the vector by a step ahead of the writes. resize zero-fills what it adds, so
+    /// the step is small: the fill lands in cache just before the fields overwrite it, where
+    /// one resize to the whole capacity cost a cold fill of up to the whole image per save.
+    /// A reused vector keeps its capacity, so this does not reallocate.
+    [[gnu::noinline]] void Grow(size_t maxBytes) {
+        constexpr size_t kStep = 16 * 1024;
+        out_.resize(used_ + (maxBytes > kStep ? maxBytes : kStep));
+    }
 
     std::vector<uint8>& out_;
     size_t used_;
@@ -110,6 +117,15 @@ public:
         const Fixed x = F();
         return b2Vec2(x, F());
     }
+
+    /// A cursor over the next `bytes` bytes (throws TruncatedImage when fewer are left);
+    /// hand it back to End.
+    ReadCursor Begin(size_t bytes) const {
+        if (size_ - at_ < bytes) throw TruncatedImage{};
+        return ReadCursor(data_ + at_);
+    }
+    /// Moves past the bytes a cursor from Begin read.
+    void End(const ReadCursor& c) noexcept { at_ = static_cast<size_t>(c.Position() - data_); }
 
     size_t Position() const noexcept { return at_; }
     size_t Remaining() const noexcept { return size_ - at_; }

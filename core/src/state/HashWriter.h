@@ -1,19 +1,15 @@
 #pragma once
 // Internal to the state hash: a little-endian field writer in front of an XXH3-64 stream.
 // Every value goes through an explicit width so the byte stream is the same on every
-// platform (docs/determinism.md, "State hash").
+// platform (docs/determinism.md, "State hash"). Hot records go through Begin/End (one room
+// check per record, then an unchecked ByteCursor); the bytes are those of the field calls.
 
-// XXH3_state_t is only complete with the static-linking API (it lives on our stack).
-#ifndef XXH_STATIC_LINKING_ONLY
-#define XXH_STATIC_LINKING_ONLY
-#endif
-#include <xxhash.h>
-
-#include <bit>
+#include <cassert>
 #include <cstddef>
-#include <cstring>
 #include <cstdint>
 
+#include "ByteCursor.h"
+#include "FastXxh3.h"
 #include "lockbox/fixed/Math.h"
 
 namespace lockbox {
@@ -23,32 +19,33 @@ namespace state_detail {
 /// Streams little-endian fixed-width fields into XXH3-64. Not copyable (owns the state).
 class HashWriter {
 public:
+    /// The largest record Begin accepts (bytes).
+    static constexpr size_t kMaxRecord = 1024;
+
     HashWriter() noexcept { XXH3_64bits_reset(&state_); }
     HashWriter(const HashWriter&) = delete;
     HashWriter& operator=(const HashWriter&) = delete;
 
-    /// One unsigned field of `bytes` bytes (1, 2, 4 or 8), low byte first.
-    void Put(uint64_t v, int bytes) noexcept {
-        if (used_ + 8 > kBuffer) Flush();
-        if constexpr (std::endian::native == std::endian::little) {
-            // The host order is the stream order: copy the low `bytes` bytes at once.
-            std::memcpy(buffer_ + used_, &v, 8);
-            used_ += static_cast<size_t>(bytes);
-        } else {
-            for (int i = 0; i < bytes; ++i) buffer_[used_++] = static_cast<unsigned char>(v >> (8 * i));
-        }
+    /// A cursor with room for `maxBytes` (at most kMaxRecord); hand it back to End.
+    ByteCursor Begin(size_t maxBytes) noexcept {
+        assert(maxBytes <= kMaxRecord);
+        if (used_ + maxBytes > kBuffer) Flush();
+        return ByteCursor(buffer_ + used_);
     }
-    void U8(uint32_t v) noexcept { Put(v, 1); }
-    void U16(uint32_t v) noexcept { Put(v, 2); }
-    void U32(uint32_t v) noexcept { Put(v, 4); }
-    void U64(uint64_t v) noexcept { Put(v, 8); }
+    /// Takes the bytes a cursor from Begin wrote.
+    void End(const ByteCursor& c) noexcept { used_ = static_cast<size_t>(c.Position() - buffer_); }
+
+    void U8(uint32_t v) noexcept { One([&](ByteCursor& c) { c.U8(v); }); }
+    void U16(uint32_t v) noexcept { One([&](ByteCursor& c) { c.U16(v); }); }
+    void U32(uint32_t v) noexcept { One([&](ByteCursor& c) { c.U32(v); }); }
+    void U64(uint64_t v) noexcept { One([&](ByteCursor& c) { c.U64(v); }); }
     /// Two's complement, so negative ids and raws have one encoding everywhere.
-    void I32(int32_t v) noexcept { Put(static_cast<uint32_t>(v), 4); }
-    void I64(int64_t v) noexcept { Put(static_cast<uint64_t>(v), 8); }
-    void Bool(bool v) noexcept { Put(v ? 1u : 0u, 1); }
+    void I32(int32_t v) noexcept { One([&](ByteCursor& c) { c.I32(v); }); }
+    void I64(int64_t v) noexcept { One([&](ByteCursor& c) { c.I64(v); }); }
+    void Bool(bool v) noexcept { One([&](ByteCursor& c) { c.Bool(v); }); }
     void F(Fixed v) noexcept { I32(v.Raw()); }
     void W(Wide v) noexcept { I64(v.Raw()); }
-    void V(const b2Vec2& v) noexcept { F(v.x); F(v.y); }
+    void V(const b2Vec2& v) noexcept { One([&](ByteCursor& c) { c.V(v); }); }
 
     /// The hash of everything written so far (the writer stays usable).
     uint64_t Digest() noexcept {
@@ -57,15 +54,24 @@ public:
     }
 
 private:
+    template <class Fn>
+    void One(Fn put) noexcept {
+        ByteCursor c = Begin(8);
+        put(c);
+        End(c);
+    }
+
     void Flush() noexcept {
-        if (used_ != 0) XXH3_64bits_update(&state_, buffer_, used_);
+        if (used_ != 0) Xxh3Update(&state_, buffer_, used_);
         used_ = 0;
     }
 
-    // 2 KiB amortise the update call over ~15 bodies and let XXH3 take whole stripes.
-    static constexpr size_t kBuffer = 2048;
+    // 4 KiB amortise the update call over ~25 bodies, and the three writers the hash runs
+    // at once stay in L1 together.
+    static constexpr size_t kBuffer = 4096;
+    static_assert(kMaxRecord <= kBuffer);
     XXH3_state_t state_;
-    unsigned char buffer_[kBuffer];
+    uint8 buffer_[kBuffer];
     size_t used_ = 0;
 };
 

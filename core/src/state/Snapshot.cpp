@@ -4,11 +4,11 @@
 // docs/determinism.md ("Snapshot format") is the layout's reference.
 
 #include <cereal/archives/portable_binary.hpp>
-#include <xxhash.h>
 
 #include <ostream>
 
 #include "ByteStreams.h"
+#include "FastXxh3.h"
 #include "SnapshotImage.h"
 #include "StateWalk.h"
 #include "lockbox/state/WorldHash.h"
@@ -49,8 +49,8 @@ const char* b2SnapshotErrorName(b2SnapshotError error) noexcept {
 void state_detail::ImageDeleter::operator()(Image* image) const noexcept { delete image; }
 
 uint64 state_detail::SnapshotChecksum(std::span<const uint8> image, size_t payloadBytes) noexcept {
-    const uint64 seed = XXH3_64bits(image.data(), kChecksumOffset);
-    return XXH3_64bits_withSeed(image.data() + kHeaderBytes, payloadBytes, seed);
+    const uint64 seed = Xxh3(image.data(), kChecksumOffset);
+    return Xxh3Seeded(image.data() + kHeaderBytes, payloadBytes, seed);
 }
 
 void b2SealSnapshot(std::span<uint8> image) noexcept {

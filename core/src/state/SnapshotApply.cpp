@@ -7,11 +7,16 @@
 #include <new>
 #include <vector>
 
+#include "ByteCursor.h"
 #include "SnapshotImage.h"
 #include "StateWalk.h"
 
 namespace lockbox::state_detail {
 namespace {
+
+/// Records ahead whose world object is requested while the current one is written: image
+/// order is list order, not memory order, so each object would otherwise be a cache miss.
+constexpr size_t kApplyPrefetch = 6;
 
 /// Appends a node at the tail of a doubly linked world list (bodies, contacts, joints).
 template <class T>
@@ -23,35 +28,53 @@ void AppendToWorldList(T* node, T*& head, T*& tail) {
     tail = node;
 }
 
+/// A body's state from its image record, read from the transform on (the layout of
+/// WriteBody, StateWalk.h); every value is valid.
+void ApplyBodyState(const uint8* at, b2Body& b) {
+    ReadCursor r(at);
+    b.m_xf.p = r.V();
+    b.m_xf.q.s = r.F();
+    b.m_xf.q.c = r.F();
+    b2Sweep& sw = b.m_sweep;
+    sw.localCenter = r.V();
+    sw.c0 = r.V();
+    sw.c = r.V();
+    sw.a0 = r.F();
+    sw.a = r.F();
+    sw.alpha0 = r.F();
+    b.m_linearVelocity = r.V();
+    b.m_angularVelocity = r.F();
+    b.m_force = r.V();
+    b.m_torque = r.F();
+    b.m_sleepSteps = r.I32();
+    b.m_mass = r.W();
+    b.m_invMass = r.W();
+    b.m_I = r.W();
+    b.m_invI = r.W();
+    b.m_linearDamping = r.F();
+    b.m_angularDamping = r.F();
+    b.m_gravityScale = r.F();
+    b.m_minExtent = r.F();
+    b.m_maxExtent = r.F();
+    b.m_userData = r.U64();
+}
+
 void ApplyBodies(const Image& img, b2World& world) {
     const b2BodyDef def;
     world.m_bodies.RestoreLayout(img.bodyPool.live, img.bodyPool.free,
                                  [&](void* slot, int32 id) { ::new (slot) b2Body(&def, &world, id); });
     b2Body* previous = nullptr;
     world.m_bodyList = nullptr;
-    for (const BodyImage& bi : img.bodies) {
+    const size_t count = img.bodies.size();
+    for (size_t i = 0; i < count; ++i) {
+        const BodyImage& bi = img.bodies[i];
+        if (i + kApplyPrefetch < count) PrefetchObject(world.m_bodies.Get(img.bodies[i + kApplyPrefetch].id));
         b2Body* b = world.m_bodies.Get(bi.id);
         b->m_type = static_cast<b2BodyType>(bi.type);
         b->m_flags = bi.flags;
         b->m_islandIndex = 0;
-        b->m_xf = bi.xf;
-        b->m_sweep = bi.sweep;
-        b->m_linearVelocity = bi.v;
-        b->m_angularVelocity = bi.w;
-        b->m_force = bi.force;
-        b->m_torque = bi.torque;
+        ApplyBodyState(img.bytes + bi.stateAt, *b);
         b->m_world = &world;
-        b->m_mass = bi.mass;
-        b->m_invMass = bi.invMass;
-        b->m_I = bi.I;
-        b->m_invI = bi.invI;
-        b->m_linearDamping = bi.linearDamping;
-        b->m_angularDamping = bi.angularDamping;
-        b->m_gravityScale = bi.gravityScale;
-        b->m_sleepSteps = bi.sleepSteps;
-        b->m_minExtent = bi.minExtent;
-        b->m_maxExtent = bi.maxExtent;
-        b->m_userData = bi.userData;
         b->m_id = bi.id;
         b->m_fixtureCount = bi.fixtureCount;
         b->m_fixtureList = nullptr;
@@ -118,11 +141,21 @@ void ApplyFixtures(const Image& img, b2World& world) {
                                    [](void* slot, int32) { ::new (slot) b2Fixture(); });
     // Fixtures come grouped by body in body-list order, each group in fixture-list order.
     size_t k = 0;
+    const size_t count = img.fixtures.size();
     for (const BodyImage& bi : img.bodies) {
         b2Body* body = world.m_bodies.Get(bi.id);
         b2Fixture* previous = nullptr;
         for (int32 i = 0; i < bi.fixtureCount; ++i, ++k) {
             const FixtureImage& fi = img.fixtures[k];
+            // Fixtures and their heap shapes lie apart from the image order: request the
+            // fixture 2 distances ahead, and the shape of the one requested a distance ago.
+            if (k + 2 * kApplyPrefetch < count) {
+                __builtin_prefetch(world.m_fixtures.Get(img.fixtures[k + 2 * kApplyPrefetch].id));
+            }
+            if (k + kApplyPrefetch < count) {
+                const b2Fixture* ahead = world.m_fixtures.Get(img.fixtures[k + kApplyPrefetch].id);
+                if (ahead->m_shape) PrefetchBytes(ahead->m_shape.get(), kShapePrefetchBytes);
+            }
             b2Fixture* f = world.m_fixtures.Get(fi.id);
             f->m_id = fi.id;
             f->m_body = body;
@@ -163,44 +196,79 @@ void PrependEdge(Edge* e, Edge*& head) {
     head = e;
 }
 
-void ApplyContacts(const Image& img, b2World& world) {
+/// A contact's state from its image record, read from the flags field on (the layout of
+/// WriteContact; ReadContacts checked every value). Manifold points past the count are left
+/// as they are: they are never read.
+void ApplyContactState(const uint8* at, b2Contact& c) {
+    ReadCursor r(at);
+    c.m_flags = r.U32();
+    c.m_toiCount = r.I32();
+    c.m_toi = r.F();
+    c.m_friction = r.F();
+    c.m_restitution = r.F();
+    b2Manifold& m = c.m_manifold;
+    m.type = static_cast<b2Manifold::Type>(r.U8());
+    m.pointCount = r.U8();
+    m.localNormal = r.V();
+    m.localPoint = r.V();
+    for (int32 i = 0; i < m.pointCount; ++i) {
+        b2ManifoldPoint& p = m.points[i];
+        p.localPoint = r.V();
+        p.normalImpulse = r.W();
+        p.tangentImpulse = r.W();
+        const uint32 key = r.U32();
+        p.id.cf.indexA = static_cast<uint8>(key);
+        p.id.cf.indexB = static_cast<uint8>(key >> 8);
+        p.id.cf.typeA = static_cast<uint8>(key >> 16);
+        p.id.cf.typeB = static_cast<uint8>(key >> 24);
+    }
+}
+
+/// Links an edge at the tail of a body's list, given the list's current tail.
+inline void AppendEdge(b2ContactEdge* e, b2ContactEdge*& head, b2ContactEdge*& tail) {
+    e->prev = tail;
+    e->next = nullptr;
+    if (tail != nullptr) tail->next = e;
+    else head = e;
+    tail = e;
+}
+
+void ApplyContacts(Image& img, b2World& world) {
     b2ContactManager& cm = world.m_contactManager;
     b2Pool<b2Fixture>& fixtures = world.m_fixtures;
-    // New slots are built from their image record (the constructor needs the fixtures).
-    std::vector<int32> recordOf(static_cast<size_t>(img.contactPool.capacity), -1);
-    for (size_t i = 0; i < img.contacts.size(); ++i) recordOf[static_cast<size_t>(img.contacts[i].id)] = static_cast<int32>(i);
+    // New slots are built from their image record (the constructor needs the fixtures);
+    // validation left the id -> record map in contactIndex.
+    const std::vector<int32>& recordOf = img.contactIndex;
     cm.RestoreContactLayout(img.contactPool.live, img.contactPool.free, [&](void* slot, int32 id) {
         const ContactImage& ci = img.contacts[static_cast<size_t>(recordOf[static_cast<size_t>(id)])];
         ::new (slot) b2Contact(fixtures.Get(ci.fixtureA), ci.indexA, fixtures.Get(ci.fixtureB), ci.indexB, id);
     });
     b2Contact* previous = nullptr;
     cm.m_contactList = nullptr;
-    for (const ContactImage& ci : img.contacts) {
+    // The last contact edge of each body so far, by body id (every body list starts empty).
+    std::vector<b2ContactEdge*>& tails = img.edgeTails;
+    tails.assign(static_cast<size_t>(img.bodyPool.capacity), nullptr);
+    const size_t count = img.contacts.size();
+    for (size_t i = 0; i < count; ++i) {
+        const ContactImage& ci = img.contacts[i];
+        if (i + kApplyPrefetch < count) PrefetchObject(cm.GetContact(img.contacts[i + kApplyPrefetch].id));
         b2Contact* c = cm.GetContact(ci.id);
         c->m_fixtureA = fixtures.Get(ci.fixtureA);
         c->m_fixtureB = fixtures.Get(ci.fixtureB);
         c->m_indexA = ci.indexA;
         c->m_indexB = ci.indexB;
-        c->m_flags = ci.flags;
-        c->m_toiCount = ci.toiCount;
-        c->m_toi = ci.toi;
-        c->m_friction = ci.friction;
-        c->m_restitution = ci.restitution;
-        c->m_manifold = ci.manifold;
+        ApplyContactState(img.bytes + ci.stateAt, *c);
         b2Body* bodyA = c->m_fixtureA->m_body;
         b2Body* bodyB = c->m_fixtureB->m_body;
         c->m_nodeA = b2ContactEdge{bodyB, c, nullptr, nullptr};
         c->m_nodeB = b2ContactEdge{bodyA, c, nullptr, nullptr};
         AppendToWorldList(c, cm.m_contactList, previous);
+        // Each body's edges are in world-list order (StateWalk.h): appending in list order
+        // rebuilds them while the contact is in cache (a second pass missed on every one).
+        AppendEdge(&c->m_nodeA, bodyA->m_contactList, tails[static_cast<size_t>(bodyA->m_id)]);
+        AppendEdge(&c->m_nodeB, bodyB->m_contactList, tails[static_cast<size_t>(bodyB->m_id)]);
     }
     cm.m_contactCount = static_cast<int32>(img.contacts.size());
-    // Each body's edges are in world-list order (StateWalk.h): prepending in reverse list
-    // order rebuilds them.
-    for (auto it = img.contacts.rbegin(); it != img.contacts.rend(); ++it) {
-        b2Contact* c = cm.GetContact(it->id);
-        PrependEdge(&c->m_nodeA, c->m_fixtureA->m_body->m_contactList);
-        PrependEdge(&c->m_nodeB, c->m_fixtureB->m_body->m_contactList);
-    }
 }
 
 /// Copies every field of src into dst (same concrete type); dst keeps its address.
@@ -229,8 +297,11 @@ void ApplyJoints(Image& img, b2World& world) {
     // matches (kept, same address), else the image's freshly built one.
     int32 maxId = -1;
     for (const JointImage& ji : img.joints) maxId = ji.id > maxId ? ji.id : maxId;
-    std::vector<b2Joint*> target(static_cast<size_t>(maxId + 1), nullptr);
-    std::vector<uint8> keep(world.m_joints.size(), 0);
+    // Scratch held by the image: a restore does not allocate once these have grown.
+    std::vector<b2Joint*>& target = img.jointTargets;
+    target.assign(static_cast<size_t>(maxId + 1), nullptr);
+    std::vector<uint8>& keep = img.jointKeep;
+    keep.assign(world.m_joints.size(), 0);
     for (JointImage& ji : img.joints) {
         b2Joint* existing = world.GetJoint(ji.id);
         const bool reuse = existing != nullptr && existing->GetType() == ji.type;

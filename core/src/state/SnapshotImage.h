@@ -9,6 +9,7 @@
 
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/DynamicTree.h"
+#include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/state/Snapshot.h"
@@ -55,21 +56,14 @@ struct SettingsImage {
     int32 bodyCount = 0, jointCount = 0, contactCount = 0;
 };
 
+/// A body's checked header; the rest of its record (transform through user data) is read
+/// again from the image bytes when applied (ApplyBodyState), as for contacts.
 struct BodyImage {
     int32 id = -1;
     uint8 type = 0;
     uint16 flags = 0;
-    b2Transform xf;
-    b2Sweep sweep;
-    b2Vec2 v;
-    Fixed w;
-    b2Vec2 force;
-    Fixed torque;
-    int32 sleepSteps = 0;
-    Wide mass, invMass, I, invI;
-    Fixed linearDamping, angularDamping, gravityScale, minExtent, maxExtent;
-    uint64 userData = 0;
     int32 fixtureCount = 0;
+    uint32 stateAt = 0;  ///< offset in Image::bytes of the record's transform
 };
 
 struct ShapeImage {
@@ -104,13 +98,13 @@ struct FixtureImage {
     int32 proxyBegin = 0;     ///< range in Image::proxies
 };
 
+/// A contact's references; the rest of its record (flags through manifold points) is checked
+/// at parse and read again from the image bytes when applied (ApplyContactState): a copy of
+/// every field here doubled the bytes a restore moves through the cache.
 struct ContactImage {
     int32 id = -1;
     int32 fixtureA = -1, indexA = 0, fixtureB = -1, indexB = 0;
-    uint32 flags = 0;
-    int32 toiCount = 0;
-    Fixed toi, friction, restitution;
-    b2Manifold manifold;
+    uint32 stateAt = 0;  ///< offset in Image::bytes of the record's flags field
 };
 
 struct JointImage {
@@ -137,6 +131,9 @@ struct TreeImage {
 };
 
 struct Image {
+    /// The image bytes being restored: valid from ParseSnapshot to the end of ApplySnapshot
+    /// (both run inside one b2World::Restore).
+    const uint8* bytes = nullptr;
     SettingsImage settings;
     PoolImage bodyPool, fixturePool, contactPool;
     std::vector<BodyImage> bodies;  ///< body-list order
@@ -150,6 +147,20 @@ struct Image {
 
     // Validation scratch (id -> record position, or -1), reused between restores.
     std::vector<int32> bodyIndex, fixtureIndex, contactIndex, jointIndex;
+    /// What the contact checks need of each fixture, by fixture id: 12 bytes instead of a
+    /// FixtureImage (~300) per lookup, so 2 lookups per contact stay in L1.
+    struct FixtureFacts {
+        int32 bodyId = -1;
+        int32 childCount = 0;
+        int32 shapeType = 0;
+    };
+    std::vector<FixtureFacts> fixtureFacts;
+    /// Restore scratch: the last contact edge of each body while the lists are rebuilt.
+    std::vector<b2ContactEdge*> edgeTails;
+    /// Restore scratch: the object each image joint ends up in, by joint id, and which of the
+    /// world's joints survive.
+    std::vector<b2Joint*> jointTargets;
+    std::vector<uint8> jointKeep;
     std::vector<uint8> seen;
 
     /// Empties the lists before a parse; capacity is kept.

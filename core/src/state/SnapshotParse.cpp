@@ -20,10 +20,21 @@
 namespace lockbox::state_detail {
 namespace {
 
-bool ReadBool(FieldReader& r, const char* what) {
+template <class R>
+bool ReadBool(R& r, const char* what) {
     const uint8 b = r.U8();
     Check(b <= 1, what, "is not 0 or 1", b);
     return b != 0;
+}
+
+/// Checks a count read from a record (as ReadCount) once the record has been consumed.
+int32 CheckCount(const FieldReader& r, int32 n, size_t minBytes, const char* what) {
+    Check(n >= 0, what, "is negative", n);
+    if (static_cast<uint64>(n) * minBytes > r.Remaining()) [[unlikely]] {
+        Fail(b2SnapshotError::e_truncated, std::string(what) + " announces " + std::to_string(n) +
+                                               " records but only " + std::to_string(r.Remaining()) + " bytes are left");
+    }
+    return n;
 }
 
 /// A count of records that take at least minBytes each: never more than the bytes left, so
@@ -38,7 +49,8 @@ int32 ReadCount(FieldReader& r, size_t minBytes, const char* what) {
     return n;
 }
 
-b2AABB ReadAABB(FieldReader& r) {
+template <class R>
+b2AABB ReadAABB(R& r) {
     b2AABB box;
     box.lowerBound = r.V();
     box.upperBound = r.V();
@@ -94,65 +106,56 @@ void ReadBodies(FieldReader& r, Image& img) {
           img.bodyPool.count);
     img.bodies.resize(static_cast<size_t>(img.bodyPool.count));
     for (BodyImage& b : img.bodies) {
-        b.id = r.I32();
-        b.type = r.U8();
+        // One room check per record (kBodyRecordBytes, StateWalk.h), then unchecked reads.
+        ReadCursor c = r.Begin(kBodyRecordBytes);
+        b.id = c.I32();
+        b.type = c.U8();
         Check(b.type <= b2_dynamicBody, "body.type", "is not static, kinematic or dynamic", b.type);
-        b.flags = r.U16();
+        b.flags = c.U16();
         Check((b.flags & ~0xFFu) == 0, "body.flags", "has unknown bits", b.flags);
-        b.xf.p = r.V();
-        b.xf.q.s = r.F();
-        b.xf.q.c = r.F();
-        b.sweep.localCenter = r.V();
-        b.sweep.c0 = r.V();
-        b.sweep.c = r.V();
-        b.sweep.a0 = r.F();
-        b.sweep.a = r.F();
-        b.sweep.alpha0 = r.F();
-        b.v = r.V();
-        b.w = r.F();
-        b.force = r.V();
-        b.torque = r.F();
-        b.sleepSteps = r.I32();
-        b.mass = r.W();
-        b.invMass = r.W();
-        b.I = r.W();
-        b.invI = r.W();
-        b.linearDamping = r.F();
-        b.angularDamping = r.F();
-        b.gravityScale = r.F();
-        b.minExtent = r.F();
-        b.maxExtent = r.F();
-        b.userData = r.U64();
-        b.fixtureCount = ReadCount(r, kMinFixture, "body.fixtureCount");
+        // Transform through user data: any value (ApplyBodyState reads them from here).
+        b.stateAt = static_cast<uint32>(c.Position() - img.bytes);
+        c.Skip(kBodyRecordBytes - 7 - 4);  // all but the 7-byte head and the fixture count
+        const int32 fixtureCount = c.I32();
+        r.End(c);
+        b.fixtureCount = CheckCount(r, fixtureCount, kMinFixture, "body.fixtureCount");
     }
 }
 
+/// A shape after its type and radius (read with the fixture record).
 void ReadShape(FieldReader& r, Image& img, ShapeImage& s) {
-    s.type = r.U8();
-    Check(s.type < b2Shape::e_typeCount, "shape.type", "is not a shape type", s.type);
-    s.radius = r.F();
-    Check(s.radius >= Fixed(), "shape.radius", "is negative", s.radius.Raw());
     switch (s.type) {
-        case b2Shape::e_circle:
-            s.p = r.V();
+        case b2Shape::e_circle: {
+            ReadCursor c = r.Begin(8);
+            s.p = c.V();
+            r.End(c);
             break;
-        case b2Shape::e_edge:
-            s.v0 = r.V();
-            s.v1 = r.V();
-            s.v2 = r.V();
-            s.v3 = r.V();
-            s.has0 = ReadBool(r, "edge.hasVertex0");
-            s.has3 = ReadBool(r, "edge.hasVertex3");
+        }
+        case b2Shape::e_edge: {
+            ReadCursor c = r.Begin(34);
+            s.v0 = c.V();
+            s.v1 = c.V();
+            s.v2 = c.V();
+            s.v3 = c.V();
+            s.has0 = ReadBool(c, "edge.hasVertex0");
+            s.has3 = ReadBool(c, "edge.hasVertex3");
+            r.End(c);
             break;
-        case b2Shape::e_polygon:
-            s.p = r.V();
-            s.count = r.I32();
+        }
+        case b2Shape::e_polygon: {
+            ReadCursor c = r.Begin(12);
+            s.p = c.V();
+            s.count = c.I32();
+            r.End(c);
             Check(s.count >= 3 && s.count <= b2_maxPolygonVertices, "polygon.vertexCount", "is outside [3, 8]", s.count);
+            ReadCursor v = r.Begin(16 * static_cast<size_t>(s.count));
             for (int32 i = 0; i < s.count; ++i) {
-                s.vertices[i] = r.V();
-                s.normals[i] = r.V();
+                s.vertices[i] = v.V();
+                s.normals[i] = v.V();
             }
+            r.End(v);
             break;
+        }
         default: {  // chain
             s.count = ReadCount(r, 8, "chain.count");
             s.chainBegin = static_cast<int32>(img.chainVertices.size());
@@ -182,18 +185,26 @@ void ReadFixtures(FieldReader& r, Image& img) {
     for (const BodyImage& b : img.bodies) {
         for (int32 i = 0; i < b.fixtureCount; ++i, ++k) {
             FixtureImage& f = img.fixtures[k];
-            f.id = r.I32();
-            f.bodyId = r.I32();
+            // The fixture's fields, then the shape's type and radius.
+            ReadCursor c = r.Begin(kFixtureHeadBytes + 5);
+            f.id = c.I32();
+            f.bodyId = c.I32();
             Check(f.bodyId == b.id, "fixture.body", "is not the body it is listed under", f.bodyId);
-            f.density = r.F();
-            f.friction = r.F();
-            f.restitution = r.F();
-            f.sensor = ReadBool(r, "fixture.isSensor");
-            f.filter.categoryBits = r.U16();
-            f.filter.maskBits = r.U16();
-            f.filter.groupIndex = static_cast<int16>(r.U16());
-            f.userData = r.U64();
-            ReadShape(r, img, f.shape);
+            f.density = c.F();
+            f.friction = c.F();
+            f.restitution = c.F();
+            f.sensor = ReadBool(c, "fixture.isSensor");
+            f.filter.categoryBits = c.U16();
+            f.filter.maskBits = c.U16();
+            f.filter.groupIndex = static_cast<int16>(c.U16());
+            f.userData = c.U64();
+            ShapeImage& shape = f.shape;
+            shape.type = c.U8();
+            Check(shape.type < b2Shape::e_typeCount, "shape.type", "is not a shape type", shape.type);
+            shape.radius = c.F();
+            Check(shape.radius >= Fixed(), "shape.radius", "is negative", shape.radius.Raw());
+            r.End(c);
+            ReadShape(r, img, shape);
             f.childCount = ChildCount(f.shape);
             f.proxyCount = ReadCount(r, 20, "fixture.proxyCount");
             Check(f.proxyCount == 0 || f.proxyCount == f.childCount, "fixture.proxyCount",
@@ -202,10 +213,12 @@ void ReadFixtures(FieldReader& r, Image& img) {
             Check((f.proxyCount != 0) == (active && f.childCount != 0), "fixture.proxyCount",
                   "does not match the body's active flag", f.proxyCount);
             f.proxyBegin = static_cast<int32>(img.proxies.size());
-            for (int32 c = 0; c < f.proxyCount; ++c) {
+            for (int32 child = 0; child < f.proxyCount; ++child) {
+                ReadCursor pc = r.Begin(kProxyBytes);
                 ProxyImage p;
-                p.aabb = ReadAABB(r);
-                p.proxyId = r.I32();
+                p.aabb = ReadAABB(pc);
+                p.proxyId = pc.I32();
+                r.End(pc);
                 img.proxies.push_back(p);
             }
         }
@@ -218,37 +231,31 @@ void ReadContacts(FieldReader& r, Image& img) {
           "count differs from settings.contactCount", img.contactPool.count);
     img.contacts.resize(static_cast<size_t>(img.contactPool.count));
     for (ContactImage& c : img.contacts) {
-        c.id = r.I32();
-        c.fixtureA = r.I32();
-        c.indexA = r.I32();
-        c.fixtureB = r.I32();
-        c.indexB = r.I32();
-        c.flags = r.U32();
-        Check((c.flags & ~0x3Fu) == 0, "contact.flags", "has unknown bits", c.flags);
-        c.toiCount = r.I32();
-        Check(c.toiCount >= 0, "contact.toiCount", "is negative", c.toiCount);
-        c.toi = r.F();
-        c.friction = r.F();
-        c.restitution = r.F();
-        b2Manifold& m = c.manifold;
-        const uint8 type = r.U8();
+        // The fixed part in one room check (kContactHeadBytes, StateWalk.h), then the points.
+        // Only the references are kept; the state is checked here and read again by
+        // ApplyContactState (SnapshotApply.cpp), which must follow this layout.
+        ReadCursor h = r.Begin(kContactHeadBytes);
+        c.id = h.I32();
+        c.fixtureA = h.I32();
+        c.indexA = h.I32();
+        c.fixtureB = h.I32();
+        c.indexB = h.I32();
+        c.stateAt = static_cast<uint32>(h.Position() - img.bytes);
+        const uint32 flags = h.U32();
+        Check((flags & ~0x3Fu) == 0, "contact.flags", "has unknown bits", flags);
+        const int32 toiCount = h.I32();
+        Check(toiCount >= 0, "contact.toiCount", "is negative", toiCount);
+        h.Skip(12);  // toi, friction, restitution: any value
+        const uint8 type = h.U8();
         Check(type <= b2Manifold::e_faceB, "manifold.type", "is not circles, faceA or faceB", type);
-        m.type = static_cast<b2Manifold::Type>(type);
-        m.pointCount = r.U8();
-        Check(m.pointCount <= b2_maxManifoldPoints, "manifold.pointCount", "exceeds 2", m.pointCount);
-        m.localNormal = r.V();
-        m.localPoint = r.V();
-        for (int32 i = 0; i < m.pointCount; ++i) {
-            b2ManifoldPoint& p = m.points[i];
-            p.localPoint = r.V();
-            p.normalImpulse = r.W();
-            p.tangentImpulse = r.W();
-            const uint32 key = r.U32();
-            p.id.cf.indexA = static_cast<uint8>(key);
-            p.id.cf.indexB = static_cast<uint8>(key >> 8);
-            p.id.cf.typeA = static_cast<uint8>(key >> 16);
-            p.id.cf.typeB = static_cast<uint8>(key >> 24);
-        }
+        const uint8 pointCount = h.U8();
+        Check(pointCount <= b2_maxManifoldPoints, "manifold.pointCount", "exceeds 2", pointCount);
+        h.Skip(16);  // localNormal, localPoint: any value
+        r.End(h);
+        // Points: local point, impulses, feature key; any value.
+        ReadCursor pc = r.Begin(kContactPointBytes * pointCount);
+        pc.Skip(kContactPointBytes * pointCount);
+        r.End(pc);
     }
 }
 
@@ -321,19 +328,29 @@ void ReadBroadPhase(FieldReader& r, Image& img) {
     t.insertionCount = r.I32();
     const int32 capacity = ReadCount(r, kMinNode, "tree.capacity");
     Check(capacity >= 1, "tree.capacity", "is zero", capacity);
-    t.nodes.assign(static_cast<size_t>(capacity), b2TreeNode{});
+    // Every node is overwritten whole below: resize, not assign, to skip a fill of the array.
+    t.nodes.resize(static_cast<size_t>(capacity));
     for (b2TreeNode& n : t.nodes) {
-        n.height = r.I32();
-        Check(n.height >= -1, "tree.node.height", "is below -1", n.height);
-        if (n.height < 0) {
-            n.next = r.I32();
+        ReadCursor h = r.Begin(8);  // the height, then a free link or the start of the AABB
+        const int32 height = h.I32();
+        Check(height >= -1, "tree.node.height", "is below -1", height);
+        if (height < 0) {
+            // A free slot is canonical (b2DynamicTree::FreeNode): defaults plus its link.
+            n = b2TreeNode{};
+            n.next = h.I32();
+            r.End(h);
             continue;
         }
-        n.aabb = ReadAABB(r);
-        n.userData = r.U64();
-        n.parent = r.I32();
-        n.child1 = r.I32();
-        n.child2 = r.I32();
+        r.End(h);  // the height only
+        ReadCursor c = r.Begin(36);
+        n.aabb = ReadAABB(c);
+        n.userData = c.U64();
+        n.parent = c.I32();
+        n.child1 = c.I32();
+        n.child2 = c.I32();
+        n.next = b2_nullNode;
+        n.height = height;
+        r.End(c);
     }
     const int32 moves = ReadCount(r, 4, "broadphase.moveBuffer");
     t.moveBuffer.resize(static_cast<size_t>(moves));
@@ -360,6 +377,7 @@ void ReadSection(FieldReader& r, uint32 tag, const char* name, ReadFn read) {
 b2RestoreResult ParseSnapshot(std::span<const uint8> bytes, Image& img) {
     b2RestoreResult result;
     img.Clear();
+    img.bytes = bytes.data();
     try {
         if (bytes.size() < kHeaderBytes) {
             Fail(b2SnapshotError::e_truncated, "image of " + std::to_string(bytes.size()) +

@@ -18,8 +18,9 @@ namespace {
 constexpr int32 kMaxJointId = 1 << 22;
 
 /// Maps live pool ids to record positions; each id may be claimed once.
-void IndexByIds(std::vector<int32>& index, const PoolImage& pool, size_t records,
-                int32 (*idOf)(const Image&, size_t), const Image& img, const char* what) {
+template <class IdOf>
+void IndexByIds(std::vector<int32>& index, const PoolImage& pool, size_t records, IdOf idOf, const Image& img,
+                const char* what) {
     index.assign(static_cast<size_t>(pool.capacity), -1);
     for (size_t i = 0; i < records; ++i) {
         const int32 id = idOf(img, i);
@@ -29,23 +30,38 @@ void IndexByIds(std::vector<int32>& index, const PoolImage& pool, size_t records
     }
 }
 
-void ValidateContacts(const Image& img, const std::vector<int32>& fixtureIndex) {
+void ValidateContacts(Image& img, const std::vector<int32>& fixtureIndex) {
+    std::vector<Image::FixtureFacts>& facts = img.fixtureFacts;
+    facts.resize(fixtureIndex.size());
+    for (size_t id = 0; id < fixtureIndex.size(); ++id) {
+        if (fixtureIndex[id] < 0) continue;  // never read: the live check below comes first
+        const FixtureImage& f = img.fixtures[static_cast<size_t>(fixtureIndex[id])];
+        facts[id] = {f.bodyId, f.childCount, f.shape.type};
+    }
+    // The registered shape orders, as a table (shape types were checked at parse).
+    constexpr int32 kTypes = b2Shape::e_typeCount;
+    bool registered[kTypes][kTypes];
+    for (int32 a = 0; a < kTypes; ++a) {
+        for (int32 b = 0; b < kTypes; ++b) {
+            const auto typeA = static_cast<b2Shape::Type>(a);
+            const auto typeB = static_cast<b2Shape::Type>(b);
+            registered[a][b] = b2Contact::CanCollide(typeA, typeB) && !b2Contact::NeedsSwap(typeA, typeB);
+        }
+    }
     for (const ContactImage& c : img.contacts) {
-        auto fixture = [&](int32 id) -> const FixtureImage& {
+        auto fixture = [&](int32 id) -> const Image::FixtureFacts& {
             Check(id >= 0 && id < static_cast<int32>(fixtureIndex.size()) && fixtureIndex[static_cast<size_t>(id)] >= 0,
                   "contact.fixture", "is not a live fixture", id);
-            return img.fixtures[static_cast<size_t>(fixtureIndex[static_cast<size_t>(id)])];
+            return facts[static_cast<size_t>(id)];
         };
-        const FixtureImage& a = fixture(c.fixtureA);
-        const FixtureImage& b = fixture(c.fixtureB);
+        const Image::FixtureFacts& a = fixture(c.fixtureA);
+        const Image::FixtureFacts& b = fixture(c.fixtureB);
         Check(c.indexA >= 0 && c.indexA < a.childCount, "contact.childIndexA", "is out of range", c.indexA);
         Check(c.indexB >= 0 && c.indexB < b.childCount, "contact.childIndexB", "is out of range", c.indexB);
         Check(a.bodyId != b.bodyId, "contact", "joins a body to itself", a.bodyId);
-        const auto typeA = static_cast<b2Shape::Type>(a.shape.type);
-        const auto typeB = static_cast<b2Shape::Type>(b.shape.type);
         // The narrow phase casts shapes by the registered order: anything else is corrupt.
-        Check(b2Contact::CanCollide(typeA, typeB) && !b2Contact::NeedsSwap(typeA, typeB), "contact",
-              "shape pair is not in a registered order", a.shape.type * 4 + b.shape.type);
+        Check(registered[a.shapeType][b.shapeType], "contact", "shape pair is not in a registered order",
+              a.shapeType * 4 + b.shapeType);
     }
 }
 

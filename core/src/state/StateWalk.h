@@ -1,11 +1,12 @@
 #pragma once
 // The canonical walk over a world's state: every field that influences future steps, in one
 // fixed order with fixed widths. The state hash (WorldHash.cpp, into XXH3) and the snapshot
-// (SnapshotSave.cpp, into Cereal) both run this walk, so they cannot drift apart; the
+// (Snapshot.cpp, into the image's sections) both run this walk, so they cannot drift apart; the
 // snapshot reader (SnapshotParse.cpp) reads the same order back. docs/determinism.md lists
 // the fields. Any change here changes both: bump b2_hashVersion and b2_snapshotFormatVersion.
 //
-// A writer W provides U8/U16/U32/U64/I32/I64/Bool/F (Fixed)/W (Wide)/V (b2Vec2).
+// A writer W provides U8/U16/U32/U64/I32/I64/Bool/F (Fixed)/W (Wide)/V (b2Vec2), and for
+// hot records Begin(maxBytes) -> ByteCursor (the same field calls, unchecked) and End(cursor).
 
 #include "lockbox/collision/ChainShape.h"
 #include "lockbox/collision/CircleShape.h"
@@ -55,13 +56,41 @@ struct JointFieldWriter {
     void JointRef(const b2Joint* j) { w.I32(j != nullptr ? j->GetId() : b2_nullId); }
 };
 
+/// Record sizes in bytes, for the writers' one room check per record (Begin) and the
+/// reader's (SnapshotParse.cpp). Each is the sum of the field widths written below.
+inline constexpr size_t kBodyRecordBytes = 151;
+/// Fixture fields (35), shape type and radius (5), at most a polygon of 8 (140), proxy count
+/// (4) and one proxy (20): every non-chain fixture in one record.
+inline constexpr size_t kFixtureHeadBytes = 35;
+inline constexpr size_t kFixtureMaxBytes = kFixtureHeadBytes + 5 + 12 + 16 * b2_maxPolygonVertices + 4 + 20;
+inline constexpr size_t kProxyBytes = 20;
+/// Contact fields and manifold header (58), then 28 per manifold point.
+inline constexpr size_t kContactHeadBytes = 58;
+inline constexpr size_t kContactPointBytes = 28;
+inline constexpr size_t kContactMaxBytes = kContactHeadBytes + kContactPointBytes * b2_maxManifoldPoints;
+/// A tree node: height, then either the free link (4) or AABB, user data, links (36).
+inline constexpr size_t kTreeNodeMaxBytes = 40;
+/// Lists of int32 go out in chunks of this many entries per room check.
+inline constexpr size_t kIdChunk = 128;
+
+/// A list of int32 ids, in chunks of kIdChunk per room check.
+template <class W>
+void WriteIds(W& w, const int32* ids, size_t count) {
+    for (size_t at = 0; at < count; at += kIdChunk) {
+        const size_t n = count - at < kIdChunk ? count - at : kIdChunk;
+        auto c = w.Begin(4 * kIdChunk);
+        for (size_t i = 0; i < n; ++i) c.I32(ids[at + i]);
+        w.End(c);
+    }
+}
+
 template <class W, class T>
 void WritePool(W& w, const b2Pool<T>& pool) {
     w.I32(pool.GetCapacity());
     w.I32(pool.GetCount());
     const auto& free = pool.GetFreeList();
     w.I32(static_cast<int32>(free.size()));
-    for (const int32 id : free) w.I32(id);
+    WriteIds(w, free.data(), free.size());
 }
 
 template <class W>
@@ -93,77 +122,70 @@ void WriteSettings(W& w, const b2World& world) {
 
 template <class W>
 void WriteBody(W& w, const b2Body& b) {
-    w.I32(b.GetId());
-    w.U8(static_cast<uint32>(b.GetType()));
-    w.U16(b.m_flags);
-    w.V(b.m_xf.p);
-    w.F(b.m_xf.q.s);
-    w.F(b.m_xf.q.c);
+    auto c = w.Begin(kBodyRecordBytes);
+    c.I32(b.GetId());
+    c.U8(static_cast<uint32>(b.GetType()));
+    c.U16(b.m_flags);
+    c.V(b.m_xf.p);
+    c.F(b.m_xf.q.s);
+    c.F(b.m_xf.q.c);
     const b2Sweep& sw = b.m_sweep;
-    w.V(sw.localCenter);
-    w.V(sw.c0);
-    w.V(sw.c);
-    w.F(sw.a0);
-    w.F(sw.a);
-    w.F(sw.alpha0);
-    w.V(b.m_linearVelocity);
-    w.F(b.m_angularVelocity);
-    w.V(b.m_force);
-    w.F(b.m_torque);
-    w.I32(b.m_sleepSteps);
-    w.W(b.m_mass);
-    w.W(b.m_invMass);
-    w.W(b.m_I);
-    w.W(b.m_invI);
-    w.F(b.m_linearDamping);
-    w.F(b.m_angularDamping);
-    w.F(b.m_gravityScale);
-    w.F(b.m_minExtent);
-    w.F(b.m_maxExtent);
-    w.U64(b.m_userData);
-    w.I32(b.m_fixtureCount);
+    c.V(sw.localCenter);
+    c.V(sw.c0);
+    c.V(sw.c);
+    c.F(sw.a0);
+    c.F(sw.a);
+    c.F(sw.alpha0);
+    c.V(b.m_linearVelocity);
+    c.F(b.m_angularVelocity);
+    c.V(b.m_force);
+    c.F(b.m_torque);
+    c.I32(b.m_sleepSteps);
+    c.W(b.m_mass);
+    c.W(b.m_invMass);
+    c.W(b.m_I);
+    c.W(b.m_invI);
+    c.F(b.m_linearDamping);
+    c.F(b.m_angularDamping);
+    c.F(b.m_gravityScale);
+    c.F(b.m_minExtent);
+    c.F(b.m_maxExtent);
+    c.U64(b.m_userData);
+    c.I32(b.m_fixtureCount);
+    w.End(c);
     // The body's contact and joint edge lists are not written: both are always in world-list
     // order (every create prepends to the world list and to both bodies' lists, every destroy
     // unlinks), so the contact and joint sections already fix them. Restore rebuilds them.
 }
 
-template <class W>
-void WriteShape(W& w, const b2Shape& shape) {
-    w.U8(static_cast<uint32>(shape.GetType()));
-    w.F(shape.m_radius);
+/// A shape's fields, all but a chain's (WriteChainShape): type, radius, then by type.
+template <class C>
+void WriteShapeFixed(C& c, const b2Shape& shape) {
+    c.U8(static_cast<uint32>(shape.GetType()));
+    c.F(shape.m_radius);
     switch (shape.GetType()) {
         case b2Shape::e_circle:
-            w.V(static_cast<const b2CircleShape&>(shape).m_p);
+            c.V(static_cast<const b2CircleShape&>(shape).m_p);
             break;
         case b2Shape::e_edge: {
             const auto& e = static_cast<const b2EdgeShape&>(shape);
-            w.V(e.m_vertex0);
-            w.V(e.m_vertex1);
-            w.V(e.m_vertex2);
-            w.V(e.m_vertex3);
-            w.Bool(e.m_hasVertex0);
-            w.Bool(e.m_hasVertex3);
+            c.V(e.m_vertex0);
+            c.V(e.m_vertex1);
+            c.V(e.m_vertex2);
+            c.V(e.m_vertex3);
+            c.Bool(e.m_hasVertex0);
+            c.Bool(e.m_hasVertex3);
             break;
         }
         case b2Shape::e_polygon: {
             const auto& p = static_cast<const b2PolygonShape&>(shape);
-            w.V(p.m_centroid);
-            w.I32(p.m_vertexCount);
+            c.V(p.m_centroid);
+            c.I32(p.m_vertexCount);
             // Only the live vertices: slots past the count are never read.
             for (int32 i = 0; i < p.m_vertexCount; ++i) {
-                w.V(p.m_vertices[i]);
-                w.V(p.m_normals[i]);
+                c.V(p.m_vertices[i]);
+                c.V(p.m_normals[i]);
             }
-            break;
-        }
-        case b2Shape::e_chain: {
-            const auto& c = static_cast<const b2ChainShape&>(shape);
-            w.I32(c.m_count);
-            for (const b2Vec2& v : c.m_vertices) w.V(v);
-            w.V(c.m_prevVertex);
-            w.V(c.m_nextVertex);
-            w.Bool(c.m_hasPrevVertex);
-            w.Bool(c.m_hasNextVertex);
             break;
         }
         default:
@@ -171,53 +193,85 @@ void WriteShape(W& w, const b2Shape& shape) {
     }
 }
 
+/// The rest of a chain shape after its type and radius (any length: field by field).
+template <class W>
+void WriteChainShape(W& w, const b2ChainShape& c) {
+    w.I32(c.m_count);
+    for (const b2Vec2& v : c.m_vertices) w.V(v);
+    w.V(c.m_prevVertex);
+    w.V(c.m_nextVertex);
+    w.Bool(c.m_hasPrevVertex);
+    w.Bool(c.m_hasNextVertex);
+}
+
+template <class C>
+void WriteProxy(C& c, const b2FixtureProxy& proxy) {
+    c.V(proxy.aabb.lowerBound);
+    c.V(proxy.aabb.upperBound);
+    c.I32(proxy.proxyId);
+}
+
 template <class W>
 void WriteFixture(W& w, const b2Fixture& f) {
-    w.I32(f.GetId());
-    w.I32(f.GetBody()->GetId());
-    w.F(f.m_density);
-    w.F(f.m_friction);
-    w.F(f.m_restitution);
-    w.Bool(f.m_isSensor);
-    w.U16(f.m_filter.categoryBits);
-    w.U16(f.m_filter.maskBits);
-    w.U16(static_cast<uint16>(f.m_filter.groupIndex));
-    w.U64(f.m_userData);
-    WriteShape(w, *f.GetShape());
+    const b2Shape& shape = *f.GetShape();
+    auto c = w.Begin(kFixtureMaxBytes);
+    c.I32(f.GetId());
+    c.I32(f.GetBody()->GetId());
+    c.F(f.m_density);
+    c.F(f.m_friction);
+    c.F(f.m_restitution);
+    c.Bool(f.m_isSensor);
+    c.U16(f.m_filter.categoryBits);
+    c.U16(f.m_filter.maskBits);
+    c.U16(static_cast<uint16>(f.m_filter.groupIndex));
+    c.U64(f.m_userData);
+    WriteShapeFixed(c, shape);
     // Proxies exist only while the body is active: 0 or one per child.
-    w.I32(f.m_proxyCount);
-    for (int32 i = 0; i < f.m_proxyCount; ++i) {
-        const b2FixtureProxy& proxy = f.m_proxies[static_cast<size_t>(i)];
-        WriteAABB(w, proxy.aabb);
-        w.I32(proxy.proxyId);
+    int32 i = 0;
+    if (shape.GetType() != b2Shape::e_chain) {
+        // One child: its proxy (if any) fits in the same record.
+        c.I32(f.m_proxyCount);
+        if (f.m_proxyCount > 0) WriteProxy(c, f.m_proxies[static_cast<size_t>(i++)]);
+        w.End(c);
+    } else {
+        w.End(c);
+        WriteChainShape(w, static_cast<const b2ChainShape&>(shape));
+        w.I32(f.m_proxyCount);
+    }
+    for (; i < f.m_proxyCount; ++i) {
+        auto pc = w.Begin(kProxyBytes);
+        WriteProxy(pc, f.m_proxies[static_cast<size_t>(i)]);
+        w.End(pc);
     }
 }
 
 template <class W>
-void WriteContact(W& w, const b2Contact& c) {
-    w.I32(c.GetId());
-    w.I32(c.m_fixtureA->GetId());
-    w.I32(c.m_indexA);
-    w.I32(c.m_fixtureB->GetId());
-    w.I32(c.m_indexB);
-    w.U32(c.m_flags);
-    w.I32(c.m_toiCount);
-    w.F(c.m_toi);
-    w.F(c.m_friction);
-    w.F(c.m_restitution);
-    const b2Manifold& m = c.m_manifold;
-    w.U8(static_cast<uint32>(m.type));
-    w.U8(static_cast<uint32>(m.pointCount));
-    w.V(m.localNormal);
-    w.V(m.localPoint);
+void WriteContact(W& w, const b2Contact& contact) {
+    auto c = w.Begin(kContactMaxBytes);
+    c.I32(contact.GetId());
+    c.I32(contact.m_fixtureA->GetId());
+    c.I32(contact.m_indexA);
+    c.I32(contact.m_fixtureB->GetId());
+    c.I32(contact.m_indexB);
+    c.U32(contact.m_flags);
+    c.I32(contact.m_toiCount);
+    c.F(contact.m_toi);
+    c.F(contact.m_friction);
+    c.F(contact.m_restitution);
+    const b2Manifold& m = contact.m_manifold;
+    c.U8(static_cast<uint32>(m.type));
+    c.U8(static_cast<uint32>(m.pointCount));
+    c.V(m.localNormal);
+    c.V(m.localPoint);
     // Points past pointCount are stale and never matched: left out.
     for (int32 i = 0; i < m.pointCount; ++i) {
         const b2ManifoldPoint& p = m.points[i];
-        w.V(p.localPoint);
-        w.W(p.normalImpulse);
-        w.W(p.tangentImpulse);
-        w.U32(p.id.Key());
+        c.V(p.localPoint);
+        c.W(p.normalImpulse);
+        c.W(p.tangentImpulse);
+        c.U32(p.id.Key());
     }
+    w.End(c);
 }
 
 template <class W>
@@ -233,6 +287,22 @@ void WriteJoint(W& w, const b2Joint& j) {
     VisitJointState(const_cast<b2Joint&>(j), visitor);
 }
 
+template <class C>
+void WriteTreeNode(C& c, const b2TreeNode& n) {
+    // A free slot is canonical (FreeNode resets it): only its free-list link matters.
+    c.I32(n.height);
+    if (n.height < 0) {
+        c.I32(n.next);
+        return;
+    }
+    c.V(n.aabb.lowerBound);
+    c.V(n.aabb.upperBound);
+    c.U64(n.userData);
+    c.I32(n.parent);
+    c.I32(n.child1);
+    c.I32(n.child2);
+}
+
 template <class W>
 void WriteBroadPhase(W& w, const b2World& world) {
     const b2BroadPhase& bp = world.GetContactManager().m_broadPhase;
@@ -244,31 +314,65 @@ void WriteBroadPhase(W& w, const b2World& world) {
     w.I32(tree.GetInsertionCount());
     const auto& nodes = tree.GetNodes();
     w.I32(static_cast<int32>(nodes.size()));
-    for (const b2TreeNode& n : nodes) {
-        // A free slot is canonical (FreeNode resets it): only its free-list link matters.
-        w.I32(n.height);
-        if (n.height < 0) {
-            w.I32(n.next);
-            continue;
-        }
-        WriteAABB(w, n.aabb);
-        w.U64(n.userData);
-        w.I32(n.parent);
-        w.I32(n.child1);
-        w.I32(n.child2);
+    // The nodes lie in one array: 16 per room check.
+    constexpr size_t kChunk = 16;
+    for (size_t at = 0; at < nodes.size(); at += kChunk) {
+        const size_t n = nodes.size() - at < kChunk ? nodes.size() - at : kChunk;
+        auto c = w.Begin(kTreeNodeMaxBytes * kChunk);
+        for (size_t i = 0; i < n; ++i) WriteTreeNode(c, nodes[at + i]);
+        w.End(c);
     }
     const auto& moves = bp.GetMoveBuffer();
     w.I32(static_cast<int32>(moves.size()));
-    for (const int32 id : moves) w.I32(id);
+    WriteIds(w, moves.data(), moves.size());
 }
 
-/// Starts loading the object after next while the current one is written: list order is
-/// not memory order, and waiting for each object's cache lines dominated the walk.
+/// Starts loading every cache line of an object.
 template <class T>
-inline void PrefetchAhead(const T* node) noexcept {
-    if (node != nullptr && node->GetNext() != nullptr) {
-        const char* p = reinterpret_cast<const char*>(node->GetNext());
-        for (size_t line = 0; line < sizeof(T); line += 64) __builtin_prefetch(p + line);
+inline void PrefetchObject(const T* node) noexcept {
+    if (node == nullptr) return;
+    const char* p = reinterpret_cast<const char*>(node);
+    for (size_t line = 0; line < sizeof(T); line += 64) __builtin_prefetch(p + line);
+}
+
+/// Starts loading `bytes` bytes from p (objects known only by a base type, such as shapes).
+inline void PrefetchBytes(const void* p, size_t bytes) noexcept {
+    if (p == nullptr) return;
+    const char* c = static_cast<const char*>(p);
+    for (size_t line = 0; line < bytes; line += 64) __builtin_prefetch(c + line);
+}
+
+/// Bytes of the largest shape the walks read whole (a polygon of 8: about 170 bytes).
+inline constexpr size_t kShapePrefetchBytes = 192;
+
+/// Distance (in list nodes) at which WalkList requests all of a node's cache lines. List
+/// order is not memory order, so every line of a node is a miss unless requested early. The
+/// m_next chase itself stays one miss per node (a chain cannot be requested ahead); this
+/// brings in the node's other lines, which the record reads, in the shadow of that chase.
+inline constexpr int kPrefetchDistance = 4;
+
+/// Calls visit(node) on every node of a world list in order, with the node kPrefetchDistance
+/// ahead being loaded meanwhile, and touch(node) called two nodes ahead (to prefetch what a
+/// node points to once the node itself has arrived).
+template <class T, class Visit, class Touch>
+void WalkList(const T* head, Visit visit, Touch touch) {
+    const T* ahead = head;
+    for (int i = 0; i < kPrefetchDistance && ahead != nullptr; ++i) {
+        PrefetchObject(ahead);
+        ahead = ahead->GetNext();
+    }
+    const T* near = head != nullptr ? head->GetNext() : nullptr;
+    if (near != nullptr) near = near->GetNext();
+    for (const T* node = head; node != nullptr; node = node->GetNext()) {
+        if (ahead != nullptr) {
+            PrefetchObject(ahead);
+            ahead = ahead->GetNext();
+        }
+        if (near != nullptr) {
+            touch(near);
+            near = near->GetNext();
+        }
+        visit(*node);
     }
 }
 
@@ -276,28 +380,38 @@ inline void PrefetchAhead(const T* node) noexcept {
 template <class W>
 void WriteBodies(W& w, const b2World& world) {
     WritePool(w, world.m_bodies);
-    for (const b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
-        PrefetchAhead(b->GetNext());
-        WriteBody(w, *b);
-    }
+    WalkList(world.GetBodyList(), [&](const b2Body& b) { WriteBody(w, b); }, [](const b2Body*) {});
 }
 
 /// The fixture section: pool, then each body's fixtures (body-list order, fixture-list order).
 template <class W>
 void WriteFixtures(W& w, const b2World& world) {
     WritePool(w, world.m_fixtures);
-    for (const b2Body* b = world.GetBodyList(); b; b = b->GetNext())
-        for (const b2Fixture* f = b->GetFixtureList(); f; f = f->GetNext()) WriteFixture(w, *f);
+    WalkList(
+        world.GetBodyList(),
+        [&](const b2Body& b) {
+            // The next body's first fixture was requested a node ago: now its shape.
+            const b2Body* next = b.GetNext();
+            if (next != nullptr && next->GetFixtureList() != nullptr) {
+                PrefetchBytes(next->GetFixtureList()->GetShape(), kShapePrefetchBytes);
+            }
+            for (const b2Fixture* f = b.GetFixtureList(); f; f = f->GetNext()) WriteFixture(w, *f);
+        },
+        [](const b2Body* b) {
+            if (b->GetFixtureList() != nullptr) PrefetchObject(b->GetFixtureList());
+        });
 }
 
 /// The contact section: pool, then every contact in contact-list order.
 template <class W>
 void WriteContacts(W& w, const b2World& world) {
     WritePool(w, world.GetContactManager().GetPool());
-    for (const b2Contact* c = world.GetContactList(); c; c = c->GetNext()) {
-        PrefetchAhead(c->GetNext());
-        WriteContact(w, *c);
-    }
+    WalkList(world.GetContactList(), [&](const b2Contact& c) { WriteContact(w, c); },
+             [](const b2Contact* c) {
+                 // The record holds both fixtures' ids.
+                 __builtin_prefetch(c->GetFixtureA());
+                 __builtin_prefetch(c->GetFixtureB());
+             });
 }
 
 /// The joint section: every joint in joint-list order.

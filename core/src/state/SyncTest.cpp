@@ -3,7 +3,7 @@
 
 #include "lockbox/state/SyncTest.h"
 
-#include <xxhash.h>
+#include "FastXxh3.h"
 
 #include "lockbox/collision/PolygonShape.h"
 #include "lockbox/dynamics/joints/DistanceJoint.h"
@@ -41,8 +41,8 @@ SyncTest::SyncTest(b2World& world, SyncTestGame& game, SyncTestConfig config)
 uint64 SyncTest::StateHash() {
     m_scratch.clear();
     m_game.SaveUserState(m_scratch);
-    const uint64 parts[2] = {m_world.Hash(), XXH3_64bits(m_scratch.data(), m_scratch.size())};
-    return XXH3_64bits(parts, sizeof parts);
+    const uint64 parts[2] = {m_world.Hash(), state_detail::Xxh3(m_scratch.data(), m_scratch.size())};
+    return state_detail::Xxh3(parts, sizeof parts);
 }
 
 void SyncTest::SaveFrame(int32 frame) {
