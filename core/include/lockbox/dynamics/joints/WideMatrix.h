@@ -85,12 +85,20 @@ constexpr Wide b2Cross(const b2Vec2& r, const b2WideVec2& p) noexcept {
 }
 
 namespace detail {
-/// round(n * 2^shift / d) as a saturated Q32.32 raw. When n << shift would not fit 127 bits,
-/// d is shifted right instead (d is then so large that its dropped bits do not matter). A
-/// zero (or vanishing) d is the singular case and gives 0, as Box2D's solves do.
+/// round(n * 2^shift / d) as a saturated Q32.32 raw, shift >= 0. When n << shift would not fit
+/// 127 bits, d is shifted right instead (d is then so large that its dropped bits do not
+/// matter). A zero (or vanishing) d is the singular case and gives 0, as Box2D's solves do.
 constexpr int64_t DivShiftS128(S128 n, S128 d, int shift, const char* op) noexcept {
     if (IsZero(n)) return 0;
-    const int room = 126 - BitWidthU128(n.mag);
+    int room = 126 - BitWidthU128(n.mag);
+    if (room < 0) {
+        // A numerator of 127 or 128 bits (extreme cofactors, e.g. from a restored image with
+        // huge masses): drop its lowest bits (a relative error below 2^-125) and carry them
+        // into the shift, so no shift below is negative.
+        n.mag = ShrU128(n.mag, -room);
+        shift -= room;
+        room = 0;
+    }
     if (shift <= room) {
         n.mag = ShlU128(n.mag, shift);
     } else {
