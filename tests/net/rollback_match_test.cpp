@@ -13,32 +13,6 @@
 namespace lockbox::net::rbtest {
 namespace {
 
-// What every match must satisfy; `spec` is printed with every failure (it holds the seed).
-void ExpectHealthy(const RbSpec& spec, const RbResult& r) {
-    SCOPED_TRACE(spec.Describe());
-    EXPECT_TRUE(r.finished) << "ticks=" << r.ticks;
-    for (size_t i = 0; i < r.peers.size(); ++i) {
-        const RbPeer& p = r.peers[i];
-        EXPECT_FALSE(p.executeFailed) << "peer " << i;
-        EXPECT_FALSE(p.finalChanged) << "peer " << i;
-        for (const RollbackEvent& e : p.events)
-            EXPECT_NE(e.kind, RollbackEvent::Kind::e_desync) << "peer " << i << " false desync at " << e.frame;
-        for (size_t j = i + 1; j < r.peers.size(); ++j) {
-            int32_t mismatch = -1;
-            const size_t common = CompareFinals(p, r.peers[j], mismatch);
-            EXPECT_EQ(mismatch, -1) << "peers " << i << "," << j;
-            // Nearly every compared frame up to `frames` is known on both sides.
-            EXPECT_GE(common, static_cast<size_t>(spec.frames / static_cast<int32_t>(spec.desyncInterval)) * 8 / 10)
-                << "peers " << i << "," << j;
-        }
-    }
-    // One-way latency above the input delay forces predictions, and some of them are wrong.
-    if (spec.rttMs * 500u > spec.inputDelay * kTickMicros) {
-        EXPECT_GT(r.Rollbacks(), 0u);
-    }
-    EXPECT_LE(r.SpreadP95(), 1);
-}
-
 struct Cell {
     uint32_t peers, rtt, loss, jitter;
 };

@@ -18,26 +18,7 @@ struct Cell {
 
 void CheckAndPrint(const RbSpec& spec, const RbResult& r) {
     SCOPED_TRACE(spec.Describe());
-    EXPECT_TRUE(r.finished) << "ticks=" << r.ticks;
-    size_t compared = SIZE_MAX;
-    for (size_t i = 0; i < r.peers.size(); ++i) {
-        const RbPeer& p = r.peers[i];
-        EXPECT_FALSE(p.executeFailed) << "peer " << i;
-        EXPECT_FALSE(p.finalChanged) << "peer " << i;
-        for (const RollbackEvent& e : p.events)
-            EXPECT_NE(e.kind, RollbackEvent::Kind::e_desync) << "peer " << i << " false desync at " << e.frame;
-        for (size_t j = i + 1; j < r.peers.size(); ++j) {
-            int32_t mismatch = -1;
-            const size_t common = CompareFinals(p, r.peers[j], mismatch);
-            EXPECT_EQ(mismatch, -1) << "peers " << i << "," << j;
-            EXPECT_GE(common, static_cast<size_t>(spec.frames / static_cast<int32_t>(spec.desyncInterval)) * 8 / 10);
-            compared = std::min(compared, common);
-        }
-    }
-    if (spec.rttMs * 500u > spec.inputDelay * kTickMicros) {
-        EXPECT_GT(r.Rollbacks(), 0u);
-    }
-    EXPECT_LE(r.SpreadP95(), 1);
+    const size_t compared = ExpectHealthy(spec, r);
     uint64_t resim = 0, waits = 0, advanced = 0;
     uint32_t deepest = 0;
     for (const RbPeer& p : r.peers) {
