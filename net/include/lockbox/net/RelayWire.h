@@ -1,0 +1,56 @@
+#pragma once
+/// The relay's datagram header (RelayServer.h, RelayedTransport.h; docs/rollback.md "Relayed
+/// matches"). A relay forwards opaque payloads between the members of one match, so players
+/// behind NATs that cannot reach each other directly still play a peer-to-peer-style session:
+/// each member talks to the relay only, and the relay rewrites the destination slot into the
+/// source slot.
+///
+/// Every relay datagram starts with a 9-byte header, all fields little-endian:
+///   0  u8  'L'        1  u8  'Y'         magic
+///   2  u8  version    (kRelayVersion)
+///   3  u8  kind       (RelayKind)
+///   4  u32 match id
+///   8  u8  slot       join: the slot claimed; welcome: the slot granted;
+///                     to-relay data: the destination; from-relay data: the source
+/// then: join carries a u64 token (the member's secret for its slot); data carries the payload
+/// (1 .. kMaxDatagram - 9 bytes); welcome carries nothing.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace lockbox::net {
+
+inline constexpr uint8_t kRelayVersion = 1;
+inline constexpr size_t kRelayHeaderBytes = 9;
+/// Largest slot count a relay serves (8 players plus spectators).
+inline constexpr uint32_t kRelayMaxSlots = 32;
+
+enum class RelayKind : uint8_t {
+    e_join = 1,      ///< member -> relay: claim a slot with its token
+    e_welcome = 2,   ///< relay -> member: the slot is yours (answer to every valid join)
+    e_toSlot = 3,    ///< member -> relay: forward the payload to `slot`
+    e_fromSlot = 4,  ///< relay -> member: a payload from `slot`
+};
+
+/// A parsed relay datagram; `payload` views the input bytes (data kinds only).
+struct RelayFrame {
+    RelayKind kind = RelayKind::e_join;
+    uint32_t matchId = 0;
+    uint8_t slot = 0;
+    uint64_t token = 0;                 ///< join only
+    std::span<const uint8_t> payload;   ///< e_toSlot / e_fromSlot only, never empty
+};
+
+/// Parses one datagram; nullopt for a wrong magic or version, an unknown kind, a wrong length
+/// (join: exactly 17 bytes; welcome: exactly 9; data: at least 10) or a slot >= kRelayMaxSlots.
+std::optional<RelayFrame> ParseRelayFrame(std::span<const uint8_t> bytes) noexcept;
+
+/// Writes the header (and the join token) into `out`, replacing its contents; data kinds
+/// append `payload` after it.
+void WriteRelayFrame(std::vector<uint8_t>& out, RelayKind kind, uint32_t matchId, uint8_t slot, uint64_t token = 0,
+                     std::span<const uint8_t> payload = {});
+
+}  // namespace lockbox::net
