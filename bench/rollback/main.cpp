@@ -11,6 +11,10 @@
 //  - rain256: the rain scene once about 256 bodies have spawned (bodies falling, piling up,
 //    sleep on as the scene defines); every rep rolls back to that same state.
 //
+// Reference: the same scene on float Box2D 2.4.1 (bench/common/Box2DFloatEngine.h), the same
+// warm-up, then `depth` plain steps per rep (float Box2D has no snapshot, so no restore and no
+// saves): what the re-simulation alone costs a float engine on this machine, in the same run.
+//
 // Usage: lockbox_rollback_bench [--reps N] [--depth D] [--out FILE] [--only SCENE]
 
 #include <algorithm>
@@ -23,8 +27,10 @@
 #include <string>
 #include <vector>
 
+#include "Box2DFloatEngine.h"
 #include "lockbox/lockbox.h"
 #include "lockbox/scenes/LockboxScenes.h"
+#include "lockbox/scenes/Registry.h"
 
 namespace {
 
@@ -60,6 +66,8 @@ struct Case {
     /// rolls back to the same state (rain spawns bodies every frame, so its body count would
     /// drift far from 256 over the reps).
     bool moveOn = true;
+    /// The same scene for float Box2D (the reference).
+    std::unique_ptr<scenes::Scene<scenes::Box2DFloatEngine>> floatScene;
 };
 
 struct Row {
@@ -69,7 +77,38 @@ struct Row {
     size_t imageBytes = 0;
     double cpuP50 = 0, cpuP99 = 0, cpuMax = 0, wallP50 = 0, wallP99 = 0;
     double restoreP50 = 0, stepP50 = 0, saveP50 = 0;  ///< per operation, CPU, medians
+    int floatBodies = 0;                      ///< float Box2D's body count at the first rep
+    double floatP50 = 0, floatP99 = 0;        ///< float Box2D: `depth` steps, CPU
 };
+
+// float Box2D 2.4.1 on the same scene: the same warm-up, then `depth` steps per rep, CPU time.
+// Every rep moves on by `depth` frames (float Box2D cannot roll back); rain keeps spawning, so
+// its reps are capped at 30 to stay near its body count.
+void MeasureFloat(Case& c, int reps, int depth, Row& row) {
+    scenes::Box2DFloatEngine engine;
+    auto& scene = *c.floatScene;
+    const auto& info = scene.Info();
+    scenes::ConfigureWorld(engine, info, scenes::RunSettings{});
+    scene.Prepare(scenes::Resolve(info, scenes::RunSettings{}));
+    scene.Build(engine);
+    int frame = 0;
+    auto advance = [&] {
+        scene.BeforeStep(engine, frame++);
+        engine.Step(info.hz, info.velocityIterations, info.positionIterations);
+    };
+    for (int i = 0; i < c.warmup; ++i) advance();
+    for (int i = 0; i < 2000 && c.targetBodies > 0 && engine.world().GetBodyCount() < c.targetBodies; ++i) advance();
+    row.floatBodies = engine.world().GetBodyCount();
+    if (!c.moveOn) reps = std::min(reps, 30);
+    std::vector<int64_t> cpu;
+    for (int r = 0; r < reps; ++r) {
+        const int64_t c0 = ThreadNs();
+        for (int k = 0; k < depth; ++k) advance();
+        cpu.push_back(ThreadNs() - c0);
+    }
+    row.floatP50 = Percentile(cpu, 50);
+    row.floatP99 = Percentile(cpu, 99);
+}
 
 Row Measure(Case& c, int reps, int depth) {
     scenes::LockboxEngine engine;
@@ -77,7 +116,7 @@ Row Measure(Case& c, int reps, int depth) {
     scenes::ConfigureWorld(engine, info, scenes::RunSettings{});
     c.scene->Prepare(scenes::Resolve(info, scenes::RunSettings{}));
     c.scene->Build(engine);
-    b2World& world = engine.world();
+    lockbox::b2World& world = engine.world();
     int frame = 0;
     auto advance = [&] {
         c.scene->BeforeStep(engine, frame++);
@@ -160,10 +199,14 @@ int main(int argc, char** argv) {
         return 2;
     }
     std::vector<Case> cases;
-    cases.push_back({"pyramid22", std::make_unique<scenes::LargePyramidScene<scenes::LockboxEngine>>(22), 0, 60});
-    cases.push_back(
-        {"many_pyramids_1x5", std::make_unique<scenes::ManyPyramidsScene<scenes::LockboxEngine>>(1, 5), 0, 60});
-    cases.push_back({"rain256", scenes::MakeLockboxScene("rain"), 256, 0, false});
+    using scenes::Box2DFloatEngine;
+    using scenes::LockboxEngine;
+    cases.push_back({"pyramid22", std::make_unique<scenes::LargePyramidScene<LockboxEngine>>(22), 0, 60, true,
+                     std::make_unique<scenes::LargePyramidScene<Box2DFloatEngine>>(22)});
+    cases.push_back({"many_pyramids_1x5", std::make_unique<scenes::ManyPyramidsScene<LockboxEngine>>(1, 5), 0, 60,
+                     true, std::make_unique<scenes::ManyPyramidsScene<Box2DFloatEngine>>(1, 5)});
+    cases.push_back({"rain256", scenes::MakeLockboxScene("rain"), 256, 0, false,
+                     scenes::MakeScene<Box2DFloatEngine>("rain")});
 
     std::FILE* csv = std::fopen(out.c_str(), "w");
     if (csv == nullptr) {
@@ -172,22 +215,28 @@ int main(int argc, char** argv) {
     }
     std::fprintf(csv,
                  "scene,bodies,bodies_end,contacts,depth,reps,image_bytes,cpu_p50_ms,cpu_p99_ms,cpu_max_ms,wall_p50_ms,"
-                 "wall_p99_ms,restore_p50_ms,step_p50_ms,save_p50_ms,budget_ms,within_budget\n");
+                 "wall_p99_ms,restore_p50_ms,step_p50_ms,save_p50_ms,budget_ms,within_budget,float_bodies,float_steps_p50_ms,"
+                 "float_steps_p99_ms\n");
     std::printf("rollback of depth %d = restore + %d steps + %d saves, %d reps\n", depth, depth, depth, reps);
-    std::printf("%-18s %6s %6s %9s %9s %9s %9s %9s %9s %9s %9s %6s\n", "scene", "bodies", "contct", "cpu p50",
-                "cpu p99", "cpu max", "wall p50", "wall p99", "restore", "step", "save", "<=8ms");
+    std::printf("%-18s %6s %6s %9s %9s %9s %9s %9s %9s %9s %9s %6s %9s %9s\n", "scene", "bodies", "contct",
+                "cpu p50", "cpu p99", "cpu max", "wall p50", "wall p99", "restore", "step", "save", "<=8ms", "f32 p50",
+                "f32 p99");
     for (Case& c : cases) {
         if (!only.empty() && only != c.name) continue;
-        const Row r = Measure(c, reps, depth);
+        Row r = Measure(c, reps, depth);
+        MeasureFloat(c, reps, depth, r);
         const bool within = r.cpuP99 <= 8.0;
-        std::printf("%-18s %6d %6d %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %6s\n", r.name.c_str(), r.bodies,
-                    r.contacts, r.cpuP50, r.cpuP99, r.cpuMax, r.wallP50, r.wallP99, r.restoreP50, r.stepP50,
-                    r.saveP50, within ? "yes" : "NO");
-        std::fprintf(csv, "%s,%d,%d,%d,%d,%d,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,8,%d\n", r.name.c_str(),
-                     r.bodies, r.bodiesEnd, r.contacts, depth, reps, r.imageBytes, r.cpuP50, r.cpuP99, r.cpuMax, r.wallP50,
-                     r.wallP99, r.restoreP50, r.stepP50, r.saveP50, within ? 1 : 0);
+        std::printf("%-18s %6d %6d %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %6s %9.3f %9.3f\n", r.name.c_str(),
+                    r.bodies, r.contacts, r.cpuP50, r.cpuP99, r.cpuMax, r.wallP50, r.wallP99, r.restoreP50, r.stepP50,
+                    r.saveP50, within ? "yes" : "NO", r.floatP50, r.floatP99);
+        std::fprintf(csv, "%s,%d,%d,%d,%d,%d,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,8,%d,%d,%.4f,%.4f\n",
+                     r.name.c_str(), r.bodies, r.bodiesEnd, r.contacts, depth, reps, r.imageBytes, r.cpuP50, r.cpuP99,
+                     r.cpuMax, r.wallP50, r.wallP99, r.restoreP50, r.stepP50, r.saveP50, within ? 1 : 0,
+                     r.floatBodies, r.floatP50, r.floatP99);
     }
     std::fclose(csv);
-    std::printf("wrote %s (ms; cpu = thread CPU time; restore/step/save are per-operation medians)\n", out.c_str());
+    std::printf("wrote %s (ms; cpu = thread CPU time; restore/step/save are per-operation medians; f32 = float\n"
+                "Box2D 2.4.1, the same scene, %d plain steps per rep)\n",
+                out.c_str(), depth);
     return 0;
 }
