@@ -7,6 +7,7 @@
 #include <deque>
 #include <map>
 
+#include "RollbackSnapshotHost.h"
 #include "SessionCommon.h"
 
 namespace lockbox::net {
@@ -19,8 +20,6 @@ constexpr size_t kAdvantageSamples = 16;
 // Each final hash goes out in this many datagrams to each remote: at 20 % loss all copies
 // are lost 0.8 % of the time, which only skips that comparison, and no acks are needed.
 constexpr uint8_t kHashCopies = 3;
-// Raw input bytes of one spectator run, so a datagram stays under the 1200-byte limit.
-constexpr size_t kSpectatorRunBytes = 960;
 
 int32_t ClampMilli(int64_t v) noexcept {
     return static_cast<int32_t>(std::clamp<int64_t>(v, -1000000000, 1000000000));
@@ -55,6 +54,7 @@ struct RollbackPeer::Remote {
     uint64_t echoTime = 0, echoReceivedAt = 0;
     std::deque<int32_t> localAdvantage, remoteAdvantage;
     std::map<int32_t, uint8_t> hashCopies;  // final hash frame -> datagrams that carried it
+    bool interrupted = false;
 };
 
 RollbackPeer::RollbackPeer(RollbackSession& session, Transport& transport, RollbackPeerConfig config)
@@ -72,7 +72,13 @@ RollbackPeer::RollbackPeer(RollbackSession& session, Transport& transport, Rollb
         r.lastHeard = now;
         remotes_.push_back(std::move(r));
     }
-    for (PeerId s : config_.spectators) spectators_.push_back(Spectator{s, 0});
+    if (config_.snapshotResendMicros == 0) config_.snapshotResendMicros = 1;
+    if (config_.snapshotChunksPerFlush == 0) config_.snapshotChunksPerFlush = 1;
+    for (PeerId sp : config_.spectators) {
+        Spectator s;
+        s.peer = sp;
+        spectators_.push_back(std::move(s));
+    }
     localPlayers_ = session_.Config().localPlayers;
 }
 
@@ -99,25 +105,47 @@ void RollbackPeer::Poll() {
             ++stats_.datagramsReceived;
             if (!r->alive) continue;
             r->lastHeard = now;
+            if (r->interrupted) {
+                r->interrupted = false;
+                session_.RaiseConnectionEvent(RollbackEvent::Kind::e_resumed, r->index);
+            }
             for (const RollbackMessage& m : messages_) Handle(*r, m, now);
             continue;
         }
-        auto spec = std::find_if(spectators_.begin(), spectators_.end(),
-                                 [&](const Spectator& s) { return s.peer == d.peer; });
-        if (spec == spectators_.end()) {
+        Spectator* spec = FindSpectator(d.peer);
+        if (spec == nullptr && lateSpectators_ < config_.maxLateSpectators &&
+            std::any_of(messages_.begin(), messages_.end(),
+                        [](const RollbackMessage& m) { return std::holds_alternative<RbJoinRequest>(m); })) {
+            // A stranger becomes a spectator only by asking to join, and only up to the limit.
+            Spectator s;
+            s.peer = d.peer;
+            spectators_.push_back(std::move(s));
+            ++lateSpectators_;
+            spec = &spectators_.back();
+        }
+        if (spec == nullptr) {
             ++stats_.refused;
             continue;
         }
         ++stats_.datagramsReceived;
-        for (const RollbackMessage& m : messages_)
-            if (const auto* ack = std::get_if<RbConfirmedAck>(&m))
-                spec->acked = std::max(spec->acked, std::min(ack->nextFrame, session_.ConfirmedFrame()));
+        for (const RollbackMessage& m : messages_) HandleSpectator(*spec, m);
     }
     for (Remote& r : remotes_) {
-        if (!r.alive || now - r.lastHeard <= config_.disconnectTimeoutMicros) continue;
+        if (!r.alive) continue;
+        const uint64_t silence = now - r.lastHeard;
+        if (!r.interrupted && silence > config_.interruptTimeoutMicros) {
+            r.interrupted = true;
+            session_.RaiseConnectionEvent(RollbackEvent::Kind::e_interrupted, r.index);
+        }
+        if (silence <= config_.disconnectTimeoutMicros) continue;
         r.alive = false;
+        r.interrupted = false;
         for (uint32_t p : r.players) session_.DisconnectPlayer(p);
     }
+}
+
+bool RollbackPeer::RemoteInterrupted(size_t index) const noexcept {
+    return index < remotes_.size() && remotes_[index].alive && remotes_[index].interrupted;
 }
 
 void RollbackPeer::Handle(Remote& r, const RollbackMessage& m, uint64_t now) {
@@ -174,7 +202,10 @@ void RollbackPeer::Flush() {
     const uint64_t now = transport_.NowMicros();
     for (Remote& r : remotes_)
         if (r.alive) SendTo(r, now);
-    for (Spectator& s : spectators_) SendSpectator(s);
+    for (Spectator& s : spectators_) {
+        if (s.lateJoin && (s.wantsSnapshot || (s.sender.Active() && !s.sender.Done()))) SendSnapshot(s, now);
+        else SendSpectator(s);
+    }
 }
 
 void RollbackPeer::SendTo(Remote& r, uint64_t now) {
@@ -217,37 +248,6 @@ void RollbackPeer::SendTo(Remote& r, uint64_t now) {
     while (!r.hashCopies.empty() && (finals.empty() || r.hashCopies.begin()->first < finals.front().first))
         r.hashCopies.erase(r.hashCopies.begin());
     if (transport_.Send(r.peer, writer_.Bytes())) ++stats_.datagramsSent;
-}
-
-void RollbackPeer::SendSpectator(Spectator& s) {
-    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
-    const size_t width = shape_.inputBytes;
-    const size_t row = width * shape_.players;
-    const int32_t confirmed = session_.ConfirmedFrame();
-    const int32_t maxRun = static_cast<int32_t>(std::min<size_t>(kRollbackMaxRun, kSpectatorRunBytes / row));
-    RbConfirmed c;
-    c.firstFrame = s.acked;
-    int32_t count = 0;
-    for (int32_t f = s.acked; f < confirmed && count < maxRun; ++f, ++count) {
-        bool kept = true;
-        for (uint32_t p = 0; p < shape_.players && kept; ++p) {
-            const auto one = session_.ConfirmedInput(p, f);
-            if (one.size() == width) {
-                c.bytes.insert(c.bytes.end(), one.begin(), one.end());
-            } else if (session_.IsDisconnected(p) && f >= session_.ReceivedFrame(p)) {
-                c.bytes.insert(c.bytes.end(), width, 0);
-            } else {
-                kept = false;
-            }
-        }
-        if (!kept) {
-            c.bytes.resize(static_cast<size_t>(count) * row);
-            break;
-        }
-    }
-    if (count > 0) writer_.Add(c, shape_);
-    else writer_.Add(RbKeepAlive{}, shape_);
-    if (transport_.Send(s.peer, writer_.Bytes())) ++stats_.datagramsSent;
 }
 
 void RollbackPeer::Leave() {

@@ -330,6 +330,15 @@ void RollbackSession::DisconnectPlayer(uint32_t player) {
     m.events.push_back(e);
 }
 
+void RollbackSession::RaiseConnectionEvent(RollbackEvent::Kind kind, uint32_t peerTag) {
+    if (kind != RollbackEvent::Kind::e_interrupted && kind != RollbackEvent::Kind::e_resumed) return;
+    RollbackEvent e;
+    e.kind = kind;
+    e.frame = impl_->current;
+    e.player = peerTag;
+    impl_->events.push_back(e);
+}
+
 int32_t RollbackSession::CurrentFrame() const noexcept { return impl_->current; }
 int32_t RollbackSession::ConfirmedFrame() const noexcept { return impl_->Confirmed(); }
 

@@ -1,6 +1,7 @@
 // The rollback message codec (RollbackProtocol.h) on the lockstep codec's primitives
 // (WireIO.h): fixed little-endian widths, minimal varints, repeat-bitmap input runs.
 
+#include <algorithm>
 #include <type_traits>
 
 #include "WireIO.h"
@@ -133,6 +134,64 @@ bool Enc(Writer&, const RbKeepAlive&, const RollbackShape&) { return true; }
 void Dec(Reader&, RbKeepAlive&, const RollbackShape&) {}
 bool Enc(Writer&, const RbDisconnect&, const RollbackShape&) { return true; }
 void Dec(Reader&, RbDisconnect&, const RollbackShape&) {}
+
+bool Enc(Writer& w, const RbJoinRequest& m, const RollbackShape&) {
+    if (m.attempt < 1) return false;
+    w.Var(m.attempt);
+    return true;
+}
+void Dec(Reader& r, RbJoinRequest& m, const RollbackShape&) {
+    const uint64_t a = r.Var();
+    if (r.ok() && (a < 1 || a > 0xFFFFFFFFull)) r.Fail(DecodeError::e_badValue);
+    m.attempt = static_cast<uint32_t>(a);
+}
+
+// Payload bytes of chunk `index` of a `total`-byte snapshot; 0 when the index is past the end.
+size_t ChunkLength(uint32_t total, uint32_t index) noexcept {
+    const uint64_t offset = uint64_t{index} * kRbSnapshotChunkBytes;
+    if (offset >= total) return 0;
+    return static_cast<size_t>(std::min<uint64_t>(kRbSnapshotChunkBytes, total - offset));
+}
+
+bool Enc(Writer& w, const RbSnapshotChunk& m, const RollbackShape&) {
+    if (m.frame < 0 || m.totalSize < 1 || m.totalSize > kRbMaxSnapshotBytes) return false;
+    const size_t len = ChunkLength(m.totalSize, m.index);
+    if (len == 0 || m.bytes.size() != len) return false;
+    w.Var(static_cast<uint64_t>(m.frame));
+    w.Var(m.totalSize);
+    w.U64(m.checksum);
+    w.Var(m.index);
+    w.Bytes(m.bytes);
+    return true;
+}
+void Dec(Reader& r, RbSnapshotChunk& m, const RollbackShape&) {
+    m.frame = r.Frame();
+    const uint64_t total = r.Var();
+    if (r.ok() && (total < 1 || total > kRbMaxSnapshotBytes)) r.Fail(DecodeError::e_badValue);
+    m.totalSize = static_cast<uint32_t>(total);
+    m.checksum = r.U64();
+    const uint64_t index = r.Var();
+    // total <= 16 MiB, so an index past it is refused before any multiplication can wrap.
+    if (r.ok() && index >= (uint64_t{m.totalSize} + kRbSnapshotChunkBytes - 1) / kRbSnapshotChunkBytes)
+        r.Fail(DecodeError::e_badValue);
+    if (!r.ok()) return;
+    m.index = static_cast<uint32_t>(index);
+    m.bytes.resize(ChunkLength(m.totalSize, m.index));
+    r.Bytes(m.bytes.data(), m.bytes.size());
+}
+
+bool Enc(Writer& w, const RbSnapshotAck& m, const RollbackShape&) {
+    if (m.frame < 0 || m.index >= kRbMaxSnapshotBytes / kRbSnapshotChunkBytes) return false;
+    w.Var(static_cast<uint64_t>(m.frame));
+    w.Var(m.index);
+    return true;
+}
+void Dec(Reader& r, RbSnapshotAck& m, const RollbackShape&) {
+    m.frame = r.Frame();
+    const uint64_t index = r.Var();
+    if (r.ok() && index >= kRbMaxSnapshotBytes / kRbSnapshotChunkBytes) r.Fail(DecodeError::e_badValue);
+    m.index = static_cast<uint32_t>(index);
+}
 
 // Input-carrying messages need a valid shape to be sized at all.
 template <class M>

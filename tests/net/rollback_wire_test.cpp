@@ -29,6 +29,14 @@ std::vector<RollbackMessage> Sample() {
     m.push_back(RbConfirmedAck{7});
     m.push_back(RbKeepAlive{});
     m.push_back(RbDisconnect{});
+    m.push_back(RbJoinRequest{3});
+    std::vector<uint8_t> payload(100);
+    for (size_t i = 0; i < payload.size(); ++i) payload[i] = static_cast<uint8_t>(i * 7);
+    m.push_back(RbSnapshotChunk{12, 100, 0x0123456789ABCDEFull, 0, payload});
+    // The last, short chunk of a 1030-byte snapshot.
+    m.push_back(RbSnapshotChunk{13, kRbSnapshotChunkBytes + 6, 5, 1, {1, 2, 3, 4, 5, 6}});
+    m.push_back(RbSnapshotAck{12, 0});
+    m.push_back(RbSnapshotAck{400, 16383});
     return m;
 }
 
@@ -102,6 +110,47 @@ TEST(RollbackWire, MalformedFieldsAreRefused) {
     EXPECT_FALSE(w.Add(RbInputs{0, 0, std::vector<uint8_t>(4 * (kRollbackMaxRun + 1), 1)}, kShape));
     EXPECT_FALSE(w.Add(RbHash{-1, 0}, kShape));
     EXPECT_EQ(w.MessageCount(), 0u);
+}
+
+// Late-join messages: every chunk's payload length follows from its size and index, and
+// anything inconsistent is neither encoded nor decoded.
+TEST(RollbackWire, SnapshotMessagesAreBoundsChecked) {
+    RollbackDatagramWriter w;
+    w.Begin(RollbackHeader{});
+    const std::vector<uint8_t> full(kRbSnapshotChunkBytes, 1);
+    EXPECT_TRUE(w.Add(RbSnapshotChunk{0, 5000, 0, 0, full}, kShape));
+    w.Begin(RollbackHeader{});
+    EXPECT_FALSE(w.Add(RbSnapshotChunk{0, 5000, 0, 0, {1, 2}}, kShape));      // payload too short
+    EXPECT_FALSE(w.Add(RbSnapshotChunk{0, 5000, 0, 5, {1, 2}}, kShape));      // index past the end
+    EXPECT_FALSE(w.Add(RbSnapshotChunk{0, 0, 0, 0, {}}, kShape));             // empty snapshot
+    EXPECT_FALSE(w.Add(RbSnapshotChunk{-1, 2, 0, 0, {1, 2}}, kShape));        // negative frame
+    EXPECT_FALSE(w.Add(RbSnapshotChunk{0, kRbMaxSnapshotBytes + 1, 0, 0, full}, kShape));
+    EXPECT_FALSE(w.Add(RbSnapshotAck{0, kRbMaxSnapshotBytes / kRbSnapshotChunkBytes}, kShape));
+    EXPECT_FALSE(w.Add(RbJoinRequest{0}, kShape));
+    EXPECT_EQ(w.MessageCount(), 0u);
+    // A full chunk datagram stays well under the 1200-byte budget.
+    w.Begin(RollbackHeader{});
+    ASSERT_TRUE(w.Add(RbSnapshotChunk{INT32_MAX, kRbMaxSnapshotBytes, UINT64_MAX, 16383, full}, kShape));
+    EXPECT_LE(w.Size(), 1100u);
+
+    RollbackHeader h;
+    std::vector<RollbackMessage> out;
+    // type, frame 5 (1 byte), size 1030 (2 bytes), checksum (8), index 1 (1), 6 payload bytes.
+    auto bytes = Encode({RbSnapshotChunk{5, kRbSnapshotChunkBytes + 6, 9, 1, {1, 2, 3, 4, 5, 6}}});
+    ASSERT_EQ(bytes.size(), kRollbackHeaderBytes + 19);
+    auto bad = bytes;
+    bad[kRollbackHeaderBytes + 12] = 2;  // index 2 of a 2-chunk snapshot
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badValue);
+    bad = bytes;
+    bad.pop_back();  // payload one byte short
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_truncated);
+    bad = bytes;
+    bad.push_back(0);  // one byte too many: read as a type byte 0
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badType);
+    bad = Encode({RbJoinRequest{1}});
+    bad[kRollbackHeaderBytes + 1] = 0;  // attempt 0
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badValue);
+    EXPECT_TRUE(out.empty());
 }
 
 TEST(RollbackWire, RandomBytesNeverCrash) {

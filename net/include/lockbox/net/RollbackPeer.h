@@ -1,7 +1,10 @@
 #pragma once
 /// RollbackPeer (issue 11, docs/rollback.md): carries one RollbackSession's inputs, acks,
 /// time-sync reports and final hashes over a Transport to the other peers of a peer-to-peer
-/// match, and the confirmed input stream to spectators (RollbackSpectator.h).
+/// match, and the confirmed input stream to spectators (RollbackSpectator.h), including
+/// spectators that join late from a snapshot the game offers (SnapshotWanted, OfferSnapshot).
+/// A remote silent for interruptTimeoutMicros raises e_interrupted in the session, then
+/// e_resumed when heard again or e_disconnected at disconnectTimeoutMicros.
 ///
 /// Each tick the game calls Poll (datagrams in: remote inputs and hashes go to the session),
 /// then AddLocalInput / AdvanceFrame on the session and executes the requests, then Flush (one
@@ -12,7 +15,9 @@
 /// believes it is ahead of the receiver, RTT taken into account). The peer that is ahead
 /// idles one tick at a time, spread out (WaitThisTick), until the peers line up.
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "lockbox/net/Protocol.h"
@@ -33,8 +38,18 @@ struct RollbackPeerConfig {
     uint32_t matchId = 1;                        ///< same on every peer of the match
     uint32_t tickRate = 60;                      ///< frames per second, >= 1
     uint64_t disconnectTimeoutMicros = 2000000;  ///< silence after which a remote's players leave
+    /// Silence after which an e_interrupted event names the remote (once per silence; an
+    /// e_resumed follows when it is heard again). Should be < disconnectTimeoutMicros.
+    uint64_t interruptTimeoutMicros = 500000;
     std::vector<RollbackRemote> remotes;
     std::vector<PeerId> spectators;              ///< receive the confirmed inputs (RbConfirmed)
+    /// Senders not listed anywhere whose first valid datagram carries an RbJoinRequest become
+    /// late-join spectators, up to this many (0: only the listed spectators).
+    uint32_t maxLateSpectators = 0;
+    /// A snapshot chunk not acked this long after it was sent goes again (microseconds, >= 1).
+    uint64_t snapshotResendMicros = 100000;
+    /// Snapshot chunk datagrams sent to one spectator per Flush, >= 1 (16: ~1 MB/s at 60 Hz).
+    uint32_t snapshotChunksPerFlush = 16;
     /// Ticks between two waits of WaitThisTick (the "gently" of time sync), >= 1.
     uint32_t waitSpacingTicks = 8;
 };
@@ -45,6 +60,17 @@ struct RollbackPeerStats {
     uint64_t datagramsReceived = 0;
     uint64_t refused = 0;          ///< malformed, other match, unknown sender
     uint64_t waitsRecommended = 0; ///< WaitThisTick returned true
+    uint64_t snapshotsOffered = 0; ///< OfferSnapshot calls that started a transfer
+    uint64_t snapshotChunksSent = 0;  ///< chunk datagrams, resends included
+};
+
+/// What OfferSnapshot made of a snapshot.
+enum class SnapshotOfferResult : uint8_t {
+    e_ok = 0,          ///< sent to every spectator that wanted one
+    e_notWanted,       ///< no spectator waits for a snapshot (nothing sent)
+    e_notConfirmed,    ///< frame < 0 or past min(ConfirmedFrame, CurrentFrame): could still change
+    e_inputsGone,      ///< the session no longer keeps the inputs of `frame`: offer a newer frame
+    e_badSize,         ///< empty or larger than kRbMaxSnapshotBytes
 };
 
 class RollbackPeer {
@@ -57,12 +83,27 @@ public:
     RollbackPeer& operator=(const RollbackPeer&) = delete;
 
     /// Reads every datagram that has arrived and hands inputs and hashes to the session;
-    /// disconnects the players of remotes silent past the timeout.
+    /// raises e_interrupted / e_resumed for remotes silent past interruptTimeoutMicros / heard
+    /// again, and disconnects the players of remotes silent past the disconnect timeout.
     void Poll();
     /// Sends one datagram to every live remote and spectator.
     void Flush();
     /// Tells every remote this peer leaves (a few datagrams), then stops sending.
     void Leave();
+
+    /// True while a spectator waits for a snapshot (late join): the game should call
+    /// OfferSnapshot after executing AdvanceFrame's requests, before the next Poll.
+    bool SnapshotWanted() const noexcept;
+    /// The game state saved at `frame` (e.g. WorldGameAdapter::ConfirmedSnapshot), for every
+    /// spectator waiting for one: it is chunked, resent until acked, then those spectators get
+    /// the confirmed inputs from `frame` on. `frame` must be <= min(ConfirmedFrame(),
+    /// CurrentFrame()) of the session, and the bytes must be final (no rollback pending: call
+    /// after executing the requests of AdvanceFrame). The bytes are copied.
+    SnapshotOfferResult OfferSnapshot(int32_t frame, std::span<const uint8_t> state);
+    /// Spectators served so far (listed and late ones).
+    size_t SpectatorCount() const noexcept;
+    /// True while remote `index` has been silent past interruptTimeoutMicros (and is alive).
+    bool RemoteInterrupted(size_t index) const noexcept;
 
     /// This peer's smoothed frame advantage over the remotes minus theirs over it, halved:
     /// how many thousandths of a frame it should idle to line up (<= 0: none).
@@ -76,16 +117,19 @@ public:
 
     /// Smoothed RTT to remote `index` (config order), microseconds; 0 before the first sample.
     uint64_t RttMicros(size_t index) const noexcept;
+    /// False once remote `index` left or timed out (and for an index past the remotes).
     bool RemoteAlive(size_t index) const noexcept;
+    /// Counters since construction.
     const RollbackPeerStats& Stats() const noexcept { return stats_; }
 
 private:
     struct Remote;
-    struct Spectator {
-        PeerId peer = kNoPeer;
-        int32_t acked = 0;
-    };
+    struct Spectator;
     Remote* Find(PeerId peer);
+    Spectator* FindSpectator(PeerId peer);
+    void HandleSpectator(Spectator& s, const RollbackMessage& m);
+    bool InputsKept(int32_t frame) const;
+    void SendSnapshot(Spectator& s, uint64_t now);
     void Handle(Remote& r, const RollbackMessage& m, uint64_t now);
     void SendTo(Remote& r, uint64_t now);
     void SendSpectator(Spectator& s);
@@ -97,6 +141,7 @@ private:
     RollbackShape shape_;
     std::vector<Remote> remotes_;
     std::vector<Spectator> spectators_;
+    uint32_t lateSpectators_ = 0;
     std::vector<uint32_t> localPlayers_;
     RollbackDatagramWriter writer_;
     std::vector<Datagram> inbox_;

@@ -23,12 +23,16 @@ namespace lockbox::net {
 
 /// First two bytes of every rollback datagram: 'R' 'B'.
 inline constexpr uint16_t kRollbackMagic = 0x4252u;
-/// Bumped whenever a message layout changes.
-inline constexpr uint8_t kRollbackProtocolVersion = 1;
+/// Bumped whenever a message layout changes (2: the late-join snapshot messages).
+inline constexpr uint8_t kRollbackProtocolVersion = 2;
 /// Bytes of the header.
 inline constexpr size_t kRollbackHeaderBytes = 7;
 /// Largest frame count of one input run.
 inline constexpr uint32_t kRollbackMaxRun = 128;
+/// Payload bytes of every snapshot chunk but the last (a chunk datagram stays under 1100 bytes).
+inline constexpr uint32_t kRbSnapshotChunkBytes = 1024;
+/// Largest snapshot a spectator accepts on the wire (16 MiB = 16384 chunks).
+inline constexpr uint32_t kRbMaxSnapshotBytes = 16u << 20;
 
 /// The datagram header.
 struct RollbackHeader {
@@ -92,6 +96,34 @@ struct RbConfirmedAck {
     bool operator==(const RbConfirmedAck&) const = default;
 };
 
+/// Spectator -> host: "I join late, send me a snapshot". `attempt` starts at 1 and grows
+/// by one each time the spectator refuses an assembled snapshot (bad checksum): the host
+/// starts a new snapshot when it sees a larger attempt than the last one it served.
+struct RbJoinRequest {
+    uint32_t attempt = 1;  ///< >= 1
+    bool operator==(const RbJoinRequest&) const = default;
+};
+
+/// Host -> spectator: one piece of the game state saved at confirmed frame `frame` (the
+/// state before frame `frame`'s inputs). Every chunk repeats the size and checksum so any
+/// chunk can start the assembly; the payload is the bytes [index * kRbSnapshotChunkBytes,
+/// + min(kRbSnapshotChunkBytes, totalSize - index * kRbSnapshotChunkBytes)).
+struct RbSnapshotChunk {
+    int32_t frame = 0;           ///< >= 0
+    uint32_t totalSize = 0;      ///< 1 .. kRbMaxSnapshotBytes
+    uint64_t checksum = 0;       ///< XXH3-64 of the whole snapshot
+    uint32_t index = 0;          ///< index * kRbSnapshotChunkBytes < totalSize
+    std::vector<uint8_t> bytes;  ///< exactly the payload length above
+    bool operator==(const RbSnapshotChunk&) const = default;
+};
+
+/// Spectator -> host: chunk `index` of the snapshot of `frame` arrived.
+struct RbSnapshotAck {
+    int32_t frame = 0;   ///< >= 0
+    uint32_t index = 0;  ///< < kRbMaxSnapshotBytes / kRbSnapshotChunkBytes
+    bool operator==(const RbSnapshotAck&) const = default;
+};
+
 /// Nothing to say, still here.
 struct RbKeepAlive {
     bool operator==(const RbKeepAlive&) const = default;
@@ -104,12 +136,13 @@ struct RbDisconnect {
 
 /// Any rollback message.
 using RollbackMessage = std::variant<RbInputs, RbInputAck, RbQuality, RbQualityReply, RbHash, RbConfirmed,
-                                     RbConfirmedAck, RbKeepAlive, RbDisconnect>;
+                                     RbConfirmedAck, RbKeepAlive, RbDisconnect, RbJoinRequest, RbSnapshotChunk,
+                                     RbSnapshotAck>;
 
 /// Type byte of each message (the variant index + 1).
 enum class RollbackMessageType : uint8_t {
     e_inputs = 1, e_inputAck, e_quality, e_qualityReply, e_hash, e_confirmed, e_confirmedAck, e_keepAlive,
-    e_disconnect, e_end
+    e_disconnect, e_joinRequest, e_snapshotChunk, e_snapshotAck, e_end
 };
 
 /// What the decoder must know to size input runs.

@@ -68,6 +68,12 @@ struct RollbackEvent {
         e_desync = 0,        ///< a remote peer's hash of `frame` differs from ours (once per peer)
         e_disconnected = 1,  ///< `player` left; its input is zero from `frame` on
         e_waiting = 2,       ///< AdvanceFrame stalled at the window edge from `frame` (once per stall)
+        /// Nothing arrived from remote peer `player` (its RollbackPeer config index) for
+        /// interruptTimeoutMicros; `frame` is the current frame. Once per silence.
+        e_interrupted = 3,
+        /// Remote peer `player` is heard again after an e_interrupted, before the disconnect
+        /// timeout; `frame` is the current frame.
+        e_resumed = 4,
     };
     Kind kind = Kind::e_desync;
     int32_t frame = 0;
@@ -183,6 +189,9 @@ public:
     /// `player` left: its input is zero, with status disconnected, from the first frame not
     /// received yet. Frames already simulated with other guesses are rolled back.
     void DisconnectPlayer(uint32_t player);
+    /// Queues an e_interrupted or e_resumed event about remote peer `peerTag` at the current
+    /// frame (called by RollbackPeer; other kinds are ignored: the session raises those itself).
+    void RaiseConnectionEvent(RollbackEvent::Kind kind, uint32_t peerTag);
 
     /// The frame the next Advance will step (the number of frames simulated).
     int32_t CurrentFrame() const noexcept;

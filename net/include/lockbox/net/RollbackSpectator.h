@@ -4,10 +4,20 @@
 /// same stream a replay stores; the spectator acknowledges them and hands them out frame by
 /// frame. Confirmed inputs never change, so a spectator never rolls back: it applies each
 /// frame once, RTT plus the slowest player's latency behind the players.
+///
+/// Late join (config.lateJoin): the spectator sends RbJoinRequest until its host answers with
+/// a snapshot of a confirmed frame F in RbSnapshotChunk pieces. Chunks are acked one by one,
+/// reassembled in any order and checked (length from the chunk headers, XXH3-64 of the whole)
+/// before the game sees them: TakeSnapshot hands out (F, bytes) once, then Next gives frames
+/// F, F + 1, ... A snapshot that fails the check is dropped and asked for again (a new
+/// attempt); an incomplete one is never handed out. For a WorldGameAdapter game the bytes go
+/// to WorldGameAdapter::RestoreSnapshot.
 
 #include <cstdint>
 #include <deque>
 #include <vector>
+
+#include "lockbox/net/Protocol.h"
 
 #include "lockbox/net/RollbackProtocol.h"
 #include "lockbox/net/Transport.h"
@@ -22,6 +32,15 @@ struct RollbackSpectatorConfig {
     PeerId host = kNoPeer;                  ///< the peer that sends the confirmed inputs
     uint64_t timeoutMicros = 2000000;       ///< silence after which HostAlive() turns false
     uint32_t maxBufferedFrames = 4096;      ///< frames kept before Next takes them (more are not acked)
+    bool lateJoin = false;                  ///< ask the host for a snapshot instead of starting at frame 0
+    uint32_t maxSnapshotBytes = kRbMaxSnapshotBytes;  ///< larger snapshots are refused, 1 .. kRbMaxSnapshotBytes
+};
+
+/// Where a spectator stands.
+enum class SpectatorState : uint8_t {
+    e_following = 0,     ///< receiving the confirmed inputs (from frame 0, or after TakeSnapshot)
+    e_joining = 1,       ///< late join: asking for / assembling a snapshot
+    e_snapshotReady = 2, ///< late join: a checked snapshot waits for TakeSnapshot
 };
 
 class RollbackSpectator {
@@ -34,18 +53,32 @@ public:
     /// Acknowledges the frames received so far (one datagram to the host).
     void Flush();
     /// The next frame's inputs (players * inputBytes bytes, player 0 first) and its number;
-    /// false when it has not arrived yet.
+    /// false when it has not arrived yet (and always before TakeSnapshot in a late join).
     bool Next(int32_t& frame, std::vector<uint8_t>& inputs);
+    /// Late join: the checked snapshot (the state at `frame`, the bytes the host's game
+    /// offered), handed out once; false while none is ready. Load it before calling Next.
+    bool TakeSnapshot(int32_t& frame, std::vector<uint8_t>& bytes);
+    /// Where the spectator stands (e_joining until a checked snapshot arrives in a late join).
+    SpectatorState State() const noexcept { return state_; }
+    /// Assembled snapshots dropped because their checksum did not match.
+    uint64_t SnapshotsRefused() const noexcept { return snapshotsRefused_; }
+    /// Snapshot chunks taken into an assembly (duplicates not counted).
+    uint64_t SnapshotChunks() const noexcept { return snapshotChunks_; }
+    /// Snapshot bytes of the last snapshot handed out (0 before).
+    uint64_t SnapshotBytes() const noexcept { return snapshotBytes_; }
 
     /// Frames before this have arrived.
     int32_t ReceivedFrame() const noexcept { return received_; }
     /// Frames handed out by Next.
     int32_t ConsumedFrame() const noexcept { return consumed_; }
+    /// False after the host's RbDisconnect or timeoutMicros of silence; true again when heard.
     bool HostAlive() const noexcept { return alive_; }
     /// Datagrams refused (malformed, another match, not from the host).
     uint64_t Refused() const noexcept { return refused_; }
 
 private:
+    void TakeChunk(const RbSnapshotChunk& c);
+
     Transport& transport_;
     RollbackSpectatorConfig config_;
     RollbackShape shape_;
@@ -55,6 +88,27 @@ private:
     uint64_t lastHeard_ = 0;
     bool alive_ = true;
     uint64_t refused_ = 0;
+    SpectatorState state_ = SpectatorState::e_following;
+    uint32_t attempt_ = 1;
+    // The assembly: chunks of (asmFrame_, asmTotal_, asmChecksum_); asmHave_ marks arrived ones.
+    bool assembling_ = false;
+    int32_t asmFrame_ = 0;
+    uint32_t asmTotal_ = 0;
+    uint64_t asmChecksum_ = 0;
+    uint32_t asmCount_ = 0;
+    std::vector<uint8_t> asm_;
+    std::vector<uint8_t> asmHave_;
+    // The last refused snapshot: its stragglers are ignored instead of assembled again.
+    bool hasBad_ = false;
+    int32_t badFrame_ = 0;
+    uint64_t badChecksum_ = 0;
+    std::vector<RbSnapshotAck> pendingAcks_;
+    int32_t snapshotFrame_ = 0;
+    uint64_t snapshotChecksum_ = 0;
+    std::vector<uint8_t> snapshot_;
+    uint64_t snapshotsRefused_ = 0;
+    uint64_t snapshotChunks_ = 0;
+    uint64_t snapshotBytes_ = 0;
     std::vector<Datagram> inbox_;
     std::vector<RollbackMessage> messages_;
     RollbackDatagramWriter writer_;

@@ -1,0 +1,137 @@
+// RollbackPeer's spectator side (RollbackPeer.h): the confirmed input stream, and the late
+// join: a spectator's RbJoinRequest marks it as waiting, the game offers the bytes of a final
+// frame, and the snapshot goes out in acked, resent chunks before the stream resumes there.
+
+#include <xxhash.h>
+
+#include <algorithm>
+
+#include "RollbackSnapshotHost.h"
+
+namespace lockbox::net {
+
+namespace {
+
+// Raw input bytes of one spectator run, so a datagram stays under the 1200-byte limit.
+constexpr size_t kSpectatorRunBytes = 960;
+
+}  // namespace
+
+RollbackPeer::Spectator* RollbackPeer::FindSpectator(PeerId peer) {
+    for (Spectator& s : spectators_)
+        if (s.peer == peer) return &s;
+    return nullptr;
+}
+
+void RollbackPeer::HandleSpectator(Spectator& s, const RollbackMessage& m) {
+    if (const auto* ack = std::get_if<RbConfirmedAck>(&m)) {
+        s.acked = std::max(s.acked, std::min(ack->nextFrame, session_.ConfirmedFrame()));
+    } else if (const auto* join = std::get_if<RbJoinRequest>(&m)) {
+        // Each new attempt (the spectator refused the last snapshot) gets a fresh snapshot;
+        // repeats of the same attempt are the spectator resending its request.
+        if (join->attempt <= s.attempt) return;
+        s.attempt = join->attempt;
+        s.lateJoin = true;
+        s.wantsSnapshot = true;
+        s.sender.Stop();
+    } else if (const auto* sack = std::get_if<RbSnapshotAck>(&m)) {
+        s.sender.OnAck(SnapshotAck{sack->frame, sack->index});
+    }
+}
+
+bool RollbackPeer::SnapshotWanted() const noexcept {
+    return std::any_of(spectators_.begin(), spectators_.end(), [](const Spectator& s) { return s.wantsSnapshot; });
+}
+
+size_t RollbackPeer::SpectatorCount() const noexcept { return spectators_.size(); }
+
+bool RollbackPeer::InputsKept(int32_t frame) const {
+    for (uint32_t p = 0; p < shape_.players; ++p) {
+        if (frame >= session_.ReceivedFrame(p)) continue;  // not arrived yet: comes in order later
+        if (session_.ConfirmedInput(p, frame).size() != shape_.inputBytes) return false;
+    }
+    return true;
+}
+
+SnapshotOfferResult RollbackPeer::OfferSnapshot(int32_t frame, std::span<const uint8_t> state) {
+    if (!SnapshotWanted()) return SnapshotOfferResult::e_notWanted;
+    if (frame < 0 || frame > std::min(session_.ConfirmedFrame(), session_.CurrentFrame()))
+        return SnapshotOfferResult::e_notConfirmed;
+    if (state.empty() || state.size() > kRbMaxSnapshotBytes) return SnapshotOfferResult::e_badSize;
+    if (!InputsKept(frame)) return SnapshotOfferResult::e_inputsGone;
+    const uint64_t checksum = XXH3_64bits(state.data(), state.size());
+    for (Spectator& s : spectators_) {
+        if (!s.wantsSnapshot) continue;
+        s.wantsSnapshot = false;
+        s.checksum = checksum;
+        s.acked = frame;
+        s.sender.Start(frame, std::vector<uint8_t>(state.begin(), state.end()));
+    }
+    ++stats_.snapshotsOffered;
+    return SnapshotOfferResult::e_ok;
+}
+
+void RollbackPeer::SendSnapshot(Spectator& s, uint64_t now) {
+    size_t sent = 0;
+    if (s.sender.Active()) {
+        static_assert(kSnapshotChunkBytes == kRbSnapshotChunkBytes, "SnapshotSender chunks must match the wire");
+        RbSnapshotChunk chunk;
+        sent = s.sender.Pump(now, config_.snapshotResendMicros, config_.snapshotChunksPerFlush,
+                             [&](const SnapshotChunk& c) {
+                                 chunk.frame = c.frame;
+                                 chunk.totalSize = c.totalSize;
+                                 chunk.checksum = s.checksum;
+                                 chunk.index = c.index;
+                                 chunk.bytes = c.bytes;
+                                 writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+                                 if (writer_.Add(chunk, shape_) && transport_.Send(s.peer, writer_.Bytes())) {
+                                     ++stats_.datagramsSent;
+                                     ++stats_.snapshotChunksSent;
+                                 }
+                             });
+    }
+    if (sent > 0) return;
+    // Waiting for the game's offer or for acks: the spectator still hears from its host.
+    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+    writer_.Add(RbKeepAlive{}, shape_);
+    if (transport_.Send(s.peer, writer_.Bytes())) ++stats_.datagramsSent;
+}
+
+void RollbackPeer::SendSpectator(Spectator& s) {
+    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+    const size_t width = shape_.inputBytes;
+    const size_t row = width * shape_.players;
+    const int32_t confirmed = session_.ConfirmedFrame();
+    const int32_t maxRun = static_cast<int32_t>(std::min<size_t>(kRollbackMaxRun, kSpectatorRunBytes / row));
+    RbConfirmed c;
+    c.firstFrame = s.acked;
+    int32_t count = 0;
+    for (int32_t f = s.acked; f < confirmed && count < maxRun; ++f, ++count) {
+        bool kept = true;
+        for (uint32_t p = 0; p < shape_.players && kept; ++p) {
+            const auto one = session_.ConfirmedInput(p, f);
+            if (one.size() == width) {
+                c.bytes.insert(c.bytes.end(), one.begin(), one.end());
+            } else if (session_.IsDisconnected(p) && f >= session_.ReceivedFrame(p)) {
+                c.bytes.insert(c.bytes.end(), width, 0);
+            } else {
+                kept = false;
+            }
+        }
+        if (!kept) {
+            c.bytes.resize(static_cast<size_t>(count) * row);
+            break;
+        }
+    }
+    if (count > 0) {
+        writer_.Add(c, shape_);
+    } else {
+        // A late joiner whose next frame's inputs the session dropped (it took too long to
+        // fetch its snapshot) can never catch up from here: it needs a newer snapshot.
+        if (s.lateJoin && s.acked < confirmed && !InputsKept(s.acked)) s.wantsSnapshot = true;
+        writer_.Add(RbKeepAlive{}, shape_);
+    }
+    if (transport_.Send(s.peer, writer_.Bytes())) ++stats_.datagramsSent;
+}
+
+}  // namespace lockbox::net
