@@ -209,14 +209,15 @@ void RollbackPeer::Flush() {
 }
 
 void RollbackPeer::SendTo(Remote& r, uint64_t now) {
+    const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
     writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
     const int32_t advantage = LocalAdvantageMilli(r, now);
     if (r.heardFrame) Push(r.localAdvantage, advantage);
-    writer_.Add(RbQuality{session_.CurrentFrame(), advantage, now}, shape_);
-    if (r.echoPending && writer_.Add(RbQualityReply{r.echoTime, now - r.echoReceivedAt}, shape_))
+    writer_.Add(RbQuality{session_.CurrentFrame(), advantage, now}, shape_, limit);
+    if (r.echoPending && writer_.Add(RbQualityReply{r.echoTime, now - r.echoReceivedAt}, shape_, limit))
         r.echoPending = false;
     for (uint32_t p : r.players)
-        writer_.Add(RbInputAck{static_cast<uint8_t>(p), session_.ReceivedFrame(p)}, shape_);
+        writer_.Add(RbInputAck{static_cast<uint8_t>(p), session_.ReceivedFrame(p)}, shape_, limit);
     const size_t width = shape_.inputBytes;
     for (uint32_t lp : localPlayers_) {
         const int32_t end = session_.ReceivedFrame(lp);
@@ -234,7 +235,7 @@ void RollbackPeer::SendTo(Remote& r, uint64_t now) {
             in.bytes.insert(in.bytes.end(), one.begin(), one.end());
         }
         // Halve the run until it fits beside the other messages.
-        while (count > 0 && !writer_.Add(in, shape_)) {
+        while (count > 0 && !writer_.Add(in, shape_, limit)) {
             count /= 2;
             in.bytes.resize(static_cast<size_t>(count) * width);
         }
@@ -242,7 +243,7 @@ void RollbackPeer::SendTo(Remote& r, uint64_t now) {
     const auto& finals = session_.FinalHashes();
     for (const auto& [frame, hash] : finals) {
         uint8_t& copies = r.hashCopies[frame];
-        if (copies < kHashCopies && writer_.Add(RbHash{frame, hash}, shape_)) ++copies;
+        if (copies < kHashCopies && writer_.Add(RbHash{frame, hash}, shape_, limit)) ++copies;
     }
     // Forget frames that left the session's list (they are never offered again).
     while (!r.hashCopies.empty() && (finals.empty() || r.hashCopies.begin()->first < finals.front().first))
@@ -251,9 +252,10 @@ void RollbackPeer::SendTo(Remote& r, uint64_t now) {
 }
 
 void RollbackPeer::Leave() {
+    const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
     if (left_) return;
     writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
-    writer_.Add(RbDisconnect{}, shape_);
+    writer_.Add(RbDisconnect{}, shape_, limit);
     // Several copies: one of them gets through a lossy link; the remote times out otherwise.
     for (int copy = 0; copy < 3; ++copy)
         for (Remote& r : remotes_)

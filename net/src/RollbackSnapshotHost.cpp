@@ -12,7 +12,8 @@ namespace lockbox::net {
 
 namespace {
 
-// Raw input bytes of one spectator run, so a datagram stays under the 1200-byte limit.
+// Raw input bytes of one spectator run, so a datagram stays under the 1200-byte limit (and
+// under a relayed transport's 1,191).
 constexpr size_t kSpectatorRunBytes = 960;
 
 }  // namespace
@@ -72,6 +73,7 @@ SnapshotOfferResult RollbackPeer::OfferSnapshot(int32_t frame, std::span<const u
 }
 
 void RollbackPeer::SendSnapshot(Spectator& s, uint64_t now) {
+    const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
     size_t sent = 0;
     if (s.sender.Active()) {
         static_assert(kSnapshotChunkBytes == kRbSnapshotChunkBytes, "SnapshotSender chunks must match the wire");
@@ -84,7 +86,7 @@ void RollbackPeer::SendSnapshot(Spectator& s, uint64_t now) {
                                  chunk.index = c.index;
                                  chunk.bytes = c.bytes;
                                  writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
-                                 if (writer_.Add(chunk, shape_) && transport_.Send(s.peer, writer_.Bytes())) {
+                                 if (writer_.Add(chunk, shape_, limit) && transport_.Send(s.peer, writer_.Bytes())) {
                                      ++stats_.datagramsSent;
                                      ++stats_.snapshotChunksSent;
                                  }
@@ -93,11 +95,12 @@ void RollbackPeer::SendSnapshot(Spectator& s, uint64_t now) {
     if (sent > 0) return;
     // Waiting for the game's offer or for acks: the spectator still hears from its host.
     writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
-    writer_.Add(RbKeepAlive{}, shape_);
+    writer_.Add(RbKeepAlive{}, shape_, limit);
     if (transport_.Send(s.peer, writer_.Bytes())) ++stats_.datagramsSent;
 }
 
 void RollbackPeer::SendSpectator(Spectator& s) {
+    const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
     writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
     const size_t width = shape_.inputBytes;
     const size_t row = width * shape_.players;
@@ -124,12 +127,12 @@ void RollbackPeer::SendSpectator(Spectator& s) {
         }
     }
     if (count > 0) {
-        writer_.Add(c, shape_);
+        writer_.Add(c, shape_, limit);
     } else {
         // A late joiner whose next frame's inputs the session dropped (it took too long to
         // fetch its snapshot) can never catch up from here: it needs a newer snapshot.
         if (s.lateJoin && s.acked < confirmed && !InputsKept(s.acked)) s.wantsSnapshot = true;
-        writer_.Add(RbKeepAlive{}, shape_);
+        writer_.Add(RbKeepAlive{}, shape_, limit);
     }
     if (transport_.Send(s.peer, writer_.Bytes())) ++stats_.datagramsSent;
 }

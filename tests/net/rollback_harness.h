@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "lockbox/net/RelayServer.h"
+#include "lockbox/net/RelayedTransport.h"
 #include "lockbox/net/RollbackPeer.h"
 #include "lockbox/net/RollbackSession.h"
 #include "lockbox/net/RollbackSpectator.h"
@@ -45,6 +47,7 @@ struct RbSpec {
     uint32_t fastPeerExtraEvery = 0;  ///< > 0: peer 0's clock is fast by one tick in this many
     bool spectator = false;           ///< a spectator endpoint watches through peer 0
     bool timeSync = true;             ///< false: WaitThisTick is ignored
+    bool relayed = false;         ///< peers (and the spectator) reach each other through a RelayServer
     int32_t downPeer = -1;        ///< this peer's machine goes down at downAtTick
     int64_t downAtTick = -1;
     std::string scene = "vertical_stack";
@@ -52,7 +55,8 @@ struct RbSpec {
     std::string Describe() const {
         std::ostringstream s;
         s << "seed=" << seed << " peers=" << peers << " rtt=" << rttMs << "ms loss=" << lossPct
-          << "% jitter=" << jitterMs << "ms frames=" << frames << " delay=" << inputDelay;
+          << "% jitter=" << jitterMs << "ms frames=" << frames << " delay=" << inputDelay
+          << (relayed ? " relayed" : "");
         return s.str();
     }
 };
@@ -81,6 +85,7 @@ struct RbResult {
     std::map<int32_t, uint64_t> spectatorHashes;  ///< frame -> the spectator's state hash
     int32_t spectatorFrames = 0;
     std::vector<uint64_t> wireBytesSent;          ///< per peer, IPv4 + UDP headers included
+    uint64_t relayForwarded = 0;                  ///< datagrams the relay forwarded (relayed only)
     int32_t SpreadP95() const {
         if (spread.empty()) return 0;
         std::vector<int32_t> s = spread;
@@ -106,6 +111,32 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
     for (uint32_t i = 0; i < spec.peers; ++i) ends.push_back(&net.AddEndpoint());
     SimEndpoint* specEnd = spec.spectator ? &net.AddEndpoint() : nullptr;
     net.SetAllLinks(link);
+    // Relayed: every member (peers, then the spectator) holds one slot of a relay on its own
+    // endpoint and addresses the others by slot; each link then has two hops.
+    std::unique_ptr<RelayServer> relay;
+    std::vector<std::unique_ptr<RelayedTransport>> viaRelay;
+    if (spec.relayed) {
+        SimEndpoint& relayEnd = net.AddEndpoint();
+        const uint32_t slots = spec.peers + (specEnd != nullptr ? 1u : 0u);
+        RelayServerConfig rc;
+        rc.matchId = 77;
+        for (uint32_t m = 0; m < slots; ++m) rc.tokens.push_back(spec.seed * 31 + m);
+        relay = std::make_unique<RelayServer>(relayEnd, rc);
+        for (uint32_t m = 0; m < slots; ++m) {
+            SimEndpoint& end = m < spec.peers ? *ends[m] : *specEnd;
+            viaRelay.push_back(std::make_unique<RelayedTransport>(
+                end, RelayedTransportConfig{relayEnd.Index(), 77, m, slots, rc.tokens[m]}));
+        }
+    }
+    // Member m's transport and the PeerId the others reach it by.
+    auto linkOf = [&](uint32_t m) -> Transport& {
+        if (spec.relayed) return *viaRelay[m];
+        return m < spec.peers ? static_cast<Transport&>(*ends[m]) : *specEnd;
+    };
+    auto addressOf = [&](uint32_t m) -> PeerId {
+        if (spec.relayed) return m;
+        return m < spec.peers ? ends[m]->Index() : specEnd->Index();
+    };
     out.peers.resize(spec.peers);
     std::unique_ptr<replay::SceneGame> specGame;
     std::unique_ptr<RollbackSpectator> spectator;
@@ -115,8 +146,8 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
         sc.matchId = 77;
         sc.players = spec.peers;
         sc.inputBytes = replay::SceneInput::kBytes;
-        sc.host = ends[0]->Index();
-        spectator = std::make_unique<RollbackSpectator>(*specEnd, sc);
+        sc.host = addressOf(0);
+        spectator = std::make_unique<RollbackSpectator>(linkOf(spec.peers), sc);
     }
     for (uint32_t i = 0; i < spec.peers; ++i) {
         RbPeer& p = out.peers[i];
@@ -139,15 +170,16 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
         RollbackPeerConfig cfg;
         cfg.matchId = 77;
         for (uint32_t j = 0; j < spec.peers; ++j)
-            if (j != i) cfg.remotes.push_back(RollbackRemote{ends[j]->Index(), {j}});
-        if (i == 0 && specEnd != nullptr) cfg.spectators.push_back(specEnd->Index());
-        p.net = std::make_unique<RollbackPeer>(*p.session, *ends[i], cfg);
+            if (j != i) cfg.remotes.push_back(RollbackRemote{addressOf(j), {j}});
+        if (i == 0 && specEnd != nullptr) cfg.spectators.push_back(addressOf(spec.peers));
+        p.net = std::make_unique<RollbackPeer>(*p.session, linkOf(i), cfg);
         p.inputs = std::make_unique<replay::ScriptedInputs>(spec.seed * 1000 + i, 1);
     }
     const int64_t limit = int64_t{spec.frames} * 6 + 1200;
     std::vector<uint8_t> input;
     for (int64_t tick = 0; tick < limit; ++tick) {
         bool done = true;
+        if (relay) relay->Poll();
         for (uint32_t i = 0; i < spec.peers; ++i) {
             RbPeer& p = out.peers[i];
             if (static_cast<int32_t>(i) == spec.downPeer && tick >= spec.downAtTick) {
@@ -211,6 +243,10 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
                 if (p.session->CurrentFrame() >= spec.frames) running = false;
             }
             if (running) out.spread.push_back(hi - lo);
+        }
+        if (relay) {
+            relay->Poll();  // forwards this tick's datagrams without a tick's wait
+            out.relayForwarded = relay->Stats().forwarded;
         }
         net.Advance(kTickMicros);
         out.ticks = tick + 1;

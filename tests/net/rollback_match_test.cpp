@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
+#include <vector>
 
 #include "rollback_harness.h"
 
@@ -91,6 +93,38 @@ TEST(RollbackMatch, SpectatorSeesTheConfirmedStates) {
         EXPECT_EQ(it->second, h) << "frame " << f;
     }
     EXPECT_GE(common, 35u);
+}
+
+// Relayed matches (RelayServer.h): every datagram takes two hops, each with the cell's
+// impairments, so a relayed link has twice the latency and about twice the loss.
+TEST(RollbackMatch, RelayedPeersAndSpectatorAgree) {
+    for (const auto& [peers, rtt, loss, jitter] :
+         std::vector<std::array<uint32_t, 4>>{{2, 0, 0, 0}, {3, 50, 5, 30}, {4, 50, 10, 0}}) {
+        RbSpec spec;
+        spec.seed = 900 + peers * 10 + loss;
+        spec.peers = peers;
+        spec.rttMs = rtt;
+        spec.lossPct = loss;
+        spec.jitterMs = jitter;
+        spec.frames = 300;
+        spec.relayed = true;
+        spec.spectator = true;
+        const RbResult r = RunRbMatch(spec);
+        ExpectHealthy(spec, r);
+        EXPECT_GE(r.spectatorFrames, spec.frames) << spec.Describe();
+        size_t common = 0;
+        for (const auto& [f, h] : r.spectatorHashes) {
+            auto it = r.peers[0].finals.find(f);
+            if (it == r.peers[0].finals.end()) continue;
+            ++common;
+            EXPECT_EQ(it->second, h) << spec.Describe() << " frame " << f;
+        }
+        EXPECT_GE(common, 25u) << spec.Describe();
+        EXPECT_GT(r.relayForwarded, static_cast<uint64_t>(spec.frames)) << spec.Describe();
+        if (rtt > 0) {
+            EXPECT_GT(r.Rollbacks(), 0u) << spec.Describe();
+        }
+    }
 }
 
 TEST(RollbackMatch, ForcedDivergenceReportedOnceAtTheRightFrame) {
