@@ -255,6 +255,8 @@ void ApplyContacts(Image& img, b2World& world) {
         b2Contact* c = cm.GetContact(ci.id);
         c->m_fixtureA = fixtures.Get(ci.fixtureA);
         c->m_fixtureB = fixtures.Get(ci.fixtureB);
+        c->m_fixtureIdA = c->m_fixtureA->GetId();
+        c->m_fixtureIdB = c->m_fixtureB->GetId();
         c->m_indexA = ci.indexA;
         c->m_indexB = ci.indexB;
         ApplyContactState(img.bytes + ci.stateAt, *c);

@@ -51,7 +51,8 @@ void HashAll(const b2World& world, uint64 out[], std::vector<b2BodyHashEntry>* b
         while (b != nullptr || c != nullptr) {
             // Each lane requests its next node, writes the current one, then (the next node's
             // first line having had the write's time to arrive) requests what the next
-            // record reads through pointers: a body's first fixture, a contact's fixture ids.
+            // record reads through a pointer: a body's first fixture. (A contact's record
+            // reads only the contact: its fixture ids are cached in it.)
             if (b != nullptr) {
                 const b2Body* next = b->GetNext();
                 if (next != nullptr) PrefetchObject(next);
@@ -67,10 +68,6 @@ void HashAll(const b2World& world, uint64 out[], std::vector<b2BodyHashEntry>* b
                 const b2Contact* next = c->GetNext();
                 if (next != nullptr) PrefetchObject(next);
                 WriteContact(contactStream, *c);
-                if (next != nullptr) {
-                    __builtin_prefetch(next->GetFixtureA());
-                    __builtin_prefetch(next->GetFixtureB());
-                }
                 c = next;
             }
         }

@@ -44,7 +44,8 @@ bool b2Contact::NeedsSwap(b2Shape::Type typeA, b2Shape::Type typeB) noexcept {
 }
 
 b2Contact::b2Contact(b2Fixture* fA, int32 indexA, b2Fixture* fB, int32 indexB, int32 id)
-    : m_fixtureA(fA), m_fixtureB(fB), m_indexA(indexA), m_indexB(indexB), m_id(id) {
+    : m_fixtureA(fA), m_fixtureB(fB), m_indexA(indexA), m_indexB(indexB), m_fixtureIdA(fA->GetId()),
+      m_fixtureIdB(fB->GetId()), m_id(id) {
     m_manifold.pointCount = 0;
     m_friction = b2MixFriction(m_fixtureA->m_friction, m_fixtureB->m_friction);
     m_restitution = b2MixRestitution(m_fixtureA->m_restitution, m_fixtureB->m_restitution);
