@@ -392,28 +392,39 @@ TEST(RollbackSpectator, BadSnapshotStreamsAreRefused) {
     EXPECT_FALSE(WorldGameAdapter::RestoreSnapshot(game.world(), game, std::vector<uint8_t>{1, 2}));
 }
 
-// A 1 s cut between the players: both raise interrupted, then resumed, nobody disconnects
-// and the hashes still agree. A 3 s cut: interrupted, then disconnected.
-TEST(RollbackInterrupt, ShortCutInterruptsThenResumes) {
+// Two players at 50 ms RTT whose link is cut from 2 s to `cutToMicros`.
+JoinSpec CutSpec(uint64_t seed, uint64_t cutToMicros) {
     JoinSpec spec;
-    spec.seed = 606;
+    spec.seed = seed;
     spec.rttMs = 50;
     spec.lossPct = 0;
     spec.jitterMs = 0;
     spec.frames = 360;
     spec.joinTick = -1;
     spec.cutFromMicros = 2'000'000;
-    spec.cutToMicros = 3'000'000;
+    spec.cutToMicros = cutToMicros;
+    return spec;
+}
+
+// A peer's events other than window stalls, in order.
+std::vector<RollbackEvent::Kind> ConnectionEvents(const JoinResult& r, size_t peer) {
+    std::vector<RollbackEvent::Kind> kinds;
+    for (const RollbackEvent& e : r.peers[peer].events)
+        if (e.kind != RollbackEvent::Kind::e_waiting) kinds.push_back(e.kind);
+    return kinds;
+}
+
+// A 1 s cut between the players: both raise interrupted, then resumed, nobody disconnects
+// and the hashes still agree. A 3 s cut: interrupted, then disconnected.
+TEST(RollbackInterrupt, ShortCutInterruptsThenResumes) {
+    const JoinSpec spec = CutSpec(606, 3'000'000);
     SCOPED_TRACE(spec.Describe());
     const JoinResult r = RunJoin(spec);
     ASSERT_TRUE(r.finished) << "ticks=" << r.ticks;
     ExpectPlayersAgree(spec, r);
     for (size_t i = 0; i < 2; ++i) {
-        std::vector<RollbackEvent::Kind> kinds;
-        for (const RollbackEvent& e : r.peers[i].events)
-            if (e.kind != RollbackEvent::Kind::e_waiting) kinds.push_back(e.kind);
-        EXPECT_EQ(kinds, (std::vector<RollbackEvent::Kind>{RollbackEvent::Kind::e_interrupted,
-                                                            RollbackEvent::Kind::e_resumed}))
+        EXPECT_EQ(ConnectionEvents(r, i), (std::vector<RollbackEvent::Kind>{RollbackEvent::Kind::e_interrupted,
+                                                                            RollbackEvent::Kind::e_resumed}))
             << "peer " << i;
         EXPECT_TRUE(r.peers[i].net->RemoteAlive(0));
         EXPECT_FALSE(r.peers[i].net->RemoteInterrupted(0));
@@ -421,24 +432,13 @@ TEST(RollbackInterrupt, ShortCutInterruptsThenResumes) {
 }
 
 TEST(RollbackInterrupt, LongCutInterruptsThenDisconnects) {
-    JoinSpec spec;
-    spec.seed = 607;
-    spec.rttMs = 50;
-    spec.lossPct = 0;
-    spec.jitterMs = 0;
-    spec.frames = 360;
-    spec.joinTick = -1;
-    spec.cutFromMicros = 2'000'000;
-    spec.cutToMicros = 5'000'000;
+    const JoinSpec spec = CutSpec(607, 5'000'000);
     SCOPED_TRACE(spec.Describe());
     const JoinResult r = RunJoin(spec);
     ASSERT_TRUE(r.finished) << "ticks=" << r.ticks;
     for (size_t i = 0; i < 2; ++i) {
-        std::vector<RollbackEvent::Kind> kinds;
-        for (const RollbackEvent& e : r.peers[i].events)
-            if (e.kind != RollbackEvent::Kind::e_waiting) kinds.push_back(e.kind);
-        EXPECT_EQ(kinds, (std::vector<RollbackEvent::Kind>{RollbackEvent::Kind::e_interrupted,
-                                                            RollbackEvent::Kind::e_disconnected}))
+        EXPECT_EQ(ConnectionEvents(r, i), (std::vector<RollbackEvent::Kind>{RollbackEvent::Kind::e_interrupted,
+                                                                            RollbackEvent::Kind::e_disconnected}))
             << "peer " << i;
         EXPECT_FALSE(r.peers[i].net->RemoteAlive(0));
         EXPECT_FALSE(r.peers[i].executeFailed);
