@@ -118,14 +118,17 @@ void b2ContactSolver::InitializeVelocityConstraints() {
         b2Transform xfA, xfB;
         xfA.q.Set(aA);
         xfB.q.Set(aB);
-        xfA.p = cA - b2Mul(xfA.q, pc->localCenterA);
-        xfB.p = cB - b2Mul(xfB.q, pc->localCenterB);
+        xfA.p = solver::BodyOrigin(cA, xfA.q, pc->localCenterA, pc->localCenterA == b2Vec2_zero);
+        xfB.p = solver::BodyOrigin(cB, xfB.q, pc->localCenterB, pc->localCenterB == b2Vec2_zero);
 
         b2WorldManifold worldManifold;
         worldManifold.Initialize(manifold, xfA, pc->radiusA, xfB, pc->radiusB);
 
         vc->normal = worldManifold.normal;
-        const b2Vec2 tangent = b2Cross(vc->normal, Fixed(1));
+        vc->tangent = b2Cross(vc->normal, Fixed(1));
+        const b2Vec2 tangent = vc->tangent;
+        // The normal denominators are also the diagonal of the block solver's K.
+        Wide kNormals[b2_maxManifoldPoints];
 
         for (int32 j = 0; j < vc->pointCount; ++j) {
             b2VelocityConstraintPoint* vcp = vc->points + j;
@@ -135,6 +138,7 @@ void b2ContactSolver::InitializeVelocityConstraints() {
             vcp->rnA = b2Cross(vcp->rA, vc->normal);
             vcp->rnB = b2Cross(vcp->rB, vc->normal);
             const Wide kNormal = solver::EffectiveInverseMass(mA, mB, iA, iB, vcp->rnA, vcp->rnB);
+            kNormals[j] = kNormal;
             vcp->normalMass = kNormal > Wide() ? Wide(1) / kNormal : Wide();
 
             const Fixed rtA = b2Cross(vcp->rA, tangent);
@@ -154,8 +158,12 @@ void b2ContactSolver::InitializeVelocityConstraints() {
             const b2VelocityConstraintPoint& p1 = vc->points[0];
             const b2VelocityConstraintPoint& p2 = vc->points[1];
             b2WideSym22 K;
-            K.k11 = solver::EffectiveInverseMass(mA, mB, iA, iB, p1.rnA, p1.rnB);
-            K.k22 = solver::EffectiveInverseMass(mA, mB, iA, iB, p2.rnA, p2.rnB);
+            // Every term of the denominator is >= 0, so a saturation leaves it at +max; only
+            // then is it evaluated again, to report the overflow as often as before.
+            K.k11 = kNormals[0].Raw() != Wide::kMaxRaw ? kNormals[0]
+                                                       : solver::EffectiveInverseMass(mA, mB, iA, iB, p1.rnA, p1.rnB);
+            K.k22 = kNormals[1].Raw() != Wide::kMaxRaw ? kNormals[1]
+                                                       : solver::EffectiveInverseMass(mA, mB, iA, iB, p2.rnA, p2.rnB);
             K.k12 = mA + mB + iA * MulWide(p1.rnA, p2.rnA) + iB * MulWide(p1.rnB, p2.rnB);
             b2WideSym22 inverse;
             if (InvertBlock(K, &inverse)) {
@@ -179,13 +187,12 @@ void b2ContactSolver::WarmStart() {
         b2Vec2 vB = m_velocities[vc->indexB].v;
         Fixed wB = m_velocities[vc->indexB].w;
         const b2Vec2 normal = vc->normal;
-        const b2Vec2 tangent = b2Cross(normal, Fixed(1));
+        const b2Vec2 tangent = vc->tangent;
         for (int32 j = 0; j < vc->pointCount; ++j) {
             const b2VelocityConstraintPoint* vcp = vc->points + j;
             const WVec2 P = solver::Add(solver::Scale(vcp->normalImpulse, normal),
                                         solver::Scale(vcp->tangentImpulse, tangent));
-            solver::ApplyNeg(vA, wA, vc->invMassA, vc->invIA, vcp->rA, P);
-            solver::ApplyPos(vB, wB, vc->invMassB, vc->invIB, vcp->rB, P);
+            solver::ApplyPair(vA, wA, vB, wB, vc->invMassA, vc->invIA, vc->invMassB, vc->invIB, vcp->rA, vcp->rB, P);
         }
         m_velocities[vc->indexA].v = vA;
         m_velocities[vc->indexA].w = wA;
@@ -204,7 +211,7 @@ void b2ContactSolver::SolveVelocityConstraints() {
         b2Vec2 vB = m_velocities[vc->indexB].v;
         Fixed wB = m_velocities[vc->indexB].w;
         const b2Vec2 normal = vc->normal;
-        const b2Vec2 tangent = b2Cross(normal, Fixed(1));
+        const b2Vec2 tangent = vc->tangent;
 
         // Friction first: non-penetration matters more, so it gets the last word.
         for (int32 j = 0; j < vc->pointCount; ++j) {
@@ -217,8 +224,7 @@ void b2ContactSolver::SolveVelocityConstraints() {
             lambda = newImpulse - vcp->tangentImpulse;
             vcp->tangentImpulse = newImpulse;
             const WVec2 P = solver::Scale(lambda, tangent);
-            solver::ApplyNeg(vA, wA, mA, iA, vcp->rA, P);
-            solver::ApplyPos(vB, wB, mB, iB, vcp->rB, P);
+            solver::ApplyPair(vA, wA, vB, wB, mA, iA, mB, iB, vcp->rA, vcp->rB, P);
         }
 
         if (vc->pointCount == 1) {
@@ -230,8 +236,7 @@ void b2ContactSolver::SolveVelocityConstraints() {
             lambda = newImpulse - vcp->normalImpulse;
             vcp->normalImpulse = newImpulse;
             const WVec2 P = solver::Scale(lambda, normal);
-            solver::ApplyNeg(vA, wA, mA, iA, vcp->rA, P);
-            solver::ApplyPos(vB, wB, mB, iB, vcp->rB, P);
+            solver::ApplyPair(vA, wA, vB, wB, mA, iA, mB, iB, vcp->rA, vcp->rB, P);
         } else {
             // Block solver (Box2D's total enumeration of the 2-point LCP):
             //   vn = K x + b', x >= 0, vn >= 0, x_i vn_i = 0, with b' = vn0 - bias - K a.
@@ -277,11 +282,14 @@ void b2ContactSolver::SolveVelocityConstraints() {
                 const WVec2 P1 = solver::Scale(x1 - a1, normal);
                 const WVec2 P2 = solver::Scale(x2 - a2, normal);
                 const WVec2 P = solver::Add(P1, P2);
-                vA.x -= MulToFixed(mA, P.x);
-                vA.y -= MulToFixed(mA, P.y);
+                Fixed dxA, dxB, dyA, dyB;
+                solver::LinearChanges(mA, mB, P.x, dxA, dxB);
+                solver::LinearChanges(mA, mB, P.y, dyA, dyB);
+                vA.x -= dxA;
+                vA.y -= dyA;
                 wA -= MulToFixed(iA, solver::Cross(cp1->rA, P1) + solver::Cross(cp2->rA, P2));
-                vB.x += MulToFixed(mB, P.x);
-                vB.y += MulToFixed(mB, P.y);
+                vB.x += dxB;
+                vB.y += dyB;
                 wB += MulToFixed(iB, solver::Cross(cp1->rB, P1) + solver::Cross(cp2->rB, P2));
                 cp1->normalImpulse = x1;
                 cp2->normalImpulse = x2;

@@ -76,12 +76,26 @@ Fixed SolvePass(std::vector<b2ContactPositionConstraint>& constraints, b2Positio
         b2Vec2 cB = positions[indexB].c;
         Fixed aB = positions[indexB].a;
 
+        // SinCos is a pure function of the angle: the rotation is recomputed only when the
+        // previous point's correction changed the angle (never for a static body).
+        b2Rot qA(aA), qB(aB);
+        const bool centredA = pc->localCenterA == b2Vec2_zero;
+        const bool centredB = pc->localCenterB == b2Vec2_zero;
+        Fixed angleA = aA, angleB = aB;
         for (int32 j = 0; j < pc->pointCount; ++j) {
+            if (aA != angleA) {
+                qA.Set(aA);
+                angleA = aA;
+            }
+            if (aB != angleB) {
+                qB.Set(aB);
+                angleB = aB;
+            }
             b2Transform xfA, xfB;
-            xfA.q.Set(aA);
-            xfB.q.Set(aB);
-            xfA.p = cA - b2Mul(xfA.q, pc->localCenterA);
-            xfB.p = cB - b2Mul(xfB.q, pc->localCenterB);
+            xfA.q = qA;
+            xfB.q = qB;
+            xfA.p = solver::BodyOrigin(cA, qA, pc->localCenterA, centredA);
+            xfB.p = solver::BodyOrigin(cB, qB, pc->localCenterB, centredB);
 
             PositionSolverManifold psm;
             psm.Initialize(pc, xfA, xfB, j);

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "lockbox/fixed/Fixed.h"
 #include "lockbox/fixed/detail/Int128.h"
@@ -27,17 +28,34 @@ constexpr int64_t NarrowWide(const S128& v, const char* op, int64_t a, int64_t b
 }
 
 /// round(a * b / 2^shift), ties away from zero, saturating to +-INT64_MAX.
-constexpr int64_t MulShiftRound64(int64_t a, int64_t b, int shift, const char* op) noexcept {
-#ifdef LOCKBOX_NATIVE_INT128
-    const NativeI128 p = static_cast<NativeI128>(a) * b;
-    const NativeI128 half = static_cast<NativeI128>(1) << (shift - 1);
-    const NativeI128 r = (p + half - (p < 0 ? 1 : 0)) >> shift;
-    constexpr NativeI128 kMax = std::numeric_limits<int64_t>::max();
-    if (r > kMax || r < -kMax) [[unlikely]] {
-        OnOverflow(op, a, b);
-        return r > 0 ? static_cast<int64_t>(kMax) : -static_cast<int64_t>(kMax);
+// Always inlined: the hot solver loops call it several hundred times per contact, and the
+// fast path is a handful of instructions once the shift is a constant.
+[[gnu::always_inline]] constexpr int64_t MulShiftRound64(int64_t a, int64_t b, int shift, const char* op) noexcept {
+    // Fast path (shift in 1..62): when a*b and the biased a*b + half - (a*b < 0) both fit in
+    // int64, the 128-bit computation below works on the very same integer and its floor shift
+    // gives the same value, which cannot saturate (|result| <= 2^(63 - shift)). So this path
+    // returns bit-identical results without the 128-bit product; anything else falls through.
+    int64_t product = 0;
+    if (!__builtin_mul_overflow(a, b, &product)) [[likely]] {
+        const int64_t bias = (int64_t{1} << (shift - 1)) + (product >> 63);
+        int64_t biased = 0;
+        if (!__builtin_add_overflow(product, bias, &biased)) [[likely]] return biased >> shift;
     }
-    return static_cast<int64_t>(r);
+#ifdef LOCKBOX_NATIVE_INT128
+    // On magnitudes: floor((p + half - (p < 0)) / 2^shift) of the signed product p equals the
+    // sign of p times floor((|p| + half) / 2^shift) (ties away from zero either way), so one
+    // unsigned 64x64 multiply does. |a b| <= 2^126 leaves room for the bias. On overflow the
+    // result has the product's sign, which is then non-zero.
+    const NativeU128 mag = static_cast<NativeU128>(AbsU64(a)) * AbsU64(b);
+    const NativeU128 r = (mag + (static_cast<NativeU128>(1) << (shift - 1))) >> shift;
+    const bool negative = (a < 0) != (b < 0);
+    constexpr uint64_t kMax = static_cast<uint64_t>(std::numeric_limits<int64_t>::max());
+    if (r > kMax) [[unlikely]] {
+        OnOverflow(op, a, b);
+        return negative ? -static_cast<int64_t>(kMax) : static_cast<int64_t>(kMax);
+    }
+    const int64_t m = static_cast<int64_t>(r);
+    return negative ? -m : m;
 #else
     return NarrowWide(ShrRoundS128(MulS64(a, b), shift), op, a, b);
 #endif
@@ -49,12 +67,41 @@ constexpr int64_t DivShiftRound64(int64_t a, int64_t b, int shift, const char* o
         OnOverflow(op, a, 0);
         return a == 0 ? 0 : (a > 0 ? std::numeric_limits<int64_t>::max() : -std::numeric_limits<int64_t>::max());
     }
+    // Fast paths (shift in 1..63) for a quotient that fits in 64 bits. They compute the same
+    // truncated quotient and remainder of |a| 2^shift / |b| as DivRoundS128, round up iff
+    // 2 rem >= |b| (written without overflow as rem >= |b| - rem, since rem < |b|), and narrow
+    // through the same NarrowWide, so value and overflow reports are identical.
+    const uint64_t magA = AbsU64(a);
+    const uint64_t den = AbsU64(b);
+    const bool shiftOk = shift > 0 && shift < 64;  // every caller uses 32; others skip ahead
+    const uint64_t numHi = shiftOk ? magA >> (64 - shift) : 0;
+    const uint64_t numLo = shiftOk ? magA << shift : 0;
+    const bool negative = (a < 0) != (b < 0);
+    auto finish = [&](uint64_t q, uint64_t rem) {
+        // q + 1 wraps only for q = 2^64 - 1; the carry then goes to the high limb.
+        U128 mag{0, q};
+        if (rem >= den - rem) mag = AddU128(mag, 1);
+        const S128 r{negative && (mag.hi | mag.lo) != 0, mag};
+        return NarrowWide(r, op, a, b);
+    };
+    if (shiftOk && numHi == 0) [[likely]] {
+        const uint64_t q = numLo / den;
+        return finish(q, numLo - q * den);
+    }
+#if defined(__x86_64__) && defined(LOCKBOX_NATIVE_INT128)
+    // One hardware 128/64 division; numHi < den guarantees the quotient fits (no #DE).
+    if (!std::is_constant_evaluated() && shiftOk && numHi < den) {
+        uint64_t q = 0, rem = 0;
+        __asm__("divq %4" : "=a"(q), "=d"(rem) : "a"(numLo), "d"(numHi), "rm"(den) : "cc");
+        return finish(q, rem);
+    }
+#endif
     S128 n;
     n.negative = a < 0;
-    n.mag = ShlU128(U128{0, AbsU64(a)}, shift);
+    n.mag = ShlU128(U128{0, magA}, shift);
     S128 d;
     d.negative = b < 0;
-    d.mag = U128{0, AbsU64(b)};
+    d.mag = U128{0, den};
     return NarrowWide(DivRoundS128(n, d), op, a, b);
 }
 }  // namespace detail
@@ -90,7 +137,14 @@ public:
     }
 
     /// Narrows to Q16.16, rounding to nearest (ties away from zero) and saturating.
-    constexpr Fixed ToFixed() const noexcept {
+    [[gnu::always_inline]] constexpr Fixed ToFixed() const noexcept {
+        // Fast path: raws in [-kFitRaw, kFitRaw] round to a Q16.16 value inside +-kMaxRaw, and
+        // the clamp below leaves them alone (|raw| < 2^48), so the result is the same rounding
+        // with no saturation; the single range test replaces the clamp and the narrow test.
+        constexpr int64_t kFitRaw = (int64_t{Fixed::kMaxRaw} << 16) + (int64_t{1} << 15) - 1;
+        if (raw_ >= -kFitRaw && raw_ <= kFitRaw) [[likely]] {
+            return Fixed::FromRaw(static_cast<int32_t>(detail::ShiftRound(raw_, 16)));
+        }
         constexpr int64_t kBiasRoom = int64_t{1} << 62;  // beyond it the result saturates anyway
         const int64_t r = raw_ >= kBiasRoom ? kBiasRoom : raw_ <= -kBiasRoom ? -kBiasRoom : raw_;
         return Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(r, 16), "Wide::ToFixed", raw_, 0));
@@ -121,23 +175,21 @@ public:
         }
         return FromRaw(-raw_);
     }
-    friend constexpr Wide operator+(Wide a, Wide b) noexcept {
+    // The two tests of + and - are separate branches to the same saturation: GCC then
+    // branches on the overflow flag directly instead of materialising it (same results).
+    [[gnu::always_inline]] friend constexpr Wide operator+(Wide a, Wide b) noexcept {
         int64_t r = 0;
-        if (__builtin_add_overflow(a.raw_, b.raw_, &r) || r == std::numeric_limits<int64_t>::min()) [[unlikely]] {
-            detail::OnOverflow("Wide::operator+", a.raw_, b.raw_);
-            return FromRaw(a.raw_ > 0 ? kMaxRaw : -kMaxRaw);
-        }
+        if (__builtin_add_overflow(a.raw_, b.raw_, &r)) [[unlikely]] return SaturateAdd(a, b);
+        if (r == std::numeric_limits<int64_t>::min()) [[unlikely]] return SaturateAdd(a, b);
         return FromRaw(r);
     }
-    friend constexpr Wide operator-(Wide a, Wide b) noexcept {
+    [[gnu::always_inline]] friend constexpr Wide operator-(Wide a, Wide b) noexcept {
         int64_t r = 0;
-        if (__builtin_sub_overflow(a.raw_, b.raw_, &r) || r == std::numeric_limits<int64_t>::min()) [[unlikely]] {
-            detail::OnOverflow("Wide::operator-", a.raw_, b.raw_);
-            return FromRaw(a.raw_ >= 0 ? kMaxRaw : -kMaxRaw);
-        }
+        if (__builtin_sub_overflow(a.raw_, b.raw_, &r)) [[unlikely]] return SaturateSub(a, b);
+        if (r == std::numeric_limits<int64_t>::min()) [[unlikely]] return SaturateSub(a, b);
         return FromRaw(r);
     }
-    friend constexpr Wide operator*(Wide a, Wide b) noexcept {
+    [[gnu::always_inline]] friend constexpr Wide operator*(Wide a, Wide b) noexcept {
         return FromRaw(detail::MulShiftRound64(a.raw_, b.raw_, kFractionBits, "Wide::operator*"));
     }
     friend constexpr Wide operator/(Wide a, Wide b) noexcept {
@@ -149,6 +201,15 @@ public:
     constexpr Wide& operator/=(Wide b) noexcept { return *this = *this / b; }
 
 private:
+    static Wide SaturateAdd(Wide a, Wide b) noexcept {
+        detail::OnOverflow("Wide::operator+", a.raw_, b.raw_);
+        return FromRaw(a.raw_ > 0 ? kMaxRaw : -kMaxRaw);
+    }
+    static Wide SaturateSub(Wide a, Wide b) noexcept {
+        detail::OnOverflow("Wide::operator-", a.raw_, b.raw_);
+        return FromRaw(a.raw_ >= 0 ? kMaxRaw : -kMaxRaw);
+    }
+
     template <FixedIntegral I>
     static constexpr int64_t FromInteger(I v) noexcept {
         constexpr int64_t kLimit = kMaxRaw >> kFractionBits;
@@ -173,18 +234,18 @@ private:
 constexpr Wide MulWide(Fixed a, Fixed b) noexcept { return Wide::FromRaw(int64_t{a.Raw()} * b.Raw()); }
 
 /// Wide * Fixed -> Wide, one rounding.
-constexpr Wide operator*(Wide a, Fixed b) noexcept {
+[[gnu::always_inline]] constexpr Wide operator*(Wide a, Fixed b) noexcept {
     return Wide::FromRaw(detail::MulShiftRound64(a.Raw(), b.Raw(), Fixed::kFractionBits, "Wide*Fixed"));
 }
-constexpr Wide operator*(Fixed a, Wide b) noexcept { return b * a; }
+[[gnu::always_inline]] constexpr Wide operator*(Fixed a, Wide b) noexcept { return b * a; }
 
 /// Wide * Fixed rounded straight to Fixed (one rounding): impulse * inverse mass -> velocity.
-constexpr Fixed MulToFixed(Wide a, Fixed b) noexcept {
+[[gnu::always_inline]] constexpr Fixed MulToFixed(Wide a, Fixed b) noexcept {
     const int64_t r = detail::MulShiftRound64(a.Raw(), b.Raw(), Wide::kFractionBits, "MulToFixed");
     return Fixed::FromRaw(detail::NarrowRaw(r, "MulToFixed", a.Raw(), b.Raw()));
 }
 /// Wide * Wide rounded straight to Fixed (one rounding).
-constexpr Fixed MulToFixed(Wide a, Wide b) noexcept {
+[[gnu::always_inline]] constexpr Fixed MulToFixed(Wide a, Wide b) noexcept {
     const int64_t r = detail::MulShiftRound64(a.Raw(), b.Raw(), Wide::kFractionBits + 16, "MulToFixed");
     return Fixed::FromRaw(detail::NarrowRaw(r, "MulToFixed", a.Raw(), b.Raw()));
 }

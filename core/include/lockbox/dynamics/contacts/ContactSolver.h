@@ -39,7 +39,8 @@ struct b2VelocityConstraintPoint {
 /// One contact's velocity constraint.
 struct b2ContactVelocityConstraint {
     b2VelocityConstraintPoint points[b2_maxManifoldPoints];
-    b2Vec2 normal;
+    b2Vec2 normal;           ///< unit, from A to B
+    b2Vec2 tangent;          ///< b2Cross(normal, 1), computed once per step (unit)
     b2WideSym22 normalMass;  ///< inverse of K (block solver only)
     b2WideSym22 K;           ///< block solver matrix, 1/kg
     int32 indexA = 0, indexB = 0;
