@@ -273,6 +273,19 @@ inline size_t CompareFinals(const RbPeer& a, const RbPeer& b, int32_t& firstMism
     return common;
 }
 
+/// Compares the spectator's hashes with peer 0's final hashes (failures name the frame and
+/// `spec`); returns how many frames both know.
+inline size_t CompareSpectator(const RbSpec& spec, const RbResult& r) {
+    size_t common = 0;
+    for (const auto& [f, h] : r.spectatorHashes) {
+        auto it = r.peers[0].finals.find(f);
+        if (it == r.peers[0].finals.end()) continue;
+        ++common;
+        EXPECT_EQ(it->second, h) << spec.Describe() << " frame " << f;
+    }
+    return common;
+}
+
 // What every match must satisfy; `spec` is printed with every failure (it holds the seed).
 // Returns the fewest compared frames of any pair of peers (SIZE_MAX with one peer).
 inline size_t ExpectHealthy(const RbSpec& spec, const RbResult& r) {
