@@ -81,29 +81,40 @@ struct Row {
     double floatP50 = 0, floatP99 = 0;        ///< float Box2D: `depth` steps, CPU
 };
 
+// A case's scene built on engine E and warmed up as the case says (its warm-up frames, then
+// until it has targetBodies bodies); Advance steps one frame with the scene's hooks.
+template <class E>
+struct RunningScene {
+    E engine;
+    scenes::Scene<E>& scene;
+    const scenes::SceneInfo& info;
+    int frame = 0;
+
+    RunningScene(scenes::Scene<E>& s, const Case& c) : scene(s), info(s.Info()) {
+        scenes::ConfigureWorld(engine, info, scenes::RunSettings{});
+        scene.Prepare(scenes::Resolve(info, scenes::RunSettings{}));
+        scene.Build(engine);
+        for (int i = 0; i < c.warmup; ++i) Advance();
+        for (int i = 0; i < 2000 && c.targetBodies > 0 && engine.world().GetBodyCount() < c.targetBodies; ++i)
+            Advance();
+    }
+    void Advance() {
+        scene.BeforeStep(engine, frame++);
+        engine.Step(info.hz, info.velocityIterations, info.positionIterations);
+    }
+};
+
 // float Box2D 2.4.1 on the same scene: the same warm-up, then `depth` steps per rep, CPU time.
 // Every rep moves on by `depth` frames (float Box2D cannot roll back); rain keeps spawning, so
 // its reps are capped at 30 to stay near its body count.
 void MeasureFloat(Case& c, int reps, int depth, Row& row) {
-    scenes::Box2DFloatEngine engine;
-    auto& scene = *c.floatScene;
-    const auto& info = scene.Info();
-    scenes::ConfigureWorld(engine, info, scenes::RunSettings{});
-    scene.Prepare(scenes::Resolve(info, scenes::RunSettings{}));
-    scene.Build(engine);
-    int frame = 0;
-    auto advance = [&] {
-        scene.BeforeStep(engine, frame++);
-        engine.Step(info.hz, info.velocityIterations, info.positionIterations);
-    };
-    for (int i = 0; i < c.warmup; ++i) advance();
-    for (int i = 0; i < 2000 && c.targetBodies > 0 && engine.world().GetBodyCount() < c.targetBodies; ++i) advance();
-    row.floatBodies = engine.world().GetBodyCount();
+    RunningScene<scenes::Box2DFloatEngine> run(*c.floatScene, c);
+    row.floatBodies = run.engine.world().GetBodyCount();
     if (!c.moveOn) reps = std::min(reps, 30);
     std::vector<int64_t> cpu;
     for (int r = 0; r < reps; ++r) {
         const int64_t c0 = ThreadNs();
-        for (int k = 0; k < depth; ++k) advance();
+        for (int k = 0; k < depth; ++k) run.Advance();
         cpu.push_back(ThreadNs() - c0);
     }
     row.floatP50 = Percentile(cpu, 50);
@@ -111,19 +122,9 @@ void MeasureFloat(Case& c, int reps, int depth, Row& row) {
 }
 
 Row Measure(Case& c, int reps, int depth) {
-    scenes::LockboxEngine engine;
-    const auto& info = c.scene->Info();
-    scenes::ConfigureWorld(engine, info, scenes::RunSettings{});
-    c.scene->Prepare(scenes::Resolve(info, scenes::RunSettings{}));
-    c.scene->Build(engine);
-    lockbox::b2World& world = engine.world();
-    int frame = 0;
-    auto advance = [&] {
-        c.scene->BeforeStep(engine, frame++);
-        engine.Step(info.hz, info.velocityIterations, info.positionIterations);
-    };
-    for (int i = 0; i < c.warmup; ++i) advance();
-    for (int i = 0; i < 2000 && c.targetBodies > 0 && world.GetBodyCount() < c.targetBodies; ++i) advance();
+    RunningScene<scenes::LockboxEngine> run(*c.scene, c);
+    lockbox::b2World& world = run.engine.world();
+    int& frame = run.frame;  // rewound by each rollback
 
     // A ring of depth + 1 images as a session keeps; the bench rolls back to the oldest one
     // each rep, then keeps moving forward one frame so the scene evolves between reps.
@@ -145,7 +146,7 @@ Row Measure(Case& c, int reps, int depth) {
         int64_t stepSum = 0, saveSum = 0;
         for (int k = 0; k < depth; ++k) {
             const int64_t s0 = ThreadNs();
-            advance();
+            run.Advance();
             const int64_t s1 = ThreadNs();
             world.Save(ring[static_cast<size_t>(k) + 1]);
             saveSum += ThreadNs() - s1;

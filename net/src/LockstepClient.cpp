@@ -177,40 +177,18 @@ uint64_t LockstepClient::StateHash(const b2World& world, const replay::Game& gam
     return FoldedStateHash(world, game);
 }
 
-namespace {
-void PutU32(std::vector<uint8_t>& out, size_t v) {
-    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
-}
-bool GetU32(std::span<const uint8_t> in, size_t at, uint32_t& v) {
-    if (in.size() < 4 || at > in.size() - 4) return false;
-    v = 0;
-    for (size_t i = 0; i < 4; ++i) v |= static_cast<uint32_t>(in[at + i]) << (8 * i);
-    return true;
-}
-}  // namespace
-
 std::vector<uint8_t> LockstepClient::SnapshotBlob(const b2World& world, const replay::Game& game) {
     std::vector<uint8> image;
     world.Save(image);
     std::vector<uint8> user;
     game.SaveUserState(user);
     std::vector<uint8_t> blob;
-    blob.reserve(8 + image.size() + user.size());
-    PutU32(blob, image.size());
-    blob.insert(blob.end(), image.begin(), image.end());
-    PutU32(blob, user.size());
-    blob.insert(blob.end(), user.begin(), user.end());
+    PackStateBlob(image, user, blob);
     return blob;
 }
 
 bool LockstepClient::LoadSnapshotBlob(std::span<const uint8_t> blob, b2World& world, replay::Game& game) {
-    uint32_t imageSize = 0, userSize = 0;
-    if (!GetU32(blob, 0, imageSize) || imageSize > blob.size() - 4) return false;
-    const size_t userAt = 4 + size_t{imageSize};
-    if (!GetU32(blob, userAt, userSize) || userSize != blob.size() - userAt - 4) return false;
-    if (!world.Restore(blob.subspan(4, imageSize)).ok()) return false;
-    game.LoadUserState(blob.subspan(userAt + 4, userSize));
-    return true;
+    return LoadStateBlob(blob, world, game);
 }
 
 }  // namespace lockbox::net

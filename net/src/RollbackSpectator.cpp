@@ -6,14 +6,14 @@
 #include <xxhash.h>
 
 #include <algorithm>
-#include <cstring>
 
+#include "SnapshotTransfer.h"
 #include "lockbox/net/RollbackSession.h"
 
 namespace lockbox::net {
 
 RollbackSpectator::RollbackSpectator(Transport& transport, RollbackSpectatorConfig config)
-    : transport_(transport), config_(config) {
+    : transport_(transport), config_(config), receiver_(std::make_unique<SnapshotReceiver>()) {
     config_.players = std::clamp<uint32_t>(config_.players, 1, kRollbackMaxPlayers);
     config_.inputBytes = std::clamp<uint32_t>(config_.inputBytes, 1, kRollbackMaxInputBytes);
     config_.maxSnapshotBytes = std::clamp<uint32_t>(config_.maxSnapshotBytes, 1, kRbMaxSnapshotBytes);
@@ -22,7 +22,10 @@ RollbackSpectator::RollbackSpectator(Transport& transport, RollbackSpectatorConf
     if (config_.lateJoin) state_ = SpectatorState::e_joining;
 }
 
+RollbackSpectator::~RollbackSpectator() = default;
+
 void RollbackSpectator::TakeChunk(const RbSnapshotChunk& c) {
+    static_assert(kSnapshotChunkBytes == kRbSnapshotChunkBytes, "SnapshotReceiver chunks must match the wire");
     if (state_ != SpectatorState::e_joining) {
         // A resend of the accepted snapshot means an ack was lost: ack again, or the host
         // would keep resending and never start the input stream.
@@ -32,44 +35,31 @@ void RollbackSpectator::TakeChunk(const RbSnapshotChunk& c) {
     }
     if (c.totalSize > config_.maxSnapshotBytes) return;
     if (hasBad_ && c.frame == badFrame_ && c.checksum == badChecksum_) return;
-    if (assembling_ && c.frame < asmFrame_) return;  // an older snapshot's straggler
-    if (!assembling_ || c.frame != asmFrame_ || c.totalSize != asmTotal_ || c.checksum != asmChecksum_) {
-        // A newer (or different) snapshot: the host restarted; assemble that one instead.
-        assembling_ = true;
-        asmFrame_ = c.frame;
-        asmTotal_ = c.totalSize;
-        asmChecksum_ = c.checksum;
-        asmCount_ = 0;
-        asm_.assign(asmTotal_, 0);
-        asmHave_.assign((size_t{asmTotal_} + kRbSnapshotChunkBytes - 1) / kRbSnapshotChunkBytes, 0);
-    }
-    const size_t offset = size_t{c.index} * kRbSnapshotChunkBytes;
-    // The codec checked index and length against totalSize; check again before copying.
-    if (c.index >= asmHave_.size() || offset + c.bytes.size() > asm_.size()) return;
+    SnapshotReceiver& r = *receiver_;
+    if (r.Active() && c.frame < r.Frame()) return;  // an older snapshot's straggler
+    // Same frame, other bytes: the host restarted its snapshot; assemble the new one.
+    if (r.Active() && c.frame == r.Frame() && c.checksum != asmChecksum_) r.Reset();
+    if (!r.Active() || c.frame != r.Frame()) asmChecksum_ = c.checksum;
+    const uint32_t before = r.Received();
+    if (!r.Accept(SnapshotChunk{c.frame, c.totalSize, c.index, c.bytes})) return;
     pendingAcks_.push_back(RbSnapshotAck{c.frame, c.index});
-    if (asmHave_[c.index] != 0) return;
-    if (!c.bytes.empty()) std::memcpy(asm_.data() + offset, c.bytes.data(), c.bytes.size());
-    asmHave_[c.index] = 1;
-    ++asmCount_;
-    ++snapshotChunks_;
-    if (asmCount_ < asmHave_.size()) return;
-    assembling_ = false;
-    if (XXH3_64bits(asm_.data(), asm_.size()) != asmChecksum_) {
+    snapshotChunks_ += r.Received() - before;
+    if (!r.Complete()) return;
+    const std::span<const uint8_t> blob = r.Blob();
+    if (XXH3_64bits(blob.data(), blob.size()) != asmChecksum_) {
         // Corrupt: never handed out; ask for a fresh snapshot with a new attempt number.
         ++snapshotsRefused_;
         hasBad_ = true;
-        badFrame_ = asmFrame_;
+        badFrame_ = r.Frame();
         badChecksum_ = asmChecksum_;
         ++attempt_;
-        asm_.clear();
-        asmHave_.clear();
+        r.Reset();
         return;
     }
-    snapshotFrame_ = asmFrame_;
+    snapshotFrame_ = r.Frame();
     snapshotChecksum_ = asmChecksum_;
-    snapshot_ = std::move(asm_);
-    asm_.clear();
-    asmHave_.clear();
+    snapshot_.assign(blob.begin(), blob.end());
+    r.Reset();
     snapshotBytes_ = snapshot_.size();
     received_ = consumed_ = snapshotFrame_;
     frames_.clear();
@@ -112,19 +102,20 @@ void RollbackSpectator::Poll() {
 }
 
 void RollbackSpectator::Flush() {
+    const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
     writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
-    if (state_ == SpectatorState::e_joining) writer_.Add(RbJoinRequest{attempt_}, shape_);
-    else writer_.Add(RbConfirmedAck{received_}, shape_);
+    if (state_ == SpectatorState::e_joining) writer_.Add(RbJoinRequest{attempt_}, shape_, limit);
+    else writer_.Add(RbConfirmedAck{received_}, shape_, limit);
     // Every chunk that arrived since the last Flush is acked, in as many datagrams as needed.
     size_t at = 0;
     while (at < pendingAcks_.size()) {
-        if (writer_.Add(pendingAcks_[at], shape_)) {
+        if (writer_.Add(pendingAcks_[at], shape_, limit)) {
             ++at;
             continue;
         }
         transport_.Send(config_.host, writer_.Bytes());
         writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
-        if (!writer_.Add(pendingAcks_[at], shape_)) break;  // cannot happen: an ack is a few bytes
+        if (!writer_.Add(pendingAcks_[at], shape_, limit)) break;  // cannot happen: an ack is a few bytes
         ++at;
     }
     pendingAcks_.clear();

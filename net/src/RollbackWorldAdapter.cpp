@@ -24,25 +24,14 @@ bool WorldGameAdapter::ConfirmedSnapshot(const RollbackSession& session, int32_t
     const int32_t f = std::min(session.ConfirmedFrame(), session.CurrentFrame());
     if (f < 0) return false;
     const Slot& s = slots_[static_cast<size_t>(f) % slots_.size()];
-    if (s.frame != f || s.image.size() > UINT32_MAX) return false;
+    if (s.frame != f || s.image.size() > UINT32_MAX || s.user.size() > UINT32_MAX) return false;
     frame = f;
-    out.clear();
-    out.reserve(4 + s.image.size() + s.user.size());
-    const uint32_t n = static_cast<uint32_t>(s.image.size());
-    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(n >> (8 * i)));
-    out.insert(out.end(), s.image.begin(), s.image.end());
-    out.insert(out.end(), s.user.begin(), s.user.end());
+    PackStateBlob(s.image, s.user, out);
     return true;
 }
 
 bool WorldGameAdapter::RestoreSnapshot(b2World& world, replay::Game& game, std::span<const uint8_t> snapshot) {
-    if (snapshot.size() < 4) return false;
-    uint32_t n = 0;
-    for (int i = 0; i < 4; ++i) n |= static_cast<uint32_t>(snapshot[static_cast<size_t>(i)]) << (8 * i);
-    if (n > snapshot.size() - 4) return false;
-    if (!world.Restore(snapshot.subspan(4, n)).ok()) return false;
-    game.LoadUserState(snapshot.subspan(4 + size_t{n}));
-    return true;
+    return LoadStateBlob(snapshot, world, game);
 }
 
 bool WorldGameAdapter::Execute(RollbackSession& session, std::span<const RollbackRequest> requests) {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "lockbox/net/Protocol.h"
 
@@ -52,5 +53,13 @@ void StepConfirmedFrame(b2World& world, replay::Game& game, int32_t frame, std::
 uint64_t FoldedStateHash(const b2World& world, const replay::Game& game);
 /// The same fold from an already computed b2World::Hash.
 uint64_t FoldUserState(uint64_t worldHash, const replay::Game& game);
+
+/// The late-join state blob of lockstep and rollback sessions, from a b2World::Save image and
+/// the game's user state: u32 image size, the image, u32 user size, the user state (sizes
+/// little-endian). Replaces `out`.
+void PackStateBlob(std::span<const uint8_t> image, std::span<const uint8_t> user, std::vector<uint8_t>& out);
+/// Restores a PackStateBlob into `world` and `game`; false when the sizes do not add up or the
+/// world refuses the image (the game is then untouched).
+bool LoadStateBlob(std::span<const uint8_t> blob, b2World& world, replay::Game& game);
 
 }  // namespace lockbox::net

@@ -49,6 +49,8 @@ public:
     bool Accept(const SnapshotChunk& chunk);
     bool Active() const noexcept { return active_; }
     bool Complete() const noexcept { return active_ && received_ == chunkCount_; }
+    /// Distinct chunks of the current snapshot received so far.
+    uint32_t Received() const noexcept { return received_; }
     int32_t Frame() const noexcept { return frame_; }
     std::span<const uint8_t> Blob() const noexcept { return blob_; }
     void Reset() noexcept;

@@ -118,8 +118,8 @@ void b2ContactSolver::InitializeVelocityConstraints() {
         b2Transform xfA, xfB;
         xfA.q.Set(aA);
         xfB.q.Set(aB);
-        xfA.p = solver::BodyOrigin(cA, xfA.q, pc->localCenterA, pc->localCenterA == b2Vec2_zero);
-        xfB.p = solver::BodyOrigin(cB, xfB.q, pc->localCenterB, pc->localCenterB == b2Vec2_zero);
+        xfA.p = solver::BodyOrigin(cA, xfA.q, pc->localCenterA);
+        xfB.p = solver::BodyOrigin(cB, xfB.q, pc->localCenterB);
 
         b2WorldManifold worldManifold;
         worldManifold.Initialize(manifold, xfA, pc->radiusA, xfB, pc->radiusB);

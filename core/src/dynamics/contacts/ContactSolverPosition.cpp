@@ -78,24 +78,21 @@ Fixed SolvePass(std::vector<b2ContactPositionConstraint>& constraints, b2Positio
 
         // SinCos is a pure function of the angle: the rotation is recomputed only when the
         // previous point's correction changed the angle (never for a static body).
-        b2Rot qA(aA), qB(aB);
-        const bool centredA = pc->localCenterA == b2Vec2_zero;
-        const bool centredB = pc->localCenterB == b2Vec2_zero;
-        Fixed angleA = aA, angleB = aB;
+        b2Transform xfA, xfB;
+        xfA.q.Set(aA);
+        xfB.q.Set(aB);
+        Fixed angleA = aA, angleB = aB;  // the angles xfA.q and xfB.q were built from
         for (int32 j = 0; j < pc->pointCount; ++j) {
             if (aA != angleA) {
-                qA.Set(aA);
+                xfA.q.Set(aA);
                 angleA = aA;
             }
             if (aB != angleB) {
-                qB.Set(aB);
+                xfB.q.Set(aB);
                 angleB = aB;
             }
-            b2Transform xfA, xfB;
-            xfA.q = qA;
-            xfB.q = qB;
-            xfA.p = solver::BodyOrigin(cA, qA, pc->localCenterA, centredA);
-            xfB.p = solver::BodyOrigin(cB, qB, pc->localCenterB, centredB);
+            xfA.p = solver::BodyOrigin(cA, xfA.q, pc->localCenterA);
+            xfB.p = solver::BodyOrigin(cB, xfB.q, pc->localCenterB);
 
             PositionSolverManifold psm;
             psm.Initialize(pc, xfA, xfB, j);

@@ -73,10 +73,9 @@ inline Wide EffectiveInverseMass(Wide mA, Wide mB, Wide iA, Wide iB, Fixed rnA,
 // leaves c unchanged; only an INT32_MIN raw would saturate in that subtraction, so it takes
 // the full computation.
 [[gnu::always_inline]] inline b2Vec2 BodyOrigin(const b2Vec2& c, const b2Rot& q,
-                                                const b2Vec2& localCenter, bool centred) noexcept {
+                                                const b2Vec2& localCenter) noexcept {
     constexpr int32_t kMinRaw = std::numeric_limits<int32_t>::min();
-    if (centred && c.x.Raw() != kMinRaw && c.y.Raw() != kMinRaw)
-        return c;
+    if (localCenter == b2Vec2_zero && c.x.Raw() != kMinRaw && c.y.Raw() != kMinRaw) return c;
     return c - b2Mul(q, localCenter);
 }
 

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <vector>
 
 #include "lockbox/net/Protocol.h"
@@ -23,6 +24,8 @@
 #include "lockbox/net/Transport.h"
 
 namespace lockbox::net {
+
+class SnapshotReceiver;
 
 /// Settings of a spectator.
 struct RollbackSpectatorConfig {
@@ -47,6 +50,9 @@ class RollbackSpectator {
 public:
     /// `transport` must outlive the spectator.
     RollbackSpectator(Transport& transport, RollbackSpectatorConfig config);
+    ~RollbackSpectator();
+    RollbackSpectator(const RollbackSpectator&) = delete;
+    RollbackSpectator& operator=(const RollbackSpectator&) = delete;
 
     /// Reads what arrived from the host; frames must arrive in order (the host resends).
     void Poll();
@@ -90,14 +96,9 @@ private:
     uint64_t refused_ = 0;
     SpectatorState state_ = SpectatorState::e_following;
     uint32_t attempt_ = 1;
-    // The assembly: chunks of (asmFrame_, asmTotal_, asmChecksum_); asmHave_ marks arrived ones.
-    bool assembling_ = false;
-    int32_t asmFrame_ = 0;
-    uint32_t asmTotal_ = 0;
+    // The assembly (the lockstep late join's chunk reassembly) and the checksum its chunks carry.
+    std::unique_ptr<SnapshotReceiver> receiver_;
     uint64_t asmChecksum_ = 0;
-    uint32_t asmCount_ = 0;
-    std::vector<uint8_t> asm_;
-    std::vector<uint8_t> asmHave_;
     // The last refused snapshot: its stragglers are ignored instead of assembled again.
     bool hasBad_ = false;
     int32_t badFrame_ = 0;

@@ -38,14 +38,14 @@ public:
     bool Execute(RollbackSession& session, std::span<const RollbackRequest> requests);
 
     /// Late join, host side: the saved state of the newest final frame F = min(session's
-    /// ConfirmedFrame, CurrentFrame) as one snapshot (u32 little-endian world image length,
-    /// the b2World::Save image, then the Game::SaveUserState blob), for
-    /// RollbackPeer::OfferSnapshot. Call after executing AdvanceFrame's requests. False when
-    /// the adapter no longer (or never) saved frame F.
+    /// ConfirmedFrame, CurrentFrame) as one snapshot in the lockstep late join's layout
+    /// (LockstepClient::SnapshotBlob: u32 image size, the b2World::Save image, u32 user size,
+    /// the Game::SaveUserState blob), for RollbackPeer::OfferSnapshot. Call after executing
+    /// AdvanceFrame's requests. False when the adapter no longer (or never) saved frame F.
     bool ConfirmedSnapshot(const RollbackSession& session, int32_t& frame, std::vector<uint8_t>& out) const;
     /// Late join, spectator side: loads a ConfirmedSnapshot image into `world` and `game`.
-    /// False (world unchanged when the length is wrong; unknown after a failed
-    /// b2World::Restore) when the bytes are not such an image.
+    /// False when the bytes are not such a snapshot (b2World::Restore validates the image
+    /// before it touches the world; the game is untouched then).
     static bool RestoreSnapshot(b2World& world, replay::Game& game, std::span<const uint8_t> snapshot);
 
     /// The world hash folded with the game's user state (what ReportHash gets).
