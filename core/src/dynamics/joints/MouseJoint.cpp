@@ -51,6 +51,7 @@ void b2MouseJoint::InitVelocityConstraints(const b2SolverData& data) {
     m_K.ex.y = -(iB * MulWide(m_rB.x, m_rB.y));
     m_K.ey.x = m_K.ex.y;
     m_K.ey.y = mB + iB * MulWide(m_rB.x, m_rB.x) + m_gamma;
+    m_solver = b2WideSolver22(m_K.ex, m_K.ey);
 
     const b2Vec2 C = cB + m_rB - m_targetA;
     m_C = {m_beta * C.x, m_beta * C.y};
@@ -78,7 +79,7 @@ void b2MouseJoint::SolveVelocityConstraints(const b2SolverData& data) {
     // Cdot = v + cross(w, r)
     const b2Vec2 Cdot = PointVelocity(vB, wB, m_rB);
     const b2WideVec2 rhs = -(b2WideVec2(Cdot) + m_C + b2WideVec2(m_gamma * m_impulse.x, m_gamma * m_impulse.y));
-    b2WideVec2 impulse = m_K.Solve(rhs);
+    b2WideVec2 impulse = m_solver.Solve(rhs);
 
     const b2WideVec2 oldImpulse = m_impulse;
     m_impulse += impulse;

@@ -121,6 +121,7 @@ void b2PrismaticJoint::InitVelocityConstraints(const b2SolverData& data) {
     m_s2 = f.s2;
     m_motorMass = Invert(mA + mB + iA * MulWide(m_a1, m_a1) + iB * MulWide(m_a2, m_a2));
     m_K = MakeK(mA, mB, iA, iB, m_s1, m_s2, m_a1, m_a2);
+    m_pointSolver = m_K.Upper22();
 
     if (m_enableLimit) {
         const Fixed jointTranslation = b2Dot(m_axis, f.d);
@@ -145,6 +146,8 @@ void b2PrismaticJoint::InitVelocityConstraints(const b2SolverData& data) {
         m_limitState = e_inactiveLimit;
         m_impulse.z = Wide();
     }
+    // The velocity iterations solve the whole K exactly when this holds (same condition).
+    if (m_enableLimit && m_limitState != e_inactiveLimit) m_limitSolver = m_K.Prepared();
 
     if (!m_enableMotor) m_motorImpulse = Wide();
 
@@ -194,7 +197,7 @@ void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
         // Solve the prismatic and limit constraints together.
         const Wide Cdot2 = axial();
         const b2WideVec3 f1 = m_impulse;
-        const b2WideVec3 df = m_K.Solve33(-b2WideVec3(Cdot1.x, Cdot1.y, Cdot2));
+        const b2WideVec3 df = m_limitSolver.Solve33(-b2WideVec3(Cdot1.x, Cdot1.y, Cdot2));
         m_impulse += df;
 
         if (m_limitState == e_atLowerLimit) {
@@ -206,7 +209,7 @@ void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
         // f2(1:2) = invK(1:2,1:2) * (-Cdot(1:2) - K(1:2,3) * (f2(3) - f1(3))) + f1(1:2)
         const Wide dz = m_impulse.z - f1.z;
         const b2WideVec2 b = -Cdot1 - b2WideVec2(dz * m_K.ez.x, dz * m_K.ez.y);
-        const b2WideVec2 f2r = m_K.Solve22(b) + b2WideVec2(f1.x, f1.y);
+        const b2WideVec2 f2r = m_pointSolver.Solve(b) + b2WideVec2(f1.x, f1.y);
         m_impulse.x = f2r.x;
         m_impulse.y = f2r.y;
 
@@ -214,7 +217,7 @@ void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, d.x, d.y, d.z);
     } else {
         // Limit is inactive: just solve the prismatic constraint in block form.
-        const b2WideVec2 df = m_K.Solve22(-Cdot1);
+        const b2WideVec2 df = m_pointSolver.Solve(-Cdot1);
         m_impulse.x += df.x;
         m_impulse.y += df.y;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, df.x, df.y, Wide());

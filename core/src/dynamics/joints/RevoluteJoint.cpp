@@ -80,6 +80,7 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
     const Wide iA = m_invIA, iB = m_invIB;
     const bool fixedRotation = (iA + iB == Wide());
     m_mass = PointAngleK(m_invMassA, m_invMassB, iA, iB, m_rA, m_rB);
+    m_pointSolver = m_mass.Upper22();
     m_motorMass = Invert(iA + iB);
 
     if (!m_enableMotor || fixedRotation) m_motorImpulse = Wide();
@@ -107,6 +108,8 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
     } else {
         m_limitState = e_inactiveLimit;
     }
+    // The velocity iterations solve the whole K exactly when this holds (same condition).
+    if (m_enableLimit && m_limitState != e_inactiveLimit && !fixedRotation) m_limitSolver = m_mass.Prepared();
 
     if (data.step.warmStarting) {
         // Scale impulses to support a variable time step.
@@ -158,7 +161,7 @@ void b2RevoluteJoint::SolveVelocityConstraints(const b2SolverData& data) {
     // Solve the limit constraint.
     if (m_enableLimit && m_limitState != e_inactiveLimit && !fixedRotation) {
         const Fixed Cdot2 = wB - wA;
-        b2WideVec3 impulse = -m_mass.Solve33(b2Vec3(Cdot1.x, Cdot1.y, Cdot2));
+        b2WideVec3 impulse = -m_limitSolver.Solve33(b2Vec3(Cdot1.x, Cdot1.y, Cdot2));
 
         if (m_limitState == e_equalLimits) {
             m_impulse += impulse;
@@ -168,7 +171,7 @@ void b2RevoluteJoint::SolveVelocityConstraints(const b2SolverData& data) {
             if (violates) {
                 // Clamp the accumulated limit impulse to zero and re-solve the point part.
                 const b2WideVec2 rhs = -b2WideVec2(Cdot1) + b2WideVec2(m_impulse.z * m_mass.ez.x, m_impulse.z * m_mass.ez.y);
-                const b2WideVec2 reduced = m_mass.Solve22(rhs);
+                const b2WideVec2 reduced = m_pointSolver.Solve(rhs);
                 impulse.x = reduced.x;
                 impulse.y = reduced.y;
                 impulse.z = -m_impulse.z;
@@ -189,7 +192,7 @@ void b2RevoluteJoint::SolveVelocityConstraints(const b2SolverData& data) {
         wB += MulToFixed(iB, b2Cross(m_rB, P) + impulse.z);
     } else {
         // Solve the point-to-point constraint.
-        const b2WideVec2 impulse = m_mass.Solve22(-Cdot1);
+        const b2WideVec2 impulse = m_pointSolver.Solve(-Cdot1);
         m_impulse.x += impulse.x;
         m_impulse.y += impulse.y;
         const BodyData A{m_indexA, m_localCenterA, mA, iA};

@@ -87,10 +87,12 @@ void b2WeldJoint::InitVelocityConstraints(const b2SolverData& data) {
         m_bias = soft.biasRate * C;
         invM += m_gamma;
         m_angularMass = Invert(invM);
+        m_pointSolver = m_K.Upper22();
     } else {
         m_gamma = Wide();
         m_bias = Wide();
         m_angularMass = Wide();
+        m_rigidSolver = m_K.Prepared();
     }
 
     if (data.step.warmStarting) {
@@ -122,14 +124,14 @@ void b2WeldJoint::SolveVelocityConstraints(const b2SolverData& data) {
         wB += MulToFixed(iB, impulse2);
 
         const b2Vec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
-        const b2WideVec2 impulse1 = -m_K.Solve22(Cdot1);
+        const b2WideVec2 impulse1 = -m_pointSolver.Solve(Cdot1);
         m_impulse.x += impulse1.x;
         m_impulse.y += impulse1.y;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, impulse1, Wide());
     } else {
         const b2Vec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
         const Fixed Cdot2 = wB - wA;
-        const b2WideVec3 impulse = -m_K.Solve33(b2Vec3(Cdot1.x, Cdot1.y, Cdot2));
+        const b2WideVec3 impulse = -m_rigidSolver.Solve33(b2Vec3(Cdot1.x, Cdot1.y, Cdot2));
         m_impulse += impulse;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, b2WideVec2(impulse.x, impulse.y), impulse.z);
     }

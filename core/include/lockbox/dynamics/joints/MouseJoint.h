@@ -86,6 +86,7 @@ private:
     b2Vec2 m_localCenterB;
     Wide m_invMassB, m_invIB;
     b2WideMat22 m_K;  ///< solved, never inverted
+    b2WideSolver22 m_solver;  ///< m_K prepared once per step
     b2WideVec2 m_C;   ///< beta * position error, m/s
 };
 

@@ -128,6 +128,8 @@ private:
     Fixed m_s1, m_s2;  ///< arms of the perpendicular constraint, m
     Fixed m_a1, m_a2;  ///< arms of the axial constraint, m
     b2WideMat33 m_K;
+    b2WideSolver22 m_pointSolver;  ///< m_K's upper block, prepared once per step
+    b2WideSolver33 m_limitSolver;  ///< m_K, prepared once per step while the limit is solved
     Wide m_motorMass;  ///< kg
 };
 

@@ -86,6 +86,8 @@ private:
     b2Vec2 m_localCenterB;
     Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
     b2WideMat33 m_K;       ///< solved, never inverted
+    b2WideSolver22 m_pointSolver;  ///< m_K's upper block, prepared once per step (soft weld)
+    b2WideSolver33 m_rigidSolver;  ///< m_K, prepared once per step (rigid weld)
     Wide m_angularMass;    ///< soft angular effective mass, kg*m^2
 };
 

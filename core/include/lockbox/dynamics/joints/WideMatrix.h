@@ -166,26 +166,93 @@ constexpr b2WideVec2 b2ClampLength(const b2WideVec2& v, Wide maxLength) noexcept
     return {scale(v.x), scale(v.y)};
 }
 
-/// Symmetric or general 2x2 matrix of Q32.32 entries, column-major (an effective-mass K, 1/kg).
-struct b2WideMat22 {
-    b2WideVec2 ex;
-    b2WideVec2 ey;
+/// A 2x2 K made ready for many solves. Its normalisation and determinant depend on K only, and
+/// K stays fixed through a step's velocity iterations, so a joint prepares it once per step
+/// (InitVelocityConstraints) and each iteration pays only for the right-hand side. Solve gives
+/// the bits of b2WideMat22::Solve, which is this same code run once.
+struct b2WideSolver22 {
+    int s = 0;                         ///< the normalising exponent (NormShift)
+    int64_t a11 = 0, a21 = 0, a12 = 0, a22 = 0;  ///< K's entries scaled by 2^-s
+    detail::S128 det;                  ///< exact a11 a22 - a12 a21
+
+    constexpr b2WideSolver22() noexcept = default;
+    /// Prepares K = [ex ey] (Q32.32 columns).
+    constexpr b2WideSolver22(const b2WideVec2& ex, const b2WideVec2& ey) noexcept {
+        using namespace detail;
+        const int64_t raws[4] = {ex.x.Raw(), ex.y.Raw(), ey.x.Raw(), ey.y.Raw()};
+        s = NormShift(raws, 4);
+        a11 = ScaleRaw(ex.x.Raw(), s);
+        a21 = ScaleRaw(ex.y.Raw(), s);
+        a12 = ScaleRaw(ey.x.Raw(), s);
+        a22 = ScaleRaw(ey.y.Raw(), s);
+        det = SubS128(MulS64(a11, a22), MulS64(a12, a21));
+    }
 
     /// Solves K x = b for a Q32.32 right-hand side (m/s); x is an impulse (N*s). A singular K
     /// gives x = 0.
     constexpr b2WideVec2 Solve(const b2WideVec2& b) const noexcept {
         using namespace detail;
-        const int64_t raws[4] = {ex.x.Raw(), ex.y.Raw(), ey.x.Raw(), ey.y.Raw()};
-        const int s = NormShift(raws, 4);
-        const int64_t a11 = ScaleRaw(ex.x.Raw(), s), a21 = ScaleRaw(ex.y.Raw(), s);
-        const int64_t a12 = ScaleRaw(ey.x.Raw(), s), a22 = ScaleRaw(ey.y.Raw(), s);
-        const S128 det = SubS128(MulS64(a11, a22), MulS64(a12, a21));
         const S128 nx = SubS128(MulS64(a22, b.x.Raw()), MulS64(a12, b.y.Raw()));
         const S128 ny = SubS128(MulS64(a11, b.y.Raw()), MulS64(a21, b.x.Raw()));
         // Raw bookkeeping: x_raw = (n / det) * 2^(32 - s), see WideMatrix.h's header.
         return {Wide::FromRaw(DivShiftS128(nx, det, 32 - s, "b2WideMat22::Solve")),
                 Wide::FromRaw(DivShiftS128(ny, det, 32 - s, "b2WideMat22::Solve"))};
     }
+    /// Solves K x = b for a Q16.16 right-hand side.
+    constexpr b2WideVec2 Solve(const b2Vec2& b) const noexcept { return Solve(b2WideVec2(b)); }
+};
+
+/// A 3x3 K made ready for many solves (see b2WideSolver22): Solve33 gives the bits of
+/// b2WideMat33::Solve33.
+struct b2WideSolver33 {
+    int s = 0;                 ///< the normalising exponent (NormShift)
+    int64_t m[9] = {};         ///< K's columns scaled by 2^-s: c0 = m[0..2], c1 = m[3..5], c2 = m[6..8]
+    detail::S128 det;          ///< exact c0 . (c1 x c2)
+
+    constexpr b2WideSolver33() noexcept = default;
+    /// Prepares K = [ex ey ez] (Q32.32 columns).
+    constexpr b2WideSolver33(const b2WideVec3& ex, const b2WideVec3& ey, const b2WideVec3& ez) noexcept {
+        using namespace detail;
+        const int64_t raws[9] = {ex.x.Raw(), ex.y.Raw(), ex.z.Raw(), ey.x.Raw(), ey.y.Raw(),
+                                 ey.z.Raw(), ez.x.Raw(), ez.y.Raw(), ez.z.Raw()};
+        s = NormShift(raws, 9);
+        for (int i = 0; i < 9; ++i) m[i] = ScaleRaw(raws[i], s);
+        det = Triple(m, m + 3, m + 6);
+    }
+
+    /// Solves K x = b (b in m/s and rad/s as Q32.32). A singular K gives x = 0.
+    constexpr b2WideVec3 Solve33(const b2WideVec3& b) const noexcept {
+        using namespace detail;
+        const int64_t bv[3] = {b.x.Raw(), b.y.Raw(), b.z.Raw()};
+        const S128 nx = Triple(bv, m + 3, m + 6);
+        const S128 ny = Triple(m, bv, m + 6);
+        const S128 nz = Triple(m, m + 3, bv);
+        return {Wide::FromRaw(DivShiftS128(nx, det, 32 - s, "b2WideMat33::Solve33")),
+                Wide::FromRaw(DivShiftS128(ny, det, 32 - s, "b2WideMat33::Solve33")),
+                Wide::FromRaw(DivShiftS128(nz, det, 32 - s, "b2WideMat33::Solve33"))};
+    }
+    /// Solves K x = b for a Q16.16 right-hand side.
+    constexpr b2WideVec3 Solve33(const b2Vec3& b) const noexcept { return Solve33(b2WideVec3(b)); }
+
+private:
+    /// Exact a . (p x q) of raw 3-vectors.
+    static constexpr detail::S128 Triple(const int64_t* a, const int64_t* p, const int64_t* q) noexcept {
+        using namespace detail;
+        const S128 cx = SubS128(MulS64(p[1], q[2]), MulS64(p[2], q[1]));
+        const S128 cy = SubS128(MulS64(p[2], q[0]), MulS64(p[0], q[2]));
+        const S128 cz = SubS128(MulS64(p[0], q[1]), MulS64(p[1], q[0]));
+        return AddS128(AddS128(MulS128S64(cx, a[0]), MulS128S64(cy, a[1])), MulS128S64(cz, a[2]));
+    }
+};
+
+/// Symmetric or general 2x2 matrix of Q32.32 entries, column-major (an effective-mass K, 1/kg).
+struct b2WideMat22 {
+    b2WideVec2 ex;
+    b2WideVec2 ey;
+
+    /// Solves K x = b for a Q32.32 right-hand side (m/s); x is an impulse (N*s). A singular K
+    /// gives x = 0. For many solves with one K, prepare a b2WideSolver22 once.
+    constexpr b2WideVec2 Solve(const b2WideVec2& b) const noexcept { return b2WideSolver22(ex, ey).Solve(b); }
     /// Solves K x = b for a Q16.16 right-hand side.
     constexpr b2WideVec2 Solve(const b2Vec2& b) const noexcept { return Solve(b2WideVec2(b)); }
 };
@@ -197,41 +264,20 @@ struct b2WideMat33 {
     b2WideVec3 ey;
     b2WideVec3 ez;
 
-    /// Solves K x = b (b in m/s and rad/s as Q32.32). A singular K gives x = 0.
-    constexpr b2WideVec3 Solve33(const b2WideVec3& b) const noexcept {
-        using namespace detail;
-        const int64_t raws[9] = {ex.x.Raw(), ex.y.Raw(), ex.z.Raw(), ey.x.Raw(), ey.y.Raw(),
-                                 ey.z.Raw(), ez.x.Raw(), ez.y.Raw(), ez.z.Raw()};
-        const int s = NormShift(raws, 9);
-        int64_t m[9] = {};
-        for (int i = 0; i < 9; ++i) m[i] = ScaleRaw(raws[i], s);
-        const int64_t bv[3] = {b.x.Raw(), b.y.Raw(), b.z.Raw()};
-        // Columns c0 = m[0..2], c1 = m[3..5], c2 = m[6..8]; det = c0 . (c1 x c2).
-        auto triple = [](const int64_t* a, const int64_t* p, const int64_t* q) {
-            const S128 cx = SubS128(MulS64(p[1], q[2]), MulS64(p[2], q[1]));
-            const S128 cy = SubS128(MulS64(p[2], q[0]), MulS64(p[0], q[2]));
-            const S128 cz = SubS128(MulS64(p[0], q[1]), MulS64(p[1], q[0]));
-            return AddS128(AddS128(MulS128S64(cx, a[0]), MulS128S64(cy, a[1])), MulS128S64(cz, a[2]));
-        };
-        const S128 det = triple(m, m + 3, m + 6);
-        const S128 nx = triple(bv, m + 3, m + 6);
-        const S128 ny = triple(m, bv, m + 6);
-        const S128 nz = triple(m, m + 3, bv);
-        return {Wide::FromRaw(DivShiftS128(nx, det, 32 - s, "b2WideMat33::Solve33")),
-                Wide::FromRaw(DivShiftS128(ny, det, 32 - s, "b2WideMat33::Solve33")),
-                Wide::FromRaw(DivShiftS128(nz, det, 32 - s, "b2WideMat33::Solve33"))};
-    }
+    /// Solves K x = b (b in m/s and rad/s as Q32.32). A singular K gives x = 0. For many solves
+    /// with one K, prepare a b2WideSolver33 once.
+    constexpr b2WideVec3 Solve33(const b2WideVec3& b) const noexcept { return b2WideSolver33(ex, ey, ez).Solve33(b); }
     /// Solves K x = b for a Q16.16 right-hand side.
     constexpr b2WideVec3 Solve33(const b2Vec3& b) const noexcept { return Solve33(b2WideVec3(b)); }
 
     /// Solves the upper 2x2 block: K22 x = b. A singular block gives x = 0.
-    constexpr b2WideVec2 Solve22(const b2WideVec2& b) const noexcept {
-        b2WideMat22 k;
-        k.ex = {ex.x, ex.y};
-        k.ey = {ey.x, ey.y};
-        return k.Solve(b);
-    }
+    constexpr b2WideVec2 Solve22(const b2WideVec2& b) const noexcept { return Upper22().Solve(b); }
     constexpr b2WideVec2 Solve22(const b2Vec2& b) const noexcept { return Solve22(b2WideVec2(b)); }
+
+    /// The upper 2x2 block prepared for many solves.
+    constexpr b2WideSolver22 Upper22() const noexcept { return b2WideSolver22({ex.x, ex.y}, {ey.x, ey.y}); }
+    /// The whole matrix prepared for many solves.
+    constexpr b2WideSolver33 Prepared() const noexcept { return b2WideSolver33(ex, ey, ez); }
 };
 
 }  // namespace lockbox

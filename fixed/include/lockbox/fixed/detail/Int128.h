@@ -5,6 +5,7 @@
 /// struct of two 64-bit limbs gives the same bits. Define LOCKBOX_PORTABLE_INT128 to force
 /// the portable path on 64-bit hosts too: CI builds it that way to prove both agree.
 
+#include <bit>
 #include <cstdint>
 
 #if defined(__SIZEOF_INT128__) && !defined(LOCKBOX_PORTABLE_INT128)
@@ -77,13 +78,8 @@ constexpr U128 ShlU128(U128 a, int s) noexcept {
 
 /// Number of significant bits (0 for zero).
 constexpr int BitWidthU128(U128 a) noexcept {
-    int n = 0;
-    uint64_t w = a.hi ? a.hi : a.lo;
-    while (w) {
-        ++n;
-        w >>= 1;
-    }
-    return a.hi ? n + 64 : n;
+    // One count-leading-zeros instruction: the joint solves normalise by this twice per call.
+    return a.hi != 0 ? 64 + static_cast<int>(std::bit_width(a.hi)) : static_cast<int>(std::bit_width(a.lo));
 }
 
 /// Quotient and remainder of a 128-bit value by a non-zero 128-bit divisor (shift-subtract).
