@@ -7,8 +7,8 @@
 #include <deque>
 #include <map>
 
+#include "RollbackPeerRemote.h"
 #include "RollbackSnapshotHost.h"
-#include "SessionCommon.h"
 
 namespace lockbox::net {
 
@@ -39,24 +39,6 @@ void Push(std::deque<int32_t>& v, int32_t x) {
 
 }  // namespace
 
-struct RollbackPeer::Remote {
-    PeerId peer = kNoPeer;
-    uint32_t index = 0;
-    std::vector<uint32_t> players;
-    bool alive = true;
-    uint64_t lastHeard = 0;
-    std::array<int32_t, kRollbackMaxPlayers> acked{};  // per local player: frames before are received
-    RttEstimator rtt;
-    bool heardFrame = false;
-    int32_t remoteFrame = 0;
-    uint64_t remoteFrameAt = 0;
-    bool echoPending = false;
-    uint64_t echoTime = 0, echoReceivedAt = 0;
-    std::deque<int32_t> localAdvantage, remoteAdvantage;
-    std::map<int32_t, uint8_t> hashCopies;  // final hash frame -> datagrams that carried it
-    bool interrupted = false;
-};
-
 RollbackPeer::RollbackPeer(RollbackSession& session, Transport& transport, RollbackPeerConfig config)
     : session_(session), transport_(transport), config_(std::move(config)) {
     if (config_.tickRate == 0) config_.tickRate = 1;
@@ -70,6 +52,10 @@ RollbackPeer::RollbackPeer(RollbackSession& session, Transport& transport, Rollb
         for (uint32_t p : rr.players)
             if (p < session_.Config().players && !session_.IsLocal(p)) r.players.push_back(p);
         r.lastHeard = now;
+        // Registered before its first datagram: until this remote reports what it holds,
+        // nothing becomes final (it may hold nothing yet).
+        const std::vector<int32_t> nothing(session_.Config().players, 0);
+        session_.SetPeerView(r.index, nothing);
         remotes_.push_back(std::move(r));
     }
     if (config_.snapshotResendMicros == 0) config_.snapshotResendMicros = 1;
@@ -109,7 +95,10 @@ void RollbackPeer::Poll() {
                 r->interrupted = false;
                 session_.RaiseConnectionEvent(RollbackEvent::Kind::e_resumed, r->index);
             }
-            for (const RollbackMessage& m : messages_) Handle(*r, m, now);
+            for (const RollbackMessage& m : messages_) {
+                if (!r->alive) break;  // it left (RbDisconnect) or was named gone
+                Handle(*r, m, now);
+            }
             continue;
         }
         Spectator* spec = FindSpectator(d.peer);
@@ -138,9 +127,7 @@ void RollbackPeer::Poll() {
             session_.RaiseConnectionEvent(RollbackEvent::Kind::e_interrupted, r.index);
         }
         if (silence <= config_.disconnectTimeoutMicros) continue;
-        r.alive = false;
-        r.interrupted = false;
-        for (uint32_t p : r.players) session_.DisconnectPlayer(p);
+        DropRemote(r);
     }
 }
 
@@ -181,9 +168,12 @@ void RollbackPeer::Handle(Remote& r, const RollbackMessage& m, uint64_t now) {
         }
     } else if (const auto* h = std::get_if<RbHash>(&m)) {
         session_.AddRemoteHash(r.index, h->frame, h->hash);
+    } else if (const auto* v = std::get_if<RbView>(&m)) {
+        OnView(r, *v);
+    } else if (const auto* fz = std::get_if<RbFrozen>(&m)) {
+        OnFrozen(r, *fz);
     } else if (std::holds_alternative<RbDisconnect>(m)) {
-        r.alive = false;
-        for (uint32_t p : r.players) session_.DisconnectPlayer(p);
+        DropRemote(r);
     }
 }
 
@@ -216,8 +206,7 @@ void RollbackPeer::SendTo(Remote& r, uint64_t now) {
     writer_.Add(RbQuality{session_.CurrentFrame(), advantage, now}, shape_, limit);
     if (r.echoPending && writer_.Add(RbQualityReply{r.echoTime, now - r.echoReceivedAt}, shape_, limit))
         r.echoPending = false;
-    for (uint32_t p : r.players)
-        writer_.Add(RbInputAck{static_cast<uint8_t>(p), session_.ReceivedFrame(p)}, shape_, limit);
+    AddAgreement(limit);
     const size_t width = shape_.inputBytes;
     for (uint32_t lp : localPlayers_) {
         const int32_t end = session_.ReceivedFrame(lp);

@@ -2,6 +2,7 @@
 // (WireIO.h): fixed little-endian widths, minimal varints, repeat-bitmap input runs.
 
 #include <algorithm>
+#include <climits>
 #include <type_traits>
 
 #include "WireIO.h"
@@ -193,10 +194,50 @@ void Dec(Reader& r, RbSnapshotAck& m, const RollbackShape&) {
     m.index = static_cast<uint32_t>(index);
 }
 
+bool Enc(Writer& w, const RbView& m, const RollbackShape& s) {
+    if (m.received.size() != s.players) return false;
+    int32_t base = INT32_MAX;
+    for (int32_t v : m.received) {
+        if (v < 0) return false;
+        base = std::min(base, v);
+    }
+    w.Var(static_cast<uint64_t>(base));
+    for (int32_t v : m.received) w.Var(static_cast<uint64_t>(v - base));
+    return true;
+}
+void Dec(Reader& r, RbView& m, const RollbackShape& s) {
+    const int32_t base = r.Frame();
+    m.received.assign(s.players, 0);
+    bool zero = false;
+    for (uint32_t i = 0; i < s.players && r.ok(); ++i) {
+        const uint64_t d = r.Var();
+        // base + d must stay a frame number; checked before adding, so nothing overflows.
+        if (r.ok() && d > static_cast<uint64_t>(INT32_MAX - base)) r.Fail(DecodeError::e_badValue);
+        if (!r.ok()) return;
+        zero = zero || d == 0;
+        m.received[i] = base + static_cast<int32_t>(d);
+    }
+    // The base must be the smallest entry: any other base would be a second encoding.
+    if (r.ok() && !zero) r.Fail(DecodeError::e_badValue);
+}
+
+bool Enc(Writer& w, const RbFrozen& m, const RollbackShape& s) {
+    if (m.player >= s.players || m.frame < 0) return false;
+    w.U8(m.player);
+    w.Var(static_cast<uint64_t>(m.frame));
+    return true;
+}
+void Dec(Reader& r, RbFrozen& m, const RollbackShape& s) {
+    m.player = r.U8();
+    if (r.ok() && m.player >= s.players) r.Fail(DecodeError::e_badValue);
+    m.frame = r.Frame();
+}
+
 // Input-carrying messages need a valid shape to be sized at all.
 template <class M>
 constexpr bool kNeedsShape = std::is_same_v<M, RbInputs> || std::is_same_v<M, RbInputAck> ||
-                             std::is_same_v<M, RbConfirmed>;
+                             std::is_same_v<M, RbConfirmed> || std::is_same_v<M, RbView> ||
+                             std::is_same_v<M, RbFrozen>;
 
 template <size_t I = 0>
 bool DecodeIndexed(Reader& r, size_t index, const RollbackShape& s, RollbackMessage& out) {

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <climits>
+#include <cstdio>
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -29,6 +31,42 @@ namespace lockbox::net::rbtest {
 
 inline constexpr uint64_t kTickMicros = 16666;
 
+/// A peer leaving the match at `tick`: gracefully (RbDisconnect through RollbackPeer::Leave,
+/// then it stops) or abruptly (its machine goes down: it stops sending and receiving).
+struct RbExit {
+    uint32_t peer = 0;
+    int64_t tick = 0;
+    bool graceful = false;
+};
+
+/// From `tick` on, peer `from` no longer reaches peer `to` (its sends to it vanish; the other
+/// direction still works): a half-broken link, or a leaver whose last inputs reach some
+/// survivors and not others.
+struct RbLinkCut {
+    uint32_t from = 0;
+    uint32_t to = 0;
+    int64_t tick = 0;
+};
+
+/// A Transport that forwards to another one, except sends to the peers in `blocked`.
+class CutTransport : public Transport {
+public:
+    explicit CutTransport(Transport& inner) : inner_(inner) {}
+    bool Send(PeerId peer, std::span<const uint8_t> bytes, Delivery delivery = Delivery::e_unreliable) override {
+        if (std::find(blocked.begin(), blocked.end(), peer) != blocked.end()) return true;  // lost on the way
+        return inner_.Send(peer, bytes, delivery);
+    }
+    size_t Poll(std::vector<Datagram>& out) override { return inner_.Poll(out); }
+    uint64_t NowMicros() const override { return inner_.NowMicros(); }
+    size_t MaxDatagram() const noexcept override { return inner_.MaxDatagram(); }
+    const TransportStats& Stats() const noexcept override { return inner_.Stats(); }
+    void Disconnect(PeerId peer) override { inner_.Disconnect(peer); }
+    std::vector<PeerId> blocked;
+
+private:
+    Transport& inner_;
+};
+
 /// One cell of the impairment matrix, and the match settings.
 struct RbSpec {
     uint64_t seed = 1;
@@ -50,13 +88,25 @@ struct RbSpec {
     bool relayed = false;         ///< peers (and the spectator) reach each other through a RelayServer
     int32_t downPeer = -1;        ///< this peer's machine goes down at downAtTick
     int64_t downAtTick = -1;
+    std::vector<RbExit> exits;          ///< peers leaving during the match
+    std::vector<RbLinkCut> linkCuts;    ///< one-way link cuts
     std::string scene = "vertical_stack";
+
+    /// True once peer `i` has left (downPeer or an exit) at `tick`.
+    bool Gone(uint32_t i, int64_t tick) const {
+        if (static_cast<int32_t>(i) == downPeer && tick >= downAtTick) return true;
+        for (const RbExit& e : exits)
+            if (e.peer == i && tick >= e.tick) return true;
+        return false;
+    }
 
     std::string Describe() const {
         std::ostringstream s;
         s << "seed=" << seed << " peers=" << peers << " rtt=" << rttMs << "ms loss=" << lossPct
           << "% jitter=" << jitterMs << "ms frames=" << frames << " delay=" << inputDelay
           << (relayed ? " relayed" : "");
+        for (const RbExit& e : exits) s << " exit(" << e.peer << "@" << e.tick << (e.graceful ? ",leave" : ",down") << ")";
+        for (const RbLinkCut& c : linkCuts) s << " cut(" << c.from << "->" << c.to << "@" << c.tick << ")";
         return s.str();
     }
 };
@@ -75,6 +125,8 @@ struct RbPeer {
     std::vector<RollbackEvent> events;
     bool executeFailed = false;
     bool finalChanged = false;  // a frame's final hash changed after it was final
+    std::map<uint32_t, int64_t> frozenTick;  // player -> tick this peer froze it
+    std::map<uint32_t, int64_t> cutTick;     // player -> tick this peer cut it
 };
 
 struct RbResult {
@@ -128,10 +180,16 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
                 end, RelayedTransportConfig{relayEnd.Index(), 77, m, slots, rc.tokens[m]}));
         }
     }
-    // Member m's transport and the PeerId the others reach it by.
-    auto linkOf = [&](uint32_t m) -> Transport& {
+    // Member m's transport and the PeerId the others reach it by. Peers send through a
+    // CutTransport so single links can be cut (linkCuts).
+    auto rawLinkOf = [&](uint32_t m) -> Transport& {
         if (spec.relayed) return *viaRelay[m];
         return m < spec.peers ? static_cast<Transport&>(*ends[m]) : *specEnd;
+    };
+    std::vector<std::unique_ptr<CutTransport>> cuttable;
+    for (uint32_t m = 0; m < spec.peers; ++m) cuttable.push_back(std::make_unique<CutTransport>(rawLinkOf(m)));
+    auto linkOf = [&](uint32_t m) -> Transport& {
+        return m < spec.peers ? static_cast<Transport&>(*cuttable[m]) : rawLinkOf(m);
     };
     auto addressOf = [&](uint32_t m) -> PeerId {
         if (spec.relayed) return m;
@@ -180,9 +238,14 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
     for (int64_t tick = 0; tick < limit; ++tick) {
         bool done = true;
         if (relay) relay->Poll();
+        for (const RbLinkCut& c : spec.linkCuts)
+            if (c.tick == tick && c.from < spec.peers && c.to < spec.peers)
+                cuttable[c.from]->blocked.push_back(addressOf(c.to));
         for (uint32_t i = 0; i < spec.peers; ++i) {
             RbPeer& p = out.peers[i];
-            if (static_cast<int32_t>(i) == spec.downPeer && tick >= spec.downAtTick) {
+            for (const RbExit& e : spec.exits)
+                if (e.peer == i && e.tick == tick && e.graceful) p.net->Leave();
+            if (spec.Gone(i, tick)) {
                 ends[i]->SetDown(true);
                 continue;
             }
@@ -214,6 +277,10 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
                 if (!fresh && it->second != h) p.finalChanged = true;
             }
             for (const RollbackEvent& e : s.TakeEvents()) p.events.push_back(e);
+            for (uint32_t q = 0; q < spec.peers; ++q) {
+                if (s.FrozenFrame(q) >= 0) p.frozenTick.emplace(q, tick);
+                if (s.CutFrame(q) >= 0) p.cutTick.emplace(q, tick);
+            }
             if (s.ConfirmedFrame() < spec.frames) done = false;
         }
         if (spectator) {
@@ -236,7 +303,7 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
             int32_t lo = INT32_MAX, hi = INT32_MIN;
             bool running = true;
             for (uint32_t i = 0; i < spec.peers; ++i) {
-                if (static_cast<int32_t>(i) == spec.downPeer) continue;
+                if (static_cast<int32_t>(i) == spec.downPeer || spec.Gone(i, tick)) continue;
                 const RbPeer& p = out.peers[i];
                 lo = std::min(lo, p.session->CurrentFrame());
                 hi = std::max(hi, p.session->CurrentFrame());
@@ -314,6 +381,120 @@ inline size_t ExpectHealthy(const RbSpec& spec, const RbResult& r) {
     }
     EXPECT_LE(r.SpreadP95(), 1);
     return compared;
+}
+
+/// A leave scenario: `peers` peers, the last one leaves (abruptly, or with RbDisconnect when
+/// `graceful`), on links with the given RTT, loss and jitter.
+struct Leave {
+    uint32_t peers, rtt, loss, jitter;
+    bool graceful;
+};
+
+// The leaver is the last peer. Its link to peer 0 dies 30 ticks before it leaves, so peer 0
+// holds fewer of its inputs than the others: the cut must be peer 0's frozen frame.
+inline RbSpec LeaveSpec(const Leave& c, uint64_t seed) {
+    RbSpec spec;
+    spec.seed = seed;
+    spec.peers = c.peers;
+    spec.rttMs = c.rtt;
+    spec.lossPct = c.loss;
+    spec.jitterMs = c.jitter;
+    spec.frames = 720;
+    const uint32_t leaver = c.peers - 1;
+    spec.linkCuts.push_back(RbLinkCut{leaver, 0, 150});
+    spec.exits.push_back(RbExit{leaver, 180, c.graceful});
+    return spec;
+}
+
+// What every survivor must show: one e_disconnected per leaver, at the same frame on all,
+// equal to the smallest frozen frame (unless `anyMin`); identical final hashes, at least
+// `after` frames past the last cut; no desync; no failed Execute or changed final hash.
+// Returns the cut of each leaver.
+inline std::map<uint32_t, int32_t> ExpectAgreement(const RbSpec& spec, const RbResult& r, int32_t after,
+                                                   bool anyMin = false, std::vector<uint32_t> leavers = {}) {
+    SCOPED_TRACE(spec.Describe());
+    EXPECT_TRUE(r.finished) << "ticks=" << r.ticks;
+    // Leavers: the peers that exit, unless the caller names them (a peer cut out by the
+    // others while it still runs).
+    std::vector<uint32_t> survivors;
+    if (leavers.empty())
+        for (uint32_t i = 0; i < spec.peers; ++i)
+            if (spec.Gone(i, INT64_MAX)) leavers.push_back(i);
+    for (uint32_t i = 0; i < spec.peers; ++i)
+        if (std::find(leavers.begin(), leavers.end(), i) == leavers.end()) survivors.push_back(i);
+    std::map<uint32_t, int32_t> cuts;
+    for (uint32_t l : leavers) {
+        int32_t minFrozen = INT32_MAX, maxFrozen = -1;
+        for (uint32_t i : survivors) {
+            const RbPeer& p = r.peers[i];
+            std::vector<int32_t> frames;
+            for (const RollbackEvent& e : p.events)
+                if (e.kind == RollbackEvent::Kind::e_disconnected && e.player == l) frames.push_back(e.frame);
+            EXPECT_EQ(frames.size(), 1u) << "peer " << i << " leaver " << l;
+            if (frames.empty()) continue;
+            if (cuts.count(l) == 0) cuts[l] = frames[0];
+            EXPECT_EQ(frames[0], cuts[l]) << "peer " << i << " leaver " << l;
+            EXPECT_EQ(p.session->CutFrame(l), frames[0]) << "peer " << i;
+            minFrozen = std::min(minFrozen, p.session->FrozenFrame(l));
+            maxFrozen = std::max(maxFrozen, p.session->FrozenFrame(l));
+        }
+        if (!anyMin && cuts.count(l)) {
+            EXPECT_EQ(cuts[l], minFrozen) << "leaver " << l;
+        }
+        // Figures for docs/rollback.md: the frozen values, the cut, and the ticks from the
+        // first survivor's freeze to the last survivor's cut.
+        int64_t firstFreeze = INT64_MAX, lastCut = -1;
+        for (uint32_t i : survivors) {
+            const RbPeer& p = r.peers[i];
+            if (auto it = p.frozenTick.find(l); it != p.frozenTick.end()) firstFreeze = std::min(firstFreeze, it->second);
+            if (auto it = p.cutTick.find(l); it != p.cutTick.end()) lastCut = std::max(lastCut, it->second);
+        }
+        std::printf("RBLEAVE %s | leaver %u frozen %d..%d cut %d, freeze->agreed %lld ticks\n", spec.Describe().c_str(), l,
+                    minFrozen, maxFrozen, cuts.count(l) ? cuts[l] : -1, static_cast<long long>(lastCut - firstFreeze));
+    }
+    int32_t lastCut = 0;
+    for (const auto& [l, c] : cuts) lastCut = std::max(lastCut, c);
+    for (size_t a = 0; a < survivors.size(); ++a) {
+        const RbPeer& p = r.peers[survivors[a]];
+        EXPECT_FALSE(p.executeFailed) << "peer " << survivors[a];
+        EXPECT_FALSE(p.finalChanged) << "peer " << survivors[a];
+        for (const RollbackEvent& e : p.events)
+            EXPECT_NE(e.kind, RollbackEvent::Kind::e_desync) << "peer " << survivors[a] << " desync at " << e.frame;
+        for (size_t b = a + 1; b < survivors.size(); ++b) {
+            const RbPeer& q = r.peers[survivors[b]];
+            size_t pastCut = 0;
+            for (const auto& [f, h] : p.finals) {
+                auto it = q.finals.find(f);
+                if (it == q.finals.end()) continue;
+                EXPECT_EQ(it->second, h) << "peers " << survivors[a] << "," << survivors[b] << " frame " << f;
+                if (f >= lastCut) ++pastCut;
+            }
+            EXPECT_GE(pastCut, static_cast<size_t>(after / static_cast<int32_t>(spec.desyncInterval)) * 8 / 10)
+                << "peers " << survivors[a] << "," << survivors[b];
+        }
+        EXPECT_GE(p.session->ConfirmedFrame(), lastCut + after) << "peer " << survivors[a];
+    }
+    if (spec.rttMs * 500u > spec.inputDelay * kTickMicros) {
+        EXPECT_GT(r.Rollbacks(), 0u);
+    }
+    uint32_t deepest = 0;
+    for (uint32_t i : survivors) deepest = std::max(deepest, r.peers[i].session->Stats().deepestRollback);
+    std::printf("RBLEAVE %s | rollbacks %llu, deepest %u, ticks %lld\n", spec.Describe().c_str(),
+                static_cast<unsigned long long>(r.Rollbacks()), deepest, static_cast<long long>(r.ticks));
+    return cuts;
+}
+
+/// Plays one leave cell and checks it (ExpectAgreement over 300 frames past the cut), and
+/// that the scenario is the one meant: peer 0 holds fewer of the leaver's inputs than another
+/// survivor, so cutting at each one's own received frame would have diverged.
+inline void RunLeaveCell(const Leave& c, uint64_t seed) {
+    const RbSpec spec = LeaveSpec(c, seed);
+    const RbResult r = RunRbMatch(spec);
+    ExpectAgreement(spec, r, 300);
+    const uint32_t leaver = c.peers - 1;
+    int32_t others = -1;
+    for (uint32_t i = 1; i < leaver; ++i) others = std::max(others, r.peers[i].session->FrozenFrame(leaver));
+    EXPECT_LT(r.peers[0].session->FrozenFrame(leaver), others) << spec.Describe();
 }
 
 }  // namespace lockbox::net::rbtest

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lockbox/net/RollbackProtocol.h"
+#include "lockbox/net/Transport.h"
 
 namespace lockbox::net {
 namespace {
@@ -37,6 +38,11 @@ std::vector<RollbackMessage> Sample() {
     m.push_back(RbSnapshotChunk{13, kRbSnapshotChunkBytes + 6, 5, 1, {1, 2, 3, 4, 5, 6}});
     m.push_back(RbSnapshotAck{12, 0});
     m.push_back(RbSnapshotAck{400, 16383});
+    m.push_back(RbView{{1000, 1003, 998}});
+    m.push_back(RbView{{0, 0, 0}});
+    m.push_back(RbView{{INT32_MAX, 0, 5}});
+    m.push_back(RbFrozen{2, 123});
+    m.push_back(RbFrozen{0, 0});
     return m;
 }
 
@@ -110,6 +116,66 @@ TEST(RollbackWire, MalformedFieldsAreRefused) {
     EXPECT_FALSE(w.Add(RbInputs{0, 0, std::vector<uint8_t>(4 * (kRollbackMaxRun + 1), 1)}, kShape));
     EXPECT_FALSE(w.Add(RbHash{-1, 0}, kShape));
     EXPECT_EQ(w.MessageCount(), 0u);
+}
+
+// Version 3's agreement messages: a view has exactly one entry per player, its base is the
+// smallest entry (so the encoding is unique), no entry passes INT32_MAX; a frozen value
+// names a player of the match.
+TEST(RollbackWire, ViewAndFrozenAreStrict) {
+    RollbackDatagramWriter w;
+    w.Begin(RollbackHeader{});
+    EXPECT_FALSE(w.Add(RbView{{1, 2}}, kShape));           // two entries for three players
+    EXPECT_FALSE(w.Add(RbView{{1, 2, 3, 4}}, kShape));     // four
+    EXPECT_FALSE(w.Add(RbView{{1, -1, 3}}, kShape));       // negative
+    EXPECT_FALSE(w.Add(RbView{{1, 2, 3}}, RollbackShape{}));  // no shape
+    EXPECT_FALSE(w.Add(RbFrozen{3, 1}, kShape));            // no such player
+    EXPECT_FALSE(w.Add(RbFrozen{0, -1}, kShape));
+    EXPECT_EQ(w.MessageCount(), 0u);
+
+    RollbackHeader h;
+    std::vector<RollbackMessage> out;
+    // type, base 10, deltas 0 2 1.
+    auto bytes = Encode({RbView{{10, 12, 11}}});
+    ASSERT_EQ(bytes.size(), kRollbackHeaderBytes + 5);
+    ASSERT_EQ(DecodeRollbackDatagram(bytes, kShape, h, out), DecodeError::e_ok);
+    auto bad = bytes;
+    bad[kRollbackHeaderBytes + 2] = 1;  // deltas 1 2 1: the base is not the smallest entry
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badValue);
+    EXPECT_TRUE(out.empty());
+    bad = bytes;
+    bad.pop_back();  // one entry short
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_truncated);
+    // base INT32_MAX and a delta of 1: past a frame number.
+    bytes = Encode({RbView{{INT32_MAX, INT32_MAX, INT32_MAX}}});
+    bad = bytes;
+    bad[bad.size() - 1] = 1;
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badValue);
+    // A view with the decoder's shape of another player count is refused or misread, never
+    // read past the end: with 4 players the 3-entry view is one entry short.
+    bytes = Encode({RbView{{10, 12, 11}}});
+    EXPECT_NE(DecodeRollbackDatagram(bytes, RollbackShape{4, 4}, h, out), DecodeError::e_ok);
+    bytes = Encode({RbFrozen{2, 7}});
+    bad = bytes;
+    bad[kRollbackHeaderBytes + 1] = 3;  // player 3 of 3
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badValue);
+    EXPECT_EQ(DecodeRollbackDatagram(bytes, RollbackShape{}, h, out), DecodeError::e_noShape);
+    // A version-2 datagram (before the agreement) is refused by its header.
+    bad = bytes;
+    bad[2] = 2;
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badVersion);
+}
+
+// An 8-player peer's agreement messages at their largest (every entry a 5-byte varint, all
+// seven remote players frozen) take under 100 bytes: the rest of the datagram is left for
+// inputs.
+TEST(RollbackWire, AgreementFitsBesideTheInputs) {
+    const RollbackShape eight{8, 64};
+    RollbackDatagramWriter w;
+    w.Begin(RollbackHeader{});
+    ASSERT_TRUE(w.Add(RbView{{0, INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX}}, eight));
+    for (uint8_t p = 1; p < 8; ++p) ASSERT_TRUE(w.Add(RbFrozen{p, INT32_MAX}, eight));
+    EXPECT_LE(w.Size(), kRollbackHeaderBytes + 42 + 7 * 7);
+    EXPECT_LE(w.Size(), Transport::kMaxDatagram / 10);
 }
 
 // Late-join messages: every chunk's payload length follows from its size and index, and

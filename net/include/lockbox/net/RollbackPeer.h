@@ -11,6 +11,14 @@
 /// datagram out per remote and spectator). Every datagram repeats all local inputs the remote
 /// has not acknowledged, so a lost datagram costs nothing but the wait for the next one.
 ///
+/// Disconnects (docs/rollback.md, "Disconnects"): every datagram also carries this peer's
+/// view (the first frame it lacks of every player), which the receiver's session uses to
+/// decide finality, and "player p frozen at F" for every player this peer considers gone. A
+/// remote that sends RbDisconnect, stays silent past disconnectTimeoutMicros, or is named
+/// frozen by any live remote (gossip) stops counting as live; its players are frozen here at
+/// this peer's received frame, and each is cut at the smallest frozen value once every live
+/// remote's value for it has arrived (the same cut on every survivor).
+///
 /// Time sync: every datagram carries the sender's frame and its frame advantage (how far it
 /// believes it is ahead of the receiver, RTT taken into account). The peer that is ahead
 /// idles one tick at a time, spread out (WaitThisTick), until the peers line up.
@@ -84,7 +92,9 @@ public:
 
     /// Reads every datagram that has arrived and hands inputs and hashes to the session;
     /// raises e_interrupted / e_resumed for remotes silent past interruptTimeoutMicros / heard
-    /// again, and disconnects the players of remotes silent past the disconnect timeout.
+    /// again, freezes the players of remotes silent past the disconnect timeout (or that
+    /// left, or that a live remote names gone) and cuts each once every live remote's frozen
+    /// value for it has arrived.
     void Poll();
     /// Sends one datagram to every live remote and spectator.
     void Flush();
@@ -117,7 +127,8 @@ public:
 
     /// Smoothed RTT to remote `index` (config order), microseconds; 0 before the first sample.
     uint64_t RttMicros(size_t index) const noexcept;
-    /// False once remote `index` left or timed out (and for an index past the remotes).
+    /// False once remote `index` left, timed out or was named gone by another live remote
+    /// (gossip: its players are being cut), and for an index past the remotes.
     bool RemoteAlive(size_t index) const noexcept;
     /// Counters since construction.
     const RollbackPeerStats& Stats() const noexcept { return stats_; }
@@ -128,6 +139,12 @@ private:
     Remote* Find(PeerId peer);
     Spectator* FindSpectator(PeerId peer);
     void HandleSpectator(Spectator& s, const RollbackMessage& m);
+    // The disconnect agreement (RollbackAgreement.cpp).
+    void DropRemote(Remote& r);
+    void OnView(Remote& r, const RbView& v);
+    void OnFrozen(Remote& r, const RbFrozen& f);
+    void TryAgree();
+    void AddAgreement(size_t limit);
     bool InputsKept(int32_t frame) const;
     void SendSnapshot(Spectator& s, uint64_t now);
     void Handle(Remote& r, const RollbackMessage& m, uint64_t now);

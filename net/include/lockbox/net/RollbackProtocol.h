@@ -23,8 +23,9 @@ namespace lockbox::net {
 
 /// First two bytes of every rollback datagram: 'R' 'B'.
 inline constexpr uint16_t kRollbackMagic = 0x4252u;
-/// Bumped whenever a message layout changes (2: the late-join snapshot messages).
-inline constexpr uint8_t kRollbackProtocolVersion = 2;
+/// Bumped whenever a message layout changes (2: the late-join snapshot messages; 3: RbView
+/// and RbFrozen, the disconnect agreement).
+inline constexpr uint8_t kRollbackProtocolVersion = 3;
 /// Bytes of the header.
 inline constexpr size_t kRollbackHeaderBytes = 7;
 /// Largest frame count of one input run.
@@ -50,7 +51,8 @@ struct RbInputs {
     bool operator==(const RbInputs&) const = default;
 };
 
-/// Every input of `player` before nextFrame has arrived.
+/// Every input of `player` before nextFrame has arrived. (Version 3 peers send RbView
+/// instead, which carries the same for every player; this one still decodes.)
 struct RbInputAck {
     uint8_t player = 0;
     int32_t nextFrame = 0;  ///< >= 0
@@ -134,15 +136,35 @@ struct RbDisconnect {
     bool operator==(const RbDisconnect&) const = default;
 };
 
+/// The sender's view: for every player of the match (player 0 first), the first frame of its
+/// inputs the sender does not hold. The receiver takes its own players' entries as acks, and
+/// no frame at or past any entry becomes final on the receiver (RollbackSession::SetPeerView).
+/// Wire: the smallest entry as a varint, then each entry minus it as a varint (at least one
+/// of them 0, so the encoding is canonical).
+struct RbView {
+    std::vector<int32_t> received;  ///< exactly `players` entries, each >= 0
+    bool operator==(const RbView&) const = default;
+};
+
+/// The sender considers `player` gone and froze it at `frame` (its received frame for that
+/// player then). Repeated in every datagram to every live remote for the rest of the match.
+/// A receiver that has not frozen the player yet does so now (gossip); the cut is the
+/// smallest frozen value once every live peer's is known.
+struct RbFrozen {
+    uint8_t player = 0;  ///< < players
+    int32_t frame = 0;   ///< >= 0
+    bool operator==(const RbFrozen&) const = default;
+};
+
 /// Any rollback message.
 using RollbackMessage = std::variant<RbInputs, RbInputAck, RbQuality, RbQualityReply, RbHash, RbConfirmed,
                                      RbConfirmedAck, RbKeepAlive, RbDisconnect, RbJoinRequest, RbSnapshotChunk,
-                                     RbSnapshotAck>;
+                                     RbSnapshotAck, RbView, RbFrozen>;
 
 /// Type byte of each message (the variant index + 1).
 enum class RollbackMessageType : uint8_t {
     e_inputs = 1, e_inputAck, e_quality, e_qualityReply, e_hash, e_confirmed, e_confirmedAck, e_keepAlive,
-    e_disconnect, e_joinRequest, e_snapshotChunk, e_snapshotAck, e_end
+    e_disconnect, e_joinRequest, e_snapshotChunk, e_snapshotAck, e_view, e_frozen, e_end
 };
 
 /// What the decoder must know to size input runs.

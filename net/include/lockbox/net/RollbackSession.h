@@ -8,6 +8,13 @@
 /// Frames: the state "at frame f" is the state before frame f's inputs are applied (after f
 /// steps from the start); Advance{f} moves it to frame f + 1. Frame 0 is the start.
 ///
+/// Finality: a frame is final (its hash compared, its inputs handed to spectators) once this
+/// session holds every input before it and, when remote peers report their views
+/// (SetPeerView), once every live remote peer holds them too. A leaving player is first
+/// frozen (FreezePlayer), then cut at a frame every survivor agrees on (ReportFrozen,
+/// CompleteDisconnect); that cut is never below a final frame (docs/rollback.md,
+/// "Disconnects").
+///
 /// This class knows nothing about the network: remote inputs and hashes are handed to it
 /// (AddRemoteInput, AddRemoteHash), by RollbackPeer (RollbackPeer.h) over a Transport or by a
 /// test directly. It predicts missing remote inputs, rolls back when a prediction was wrong,
@@ -35,6 +42,11 @@ inline constexpr uint32_t kRollbackMaxInputBytes = 64;
 inline constexpr uint32_t kRollbackMaxWindow = 64;
 /// Largest input delay, in frames.
 inline constexpr uint32_t kRollbackMaxInputDelay = 16;
+/// Largest distance, in frames, between the current frame and the final one
+/// (ConfirmedFrame): AdvanceFrame waits rather than go further, so a game that keeps the
+/// states of the last kRollbackMaxFinalLag + 2 frames (WorldGameAdapter's default 66) can
+/// always load what a disconnect cut asks for.
+inline constexpr uint32_t kRollbackMaxFinalLag = 64;
 
 /// How one player's input of one Advance came to be.
 enum class InputStatus : uint8_t {
@@ -66,7 +78,7 @@ using RollbackRequest = std::variant<SaveState, LoadState, AdvanceRequest>;
 struct RollbackEvent {
     enum class Kind : uint8_t {
         e_desync = 0,        ///< a remote peer's hash of `frame` differs from ours (once per peer)
-        e_disconnected = 1,  ///< `player` left; its input is zero from `frame` on
+        e_disconnected = 1,  ///< `player` left; its input is zero from `frame` (the cut) on
         e_waiting = 2,       ///< AdvanceFrame stalled at the window edge from `frame` (once per stall)
         /// Nothing arrived from remote peer `player` (its RollbackPeer config index) for
         /// interruptTimeoutMicros; `frame` is the current frame. Once per silence.
@@ -111,6 +123,9 @@ struct RollbackStats {
     uint64_t waits = 0;               ///< AdvanceFrame calls that could not advance
     uint64_t predictedInputs = 0;     ///< player inputs predicted in new frames
     uint64_t hashesCompared = 0;      ///< local/remote hash pairs compared
+    /// ReportFrozen values below the final frame, ignored (only a peer that died before
+    /// others heard it can cause one; see docs/rollback.md, "Disconnects").
+    uint64_t frozenReportsIgnored = 0;
 };
 
 /// Settings checked by RollbackSessionBuilder.
@@ -118,7 +133,7 @@ struct RollbackConfig {
     uint32_t players = 2;                ///< 1 .. kRollbackMaxPlayers
     uint32_t inputBytes = 8;             ///< 1 .. kRollbackMaxInputBytes
     std::vector<uint32_t> localPlayers;  ///< players whose inputs this machine adds
-    uint32_t predictionWindow = 8;       ///< frames past the last confirmed one, 1 .. kRollbackMaxWindow
+    uint32_t predictionWindow = 8;       ///< frames past HeldFrame(), 1 .. kRollbackMaxWindow
     uint32_t inputDelay = 0;             ///< frames, 0 .. kRollbackMaxInputDelay
     uint32_t checkDistance = 8;          ///< sync test: frames re-simulated per check (>= 1)
     uint32_t desyncInterval = 10;        ///< compare hashes of frames f with f % interval == 0; 0: never
@@ -136,7 +151,7 @@ public:
     RollbackSessionBuilder& InputBytes(uint32_t bytes) { config_.inputBytes = bytes; return *this; }
     /// Marks `player` as local (its inputs come from AddLocalInput). Call once per local player.
     RollbackSessionBuilder& LocalPlayer(uint32_t player) { config_.localPlayers.push_back(player); return *this; }
-    /// Frames the session may run ahead of the last confirmed frame (default 8).
+    /// Frames the session may run ahead of HeldFrame(), the first frame it lacks an input of (default 8).
     RollbackSessionBuilder& PredictionWindow(uint32_t frames) { config_.predictionWindow = frames; return *this; }
     /// Frames between adding a local input and the frame it is applied in (default 0).
     RollbackSessionBuilder& InputDelay(uint32_t frames) { config_.inputDelay = frames; return *this; }
@@ -151,6 +166,7 @@ public:
     std::string_view Check() const noexcept;
     /// A new session; nullptr when Check() is not empty.
     std::unique_ptr<RollbackSession> Build() const;
+    /// The settings collected so far.
     const RollbackConfig& Config() const noexcept { return config_; }
 
 private:
@@ -187,28 +203,69 @@ public:
     /// A remote peer's final hash of `frame` (peerTag names the peer in desync events).
     void AddRemoteHash(uint32_t peerTag, int32_t frame, uint64_t hash);
     /// `player` left: its input is zero, with status disconnected, from the first frame not
-    /// received yet. Frames already simulated with other guesses are rolled back.
+    /// received yet (or the smallest ReportFrozen value, if any came). Frames already
+    /// simulated with other inputs are rolled back; an e_disconnected event names the cut.
+    /// For a session without peers or with one remote peer; RollbackPeer uses the three calls
+    /// below to agree on the cut with 3+ peers. No effect on a player already cut.
     void DisconnectPlayer(uint32_t player);
+    /// Starts `player`'s departure: no input of it is taken any more (AddRemoteInput and
+    /// AddLocalInput say e_disconnected), its inputs past the frozen frame are predicted (so
+    /// the window may stall), and frames from the frozen frame on do not become final until
+    /// the cut is set. Returns the frozen frame (ReceivedFrame at the first call; later calls
+    /// return the same), or -1 for no such player or a player already cut.
+    int32_t FreezePlayer(uint32_t player);
+    /// Another peer froze `player` at `frame` (its own received frame). Lowers the cut to come
+    /// to the smallest value known. `player` must be frozen here first. False (ignored) for a
+    /// player not frozen or already cut, a negative frame, or a frame below ConfirmedFrame():
+    /// a cut there would change final frames (counted in frozenReportsIgnored).
+    bool ReportFrozen(uint32_t player, int32_t frame);
+    /// Sets the agreed cut of frozen `player`: the smallest of its frozen frame and every
+    /// ReportFrozen value. Input is zero with status e_disconnected from the cut on, frames
+    /// at or past it simulated otherwise are rolled back, and one e_disconnected event names
+    /// the cut. Returns the cut, or -1 when `player` is not frozen or already cut.
+    int32_t CompleteDisconnect(uint32_t player);
+    /// What a live remote peer `peerTag` holds: `received[p]` is the first frame of player p
+    /// it lacks (players entries, each >= 0; any other size is ignored). Kept per peer as the
+    /// largest value heard, so a reordered report never lowers it. Once a peer has a view, no
+    /// frame at or past its view of a player still in the match becomes final.
+    void SetPeerView(uint32_t peerTag, std::span<const int32_t> received);
+    /// Remote peer `peerTag` is no longer live: its view stops limiting finality.
+    void DropPeer(uint32_t peerTag);
     /// Queues an e_interrupted or e_resumed event about remote peer `peerTag` at the current
     /// frame (called by RollbackPeer; other kinds are ignored: the session raises those itself).
     void RaiseConnectionEvent(RollbackEvent::Kind kind, uint32_t peerTag);
 
     /// The frame the next Advance will step (the number of frames simulated).
     int32_t CurrentFrame() const noexcept;
-    /// First frame whose inputs are not all confirmed (every frame before it is final).
+    /// The first frame that is not final. Every frame before it is final: its inputs are held
+    /// here and, as far as their views say, by every live remote peer, and no disconnect cut
+    /// can fall below it. Its hash is compared and its inputs go to spectators.
     int32_t ConfirmedFrame() const noexcept;
+    /// First frame whose inputs this session does not all hold (a frozen player counts with
+    /// its frozen frame); the prediction window is measured from it. >= ConfirmedFrame().
+    int32_t HeldFrame() const noexcept;
     /// Frames of `player`'s inputs received or added: every frame before this one is known.
+    /// Frozen: the frozen frame; cut: the cut (inputs from the cut on are zeros).
     int32_t ReceivedFrame(uint32_t player) const noexcept;
+    /// The frame `player` was frozen at (its ReceivedFrame then), -1 when never frozen; stays
+    /// after the cut.
+    int32_t FrozenFrame(uint32_t player) const noexcept;
+    /// The agreed cut of `player` (first frame of zeros), -1 while it is not cut.
+    int32_t CutFrame(uint32_t player) const noexcept;
     /// A confirmed input of `player` at `frame` (< ReceivedFrame(player) and not older than
     /// the kept history); empty span when not kept.
     std::span<const uint8_t> ConfirmedInput(uint32_t player, int32_t frame) const noexcept;
     /// The latest final local hashes (frame, hash), oldest first, at most 8.
     const std::deque<std::pair<int32_t, uint64_t>>& FinalHashes() const noexcept;
+    /// True for a player whose inputs this machine adds.
     bool IsLocal(uint32_t player) const noexcept;
+    /// True once `player` is cut (DisconnectPlayer or CompleteDisconnect), not while frozen.
     bool IsDisconnected(uint32_t player) const noexcept;
     /// Events since the last call, oldest first.
     std::vector<RollbackEvent> TakeEvents();
+    /// Running figures since construction.
     const RollbackStats& Stats() const noexcept;
+    /// The settings the session was built with.
     const RollbackConfig& Config() const noexcept;
 
 private:

@@ -29,7 +29,9 @@ struct WorldStepSettings {
 /// Runs rollback requests against a world and a game. Both must outlive the adapter.
 class WorldGameAdapter {
 public:
-    /// `slots`: saved states kept, at least the session's prediction window + 2.
+    /// `slots`: saved states kept. A match driven by a RollbackPeer needs kRollbackMaxFinalLag + 2
+    /// (66, the default): a disconnect cut may roll back to the final frame, which can lag the
+    /// current one by that much. A session without peers needs only its prediction window + 2.
     WorldGameAdapter(b2World& world, replay::Game& game, WorldStepSettings settings, uint32_t slots = 66);
 
     /// Executes `requests` in order, reporting hashes to `session` for SaveState requests that

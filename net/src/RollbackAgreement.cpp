@@ -1,0 +1,86 @@
+// RollbackPeer's side of the disconnect agreement (RollbackPeer.h, docs/rollback.md
+// "Disconnects"): views out and in, remotes that stop counting as live, frozen values
+// announced and gossiped, and the cut once every live remote's frozen value is known.
+//
+// Why it agrees: every survivor cuts a leaving player at the smallest frozen value among
+// its own and those it heard, and waits until every peer it still counts as live has
+// announced one. Survivors that count the same peers as live and heard the same values get
+// the same minimum; the session keeps every final frame below every frozen value, so the cut
+// never changes a frame any survivor already compared or streamed.
+
+#include <algorithm>
+#include <vector>
+
+#include "RollbackPeerRemote.h"
+
+namespace lockbox::net {
+
+void RollbackPeer::DropRemote(Remote& r) {
+    if (!r.alive) return;
+    r.alive = false;
+    r.interrupted = false;
+    session_.DropPeer(r.index);
+    // Freeze at what this peer holds now; the agreement may lower it to a survivor's value.
+    for (uint32_t p : r.players) session_.FreezePlayer(p);
+    // One peer fewer to wait for: agreements pending on its value may complete now.
+    TryAgree();
+}
+
+void RollbackPeer::OnView(Remote& r, const RbView& v) {
+    if (v.received.size() != shape_.players) return;
+    session_.SetPeerView(r.index, v.received);
+    for (uint32_t lp : localPlayers_) {
+        // An ack never runs past what this peer has: a confused remote cannot make us skip
+        // inputs it never got.
+        const int32_t known = std::min(v.received[lp], session_.ReceivedFrame(lp));
+        r.acked[lp] = std::max(r.acked[lp], known);
+    }
+}
+
+void RollbackPeer::OnFrozen(Remote& r, const RbFrozen& f) {
+    const uint32_t p = f.player;
+    if (p >= shape_.players || session_.IsLocal(p)) {
+        // This peer is named gone: the others no longer count it. Nothing here can undo
+        // that; it will stop hearing them and time them out.
+        return;
+    }
+    if (std::find(r.players.begin(), r.players.end(), p) != r.players.end()) return;  // about itself
+    if (session_.CutFrame(p) >= 0) return;  // settled here already
+    // Gossip: one live peer calling p gone is enough, even while p is still heard here (a
+    // half-broken link); p's owner then stops counting as live for this peer too.
+    for (Remote& owner : remotes_)
+        if (std::find(owner.players.begin(), owner.players.end(), p) != owner.players.end()) DropRemote(owner);
+    session_.FreezePlayer(p);
+    if (session_.CutFrame(p) >= 0) return;  // DropRemote completed it (no one left to wait for)
+    // A remote's frozen value never changes; the first one heard is the one.
+    if (r.frozenHeard[p] < 0) {
+        r.frozenHeard[p] = f.frame;
+        session_.ReportFrozen(p, f.frame);
+    }
+    TryAgree();
+}
+
+void RollbackPeer::TryAgree() {
+    for (uint32_t p = 0; p < shape_.players; ++p) {
+        if (session_.FrozenFrame(p) < 0 || session_.CutFrame(p) >= 0) continue;
+        bool all = true;
+        for (const Remote& r : remotes_)
+            if (r.alive && r.frozenHeard[p] < 0) all = false;
+        if (all) session_.CompleteDisconnect(p);
+    }
+}
+
+void RollbackPeer::AddAgreement(size_t limit) {
+    RbView view;
+    view.received.resize(shape_.players);
+    for (uint32_t p = 0; p < shape_.players; ++p) view.received[p] = session_.ReceivedFrame(p);
+    writer_.Add(view, shape_, limit);
+    // Every frozen value, every datagram, for the rest of the match: datagrams get lost, and
+    // a peer that has not heard it cannot complete its cut.
+    for (uint32_t p = 0; p < shape_.players; ++p) {
+        const int32_t frozen = session_.FrozenFrame(p);
+        if (frozen >= 0) writer_.Add(RbFrozen{static_cast<uint8_t>(p), frozen}, shape_, limit);
+    }
+}
+
+}  // namespace lockbox::net

@@ -1,0 +1,38 @@
+#pragma once
+// What a RollbackPeer keeps per remote peer (RollbackPeer.cpp: inputs, acks, time sync,
+// hashes; RollbackAgreement.cpp: views and the disconnect agreement).
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <vector>
+
+#include "SessionCommon.h"
+#include "lockbox/net/RollbackPeer.h"
+
+namespace lockbox::net {
+
+struct RollbackPeer::Remote {
+    PeerId peer = kNoPeer;
+    uint32_t index = 0;
+    std::vector<uint32_t> players;
+    bool alive = true;
+    uint64_t lastHeard = 0;
+    std::array<int32_t, kRollbackMaxPlayers> acked{};  // per local player: frames before are received
+    // Per player: the frame this remote announced it froze that player at, -1 when it has not.
+    std::array<int32_t, kRollbackMaxPlayers> frozenHeard{};
+    RttEstimator rtt;
+    bool heardFrame = false;
+    int32_t remoteFrame = 0;
+    uint64_t remoteFrameAt = 0;
+    bool echoPending = false;
+    uint64_t echoTime = 0, echoReceivedAt = 0;
+    std::deque<int32_t> localAdvantage, remoteAdvantage;
+    std::map<int32_t, uint8_t> hashCopies;  // final hash frame -> datagrams that carried it
+    bool interrupted = false;
+
+    Remote() { frozenHeard.fill(-1); }
+};
+
+}  // namespace lockbox::net
