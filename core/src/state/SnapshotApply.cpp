@@ -294,6 +294,24 @@ void AssignJoint(b2Joint& dst, const b2Joint& src) {
     }
 }
 
+/// Bytes of a joint of the given type (its concrete class), for prefetching the whole object.
+size_t JointBytes(b2JointType type) {
+    switch (type) {
+        case e_revoluteJoint: return sizeof(b2RevoluteJoint);
+        case e_prismaticJoint: return sizeof(b2PrismaticJoint);
+        case e_distanceJoint: return sizeof(b2DistanceJoint);
+        case e_pulleyJoint: return sizeof(b2PulleyJoint);
+        case e_mouseJoint: return sizeof(b2MouseJoint);
+        case e_gearJoint: return sizeof(b2GearJoint);
+        case e_wheelJoint: return sizeof(b2WheelJoint);
+        case e_weldJoint: return sizeof(b2WeldJoint);
+        case e_frictionJoint: return sizeof(b2FrictionJoint);
+        case e_ropeJoint: return sizeof(b2RopeJoint);
+        case e_unknownJoint: break;
+    }
+    return sizeof(b2Joint);
+}
+
 void ApplyJoints(Image& img, b2World& world) {
     // The object each image joint ends up in: the world's joint of that id when the type
     // matches (kept, same address), else the image's freshly built one.
@@ -323,7 +341,15 @@ void ApplyJoints(Image& img, b2World& world) {
     world.m_jointIdHint = 0;
     b2Joint* previous = nullptr;
     world.m_jointList = nullptr;
-    for (JointImage& ji : img.joints) {
+    const size_t count = img.joints.size();
+    for (size_t i = 0; i < count; ++i) {
+        // Joints lie anywhere in memory and are copied whole: request both copies early.
+        if (i + kApplyPrefetch < count) {
+            const JointImage& ahead = img.joints[i + kApplyPrefetch];
+            PrefetchBytes(target[static_cast<size_t>(ahead.id)], JointBytes(ahead.type));
+            PrefetchBytes(ahead.state.get(), JointBytes(ahead.type));
+        }
+        JointImage& ji = img.joints[i];
         b2Joint* j = target[static_cast<size_t>(ji.id)];
         if (j == ji.state.get()) (void)ji.state.release();  // the world owns it now
         else AssignJoint(*j, *ji.state);
@@ -340,8 +366,15 @@ void ApplyJoints(Image& img, b2World& world) {
         AppendToWorldList(j, world.m_jointList, previous);
     }
     world.m_jointCount = static_cast<int32>(img.joints.size());
-    for (auto it = img.joints.rbegin(); it != img.joints.rend(); ++it) {
-        b2Joint* j = world.m_joints[static_cast<size_t>(it->id)];
+    for (size_t k = count; k-- > 0;) {
+        // The bodies' list heads are misses too: request them once the joint ahead is here.
+        if (k >= 2 * kApplyPrefetch) PrefetchObject(world.m_joints[static_cast<size_t>(img.joints[k - 2 * kApplyPrefetch].id)]);
+        if (k >= kApplyPrefetch) {
+            const b2Joint* ahead = world.m_joints[static_cast<size_t>(img.joints[k - kApplyPrefetch].id)];
+            __builtin_prefetch(&ahead->m_bodyA->m_jointList);
+            __builtin_prefetch(&ahead->m_bodyB->m_jointList);
+        }
+        b2Joint* j = world.m_joints[static_cast<size_t>(img.joints[k].id)];
         PrependEdge(&j->m_edgeA, j->m_bodyA->m_jointList);
         PrependEdge(&j->m_edgeB, j->m_bodyB->m_jointList);
     }
