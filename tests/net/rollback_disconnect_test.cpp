@@ -11,6 +11,7 @@
 #include <map>
 #include <vector>
 
+#include "RollbackMixGame.h"
 #include "rollback_harness.h"
 
 namespace lockbox::net::rbtest {
@@ -24,33 +25,11 @@ std::unique_ptr<RollbackSession> Three(uint32_t local) {
     return RollbackSessionBuilder().Players(3).InputBytes(2).LocalPlayer(local).PredictionWindow(8).DesyncInterval(1).Build();
 }
 
-// Runs the requests on a one-integer state, keeping every saved state and every Advance's
-// inputs by frame (the latest one wins, as after a rollback).
-struct Tape {
-    uint64_t state = 7;
-    std::map<int32_t, uint64_t> saved;
-    std::map<int32_t, std::vector<uint8_t>> inputs;
-    void Run(RollbackSession& s, const std::vector<RollbackRequest>& reqs) {
-        for (const auto& r : reqs) {
-            if (const auto* sv = std::get_if<SaveState>(&r)) {
-                saved[sv->frame] = state;
-                if (sv->wantHash) s.ReportHash(sv->frame, state);
-            } else if (const auto* ld = std::get_if<LoadState>(&r)) {
-                ASSERT_TRUE(saved.count(ld->frame));
-                state = saved[ld->frame];
-            } else if (const auto* a = std::get_if<AdvanceRequest>(&r)) {
-                for (uint8_t b : a->inputs) state = (state ^ b) * 0x100000001B3ull;
-                inputs[a->frame] = a->inputs;
-            }
-        }
-    }
-};
-
 // Player f's input at frame f: varies, so predictions miss and cuts matter.
 uint8_t Scripted(uint32_t player, int32_t frame) { return static_cast<uint8_t>((frame * 7 + player * 13) % 5); }
 
 // One tick of session `s` with local player `me`: its scripted input, then AdvanceFrame.
-void Tick(RollbackSession& s, Tape& t, uint32_t me) {
+void Tick(RollbackSession& s, MixGame& t, uint32_t me) {
     s.AddLocalInput(me, Byte(Scripted(me, s.CurrentFrame())));
     t.Run(s, s.AdvanceFrame());
 }
@@ -67,7 +46,7 @@ std::vector<int32_t> ViewOf(const RollbackSession& from) {
 // frame gets the same inputs on both.
 TEST(RollbackDisconnectSession, DifferentFreezesGiveOneCutAndTheSameInputs) {
     auto a = Three(0), b = Three(1);
-    Tape ta, tb;
+    MixGame ta, tb;
     for (int32_t f = 0; f < 100; ++f) {
         ASSERT_EQ(a->AddRemoteInput(1, f, Byte(Scripted(1, f))), InputResult::e_ok);
         ASSERT_EQ(b->AddRemoteInput(0, f, Byte(Scripted(0, f))), InputResult::e_ok);
@@ -135,7 +114,7 @@ TEST(RollbackDisconnectSession, DifferentFreezesGiveOneCutAndTheSameInputs) {
 // session holds; it does once the view moves on.
 TEST(RollbackDisconnectSession, NothingPastARemoteViewBecomesFinal) {
     auto s = Three(0);
-    Tape t;
+    MixGame t;
     const std::vector<int32_t> nothing{0, 0, 0};
     s->SetPeerView(1, nothing);
     s->SetPeerView(2, nothing);

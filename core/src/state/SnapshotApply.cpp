@@ -274,42 +274,18 @@ void ApplyContacts(Image& img, b2World& world) {
 }
 
 /// Copies every field of src into dst (same concrete type); dst keeps its address.
-template <class T>
-void AssignAs(b2Joint& dst, const b2Joint& src) {
-    static_cast<T&>(dst) = static_cast<const T&>(src);
-}
 void AssignJoint(b2Joint& dst, const b2Joint& src) {
-    switch (src.GetType()) {
-        case e_revoluteJoint: AssignAs<b2RevoluteJoint>(dst, src); break;
-        case e_prismaticJoint: AssignAs<b2PrismaticJoint>(dst, src); break;
-        case e_distanceJoint: AssignAs<b2DistanceJoint>(dst, src); break;
-        case e_pulleyJoint: AssignAs<b2PulleyJoint>(dst, src); break;
-        case e_mouseJoint: AssignAs<b2MouseJoint>(dst, src); break;
-        case e_gearJoint: AssignAs<b2GearJoint>(dst, src); break;
-        case e_wheelJoint: AssignAs<b2WheelJoint>(dst, src); break;
-        case e_weldJoint: AssignAs<b2WeldJoint>(dst, src); break;
-        case e_frictionJoint: AssignAs<b2FrictionJoint>(dst, src); break;
-        case e_ropeJoint: AssignAs<b2RopeJoint>(dst, src); break;
-        case e_unknownJoint: break;
-    }
+    WithJointClass(src.GetType(), [&](auto cls) {
+        using T = typename decltype(cls)::type;
+        static_cast<T&>(dst) = static_cast<const T&>(src);
+    });
 }
 
 /// Bytes of a joint of the given type (its concrete class), for prefetching the whole object.
 size_t JointBytes(b2JointType type) {
-    switch (type) {
-        case e_revoluteJoint: return sizeof(b2RevoluteJoint);
-        case e_prismaticJoint: return sizeof(b2PrismaticJoint);
-        case e_distanceJoint: return sizeof(b2DistanceJoint);
-        case e_pulleyJoint: return sizeof(b2PulleyJoint);
-        case e_mouseJoint: return sizeof(b2MouseJoint);
-        case e_gearJoint: return sizeof(b2GearJoint);
-        case e_wheelJoint: return sizeof(b2WheelJoint);
-        case e_weldJoint: return sizeof(b2WeldJoint);
-        case e_frictionJoint: return sizeof(b2FrictionJoint);
-        case e_ropeJoint: return sizeof(b2RopeJoint);
-        case e_unknownJoint: break;
-    }
-    return sizeof(b2Joint);
+    size_t bytes = sizeof(b2Joint);
+    WithJointClass(type, [&](auto cls) { bytes = sizeof(typename decltype(cls)::type); });
+    return bytes;
 }
 
 void ApplyJoints(Image& img, b2World& world) {

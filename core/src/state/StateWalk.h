@@ -8,6 +8,8 @@
 // A writer W provides U8/U16/U32/U64/I32/I64/Bool/F (Fixed)/W (Wide)/V (b2Vec2), and for
 // hot records Begin(maxBytes) -> ByteCursor (the same field calls, unchecked) and End(cursor).
 
+#include <type_traits>
+
 #include "lockbox/collision/ChainShape.h"
 #include "lockbox/collision/CircleShape.h"
 #include "lockbox/collision/EdgeShape.h"
@@ -18,22 +20,29 @@
 
 namespace lockbox::state_detail {
 
+/// Calls f(std::type_identity<T>{}) with T the concrete joint class of `type` (nothing for
+/// e_unknownJoint): the one place the state code maps a joint type to its class.
+template <class F>
+void WithJointClass(b2JointType type, F&& f) {
+    switch (type) {
+        case e_revoluteJoint: f(std::type_identity<b2RevoluteJoint>{}); break;
+        case e_prismaticJoint: f(std::type_identity<b2PrismaticJoint>{}); break;
+        case e_distanceJoint: f(std::type_identity<b2DistanceJoint>{}); break;
+        case e_pulleyJoint: f(std::type_identity<b2PulleyJoint>{}); break;
+        case e_mouseJoint: f(std::type_identity<b2MouseJoint>{}); break;
+        case e_gearJoint: f(std::type_identity<b2GearJoint>{}); break;
+        case e_wheelJoint: f(std::type_identity<b2WheelJoint>{}); break;
+        case e_weldJoint: f(std::type_identity<b2WeldJoint>{}); break;
+        case e_frictionJoint: f(std::type_identity<b2FrictionJoint>{}); break;
+        case e_ropeJoint: f(std::type_identity<b2RopeJoint>{}); break;
+        case e_unknownJoint: break;
+    }
+}
+
 /// Calls j.VisitState(v) on the concrete joint type.
 template <class V>
 void VisitJointState(b2Joint& j, V& v) {
-    switch (j.GetType()) {
-        case e_revoluteJoint: static_cast<b2RevoluteJoint&>(j).VisitState(v); break;
-        case e_prismaticJoint: static_cast<b2PrismaticJoint&>(j).VisitState(v); break;
-        case e_distanceJoint: static_cast<b2DistanceJoint&>(j).VisitState(v); break;
-        case e_pulleyJoint: static_cast<b2PulleyJoint&>(j).VisitState(v); break;
-        case e_mouseJoint: static_cast<b2MouseJoint&>(j).VisitState(v); break;
-        case e_gearJoint: static_cast<b2GearJoint&>(j).VisitState(v); break;
-        case e_wheelJoint: static_cast<b2WheelJoint&>(j).VisitState(v); break;
-        case e_weldJoint: static_cast<b2WeldJoint&>(j).VisitState(v); break;
-        case e_frictionJoint: static_cast<b2FrictionJoint&>(j).VisitState(v); break;
-        case e_ropeJoint: static_cast<b2RopeJoint&>(j).VisitState(v); break;
-        case e_unknownJoint: break;
-    }
+    WithJointClass(j.GetType(), [&](auto cls) { static_cast<typename decltype(cls)::type&>(j).VisitState(v); });
 }
 
 /// Adapts a writer to the joints' VisitState protocol (read-only use of the fields).

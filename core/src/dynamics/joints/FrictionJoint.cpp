@@ -47,10 +47,12 @@ void b2FrictionJoint::InitVelocityConstraints(const b2SolverData& data) {
     m_rA = b2Mul(qA, m_localAnchorA - m_localCenterA);
     m_rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
 
-    m_linearK.ex.x = mA + mB + iA * MulWide(m_rA.y, m_rA.y) + iB * MulWide(m_rB.y, m_rB.y);
-    m_linearK.ex.y = -(iA * MulWide(m_rA.x, m_rA.y)) - iB * MulWide(m_rB.x, m_rB.y);
-    m_linearK.ey.x = m_linearK.ex.y;
-    m_linearK.ey.y = mA + mB + iA * MulWide(m_rA.x, m_rA.x) + iB * MulWide(m_rB.x, m_rB.x);
+    b2WideMat22 K;
+    K.ex.x = mA + mB + iA * MulWide(m_rA.y, m_rA.y) + iB * MulWide(m_rB.y, m_rB.y);
+    K.ex.y = -(iA * MulWide(m_rA.x, m_rA.y)) - iB * MulWide(m_rB.x, m_rB.y);
+    K.ey.x = K.ex.y;
+    K.ey.y = mA + mB + iA * MulWide(m_rA.x, m_rA.x) + iB * MulWide(m_rB.x, m_rB.x);
+    m_linearK = K.Prepared();
     m_angularMass = Invert(iA + iB);
 
     if (data.step.warmStarting) {

@@ -47,11 +47,12 @@ void b2MouseJoint::InitVelocityConstraints(const b2SolverData& data) {
     // Compute the effective mass matrix.
     m_rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
     const Wide mB = m_invMassB, iB = m_invIB;
-    m_K.ex.x = mB + iB * MulWide(m_rB.y, m_rB.y) + m_gamma;
-    m_K.ex.y = -(iB * MulWide(m_rB.x, m_rB.y));
-    m_K.ey.x = m_K.ex.y;
-    m_K.ey.y = mB + iB * MulWide(m_rB.x, m_rB.x) + m_gamma;
-    m_solver = b2WideSolver22(m_K.ex, m_K.ey);
+    b2WideMat22 K;
+    K.ex.x = mB + iB * MulWide(m_rB.y, m_rB.y) + m_gamma;
+    K.ex.y = -(iB * MulWide(m_rB.x, m_rB.y));
+    K.ey.x = K.ex.y;
+    K.ey.y = mB + iB * MulWide(m_rB.x, m_rB.x) + m_gamma;
+    m_K = K.Prepared();
 
     const b2Vec2 C = cB + m_rB - m_targetA;
     m_C = {m_beta * C.x, m_beta * C.y};
@@ -79,7 +80,7 @@ void b2MouseJoint::SolveVelocityConstraints(const b2SolverData& data) {
     // Cdot = v + cross(w, r)
     const b2Vec2 Cdot = PointVelocity(vB, wB, m_rB);
     const b2WideVec2 rhs = -(b2WideVec2(Cdot) + m_C + b2WideVec2(m_gamma * m_impulse.x, m_gamma * m_impulse.y));
-    b2WideVec2 impulse = m_solver.Solve(rhs);
+    b2WideVec2 impulse = m_K.Solve(rhs);
 
     const b2WideVec2 oldImpulse = m_impulse;
     m_impulse += impulse;

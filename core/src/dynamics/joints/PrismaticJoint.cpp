@@ -146,8 +146,9 @@ void b2PrismaticJoint::InitVelocityConstraints(const b2SolverData& data) {
         m_limitState = e_inactiveLimit;
         m_impulse.z = Wide();
     }
-    // The velocity iterations solve the whole K exactly when this holds (same condition).
-    if (m_enableLimit && m_limitState != e_inactiveLimit) m_limitSolver = m_K.Prepared();
+    // An active limit state is only set with the limit enabled: exactly when the velocity
+    // iterations solve the whole K.
+    if (m_limitState != e_inactiveLimit) m_limitSolver = m_K.Prepared();
 
     if (!m_enableMotor) m_motorImpulse = Wide();
 

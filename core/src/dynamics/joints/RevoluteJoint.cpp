@@ -108,8 +108,9 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
     } else {
         m_limitState = e_inactiveLimit;
     }
-    // The velocity iterations solve the whole K exactly when this holds (same condition).
-    if (m_enableLimit && m_limitState != e_inactiveLimit && !fixedRotation) m_limitSolver = m_mass.Prepared();
+    // An active limit state is only set with the limit enabled and rotation free: exactly when
+    // the velocity iterations solve the whole K.
+    if (m_limitState != e_inactiveLimit) m_limitSolver = m_mass.Prepared();
 
     if (data.step.warmStarting) {
         // Scale impulses to support a variable time step.

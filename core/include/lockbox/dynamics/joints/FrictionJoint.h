@@ -79,7 +79,7 @@ private:
     b2Vec2 m_localCenterA;
     b2Vec2 m_localCenterB;
     Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
-    b2WideMat22 m_linearK;  ///< solved, never inverted
+    b2WideSolver22 m_linearK;  ///< linear effective-mass matrix, prepared once per step; solved, never inverted
     Wide m_angularMass;     ///< kg*m^2
 };
 

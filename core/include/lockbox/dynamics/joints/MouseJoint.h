@@ -85,8 +85,7 @@ private:
     b2Vec2 m_rB;
     b2Vec2 m_localCenterB;
     Wide m_invMassB, m_invIB;
-    b2WideMat22 m_K;  ///< solved, never inverted
-    b2WideSolver22 m_solver;  ///< m_K prepared once per step
+    b2WideSolver22 m_K;  ///< the effective-mass matrix, prepared once per step; solved, never inverted
     b2WideVec2 m_C;   ///< beta * position error, m/s
 };
 

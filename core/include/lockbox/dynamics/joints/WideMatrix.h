@@ -252,9 +252,12 @@ struct b2WideMat22 {
 
     /// Solves K x = b for a Q32.32 right-hand side (m/s); x is an impulse (N*s). A singular K
     /// gives x = 0. For many solves with one K, prepare a b2WideSolver22 once.
-    constexpr b2WideVec2 Solve(const b2WideVec2& b) const noexcept { return b2WideSolver22(ex, ey).Solve(b); }
+    constexpr b2WideVec2 Solve(const b2WideVec2& b) const noexcept { return Prepared().Solve(b); }
     /// Solves K x = b for a Q16.16 right-hand side.
     constexpr b2WideVec2 Solve(const b2Vec2& b) const noexcept { return Solve(b2WideVec2(b)); }
+
+    /// The matrix prepared for many solves.
+    constexpr b2WideSolver22 Prepared() const noexcept { return b2WideSolver22(ex, ey); }
 };
 
 /// 3x3 matrix of Q32.32 entries, column-major (the point-plus-angle K of revolute, prismatic
@@ -266,7 +269,7 @@ struct b2WideMat33 {
 
     /// Solves K x = b (b in m/s and rad/s as Q32.32). A singular K gives x = 0. For many solves
     /// with one K, prepare a b2WideSolver33 once.
-    constexpr b2WideVec3 Solve33(const b2WideVec3& b) const noexcept { return b2WideSolver33(ex, ey, ez).Solve33(b); }
+    constexpr b2WideVec3 Solve33(const b2WideVec3& b) const noexcept { return Prepared().Solve33(b); }
     /// Solves K x = b for a Q16.16 right-hand side.
     constexpr b2WideVec3 Solve33(const b2Vec3& b) const noexcept { return Solve33(b2WideVec3(b)); }
 
