@@ -38,6 +38,7 @@ std::string_view DecodeErrorName(DecodeError error) noexcept {
         case DecodeError::e_badVarint: return "bad varint";
         case DecodeError::e_badValue: return "bad value";
         case DecodeError::e_noShape: return "no shape";
+        case DecodeError::e_incompatible: return "incompatible";
         case DecodeError::e_count: break;
     }
     return "unknown";

@@ -82,12 +82,25 @@ void RollbackPeer::Poll() {
     const uint64_t now = transport_.NowMicros();
     for (const Datagram& d : inbox_) {
         RollbackHeader header;
-        if (DecodeRollbackDatagram(d.bytes, shape_, header, messages_) != DecodeError::e_ok ||
-            header.matchId != config_.matchId) {
+        const DecodeError error = DecodeRollbackDatagram(d.bytes, shape_, header, messages_);
+        Remote* r = Find(d.peer);
+        Spectator* spec = r == nullptr ? FindSpectator(d.peer) : nullptr;
+        const RollbackIncompatibility why = Check(d, error, header);
+        if (why != RollbackIncompatibility::e_none) {
+            // Named once; refused from now on, so the remote times out as a silent one would.
+            if (r != nullptr && r->alive && r->incompatible == RollbackIncompatibility::e_none) {
+                r->incompatible = why;
+                session_.RaiseIncompatible(r->index, why);
+            }
+            if (spec != nullptr) spec->incompatible = true;
+        }
+        if (error != DecodeError::e_ok || header.matchId != config_.matchId || why != RollbackIncompatibility::e_none ||
+            (r != nullptr && r->incompatible != RollbackIncompatibility::e_none) ||
+            (spec != nullptr && spec->incompatible)) {
             ++stats_.refused;
             continue;
         }
-        if (Remote* r = Find(d.peer)) {
+        if (r != nullptr) {
             ++stats_.datagramsReceived;
             if (!r->alive) continue;
             r->lastHeard = now;
@@ -101,7 +114,6 @@ void RollbackPeer::Poll() {
             }
             continue;
         }
-        Spectator* spec = FindSpectator(d.peer);
         if (spec == nullptr && lateSpectators_ < config_.maxLateSpectators &&
             std::any_of(messages_.begin(), messages_.end(),
                         [](const RollbackMessage& m) { return std::holds_alternative<RbJoinRequest>(m); })) {
@@ -129,6 +141,47 @@ void RollbackPeer::Poll() {
         if (silence <= config_.disconnectTimeoutMicros) continue;
         DropRemote(r);
     }
+}
+
+// Only a sender this peer knows (a remote or a spectator) can be incompatible; a stranger's
+// datagram that fails any check is just refused.
+RollbackIncompatibility RollbackPeer::Check(const Datagram& d, DecodeError error, const RollbackHeader& header) const {
+    const bool known = std::any_of(remotes_.begin(), remotes_.end(), [&](const Remote& r) { return r.peer == d.peer; }) ||
+                       std::any_of(spectators_.begin(), spectators_.end(), [&](const Spectator& s) { return s.peer == d.peer; });
+    if (!known && error == DecodeError::e_ok) {
+        // A would-be late joiner is held to the same hello as everyone.
+        for (const RollbackMessage& m : messages_)
+            if (const auto* hello = std::get_if<RbHello>(&m); hello && hello->determinismVersion != config_.determinismVersion)
+                return RollbackIncompatibility::e_determinismVersion;
+        return RollbackIncompatibility::e_none;
+    }
+    if (!known) return RollbackIncompatibility::e_none;
+    return FindIncompatibility(error, header, messages_, config_.matchId, config_.determinismVersion);
+}
+
+// A hello goes first in a datagram, before anything that needs the shape to be read.
+void RollbackPeer::BeginDatagram(bool hello, size_t limit) {
+    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+    if (hello)
+        writer_.Add(RbHello{config_.determinismVersion, static_cast<uint8_t>(shape_.players), shape_.inputBytes}, shape_,
+                    limit);
+}
+
+// The remote took one of our inputs, so it read a datagram of ours with a hello and found us
+// compatible: the hello can stop.
+bool RollbackPeer::HelloAcked(const Remote& r) const noexcept {
+    for (uint32_t lp : localPlayers_)
+        if (r.acked[lp] > 0) return true;
+    return false;
+}
+
+RollbackIncompatibility RollbackPeer::RemoteIncompatibility(size_t index) const noexcept {
+    return index < remotes_.size() ? remotes_[index].incompatible : RollbackIncompatibility::e_none;
+}
+
+size_t RollbackPeer::IncompatibleSpectators() const noexcept {
+    return static_cast<size_t>(std::count_if(spectators_.begin(), spectators_.end(),
+                                             [](const Spectator& s) { return s.incompatible; }));
 }
 
 bool RollbackPeer::RemoteInterrupted(size_t index) const noexcept {
@@ -193,6 +246,7 @@ void RollbackPeer::Flush() {
     for (Remote& r : remotes_)
         if (r.alive) SendTo(r, now);
     for (Spectator& s : spectators_) {
+        if (s.incompatible) continue;
         if (s.lateJoin && (s.wantsSnapshot || (s.sender.Active() && !s.sender.Done()))) SendSnapshot(s, now);
         else SendSpectator(s);
     }
@@ -200,7 +254,7 @@ void RollbackPeer::Flush() {
 
 void RollbackPeer::SendTo(Remote& r, uint64_t now) {
     const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
-    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+    BeginDatagram(!HelloAcked(r), limit);
     const int32_t advantage = LocalAdvantageMilli(r, now);
     if (r.heardFrame) Push(r.localAdvantage, advantage);
     writer_.Add(RbQuality{session_.CurrentFrame(), advantage, now}, shape_, limit);

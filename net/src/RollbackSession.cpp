@@ -251,6 +251,15 @@ void RollbackSession::RaiseConnectionEvent(RollbackEvent::Kind kind, uint32_t pe
     impl_->events.push_back(e);
 }
 
+void RollbackSession::RaiseIncompatible(uint32_t peerTag, RollbackIncompatibility why) {
+    RollbackEvent e;
+    e.kind = RollbackEvent::Kind::e_incompatible;
+    e.frame = impl_->current;
+    e.player = peerTag;
+    e.incompatibility = why;
+    impl_->events.push_back(e);
+}
+
 int32_t RollbackSession::CurrentFrame() const noexcept { return impl_->current; }
 int32_t RollbackSession::ConfirmedFrame() const noexcept { return impl_->Final(); }
 int32_t RollbackSession::HeldFrame() const noexcept { return impl_->Held(); }

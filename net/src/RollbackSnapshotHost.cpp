@@ -93,15 +93,16 @@ void RollbackPeer::SendSnapshot(Spectator& s, uint64_t now) {
                              });
     }
     if (sent > 0) return;
-    // Waiting for the game's offer or for acks: the spectator still hears from its host.
-    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+    // Waiting for the game's offer or for acks: the spectator still hears from its host (and
+    // its hello, which the full chunk datagrams have no room for).
+    BeginDatagram(true, limit);
     writer_.Add(RbKeepAlive{}, shape_, limit);
     if (transport_.Send(s.peer, writer_.Bytes())) ++stats_.datagramsSent;
 }
 
 void RollbackPeer::SendSpectator(Spectator& s) {
     const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
-    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+    BeginDatagram(true, limit);
     const size_t width = shape_.inputBytes;
     const size_t row = width * shape_.players;
     const int32_t confirmed = session_.ConfirmedFrame();

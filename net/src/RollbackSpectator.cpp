@@ -73,8 +73,21 @@ void RollbackSpectator::Poll() {
     const size_t row = static_cast<size_t>(config_.players) * config_.inputBytes;
     for (const Datagram& d : inbox_) {
         RollbackHeader header;
-        if (d.peer != config_.host || DecodeRollbackDatagram(d.bytes, shape_, header, messages_) != DecodeError::e_ok ||
-            header.matchId != config_.matchId) {
+        if (d.peer != config_.host || state_ == SpectatorState::e_incompatible) {
+            ++refused_;
+            continue;
+        }
+        const DecodeError error = DecodeRollbackDatagram(d.bytes, shape_, header, messages_);
+        const RollbackIncompatibility why =
+            FindIncompatibility(error, header, messages_, config_.matchId, config_.determinismVersion);
+        if (why != RollbackIncompatibility::e_none) {
+            // Frames from a host that simulates differently would only mislead the game.
+            incompatibility_ = why;
+            state_ = SpectatorState::e_incompatible;
+            frames_.clear();
+            snapshot_.clear();
+        }
+        if (error != DecodeError::e_ok || header.matchId != config_.matchId || why != RollbackIncompatibility::e_none) {
             ++refused_;
             continue;
         }
@@ -103,7 +116,15 @@ void RollbackSpectator::Poll() {
 
 void RollbackSpectator::Flush() {
     const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
+    const RbHello hello{config_.determinismVersion, static_cast<uint8_t>(config_.players), config_.inputBytes};
     writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+    writer_.Add(hello, shape_, limit);
+    if (state_ == SpectatorState::e_incompatible) {
+        // The host learns it from our hello and stops sending; a few copies cross a lossy link.
+        if (incompatibleNotices_ < kIncompatibleNotices && transport_.Send(config_.host, writer_.Bytes()))
+            ++incompatibleNotices_;
+        return;
+    }
     if (state_ == SpectatorState::e_joining) writer_.Add(RbJoinRequest{attempt_}, shape_, limit);
     else writer_.Add(RbConfirmedAck{received_}, shape_, limit);
     // Every chunk that arrived since the last Flush is acked, in as many datagrams as needed.
@@ -115,6 +136,7 @@ void RollbackSpectator::Flush() {
         }
         transport_.Send(config_.host, writer_.Bytes());
         writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+        writer_.Add(hello, shape_, limit);
         if (!writer_.Add(pendingAcks_[at], shape_, limit)) break;  // cannot happen: an ack is a few bytes
         ++at;
     }

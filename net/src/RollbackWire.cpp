@@ -233,6 +233,24 @@ void Dec(Reader& r, RbFrozen& m, const RollbackShape& s) {
     m.frame = r.Frame();
 }
 
+// No shape needed: the hello is how a receiver learns the sender's.
+bool Enc(Writer& w, const RbHello& m, const RollbackShape&) {
+    if (m.players < 1 || m.players > kRollbackMaxPlayers || m.inputBytes < 1 || m.inputBytes > kRollbackMaxInputBytes)
+        return false;
+    w.U32(m.determinismVersion);
+    w.U8(m.players);
+    w.Var(m.inputBytes);
+    return true;
+}
+void Dec(Reader& r, RbHello& m, const RollbackShape&) {
+    m.determinismVersion = r.U32();
+    m.players = r.U8();
+    if (r.ok() && (m.players < 1 || m.players > kRollbackMaxPlayers)) r.Fail(DecodeError::e_badValue);
+    const uint64_t bytes = r.Var();
+    if (r.ok() && (bytes < 1 || bytes > kRollbackMaxInputBytes)) r.Fail(DecodeError::e_badValue);
+    m.inputBytes = static_cast<uint32_t>(bytes);
+}
+
 // Input-carrying messages need a valid shape to be sized at all.
 template <class M>
 constexpr bool kNeedsShape = std::is_same_v<M, RbInputs> || std::is_same_v<M, RbInputAck> ||
@@ -285,9 +303,41 @@ DecodeError DecodeRollbackDatagram(std::span<const uint8_t> datagram, const Roll
             out.clear();
             return r.ok() ? DecodeError::e_badValue : r.error();
         }
+        // A sender of another shape: what follows cannot be sized; the hello says why.
+        if (const auto* hello = std::get_if<RbHello>(&m);
+            hello != nullptr && ShapeOk(shape) && (hello->players != shape.players || hello->inputBytes != shape.inputBytes)) {
+            out.clear();
+            out.push_back(std::move(m));
+            return DecodeError::e_incompatible;
+        }
         out.push_back(std::move(m));
     }
     return DecodeError::e_ok;
+}
+
+const char* RollbackIncompatibilityName(RollbackIncompatibility why) noexcept {
+    switch (why) {
+        case RollbackIncompatibility::e_none: return "none";
+        case RollbackIncompatibility::e_protocolVersion: return "protocol version";
+        case RollbackIncompatibility::e_matchId: return "match id";
+        case RollbackIncompatibility::e_determinismVersion: return "determinism version";
+        case RollbackIncompatibility::e_sessionShape: return "session shape";
+    }
+    return "unknown";
+}
+
+RollbackIncompatibility FindIncompatibility(DecodeError error, const RollbackHeader& header,
+                                            std::span<const RollbackMessage> messages, uint32_t matchId,
+                                            uint32_t determinismVersion) noexcept {
+    if (error == DecodeError::e_badVersion) return RollbackIncompatibility::e_protocolVersion;
+    if (error != DecodeError::e_ok && error != DecodeError::e_incompatible) return RollbackIncompatibility::e_none;
+    if (header.matchId != matchId) return RollbackIncompatibility::e_matchId;
+    for (const RollbackMessage& m : messages)
+        if (const auto* hello = std::get_if<RbHello>(&m)) {
+            if (hello->determinismVersion != determinismVersion) return RollbackIncompatibility::e_determinismVersion;
+            if (error == DecodeError::e_incompatible) return RollbackIncompatibility::e_sessionShape;
+        }
+    return RollbackIncompatibility::e_none;
 }
 
 void RollbackDatagramWriter::Begin(const RollbackHeader& header) {

@@ -24,6 +24,7 @@
 #include "lockbox/net/RollbackSpectator.h"
 #include "lockbox/net/RollbackWorldAdapter.h"
 #include "lockbox/net/SimNet.h"
+#include "ForwardingTransport.h"
 #include "NudgeGame.h"
 #include "lockbox/replay/SceneGame.h"
 
@@ -49,22 +50,14 @@ struct RbLinkCut {
 };
 
 /// A Transport that forwards to another one, except sends to the peers in `blocked`.
-class CutTransport : public Transport {
+class CutTransport : public ForwardingTransport {
 public:
-    explicit CutTransport(Transport& inner) : inner_(inner) {}
+    using ForwardingTransport::ForwardingTransport;
     bool Send(PeerId peer, std::span<const uint8_t> bytes, Delivery delivery = Delivery::e_unreliable) override {
         if (std::find(blocked.begin(), blocked.end(), peer) != blocked.end()) return true;  // lost on the way
-        return inner_.Send(peer, bytes, delivery);
+        return ForwardingTransport::Send(peer, bytes, delivery);
     }
-    size_t Poll(std::vector<Datagram>& out) override { return inner_.Poll(out); }
-    uint64_t NowMicros() const override { return inner_.NowMicros(); }
-    size_t MaxDatagram() const noexcept override { return inner_.MaxDatagram(); }
-    const TransportStats& Stats() const noexcept override { return inner_.Stats(); }
-    void Disconnect(PeerId peer) override { inner_.Disconnect(peer); }
     std::vector<PeerId> blocked;
-
-private:
-    Transport& inner_;
 };
 
 /// One cell of the impairment matrix, and the match settings.

@@ -43,6 +43,7 @@ std::vector<RollbackMessage> Sample() {
     m.push_back(RbView{{INT32_MAX, 0, 5}});
     m.push_back(RbFrozen{2, 123});
     m.push_back(RbFrozen{0, 0});
+    m.push_back(RbHello{0xFEDC0001u, static_cast<uint8_t>(kShape.players), kShape.inputBytes});
     return m;
 }
 

@@ -221,6 +221,7 @@ enum class DecodeError : uint8_t {
     e_badVarint,     ///< a varint is non-minimal or too long
     e_badValue,      ///< a field is out of its range
     e_noShape,       ///< an input message arrived before the session shape is known
+    e_incompatible,  ///< rollback: an RbHello describes another session shape (decoding stopped)
     e_count
 };
 /// Short name of an error ("truncated", ...).

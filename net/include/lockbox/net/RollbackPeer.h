@@ -32,6 +32,7 @@
 #include "lockbox/net/RollbackProtocol.h"
 #include "lockbox/net/RollbackSession.h"
 #include "lockbox/net/Transport.h"
+#include "lockbox/state/WorldHash.h"
 
 namespace lockbox::net {
 
@@ -60,13 +61,16 @@ struct RollbackPeerConfig {
     uint32_t snapshotChunksPerFlush = 16;
     /// Ticks between two waits of WaitThisTick (the "gently" of time sync), >= 1.
     uint32_t waitSpacingTicks = 8;
+    /// The engine's determinism version announced in RbHello and required of every remote
+    /// and spectator (leave it: a test sets another to stand in for an older build).
+    uint32_t determinismVersion = b2_determinismVersion;
 };
 
 /// Counters of a RollbackPeer.
 struct RollbackPeerStats {
     uint64_t datagramsSent = 0;
     uint64_t datagramsReceived = 0;
-    uint64_t refused = 0;          ///< malformed, other match, unknown sender
+    uint64_t refused = 0;          ///< malformed, other match, unknown or incompatible sender
     uint64_t waitsRecommended = 0; ///< WaitThisTick returned true
     uint64_t snapshotsOffered = 0; ///< OfferSnapshot calls that started a transfer
     uint64_t snapshotChunksSent = 0;  ///< chunk datagrams, resends included
@@ -130,6 +134,11 @@ public:
     /// False once remote `index` left, timed out or was named gone by another live remote
     /// (gossip: its players are being cut), and for an index past the remotes.
     bool RemoteAlive(size_t index) const noexcept;
+    /// Why remote `index` cannot play with this peer (e_none while it can; an e_incompatible
+    /// event said so once). Its datagrams are refused; it times out and its players are cut.
+    RollbackIncompatibility RemoteIncompatibility(size_t index) const noexcept;
+    /// Spectators refused as incompatible (their hello named another version or shape).
+    size_t IncompatibleSpectators() const noexcept;
     /// Counters since construction.
     const RollbackPeerStats& Stats() const noexcept { return stats_; }
 
@@ -150,6 +159,9 @@ private:
     void Handle(Remote& r, const RollbackMessage& m, uint64_t now);
     void SendTo(Remote& r, uint64_t now);
     void SendSpectator(Spectator& s);
+    void BeginDatagram(bool hello, size_t limit);
+    bool HelloAcked(const Remote& r) const noexcept;
+    RollbackIncompatibility Check(const Datagram& d, DecodeError error, const RollbackHeader& header) const;
     int32_t LocalAdvantageMilli(const Remote& r, uint64_t now) const;
 
     RollbackSession& session_;

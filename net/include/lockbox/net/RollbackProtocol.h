@@ -6,6 +6,8 @@
 ///
 /// Header (7 bytes): magic u16 'R' 'B', protocol version u8, match id u32 (both peers are
 /// given the same id; a datagram of another match is refused before its messages are read).
+/// A known sender whose datagrams show another version, match id, engine determinism version
+/// or session shape (RbHello) is reported once as incompatible (RollbackIncompatibility).
 ///
 /// Decoding never reads past the buffer and checks every field; a datagram with any malformed
 /// message is refused whole, with a DecodeError (Protocol.h) saying why. Encoding is
@@ -18,14 +20,15 @@
 #include <vector>
 
 #include "lockbox/net/Protocol.h"
+#include "lockbox/net/RollbackSession.h"
 
 namespace lockbox::net {
 
 /// First two bytes of every rollback datagram: 'R' 'B'.
 inline constexpr uint16_t kRollbackMagic = 0x4252u;
 /// Bumped whenever a message layout changes (2: the late-join snapshot messages; 3: RbView
-/// and RbFrozen, the disconnect agreement).
-inline constexpr uint8_t kRollbackProtocolVersion = 3;
+/// and RbFrozen, the disconnect agreement; 4: RbHello, the compatibility check).
+inline constexpr uint8_t kRollbackProtocolVersion = 4;
 /// Bytes of the header.
 inline constexpr size_t kRollbackHeaderBytes = 7;
 /// Largest frame count of one input run.
@@ -51,7 +54,7 @@ struct RbInputs {
     bool operator==(const RbInputs&) const = default;
 };
 
-/// Every input of `player` before nextFrame has arrived. (Version 3 peers send RbView
+/// Every input of `player` before nextFrame has arrived. (Peers since version 3 send RbView
 /// instead, which carries the same for every player; this one still decodes.)
 struct RbInputAck {
     uint8_t player = 0;
@@ -156,16 +159,36 @@ struct RbFrozen {
     bool operator==(const RbFrozen&) const = default;
 };
 
+/// What the sender simulates with, so that a peer or spectator that could only desync is
+/// named at once instead of playing on: the first message of a datagram, sent by a peer to a
+/// remote until the remote's view shows it took one of this peer's inputs (so it read a
+/// hello), by a host in every input-stream and keep-alive datagram to a spectator, and by a
+/// spectator in every datagram to its host. Decoded without the session shape: a hello whose
+/// shape differs from the receiver's stops the decoding (DecodeError::e_incompatible).
+struct RbHello {
+    uint32_t determinismVersion = 0;  ///< the sender's b2_determinismVersion (state/WorldHash.h)
+    uint8_t players = 0;              ///< 1 .. kRollbackMaxPlayers
+    uint32_t inputBytes = 0;          ///< 1 .. kRollbackMaxInputBytes (varint)
+    bool operator==(const RbHello&) const = default;
+};
+
 /// Any rollback message.
 using RollbackMessage = std::variant<RbInputs, RbInputAck, RbQuality, RbQualityReply, RbHash, RbConfirmed,
                                      RbConfirmedAck, RbKeepAlive, RbDisconnect, RbJoinRequest, RbSnapshotChunk,
-                                     RbSnapshotAck, RbView, RbFrozen>;
+                                     RbSnapshotAck, RbView, RbFrozen, RbHello>;
 
 /// Type byte of each message (the variant index + 1).
 enum class RollbackMessageType : uint8_t {
     e_inputs = 1, e_inputAck, e_quality, e_qualityReply, e_hash, e_confirmed, e_confirmedAck, e_keepAlive,
-    e_disconnect, e_joinRequest, e_snapshotChunk, e_snapshotAck, e_view, e_frozen, e_end
+    e_disconnect, e_joinRequest, e_snapshotChunk, e_snapshotAck, e_view, e_frozen, e_hello, e_end
 };
+
+/// The reason a datagram from a known sender shows, from its decoding (`error`, `header`
+/// and, when the decoding succeeded or stopped at a hello, `messages`): e_none when it
+/// carries no sign of one. `determinismVersion` is the receiver's.
+RollbackIncompatibility FindIncompatibility(DecodeError error, const RollbackHeader& header,
+                                            std::span<const RollbackMessage> messages, uint32_t matchId,
+                                            uint32_t determinismVersion) noexcept;
 
 /// What the decoder must know to size input runs.
 struct RollbackShape {
@@ -173,7 +196,8 @@ struct RollbackShape {
     uint32_t inputBytes = 0;  ///< 1 .. kRollbackMaxInputBytes
 };
 
-/// Decodes a whole datagram (messages appended to `out` after clearing it; empty on error).
+/// Decodes a whole datagram (messages appended to `out` after clearing it; empty on error,
+/// except e_incompatible: an RbHello for another shape, which is then all `out` holds).
 DecodeError DecodeRollbackDatagram(std::span<const uint8_t> datagram, const RollbackShape& shape,
                                    RollbackHeader& header, std::vector<RollbackMessage>& out);
 

@@ -74,6 +74,18 @@ struct AdvanceRequest {
 /// One thing AdvanceFrame asks the game to do.
 using RollbackRequest = std::variant<SaveState, LoadState, AdvanceRequest>;
 
+/// Why a remote peer, host or spectator cannot play this match with us (the first reason
+/// found; a datagram with any of them is refused whole).
+enum class RollbackIncompatibility : uint8_t {
+    e_none = 0,
+    e_protocolVersion,     ///< its datagrams carry another kRollbackProtocolVersion
+    e_matchId,             ///< it was configured with another match id
+    e_determinismVersion,  ///< another lockbox b2_determinismVersion: its states would diverge
+    e_sessionShape,        ///< another player count or input size
+};
+/// Short name of a reason ("determinism version", ...).
+const char* RollbackIncompatibilityName(RollbackIncompatibility why) noexcept;
+
 /// Something the game should know about (drained by TakeEvents).
 struct RollbackEvent {
     enum class Kind : uint8_t {
@@ -86,12 +98,17 @@ struct RollbackEvent {
         /// Remote peer `player` is heard again after an e_interrupted, before the disconnect
         /// timeout; `frame` is the current frame.
         e_resumed = 4,
+        /// Remote peer `player` cannot play this match with us (`incompatibility` says why);
+        /// its datagrams are refused from now on, so it times out like a silent peer (and its
+        /// players are cut). Once per remote; `frame` is the current frame.
+        e_incompatible = 5,
     };
     Kind kind = Kind::e_desync;
     int32_t frame = 0;
     uint32_t player = 0;      ///< the player (disconnected) or the remote peer tag (desync)
     uint64_t localHash = 0;   ///< desync: ours
     uint64_t remoteHash = 0;  ///< desync: theirs
+    RollbackIncompatibility incompatibility = RollbackIncompatibility::e_none;  ///< e_incompatible: why
 };
 
 /// Guesses a remote input: `last` is the player's latest confirmed input before `frame` (all
@@ -234,6 +251,8 @@ public:
     /// Queues an e_interrupted or e_resumed event about remote peer `peerTag` at the current
     /// frame (called by RollbackPeer; other kinds are ignored: the session raises those itself).
     void RaiseConnectionEvent(RollbackEvent::Kind kind, uint32_t peerTag);
+    /// Queues an e_incompatible event about remote peer `peerTag` (called by RollbackPeer).
+    void RaiseIncompatible(uint32_t peerTag, RollbackIncompatibility why);
 
     /// The frame the next Advance will step (the number of frames simulated).
     int32_t CurrentFrame() const noexcept;

@@ -22,6 +22,7 @@
 
 #include "lockbox/net/RollbackProtocol.h"
 #include "lockbox/net/Transport.h"
+#include "lockbox/state/WorldHash.h"
 
 namespace lockbox::net {
 
@@ -37,6 +38,8 @@ struct RollbackSpectatorConfig {
     uint32_t maxBufferedFrames = 4096;      ///< frames kept before Next takes them (more are not acked)
     bool lateJoin = false;                  ///< ask the host for a snapshot instead of starting at frame 0
     uint32_t maxSnapshotBytes = kRbMaxSnapshotBytes;  ///< larger snapshots are refused, 1 .. kRbMaxSnapshotBytes
+    /// The engine's determinism version, announced to the host and required of it (RbHello).
+    uint32_t determinismVersion = b2_determinismVersion;
 };
 
 /// Where a spectator stands.
@@ -44,6 +47,9 @@ enum class SpectatorState : uint8_t {
     e_following = 0,     ///< receiving the confirmed inputs (from frame 0, or after TakeSnapshot)
     e_joining = 1,       ///< late join: asking for / assembling a snapshot
     e_snapshotReady = 2, ///< late join: a checked snapshot waits for TakeSnapshot
+    /// The host runs another protocol, match, engine determinism version or session shape
+    /// (Incompatibility() says which): nothing more is taken from it and Next gives nothing.
+    e_incompatible = 3,
 };
 
 class RollbackSpectator {
@@ -56,7 +62,8 @@ public:
 
     /// Reads what arrived from the host; frames must arrive in order (the host resends).
     void Poll();
-    /// Acknowledges the frames received so far (one datagram to the host).
+    /// Acknowledges the frames received so far (one datagram to the host, led by our hello).
+    /// Once incompatible: a few hello-only datagrams, so the host stops sending, then nothing.
     void Flush();
     /// The next frame's inputs (players * inputBytes bytes, player 0 first) and its number;
     /// false when it has not arrived yet (and always before TakeSnapshot in a late join).
@@ -79,8 +86,10 @@ public:
     int32_t ConsumedFrame() const noexcept { return consumed_; }
     /// False after the host's RbDisconnect or timeoutMicros of silence; true again when heard.
     bool HostAlive() const noexcept { return alive_; }
-    /// Datagrams refused (malformed, another match, not from the host).
+    /// Datagrams refused (malformed, another match, not from the host, incompatible).
     uint64_t Refused() const noexcept { return refused_; }
+    /// Why the host cannot be followed (e_none unless State() is e_incompatible).
+    RollbackIncompatibility Incompatibility() const noexcept { return incompatibility_; }
 
 private:
     void TakeChunk(const RbSnapshotChunk& c);
@@ -95,6 +104,9 @@ private:
     bool alive_ = true;
     uint64_t refused_ = 0;
     SpectatorState state_ = SpectatorState::e_following;
+    RollbackIncompatibility incompatibility_ = RollbackIncompatibility::e_none;
+    static constexpr uint32_t kIncompatibleNotices = 5;  // hello-only datagrams sent once incompatible
+    uint32_t incompatibleNotices_ = 0;
     uint32_t attempt_ = 1;
     // The assembly (the lockstep late join's chunk reassembly) and the checksum its chunks carry.
     std::unique_ptr<SnapshotReceiver> receiver_;
