@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "RollbackMixGame.h"
-#include "rollback_harness.h"
+#include "rollback_leave.h"
 
 namespace lockbox::net::rbtest {
 namespace {

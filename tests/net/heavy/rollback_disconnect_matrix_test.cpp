@@ -9,7 +9,7 @@
 
 #include <vector>
 
-#include "../rollback_harness.h"
+#include "../rollback_leave.h"
 
 namespace lockbox::net::rbtest {
 namespace {
