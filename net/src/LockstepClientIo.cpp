@@ -127,7 +127,7 @@ void LockstepClient::Impl::Handle(const Message& message, uint64_t now) {
             snapshotOut.Start(frame, LockstepClient::SnapshotBlob(world, game));
         }
     } else if (const auto* k = std::get_if<SnapshotAck>(&message)) {
-        snapshotOut.OnAck(*k);
+        snapshotOut.OnAck(*k, now);
     } else if (const auto* ch = std::get_if<SnapshotChunk>(&message)) {
         if (state != ClientState::e_loading) {
             // Already loaded: ack anyway so the server stops resending.

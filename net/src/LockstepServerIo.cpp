@@ -105,7 +105,7 @@ void LockstepServer::Impl::Handle(int32_t s, PeerId peer, const Message& message
         return;
     }
     if (const auto* k = std::get_if<SnapshotAck>(&message)) {
-        slot.snapshot.OnAck(*k);
+        slot.snapshot.OnAck(*k, now);
         if (slot.state == State::e_joining && !slot.loaded && slot.snapshot.Done()) {
             // The joiner has the state of the snapshot frame: confirmed inputs flow from there.
             slot.loaded = true;

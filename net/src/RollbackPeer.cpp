@@ -129,7 +129,7 @@ void RollbackPeer::Poll() {
             continue;
         }
         ++stats_.datagramsReceived;
-        for (const RollbackMessage& m : messages_) HandleSpectator(*spec, m);
+        for (const RollbackMessage& m : messages_) HandleSpectator(*spec, m, now);
     }
     for (Remote& r : remotes_) {
         if (!r.alive) continue;

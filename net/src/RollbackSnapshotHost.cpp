@@ -24,7 +24,7 @@ RollbackPeer::Spectator* RollbackPeer::FindSpectator(PeerId peer) {
     return nullptr;
 }
 
-void RollbackPeer::HandleSpectator(Spectator& s, const RollbackMessage& m) {
+void RollbackPeer::HandleSpectator(Spectator& s, const RollbackMessage& m, uint64_t now) {
     if (const auto* ack = std::get_if<RbConfirmedAck>(&m)) {
         s.acked = std::max(s.acked, std::min(ack->nextFrame, session_.ConfirmedFrame()));
     } else if (const auto* join = std::get_if<RbJoinRequest>(&m)) {
@@ -36,7 +36,7 @@ void RollbackPeer::HandleSpectator(Spectator& s, const RollbackMessage& m) {
         s.wantsSnapshot = true;
         s.sender.Stop();
     } else if (const auto* sack = std::get_if<RbSnapshotAck>(&m)) {
-        s.sender.OnAck(SnapshotAck{sack->frame, sack->index});
+        s.sender.OnAck(SnapshotAck{sack->frame, sack->index}, now);
     }
 }
 

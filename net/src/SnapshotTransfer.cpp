@@ -15,6 +15,7 @@ void SnapshotSender::Start(int32_t frame, std::vector<uint8_t> blob) {
     acked_ = 0;
     ackedFlags_.assign(chunkCount_, 0);
     sentAt_.assign(chunkCount_, 0);
+    sends_.assign(chunkCount_, 0);
     cursor_ = 0;
 }
 
@@ -24,15 +25,25 @@ void SnapshotSender::Stop() noexcept {
     chunkCount_ = acked_ = 0;
 }
 
-void SnapshotSender::OnAck(const SnapshotAck& ack) noexcept {
+void SnapshotSender::OnAck(const SnapshotAck& ack, uint64_t now) noexcept {
     if (!active_ || ack.frame != frame_ || ack.index >= chunkCount_ || ackedFlags_[ack.index]) return;
     ackedFlags_[ack.index] = 1;
     ++acked_;
+    // A resent chunk's ack may answer either send: no sample from it.
+    if (sends_[ack.index] == 1 && now >= sentAt_[ack.index]) rtt_.Sample(now - sentAt_[ack.index]);
+}
+
+uint64_t SnapshotSender::ResendMicros(uint64_t floor) const noexcept {
+    constexpr uint64_t kCeiling = 1'000'000;
+    if (rtt_.Samples() == 0) return floor;
+    const uint64_t rto = std::min(rtt_.Srtt() + 4 * std::min(rtt_.Var(), kCeiling), kCeiling);
+    return std::max(floor, rto);
 }
 
 size_t SnapshotSender::Pump(uint64_t now, uint64_t resendMicros, size_t window,
                             const std::function<void(const SnapshotChunk&)>& send) {
     if (!active_ || Done()) return 0;
+    resendMicros = ResendMicros(resendMicros);
     size_t sent = 0;
     for (uint32_t step = 0; step < chunkCount_ && sent < window; ++step) {
         const uint32_t i = (cursor_ + step) % chunkCount_;
@@ -48,6 +59,7 @@ size_t SnapshotSender::Pump(uint64_t now, uint64_t resendMicros, size_t window,
                             blob_.begin() + static_cast<std::ptrdiff_t>(offset + len));
         send(chunk_);
         sentAt_[i] = now == 0 ? 1 : now;
+        sends_[i] = static_cast<uint8_t>(std::min(sends_[i] + 1, 2));
         ++sent;
         cursor_ = (i + 1) % chunkCount_;
     }

@@ -1,13 +1,16 @@
 #pragma once
 // Chunked snapshot transfer over an unreliable transport (late join, docs/net.md "Late
 // join"): the sender keeps a window of chunks in flight and resends each until its
-// SnapshotAck arrives; the receiver reassembles chunks in any order and acks every one.
+// SnapshotAck arrives; the receiver reassembles chunks in any order and acks every one. The
+// resend timer follows the round trip the acks show (chunks sent once only, as Karn's rule
+// says), so a receiver farther away than the configured timer does not get every chunk twice.
 
 #include <cstdint>
 #include <functional>
 #include <span>
 #include <vector>
 
+#include "SessionCommon.h"
 #include "lockbox/net/Protocol.h"
 
 namespace lockbox::net {
@@ -23,11 +26,15 @@ public:
     /// True when every chunk was acknowledged.
     bool Done() const noexcept { return active_ && acked_ == chunkCount_; }
     int32_t Frame() const noexcept { return frame_; }
-    /// Marks a chunk delivered (acks of another frame or out of range are ignored).
-    void OnAck(const SnapshotAck& ack) noexcept;
-    /// Calls `send` for each chunk that is due: never sent, or unacked for resendMicros; at
+    /// Marks a chunk delivered (acks of another frame or out of range are ignored); `now` (the
+    /// clock Pump is given) samples the round trip of a chunk that was sent once.
+    void OnAck(const SnapshotAck& ack, uint64_t now) noexcept;
+    /// Calls `send` for each chunk that is due: never sent, or unacked for ResendMicros; at
     /// most `window` chunks per call. Returns how many were sent.
     size_t Pump(uint64_t now, uint64_t resendMicros, size_t window, const std::function<void(const SnapshotChunk&)>& send);
+    /// The resend timer: `floor` until an ack gave a round trip, then the smoothed round trip
+    /// plus four deviations (RFC 6298's timeout), never below `floor` nor above one second.
+    uint64_t ResendMicros(uint64_t floor) const noexcept;
 
 private:
     bool active_ = false;
@@ -36,6 +43,8 @@ private:
     uint32_t chunkCount_ = 0, acked_ = 0;
     std::vector<uint8_t> ackedFlags_;
     std::vector<uint64_t> sentAt_;  ///< 0: never sent
+    std::vector<uint8_t> sends_;    ///< sends per chunk, saturating at 2 (only 1 gives a sample)
+    RttEstimator rtt_;              ///< kept across snapshots to the same receiver
     uint32_t cursor_ = 0;           ///< round-robin start, so resends do not starve later chunks
     SnapshotChunk chunk_;
 };

@@ -55,7 +55,8 @@ struct RollbackPeerConfig {
     /// Senders not listed anywhere whose first valid datagram carries an RbJoinRequest become
     /// late-join spectators, up to this many (0: only the listed spectators).
     uint32_t maxLateSpectators = 0;
-    /// A snapshot chunk not acked this long after it was sent goes again (microseconds, >= 1).
+    /// A snapshot chunk not acked this long after it was sent goes again (microseconds, >= 1);
+    /// once acks show the round trip, the resend waits at least that plus four deviations.
     uint64_t snapshotResendMicros = 100000;
     /// Snapshot chunk datagrams sent to one spectator per Flush, >= 1 (16: ~1 MB/s at 60 Hz).
     uint32_t snapshotChunksPerFlush = 16;
@@ -147,7 +148,7 @@ private:
     struct Spectator;
     Remote* Find(PeerId peer);
     Spectator* FindSpectator(PeerId peer);
-    void HandleSpectator(Spectator& s, const RollbackMessage& m);
+    void HandleSpectator(Spectator& s, const RollbackMessage& m, uint64_t now);
     // The disconnect agreement (RollbackAgreement.cpp).
     void DropRemote(Remote& r);
     void OnView(Remote& r, const RbView& v);
