@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ByteCursor.h"
+#include "JointState.h"
 #include "SnapshotImage.h"
 #include "StateWalk.h"
 
@@ -187,15 +188,6 @@ void ApplyFixtures(const Image& img, b2World& world) {
     }
 }
 
-/// Links an edge (contact or joint) at the head of a body's list.
-template <class Edge>
-void PrependEdge(Edge* e, Edge*& head) {
-    e->prev = nullptr;
-    e->next = head;
-    if (head != nullptr) head->prev = e;
-    head = e;
-}
-
 /// A contact's state from its image record, read from the flags field on (the layout of
 /// WriteContact; ReadContacts checked every value). Manifold points past the count are left
 /// as they are: they are never read.
@@ -224,8 +216,10 @@ void ApplyContactState(const uint8* at, b2Contact& c) {
     }
 }
 
-/// Links an edge at the tail of a body's list, given the list's current tail.
-inline void AppendEdge(b2ContactEdge* e, b2ContactEdge*& head, b2ContactEdge*& tail) {
+/// Links an edge (contact or joint) at the tail of a body's list, given the list's current
+/// tail.
+template <class Edge>
+void AppendEdge(Edge* e, Edge*& head, Edge*& tail) {
     e->prev = tail;
     e->next = nullptr;
     if (tail != nullptr) tail->next = e;
@@ -273,62 +267,50 @@ void ApplyContacts(Image& img, b2World& world) {
     cm.m_contactCount = static_cast<int32>(img.contacts.size());
 }
 
-/// Copies every field of src into dst (same concrete type); dst keeps its address.
-void AssignJoint(b2Joint& dst, const b2Joint& src) {
-    WithJointClass(src.GetType(), [&](auto cls) {
-        using T = typename decltype(cls)::type;
-        static_cast<T&>(dst) = static_cast<const T&>(src);
-    });
-}
-
-/// Bytes of a joint of the given type (its concrete class), for prefetching the whole object.
-size_t JointBytes(b2JointType type) {
-    size_t bytes = sizeof(b2Joint);
-    WithJointClass(type, [&](auto cls) { bytes = sizeof(typename decltype(cls)::type); });
-    return bytes;
+/// A joint's visited fields, straight from its record into the joint; solver temporaries
+/// are left as they are (every step recomputes them before use).
+void ReadJointState(const Image& img, const JointImage& ji, b2World& world) {
+    JointStateReader reader{ReadCursor(img.bytes + ji.stateAt), world};
+    VisitJointState(*world.m_joints[static_cast<size_t>(ji.id)], reader);
 }
 
 void ApplyJoints(Image& img, b2World& world) {
-    // The object each image joint ends up in: the world's joint of that id when the type
-    // matches (kept, same address), else the image's freshly built one.
     int32 maxId = -1;
     for (const JointImage& ji : img.joints) maxId = ji.id > maxId ? ji.id : maxId;
-    // Scratch held by the image: a restore does not allocate once these have grown.
-    std::vector<b2Joint*>& target = img.jointTargets;
-    target.assign(static_cast<size_t>(maxId + 1), nullptr);
-    std::vector<uint8>& keep = img.jointKeep;
-    keep.assign(world.m_joints.size(), 0);
-    for (JointImage& ji : img.joints) {
-        b2Joint* existing = world.GetJoint(ji.id);
-        const bool reuse = existing != nullptr && existing->GetType() == ji.type;
-        if (reuse) keep[static_cast<size_t>(ji.id)] = 1;
-        target[static_cast<size_t>(ji.id)] = reuse ? existing : ji.state.get();
-    }
-    // Joints that do not survive are freed without listener calls.
-    for (size_t id = 0; id < world.m_joints.size(); ++id) {
-        if (world.m_joints[id] != nullptr && keep[id] == 0) b2Joint::Destroy(world.m_joints[id]);
-    }
-    // References (gear joints) point at final objects.
-    for (RefImage& ref : img.refs) {
-        if (ref.isJoint) *static_cast<b2Joint**>(ref.slot) = target[static_cast<size_t>(ref.id)];
-        else *static_cast<b2Body**>(ref.slot) = world.m_bodies.Get(ref.id);
-    }
-    world.m_joints.assign(static_cast<size_t>(maxId + 1), nullptr);
-    world.m_jointIdHint = 0;
+    // The id table keeps the world's joints until each id is visited: a joint of the image's
+    // id and type is refilled where it is, any other is freed (no listener call) and made
+    // afresh. The table only grows here, so a warm restore does not allocate.
+    std::vector<b2Joint*>& table = world.m_joints;
+    if (table.size() < static_cast<size_t>(maxId + 1)) table.resize(static_cast<size_t>(maxId + 1), nullptr);
+    std::vector<uint8>& visited = img.jointVisited;
+    visited.assign(table.size(), 0);
+    // The last joint edge of each body so far, by body id (every body list starts empty).
+    std::vector<b2JointEdge*>& tails = img.jointEdgeTails;
+    tails.assign(static_cast<size_t>(img.bodyPool.capacity), nullptr);
+    const JointStateSizes& sizes = JointStateBytes();
     b2Joint* previous = nullptr;
     world.m_jointList = nullptr;
     const size_t count = img.joints.size();
     for (size_t i = 0; i < count; ++i) {
-        // Joints lie anywhere in memory and are copied whole: request both copies early.
+        // Joints lie anywhere in memory: request the parts written of the one a few records
+        // ahead, and its bodies' list heads (the image is read in order: the hardware streams
+        // it).
         if (i + kApplyPrefetch < count) {
             const JointImage& ahead = img.joints[i + kApplyPrefetch];
-            PrefetchBytes(target[static_cast<size_t>(ahead.id)], JointBytes(ahead.type));
-            PrefetchBytes(ahead.state.get(), JointBytes(ahead.type));
+            PrefetchJointFields(table[static_cast<size_t>(ahead.id)], sizes.chunks[static_cast<size_t>(ahead.type)]);
+            __builtin_prefetch(&world.m_bodies.Get(ahead.bodyA)->m_jointList);
+            __builtin_prefetch(&world.m_bodies.Get(ahead.bodyB)->m_jointList);
         }
-        JointImage& ji = img.joints[i];
-        b2Joint* j = target[static_cast<size_t>(ji.id)];
-        if (j == ji.state.get()) (void)ji.state.release();  // the world owns it now
-        else AssignJoint(*j, *ji.state);
+        const JointImage& ji = img.joints[i];
+        b2Joint*& slot = table[static_cast<size_t>(ji.id)];
+        if (slot == nullptr || slot->GetType() != ji.type) {
+            if (slot != nullptr) b2Joint::Destroy(slot);
+            slot = b2Joint::CreateEmpty(ji.type);
+        }
+        visited[static_cast<size_t>(ji.id)] = 1;
+        b2Joint* j = slot;
+        // Gear joints are read once every joint is in place (their references need them).
+        if (ji.type != e_gearJoint) ReadJointState(img, ji, world);
         j->m_id = ji.id;
         j->m_bodyA = world.m_bodies.Get(ji.bodyA);
         j->m_bodyB = world.m_bodies.Get(ji.bodyB);
@@ -338,22 +320,26 @@ void ApplyJoints(Image& img, b2World& world) {
         j->m_islandFlag = false;
         j->m_edgeA = b2JointEdge{j->m_bodyB, j, nullptr, nullptr};
         j->m_edgeB = b2JointEdge{j->m_bodyA, j, nullptr, nullptr};
-        world.m_joints[static_cast<size_t>(ji.id)] = j;
         AppendToWorldList(j, world.m_jointList, previous);
+        // Each body's edges are in world-list order, B before A when both sides are on one
+        // body (CreateJoint prepends A, then B; StateWalk.h): appended now, while the joint
+        // is in cache (a second pass missed on every joint).
+        AppendEdge(&j->m_edgeB, j->m_bodyB->m_jointList, tails[static_cast<size_t>(ji.bodyB)]);
+        AppendEdge(&j->m_edgeA, j->m_bodyA->m_jointList, tails[static_cast<size_t>(ji.bodyA)]);
     }
-    world.m_jointCount = static_cast<int32>(img.joints.size());
-    for (size_t k = count; k-- > 0;) {
-        // The bodies' list heads are misses too: request them once the joint ahead is here.
-        if (k >= 2 * kApplyPrefetch) PrefetchObject(world.m_joints[static_cast<size_t>(img.joints[k - 2 * kApplyPrefetch].id)]);
-        if (k >= kApplyPrefetch) {
-            const b2Joint* ahead = world.m_joints[static_cast<size_t>(img.joints[k - kApplyPrefetch].id)];
-            __builtin_prefetch(&ahead->m_bodyA->m_jointList);
-            __builtin_prefetch(&ahead->m_bodyB->m_jointList);
+    // The world's joints the image does not hold.
+    for (size_t id = 0; id < table.size(); ++id) {
+        if (visited[id] == 0 && table[id] != nullptr) {
+            b2Joint::Destroy(table[id]);
+            table[id] = nullptr;
         }
-        b2Joint* j = world.m_joints[static_cast<size_t>(img.joints[k].id)];
-        PrependEdge(&j->m_edgeA, j->m_bodyA->m_jointList);
-        PrependEdge(&j->m_edgeB, j->m_bodyB->m_jointList);
     }
+    table.resize(static_cast<size_t>(maxId + 1));
+    for (const JointImage& ji : img.joints) {
+        if (ji.type == e_gearJoint) ReadJointState(img, ji, world);
+    }
+    world.m_jointIdHint = 0;
+    world.m_jointCount = static_cast<int32>(count);
 }
 
 void ApplySettings(const SettingsImage& s, b2World& world) {

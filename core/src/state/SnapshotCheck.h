@@ -32,6 +32,14 @@ struct SnapshotFailure {
     if (!ok) [[unlikely]] FailCheck(what, problem, value);
 }
 
+/// A boolean field: 0 or 1, anything else is corrupt.
+template <class R>
+bool ReadBool(R& r, const char* what) {
+    const uint8 b = r.U8();
+    Check(b <= 1, what, "is not 0 or 1", b);
+    return b != 0;
+}
+
 inline std::string Hex(uint64 v) {
     char text[24];
     std::snprintf(text, sizeof text, "0x%llx", static_cast<unsigned long long>(v));

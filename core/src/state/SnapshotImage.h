@@ -3,7 +3,6 @@
 // that Restore can refuse a bad image before it touches anything (SnapshotParse.cpp reads
 // and checks it, SnapshotApply.cpp installs it).
 
-#include <memory>
 #include <span>
 #include <vector>
 
@@ -107,21 +106,24 @@ struct ContactImage {
     uint32 stateAt = 0;  ///< offset in Image::bytes of the record's flags field
 };
 
+/// A joint's checked head and references; its state fields (VisitState) are checked at
+/// parse and read again from the image bytes straight into the world's joint when applied
+/// (JointState.h), as for bodies and contacts.
 struct JointImage {
     int32 id = -1;
     b2JointType type = e_unknownJoint;
     int32 bodyA = -1, bodyB = -1;
     bool collideConnected = false;
     uint64 userData = 0;
-    std::unique_ptr<b2Joint> state;  ///< an empty joint of `type` holding the visited fields
+    uint32 stateAt = 0;  ///< offset in Image::bytes of the record's first VisitState field
     int32 refBegin = 0, refCount = 0;  ///< body/joint references in Image::refs
 };
 
-/// A reference read by a joint's VisitState (gear joints), resolved after parsing.
+/// A reference read by a joint's VisitState (gear joints), for the cross-reference checks;
+/// the apply resolves it again from the record.
 struct RefImage {
     bool isJoint = false;
     int32 id = -1;
-    void* slot = nullptr;  ///< the b2Body** or b2Joint** inside JointImage::state
 };
 
 struct TreeImage {
@@ -157,10 +159,10 @@ struct Image {
     std::vector<FixtureFacts> fixtureFacts;
     /// Restore scratch: the last contact edge of each body while the lists are rebuilt.
     std::vector<b2ContactEdge*> edgeTails;
-    /// Restore scratch: the object each image joint ends up in, by joint id, and which of the
-    /// world's joints survive.
-    std::vector<b2Joint*> jointTargets;
-    std::vector<uint8> jointKeep;
+    /// Restore scratch: which joint ids the image has visited, and the last joint edge of
+    /// each body while the lists are rebuilt.
+    std::vector<uint8> jointVisited;
+    std::vector<b2JointEdge*> jointEdgeTails;
     std::vector<uint8> seen;
 
     /// Empties the lists before a parse; capacity is kept.

@@ -15,17 +15,11 @@
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 #include "lockbox/state/WorldHash.h"
+#include "JointState.h"
 #include "StateWalk.h"
 
 namespace lockbox::state_detail {
 namespace {
-
-template <class R>
-bool ReadBool(R& r, const char* what) {
-    const uint8 b = r.U8();
-    Check(b <= 1, what, "is not 0 or 1", b);
-    return b != 0;
-}
 
 /// Checks a count read from a record (as ReadCount) once the record has been consumed.
 int32 CheckCount(const FieldReader& r, int32 n, size_t minBytes, const char* what) {
@@ -259,40 +253,27 @@ void ReadContacts(FieldReader& r, Image& img) {
     }
 }
 
-/// Reads a joint's VisitState fields into an empty joint; references are queued.
-struct JointFieldReader {
-    FieldReader& r;
-    Image& img;
-    template <class... T>
-    void operator()(T&... fields) {
-        (Get(fields), ...);
-    }
-    void Get(Fixed& x) { x = r.F(); }
-    void Get(Wide& x) { x = r.W(); }
-    void Get(b2Vec2& x) { x = r.V(); }
-    void Get(b2WideVec2& x) {
-        x.x = r.W();
-        x.y = r.W();
-    }
-    void Get(b2WideVec3& x) {
-        x.x = r.W();
-        x.y = r.W();
-        x.z = r.W();
-    }
-    void Get(bool& x) { x = ReadBool(r, "joint flag"); }
-    void Get(b2LimitState& x) {
-        const uint8 v = r.U8();
-        Check(v <= e_equalLimits, "joint.limitState", "is not a limit state", v);
-        x = static_cast<b2LimitState>(v);
-    }
-    void Get(b2JointType& x) {
-        const uint8 v = r.U8();
-        Check(v == e_revoluteJoint || v == e_prismaticJoint, "gear.side.type", "is not revolute or prismatic", v);
-        x = static_cast<b2JointType>(v);
-    }
-    void BodyRef(b2Body*& slot) { img.refs.push_back({false, r.I32(), &slot}); }
-    void JointRef(b2Joint*& slot) { img.refs.push_back({true, r.I32(), &slot}); }
-};
+/// The fixed head of a joint record (id, type, bodies, collideConnected, user data).
+constexpr size_t kJointHeadBytes = 4 + 1 + 4 + 4 + 1 + 8;
+
+/// One joint record from R (a ReadCursor or the FieldReader, see ReadJoints); the state
+/// fields are checked where they lie and only their offset and references are kept.
+template <class R>
+void ReadJoint(R& r, JointImage& j, Image& img, size_t recordAt) {
+    j.id = r.I32();
+    const uint8 type = r.U8();
+    Check(type >= e_revoluteJoint && type <= e_ropeJoint, "joint.type", "is not a joint type", type);
+    j.type = static_cast<b2JointType>(type);
+    j.bodyA = r.I32();
+    j.bodyB = r.I32();
+    j.collideConnected = ReadBool(r, "joint.collideConnected");
+    j.userData = r.U64();
+    j.stateAt = static_cast<uint32>(recordAt + kJointHeadBytes);
+    j.refBegin = static_cast<int32>(img.refs.size());
+    JointStateCheck<R> check{r, img.refs};
+    VisitJointFields(j.type, check);
+    j.refCount = static_cast<int32>(img.refs.size()) - j.refBegin;
+}
 
 void ReadJoints(FieldReader& r, Image& img) {
     const int32 n = img.settings.jointCount;
@@ -300,22 +281,19 @@ void ReadJoints(FieldReader& r, Image& img) {
         Fail(b2SnapshotError::e_truncated, "joints: settings.jointCount " + std::to_string(n) + " exceeds the bytes left");
     }
     img.joints.resize(static_cast<size_t>(n));
+    // A record of any type fits in this many bytes: when that many are left, the record is
+    // read through one unchecked cursor; near the end of the image, field by field, so a
+    // record running past it fails at the same field as ever.
+    const size_t maxRecord = kJointHeadBytes + JointStateBytes().largest;
     for (JointImage& j : img.joints) {
-        j.id = r.I32();
-        const uint8 type = r.U8();
-        Check(type >= e_revoluteJoint && type <= e_ropeJoint, "joint.type", "is not a joint type", type);
-        j.type = static_cast<b2JointType>(type);
-        j.bodyA = r.I32();
-        j.bodyB = r.I32();
-        j.collideConnected = ReadBool(r, "joint.collideConnected");
-        j.userData = r.U64();
-        // A reused scratch joint of the right type is refilled (VisitState sets every
-        // persistent field); the solver temporaries it keeps are recomputed before use.
-        if (!j.state || j.state->GetType() != j.type) j.state.reset(b2Joint::CreateEmpty(j.type));
-        j.refBegin = static_cast<int32>(img.refs.size());
-        JointFieldReader reader{r, img};
-        VisitJointState(*j.state, reader);
-        j.refCount = static_cast<int32>(img.refs.size()) - j.refBegin;
+        const size_t at = r.Position();
+        if (r.Remaining() >= maxRecord) {
+            ReadCursor c = r.Begin(maxRecord);
+            ReadJoint(c, j, img, at);
+            r.End(c);
+        } else {
+            ReadJoint(r, j, img, at);
+        }
     }
 }
 
