@@ -163,7 +163,6 @@ struct Image {
     /// each body while the lists are rebuilt.
     std::vector<uint8> jointVisited;
     std::vector<b2JointEdge*> jointEdgeTails;
-    std::vector<uint8> seen;
 
     /// Empties the lists before a parse; capacity is kept.
     void Clear() {
