@@ -15,13 +15,23 @@
 
 namespace lockbox::net {
 
-void RollbackPeer::DropRemote(Remote& r) {
+void RollbackPeer::DropRemote(Remote& r, bool tell) {
     if (!r.alive) return;
     r.alive = false;
     r.interrupted = false;
     session_.DropPeer(r.index);
     // Freeze at what this peer holds now; the agreement may lower it to a survivor's value.
     for (uint32_t p : r.players) session_.FreezePlayer(p);
+    if (tell && !left_) {
+        // It may still run (a half-broken link, a long stall): a few copies of its players'
+        // frozen values tell it it is out (e_removed there) instead of letting it play on alone.
+        writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+        for (uint32_t p : r.players)
+            if (session_.FrozenFrame(p) >= 0)
+                writer_.Add(RbFrozen{static_cast<uint8_t>(p), session_.FrozenFrame(p)}, shape_, transport_.MaxDatagram());
+        for (int copy = 0; copy < 3 && writer_.MessageCount() > 0; ++copy)
+            if (transport_.Send(r.peer, writer_.Bytes())) ++stats_.datagramsSent;
+    }
     // One peer fewer to wait for: agreements pending on its value may complete now.
     TryAgree();
 }
@@ -39,9 +49,14 @@ void RollbackPeer::OnView(Remote& r, const RbView& v) {
 
 void RollbackPeer::OnFrozen(Remote& r, const RbFrozen& f) {
     const uint32_t p = f.player;
-    if (p >= shape_.players || session_.IsLocal(p)) {
+    if (p >= shape_.players) return;
+    if (session_.IsLocal(p)) {
         // This peer is named gone: the others no longer count it. Nothing here can undo
-        // that; it will stop hearing them and time them out.
+        // that (it will stop hearing them and time them out), but the game learns it now.
+        if (!removed_[p]) {
+            removed_[p] = true;
+            session_.RaiseRemoved(p, f.frame);
+        }
         return;
     }
     if (std::find(r.players.begin(), r.players.end(), p) != r.players.end()) return;  // about itself

@@ -179,6 +179,10 @@ RollbackIncompatibility RollbackPeer::RemoteIncompatibility(size_t index) const 
     return index < remotes_.size() ? remotes_[index].incompatible : RollbackIncompatibility::e_none;
 }
 
+bool RollbackPeer::RemovedFromMatch() const noexcept {
+    return std::any_of(removed_.begin(), removed_.end(), [](bool r) { return r; });
+}
+
 size_t RollbackPeer::IncompatibleSpectators() const noexcept {
     return static_cast<size_t>(std::count_if(spectators_.begin(), spectators_.end(),
                                              [](const Spectator& s) { return s.incompatible; }));
@@ -226,7 +230,7 @@ void RollbackPeer::Handle(Remote& r, const RollbackMessage& m, uint64_t now) {
     } else if (const auto* fz = std::get_if<RbFrozen>(&m)) {
         OnFrozen(r, *fz);
     } else if (std::holds_alternative<RbDisconnect>(m)) {
-        DropRemote(r);
+        DropRemote(r, false);  // it left: nothing to tell
     }
 }
 

@@ -260,6 +260,14 @@ void RollbackSession::RaiseIncompatible(uint32_t peerTag, RollbackIncompatibilit
     impl_->events.push_back(e);
 }
 
+void RollbackSession::RaiseRemoved(uint32_t player, int32_t frame) {
+    RollbackEvent e;
+    e.kind = RollbackEvent::Kind::e_removed;
+    e.frame = frame;
+    e.player = player;
+    impl_->events.push_back(e);
+}
+
 int32_t RollbackSession::CurrentFrame() const noexcept { return impl_->current; }
 int32_t RollbackSession::ConfirmedFrame() const noexcept { return impl_->Final(); }
 int32_t RollbackSession::HeldFrame() const noexcept { return impl_->Held(); }

@@ -215,7 +215,7 @@ TEST(RollbackLeaveMore, TwoPeersLeaveOneAfterTheOther) {
 // A half-broken link: peer 2's datagrams stop reaching peer 0, while peer 1 still hears it
 // and peer 2 never leaves. Peer 0 times it out and says so; peer 1 cuts it too (gossip) at
 // peer 0's smaller frozen frame, although it still hears it. Peer 2, named gone, is out of
-// the match: it stops hearing the others and plays on alone.
+// the match: it is told so at once (e_removed), stops hearing the others and plays on alone.
 TEST(RollbackLeaveMore, HalfBrokenLinkGossip) {
     RbSpec spec;
     spec.seed = 35001;
@@ -230,6 +230,22 @@ TEST(RollbackLeaveMore, HalfBrokenLinkGossip) {
     EXPECT_FALSE(r.peers[1].net->RemoteAlive(1)) << spec.Describe();  // peer 1's remotes: 0, 2
     EXPECT_LT(r.peers[0].session->FrozenFrame(2), r.peers[1].session->FrozenFrame(2)) << spec.Describe();
     EXPECT_FALSE(r.peers[2].session->IsDisconnected(2)) << spec.Describe();  // its own player: never
+    // Peer 2 learns it was named gone once, at a frame one of the others froze it at.
+    int removed = 0;
+    for (const RollbackEvent& e : r.peers[2].events) {
+        if (e.kind != RollbackEvent::Kind::e_removed) continue;
+        ++removed;
+        EXPECT_EQ(e.player, 2u);
+        EXPECT_TRUE(e.frame == r.peers[0].session->FrozenFrame(2) || e.frame == r.peers[1].session->FrozenFrame(2))
+            << "removed at " << e.frame << "; " << spec.Describe();
+    }
+    EXPECT_EQ(removed, 1) << spec.Describe();
+    EXPECT_TRUE(r.peers[2].net->RemovedFromMatch());
+    // The survivors were never named gone.
+    for (uint32_t i = 0; i < 2; ++i) {
+        EXPECT_FALSE(r.peers[i].net->RemovedFromMatch());
+        for (const RollbackEvent& e : r.peers[i].events) EXPECT_NE(e.kind, RollbackEvent::Kind::e_removed);
+    }
 }
 
 }  // namespace

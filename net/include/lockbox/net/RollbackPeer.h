@@ -23,6 +23,7 @@
 /// believes it is ahead of the receiver, RTT taken into account). The peer that is ahead
 /// idles one tick at a time, spread out (WaitThisTick), until the peers line up.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -140,6 +141,9 @@ public:
     RollbackIncompatibility RemoteIncompatibility(size_t index) const noexcept;
     /// Spectators refused as incompatible (their hello named another version or shape).
     size_t IncompatibleSpectators() const noexcept;
+    /// True once a remote named one of this peer's players gone (an e_removed event said so):
+    /// the others are cutting this peer out of the match.
+    bool RemovedFromMatch() const noexcept;
     /// Counters since construction.
     const RollbackPeerStats& Stats() const noexcept { return stats_; }
 
@@ -150,7 +154,7 @@ private:
     Spectator* FindSpectator(PeerId peer);
     void HandleSpectator(Spectator& s, const RollbackMessage& m, uint64_t now);
     // The disconnect agreement (RollbackAgreement.cpp).
-    void DropRemote(Remote& r);
+    void DropRemote(Remote& r, bool tell = true);
     void OnView(Remote& r, const RbView& v);
     void OnFrozen(Remote& r, const RbFrozen& f);
     void TryAgree();
@@ -179,6 +183,7 @@ private:
     RollbackPeerStats stats_;
     uint32_t ticksSinceWait_ = 0;
     bool left_ = false;
+    std::array<bool, kRollbackMaxPlayers> removed_{};  // local players a remote named gone
 };
 
 }  // namespace lockbox::net

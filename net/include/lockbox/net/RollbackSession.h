@@ -102,6 +102,10 @@ struct RollbackEvent {
         /// its datagrams are refused from now on, so it times out like a silent peer (and its
         /// players are cut). Once per remote; `frame` is the current frame.
         e_incompatible = 5,
+        /// The other peers consider this peer gone: a remote announced local player `player`
+        /// frozen at `frame` (it timed this peer out, or heard so from another). They will cut
+        /// it; this peer is out of the match and should end it. Once per local player.
+        e_removed = 6,
     };
     Kind kind = Kind::e_desync;
     int32_t frame = 0;
@@ -253,6 +257,9 @@ public:
     void RaiseConnectionEvent(RollbackEvent::Kind kind, uint32_t peerTag);
     /// Queues an e_incompatible event about remote peer `peerTag` (called by RollbackPeer).
     void RaiseIncompatible(uint32_t peerTag, RollbackIncompatibility why);
+    /// Queues an e_removed event: local player `player` named frozen at `frame` by a remote
+    /// (called by RollbackPeer, once per player).
+    void RaiseRemoved(uint32_t player, int32_t frame);
 
     /// The frame the next Advance will step (the number of frames simulated).
     int32_t CurrentFrame() const noexcept;
