@@ -109,7 +109,9 @@ struct RollbackEvent {
     };
     Kind kind = Kind::e_desync;
     int32_t frame = 0;
-    uint32_t player = 0;      ///< the player (disconnected) or the remote peer tag (desync)
+    /// The player (e_disconnected, e_removed: a local one) or the remote peer tag (e_desync,
+    /// e_interrupted, e_resumed, e_incompatible).
+    uint32_t player = 0;
     uint64_t localHash = 0;   ///< desync: ours
     uint64_t remoteHash = 0;  ///< desync: theirs
     RollbackIncompatibility incompatibility = RollbackIncompatibility::e_none;  ///< e_incompatible: why
