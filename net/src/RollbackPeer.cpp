@@ -85,7 +85,10 @@ void RollbackPeer::Poll() {
         const DecodeError error = DecodeRollbackDatagram(d.bytes, shape_, header, messages_);
         Remote* r = Find(d.peer);
         Spectator* spec = r == nullptr ? FindSpectator(d.peer) : nullptr;
-        const RollbackIncompatibility why = Check(d, error, header);
+        // A stranger showing any reason is refused like any bad datagram; a known sender is
+        // also named (once) and refused from then on.
+        const RollbackIncompatibility why =
+            FindIncompatibility(error, header, messages_, config_.matchId, config_.determinismVersion);
         if (why != RollbackIncompatibility::e_none) {
             // Named once; refused from now on, so the remote times out as a silent one would.
             if (r != nullptr && r->alive && r->incompatible == RollbackIncompatibility::e_none) {
@@ -94,7 +97,8 @@ void RollbackPeer::Poll() {
             }
             if (spec != nullptr) spec->incompatible = true;
         }
-        if (error != DecodeError::e_ok || header.matchId != config_.matchId || why != RollbackIncompatibility::e_none ||
+        // A match id other than ours is a reason too (FindIncompatibility), so it is refused here.
+        if (error != DecodeError::e_ok || why != RollbackIncompatibility::e_none ||
             (r != nullptr && r->incompatible != RollbackIncompatibility::e_none) ||
             (spec != nullptr && spec->incompatible)) {
             ++stats_.refused;
@@ -143,28 +147,10 @@ void RollbackPeer::Poll() {
     }
 }
 
-// Only a sender this peer knows (a remote or a spectator) can be incompatible; a stranger's
-// datagram that fails any check is just refused.
-RollbackIncompatibility RollbackPeer::Check(const Datagram& d, DecodeError error, const RollbackHeader& header) const {
-    const bool known = std::any_of(remotes_.begin(), remotes_.end(), [&](const Remote& r) { return r.peer == d.peer; }) ||
-                       std::any_of(spectators_.begin(), spectators_.end(), [&](const Spectator& s) { return s.peer == d.peer; });
-    if (!known && error == DecodeError::e_ok) {
-        // A would-be late joiner is held to the same hello as everyone.
-        for (const RollbackMessage& m : messages_)
-            if (const auto* hello = std::get_if<RbHello>(&m); hello && hello->determinismVersion != config_.determinismVersion)
-                return RollbackIncompatibility::e_determinismVersion;
-        return RollbackIncompatibility::e_none;
-    }
-    if (!known) return RollbackIncompatibility::e_none;
-    return FindIncompatibility(error, header, messages_, config_.matchId, config_.determinismVersion);
-}
-
 // A hello goes first in a datagram, before anything that needs the shape to be read.
 void RollbackPeer::BeginDatagram(bool hello, size_t limit) {
     writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
-    if (hello)
-        writer_.Add(RbHello{config_.determinismVersion, static_cast<uint8_t>(shape_.players), shape_.inputBytes}, shape_,
-                    limit);
+    if (hello) writer_.Add(HelloFor(config_.determinismVersion, shape_), shape_, limit);
 }
 
 // The remote took one of our inputs, so it read a datagram of ours with a hello and found us

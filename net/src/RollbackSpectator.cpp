@@ -87,7 +87,7 @@ void RollbackSpectator::Poll() {
             frames_.clear();
             snapshot_.clear();
         }
-        if (error != DecodeError::e_ok || header.matchId != config_.matchId || why != RollbackIncompatibility::e_none) {
+        if (error != DecodeError::e_ok || why != RollbackIncompatibility::e_none) {  // another match id is a reason
             ++refused_;
             continue;
         }
@@ -116,7 +116,7 @@ void RollbackSpectator::Poll() {
 
 void RollbackSpectator::Flush() {
     const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
-    const RbHello hello{config_.determinismVersion, static_cast<uint8_t>(config_.players), config_.inputBytes};
+    const RbHello hello = HelloFor(config_.determinismVersion, shape_);
     writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
     writer_.Add(hello, shape_, limit);
     if (state_ == SpectatorState::e_incompatible) {

@@ -68,13 +68,12 @@ struct FieldChunks {
     }
 };
 
-/// Per joint type: the bytes of its state fields (the save's own writer, JointFieldWriter,
-/// counted, so the sizes cannot drift from the format) and the chunks of the object a
+/// The most bytes any joint type's state fields take (the save's own writer, JointFieldWriter,
+/// counted, so the size cannot drift from the format) and, per type, the chunks of the object a
 /// restore writes (found on the prototype, so they follow the class layout). Solver
 /// temporaries lie in other chunks, about half of a revolute joint: a restore leaves them
 /// alone and need not load them.
 struct JointStateSizes {
-    std::array<uint32, e_ropeJoint + 1> bytes{};
     std::array<uint64, e_ropeJoint + 1> chunks{};
     uint32 largest = 0;
 };
@@ -86,7 +85,6 @@ inline const JointStateSizes& JointStateBytes() {
             ByteCount count;
             JointFieldWriter<ByteCount> writer{count};
             VisitJointFields(static_cast<b2JointType>(t), writer);
-            s.bytes[static_cast<size_t>(t)] = static_cast<uint32>(count.bytes);
             if (count.bytes > s.largest) s.largest = static_cast<uint32>(count.bytes);
             WithJointClass(static_cast<b2JointType>(t), [&](auto cls) {
                 using T = typename decltype(cls)::type;

@@ -166,7 +166,6 @@ private:
     void SendSpectator(Spectator& s);
     void BeginDatagram(bool hello, size_t limit);
     bool HelloAcked(const Remote& r) const noexcept;
-    RollbackIncompatibility Check(const Datagram& d, DecodeError error, const RollbackHeader& header) const;
     int32_t LocalAdvantageMilli(const Remote& r, uint64_t now) const;
 
     RollbackSession& session_;

@@ -196,6 +196,11 @@ struct RollbackShape {
     uint32_t inputBytes = 0;  ///< 1 .. kRollbackMaxInputBytes
 };
 
+/// The hello of a sender simulating with `determinismVersion` and `shape`.
+inline RbHello HelloFor(uint32_t determinismVersion, const RollbackShape& shape) noexcept {
+    return RbHello{determinismVersion, static_cast<uint8_t>(shape.players), shape.inputBytes};
+}
+
 /// Decodes a whole datagram (messages appended to `out` after clearing it; empty on error,
 /// except e_incompatible: an RbHello for another shape, which is then all `out` holds).
 DecodeError DecodeRollbackDatagram(std::span<const uint8_t> datagram, const RollbackShape& shape,
