@@ -51,6 +51,23 @@ void b2Island::Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapac
     Clear();
 }
 
+b2ContactSolverDef b2Island::ContactSolverDef(const b2TimeStep& step) {
+    const size_t count = static_cast<size_t>(m_contactCount);
+    if (m_velocityConstraints.size() < count) {
+        m_positionConstraints.resize(count);
+        m_velocityConstraints.resize(count);
+    }
+    b2ContactSolverDef def;
+    def.step = step;
+    def.contacts = m_contacts.data();
+    def.count = m_contactCount;
+    def.positions = m_positions.data();
+    def.velocities = m_velocities.data();
+    def.positionConstraints = m_positionConstraints.data();
+    def.velocityConstraints = m_velocityConstraints.data();
+    return def;
+}
+
 void b2Island::Add(b2Body* body) {
     body->m_islandIndex = m_bodyCount;
     m_bodies[static_cast<size_t>(m_bodyCount++)] = body;
@@ -110,13 +127,7 @@ void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     solverData.positions = m_positions.data();
     solverData.velocities = m_velocities.data();
 
-    b2ContactSolverDef contactSolverDef;
-    contactSolverDef.step = step;
-    contactSolverDef.contacts = m_contacts.data();
-    contactSolverDef.count = m_contactCount;
-    contactSolverDef.positions = m_positions.data();
-    contactSolverDef.velocities = m_velocities.data();
-
+    b2ContactSolverDef contactSolverDef = ContactSolverDef(step);
     b2ContactSolver contactSolver(&contactSolverDef);
     contactSolver.InitializeVelocityConstraints();
     profile->contactConstraints += m_contactCount;
@@ -173,7 +184,7 @@ void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     }
     profile->solvePositionNs += Nanos(timer);
 
-    Report(profile, contactSolver.m_velocityConstraints.data());
+    Report(profile, contactSolver.m_velocityConstraints);
 
     if (allowSleep) {
         // The sleep timer counts whole steps (NUMERICS Table 4: summing h in Q16.16 takes 31
@@ -211,12 +222,7 @@ void b2Island::SolveTOI(b2Profile* profile, const b2TimeStep& subStep, int32 toi
         m_velocities[static_cast<size_t>(i)].w = b->m_angularVelocity;
     }
 
-    b2ContactSolverDef contactSolverDef;
-    contactSolverDef.contacts = m_contacts.data();
-    contactSolverDef.count = m_contactCount;
-    contactSolverDef.step = subStep;
-    contactSolverDef.positions = m_positions.data();
-    contactSolverDef.velocities = m_velocities.data();
+    b2ContactSolverDef contactSolverDef = ContactSolverDef(subStep);
     b2ContactSolver contactSolver(&contactSolverDef);
 
     // Solve position constraints.
@@ -252,7 +258,7 @@ void b2Island::SolveTOI(b2Profile* profile, const b2TimeStep& subStep, int32 toi
         body->SynchronizeTransform();
     }
 
-    Report(profile, contactSolver.m_velocityConstraints.data());
+    Report(profile, contactSolver.m_velocityConstraints);
 }
 
 void b2Island::Report(b2Profile* profile, const b2ContactVelocityConstraint* constraints) {

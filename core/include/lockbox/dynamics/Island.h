@@ -6,6 +6,7 @@
 
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/TimeStep.h"
+#include "lockbox/dynamics/contacts/ContactSolver.h"
 #include "lockbox/fixed/Math.h"
 
 namespace lockbox {
@@ -16,8 +17,6 @@ class b2Joint;
 class b2ContactListener;
 class b2StepObserver;
 enum class b2IslandPhase : uint32;
-class b2ContactSolver;
-struct b2ContactVelocityConstraint;
 
 /// An island: buffers reused between islands and steps (capacity grows, never shrinks).
 class b2Island {
@@ -50,6 +49,9 @@ public:
     /// Calls PostSolve for every contact with the impulses of its constraint.
     void Report(b2Profile* profile, const b2ContactVelocityConstraint* constraints);
 
+    /// A contact-solver definition over this island, its constraint storage grown to fit.
+    b2ContactSolverDef ContactSolverDef(const b2TimeStep& step);
+
     b2ContactListener* m_listener = nullptr;
     b2StepObserver* m_observer = nullptr;  ///< island fenceposts of the discrete solve (not state)
     std::vector<b2Body*> m_bodies;
@@ -57,6 +59,9 @@ public:
     std::vector<b2Joint*> m_joints;
     std::vector<b2Position> m_positions;
     std::vector<b2Velocity> m_velocities;
+    // Contact-solver storage, sized to the largest island so far (grown, never shrunk).
+    std::vector<b2ContactPositionConstraint> m_positionConstraints;
+    std::vector<b2ContactVelocityConstraint> m_velocityConstraints;
     int32 m_bodyCount = 0;
     int32 m_jointCount = 0;
     int32 m_contactCount = 0;

@@ -43,10 +43,16 @@ bool InvertBlock(const b2WideSym22& K, b2WideSym22* inverse) {
 }  // namespace
 
 b2ContactSolver::b2ContactSolver(b2ContactSolverDef* def)
-    : m_step(def->step), m_positions(def->positions), m_velocities(def->velocities), m_contacts(def->contacts),
+    : m_step(def->step),
+      m_positions(def->positions),
+      m_velocities(def->velocities),
+      m_positionConstraints(def->positionConstraints),
+      m_velocityConstraints(def->velocityConstraints),
+      m_contacts(def->contacts),
       m_count(def->count) {
-    m_positionConstraints.resize(static_cast<size_t>(m_count));
-    m_velocityConstraints.resize(static_cast<size_t>(m_count));
+    // The constraint storage holds the previous island's values: every field read later is
+    // written here or in InitializeVelocityConstraints (K and normalMass only for the block
+    // solver, which alone reads them).
 
     for (int32 i = 0; i < m_count; ++i) {
         b2Contact* contact = m_contacts[i];
@@ -92,6 +98,9 @@ b2ContactSolver::b2ContactSolver(b2ContactSolverDef* def)
                 // dtRatio is exactly 1 for a fixed step (inv_dt is derived from dt).
                 vcp->normalImpulse = cp->normalImpulse * m_step.dtRatio;
                 vcp->tangentImpulse = cp->tangentImpulse * m_step.dtRatio;
+            } else {
+                vcp->normalImpulse = Wide();
+                vcp->tangentImpulse = Wide();
             }
             pc->localPoints[j] = cp->localPoint;
         }

@@ -50,11 +50,11 @@ struct PositionSolverManifold {
 };
 
 // One pass over all constraints; returns the smallest separation seen (m, <= 0).
-Fixed SolvePass(std::vector<b2ContactPositionConstraint>& constraints, b2Position* positions, Fixed baumgarte,
+Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 count, b2Position* positions, Fixed baumgarte,
                 bool toi, int32 toiIndexA, int32 toiIndexB) {
     Fixed minSeparation;
-    for (b2ContactPositionConstraint& pcRef : constraints) {
-        const b2ContactPositionConstraint* pc = &pcRef;
+    for (int32 i = 0; i < count; ++i) {
+        const b2ContactPositionConstraint* pc = constraints + i;
         const int32 indexA = pc->indexA;
         const int32 indexB = pc->indexB;
         Wide mA = pc->invMassA, iA = pc->invIA;
@@ -130,7 +130,7 @@ Fixed SolvePass(std::vector<b2ContactPositionConstraint>& constraints, b2Positio
 }  // namespace
 
 bool b2ContactSolver::SolvePositionConstraints() {
-    const Fixed minSeparation = SolvePass(m_positionConstraints, m_positions, b2_baumgarte, false, -1, -1);
+    const Fixed minSeparation = SolvePass(m_positionConstraints, m_count, m_positions, b2_baumgarte, false, -1, -1);
     // Box2D accepts an overlap of up to 3 linearSlop (m, raw 984) since it is pushing the
     // separation toward -linearSlop.
     return minSeparation >= Fixed::FromRaw(-3 * b2_linearSlop.Raw());
@@ -138,7 +138,7 @@ bool b2ContactSolver::SolvePositionConstraints() {
 
 bool b2ContactSolver::SolveTOIPositionConstraints(int32 toiIndexA, int32 toiIndexB) {
     const Fixed minSeparation =
-        SolvePass(m_positionConstraints, m_positions, b2_toiBaugarte, true, toiIndexA, toiIndexB);
+        SolvePass(m_positionConstraints, m_count, m_positions, b2_toiBaugarte, true, toiIndexA, toiIndexB);
     // TOI tolerance 1.5 linearSlop (m, raw 492), as Box2D.
     return minSeparation >= Fixed::FromRaw(-3 * b2_linearSlop.Raw() / 2);
 }

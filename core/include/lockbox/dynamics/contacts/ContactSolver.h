@@ -8,8 +8,6 @@
 /// block solver's condition test k11^2 < 1000 (k11 k22 - k12^2) is evaluated exactly in
 /// 128 bits (NUMERICS Table 1: it overflows Q32.32).
 
-#include <vector>
-
 #include "lockbox/collision/Collision.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/TimeStep.h"
@@ -74,6 +72,10 @@ struct b2ContactSolverDef {
     int32 count = 0;
     b2Position* positions = nullptr;
     b2Velocity* velocities = nullptr;
+    /// Room for `count` constraints of each kind, owned by the caller and reused between
+    /// islands and steps (no allocation per island). The solver writes every field it reads.
+    b2ContactPositionConstraint* positionConstraints = nullptr;
+    b2ContactVelocityConstraint* velocityConstraints = nullptr;
 };
 
 /// Solves the contacts of one island.
@@ -99,8 +101,8 @@ public:
     b2TimeStep m_step;
     b2Position* m_positions;
     b2Velocity* m_velocities;
-    std::vector<b2ContactPositionConstraint> m_positionConstraints;
-    std::vector<b2ContactVelocityConstraint> m_velocityConstraints;
+    b2ContactPositionConstraint* m_positionConstraints;
+    b2ContactVelocityConstraint* m_velocityConstraints;
     b2Contact** m_contacts;
     int32 m_count;
 };
