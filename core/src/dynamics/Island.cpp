@@ -45,6 +45,7 @@ void b2Island::Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapac
         m_bodies.resize(static_cast<size_t>(bodyCapacity));
         m_positions.resize(static_cast<size_t>(bodyCapacity));
         m_velocities.resize(static_cast<size_t>(bodyCapacity));
+        m_rotations.resize(static_cast<size_t>(bodyCapacity));
     }
     if (m_contacts.size() < static_cast<size_t>(contactCapacity)) m_contacts.resize(static_cast<size_t>(contactCapacity));
     if (m_joints.size() < static_cast<size_t>(jointCapacity)) m_joints.resize(static_cast<size_t>(jointCapacity));
@@ -65,6 +66,7 @@ b2ContactSolverDef b2Island::ContactSolverDef(const b2TimeStep& step) {
     def.velocities = m_velocities.data();
     def.positionConstraints = m_positionConstraints.data();
     def.velocityConstraints = m_velocityConstraints.data();
+    def.rotations = m_rotations.data();
     return def;
 }
 

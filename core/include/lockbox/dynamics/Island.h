@@ -62,6 +62,7 @@ public:
     // Contact-solver storage, sized to the largest island so far (grown, never shrunk).
     std::vector<b2ContactPositionConstraint> m_positionConstraints;
     std::vector<b2ContactVelocityConstraint> m_velocityConstraints;
+    std::vector<b2CachedRot> m_rotations;  ///< per body, like m_positions
     int32 m_bodyCount = 0;
     int32 m_jointCount = 0;
     int32 m_contactCount = 0;

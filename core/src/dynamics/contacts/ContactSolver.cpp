@@ -48,6 +48,7 @@ b2ContactSolver::b2ContactSolver(b2ContactSolverDef* def)
       m_velocities(def->velocities),
       m_positionConstraints(def->positionConstraints),
       m_velocityConstraints(def->velocityConstraints),
+      m_rotations(def->rotations),
       m_contacts(def->contacts),
       m_count(def->count) {
     // The constraint storage holds the previous island's values: every field read later is
@@ -125,8 +126,8 @@ void b2ContactSolver::InitializeVelocityConstraints() {
         const Fixed wB = m_velocities[vc->indexB].w;
 
         b2Transform xfA, xfB;
-        xfA.q.Set(aA);
-        xfB.q.Set(aB);
+        xfA.q = m_rotations[vc->indexA].For(aA);
+        xfB.q = m_rotations[vc->indexB].For(aB);
         xfA.p = solver::BodyOrigin(cA, xfA.q, pc->localCenterA);
         xfB.p = solver::BodyOrigin(cB, xfB.q, pc->localCenterB);
 

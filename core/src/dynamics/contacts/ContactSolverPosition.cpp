@@ -50,8 +50,8 @@ struct PositionSolverManifold {
 };
 
 // One pass over all constraints; returns the smallest separation seen (m, <= 0).
-Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 count, b2Position* positions, Fixed baumgarte,
-                bool toi, int32 toiIndexA, int32 toiIndexB) {
+Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 count, b2Position* positions,
+                b2CachedRot* rotations, Fixed baumgarte, bool toi, int32 toiIndexA, int32 toiIndexB) {
     Fixed minSeparation;
     for (int32 i = 0; i < count; ++i) {
         const b2ContactPositionConstraint* pc = constraints + i;
@@ -76,21 +76,14 @@ Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 count, b2P
         b2Vec2 cB = positions[indexB].c;
         Fixed aB = positions[indexB].a;
 
-        // SinCos is a pure function of the angle: the rotation is recomputed only when the
-        // previous point's correction changed the angle (never for a static body).
+        // SinCos is a pure function of the angle: a body's rotation is recomputed only when a
+        // correction changed its angle since it was last built (never for a static body).
+        b2CachedRot& rotA = rotations[indexA];
+        b2CachedRot& rotB = rotations[indexB];
         b2Transform xfA, xfB;
-        xfA.q.Set(aA);
-        xfB.q.Set(aB);
-        Fixed angleA = aA, angleB = aB;  // the angles xfA.q and xfB.q were built from
         for (int32 j = 0; j < pc->pointCount; ++j) {
-            if (aA != angleA) {
-                xfA.q.Set(aA);
-                angleA = aA;
-            }
-            if (aB != angleB) {
-                xfB.q.Set(aB);
-                angleB = aB;
-            }
+            xfA.q = rotA.For(aA);
+            xfB.q = rotB.For(aB);
             xfA.p = solver::BodyOrigin(cA, xfA.q, pc->localCenterA);
             xfB.p = solver::BodyOrigin(cB, xfB.q, pc->localCenterB);
 
@@ -130,7 +123,7 @@ Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 count, b2P
 }  // namespace
 
 bool b2ContactSolver::SolvePositionConstraints() {
-    const Fixed minSeparation = SolvePass(m_positionConstraints, m_count, m_positions, b2_baumgarte, false, -1, -1);
+    const Fixed minSeparation = SolvePass(m_positionConstraints, m_count, m_positions, m_rotations, b2_baumgarte, false, -1, -1);
     // Box2D accepts an overlap of up to 3 linearSlop (m, raw 984) since it is pushing the
     // separation toward -linearSlop.
     return minSeparation >= Fixed::FromRaw(-3 * b2_linearSlop.Raw());
@@ -138,7 +131,7 @@ bool b2ContactSolver::SolvePositionConstraints() {
 
 bool b2ContactSolver::SolveTOIPositionConstraints(int32 toiIndexA, int32 toiIndexB) {
     const Fixed minSeparation =
-        SolvePass(m_positionConstraints, m_count, m_positions, b2_toiBaugarte, true, toiIndexA, toiIndexB);
+        SolvePass(m_positionConstraints, m_count, m_positions, m_rotations, b2_toiBaugarte, true, toiIndexA, toiIndexB);
     // TOI tolerance 1.5 linearSlop (m, raw 492), as Box2D.
     return minSeparation >= Fixed::FromRaw(-3 * b2_linearSlop.Raw() / 2);
 }

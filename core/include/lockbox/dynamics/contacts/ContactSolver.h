@@ -65,6 +65,24 @@ struct b2ContactPositionConstraint {
     int32 pointCount = 0;
 };
 
+/// A body's rotation with the angle it was built from. b2Rot::Set is a pure function of the
+/// angle, so an entry whose angle matches needs no sine or cosine, whichever body or island
+/// set it last; every entry is always a true pair (it starts as angle 0 and its rotation).
+struct b2CachedRot {
+    b2CachedRot() noexcept { q.Set(angle); }
+    /// The rotation of `a`, computed only when `a` differs from the last angle asked for.
+    const b2Rot& For(Fixed a) noexcept {
+        if (a != angle) {
+            angle = a;
+            q.Set(a);
+        }
+        return q;
+    }
+
+    Fixed angle;
+    b2Rot q;
+};
+
 /// Input to the contact solver.
 struct b2ContactSolverDef {
     b2TimeStep step;
@@ -76,6 +94,8 @@ struct b2ContactSolverDef {
     /// islands and steps (no allocation per island). The solver writes every field it reads.
     b2ContactPositionConstraint* positionConstraints = nullptr;
     b2ContactVelocityConstraint* velocityConstraints = nullptr;
+    /// One entry per island body (indexed like positions), reused likewise.
+    b2CachedRot* rotations = nullptr;
 };
 
 /// Solves the contacts of one island.
@@ -103,6 +123,7 @@ public:
     b2Velocity* m_velocities;
     b2ContactPositionConstraint* m_positionConstraints;
     b2ContactVelocityConstraint* m_velocityConstraints;
+    b2CachedRot* m_rotations;
     b2Contact** m_contacts;
     int32 m_count;
 };
