@@ -97,6 +97,12 @@ void LockstepServer::Impl::Handle(int32_t s, PeerId peer, const Message& message
         // Ack whatever arrives so the sender stops; keep it only from the source we asked.
         SendTo(peer, SnapshotAck{c->frame, c->index}, slot.token, Delivery::e_unreliable);
         if (s != pullSource || !pull.Accept(*c) || !pull.Complete()) return;
+        if (pull.Failed()) {
+            // Not a snapshot: forget it; the join logic pulls again (kPullRetryMicros).
+            pull.Reset();
+            pullSource = -1;
+            return;
+        }
         haveCache = true;
         cacheFrame = pull.Frame();
         cache.assign(pull.Blob().begin(), pull.Blob().end());

@@ -13,7 +13,7 @@
 namespace lockbox::net {
 
 RollbackSpectator::RollbackSpectator(Transport& transport, RollbackSpectatorConfig config)
-    : transport_(transport), config_(config), receiver_(std::make_unique<SnapshotReceiver>()) {
+    : transport_(transport), config_(config), receiver_(std::make_unique<SnapshotReceiver>(config.maxSnapshotBytes)) {
     config_.players = std::clamp<uint32_t>(config_.players, 1, kRollbackMaxPlayers);
     config_.inputBytes = std::clamp<uint32_t>(config_.inputBytes, 1, kRollbackMaxInputBytes);
     config_.maxSnapshotBytes = std::clamp<uint32_t>(config_.maxSnapshotBytes, 1, kRbMaxSnapshotBytes);
@@ -46,8 +46,8 @@ void RollbackSpectator::TakeChunk(const RbSnapshotChunk& c) {
     snapshotChunks_ += r.Received() - before;
     if (!r.Complete()) return;
     const std::span<const uint8_t> blob = r.Blob();
-    if (XXH3_64bits(blob.data(), blob.size()) != asmChecksum_) {
-        // Corrupt: never handed out; ask for a fresh snapshot with a new attempt number.
+    if (r.Failed() || XXH3_64bits(blob.data(), blob.size()) != asmChecksum_) {
+        // Corrupt (or not a zstd frame of at most maxSnapshotBytes): never handed out; ask for a fresh snapshot with a new attempt number.
         ++snapshotsRefused_;
         hasBad_ = true;
         badFrame_ = r.Frame();

@@ -2,15 +2,35 @@
 
 #include "SnapshotTransfer.h"
 
+#include <zstd.h>
+
 #include <algorithm>
 #include <cstring>
 
 namespace lockbox::net {
 
+namespace {
+
+// Level 1: a 5 MB world image compresses in about 16 ms and to within 2 % of level 3 (the
+// images are mostly small integers and repeated shapes), and a late join compresses once.
+constexpr int kCompressionLevel = 1;
+
+// One zstd frame of `plain`; empty when it fails or would exceed kMaxSnapshotBytes.
+std::vector<uint8_t> Compress(const std::vector<uint8_t>& plain) {
+    std::vector<uint8_t> out(ZSTD_compressBound(plain.size()));
+    const size_t n = ZSTD_compress(out.data(), out.size(), plain.data(), plain.size(), kCompressionLevel);
+    if (ZSTD_isError(n) || n > kMaxSnapshotBytes) return {};
+    out.resize(n);
+    return out;
+}
+
+}  // namespace
+
 void SnapshotSender::Start(int32_t frame, std::vector<uint8_t> blob) {
-    active_ = !blob.empty() && blob.size() <= kMaxSnapshotBytes;
+    const bool fits = !blob.empty() && blob.size() <= kMaxSnapshotBytes;
+    blob_ = fits ? Compress(blob) : std::vector<uint8_t>{};
+    active_ = !blob_.empty();
     frame_ = frame;
-    blob_ = std::move(blob);
     chunkCount_ = active_ ? static_cast<uint32_t>((blob_.size() + kSnapshotChunkBytes - 1) / kSnapshotChunkBytes) : 0;
     acked_ = 0;
     ackedFlags_.assign(chunkCount_, 0);
@@ -45,8 +65,11 @@ size_t SnapshotSender::Pump(uint64_t now, uint64_t resendMicros, size_t window,
     if (!active_ || Done()) return 0;
     resendMicros = ResendMicros(resendMicros);
     size_t sent = 0;
+    // One sweep from where the last call stopped (cursor_ moves as chunks go, so the sweep
+    // keeps its own start).
+    const uint32_t start = cursor_;
     for (uint32_t step = 0; step < chunkCount_ && sent < window; ++step) {
-        const uint32_t i = (cursor_ + step) % chunkCount_;
+        const uint32_t i = (start + step) % chunkCount_;
         if (ackedFlags_[i]) continue;
         // sentAt_ 0 means never; a resend waits resendMicros after the last send.
         if (sentAt_[i] != 0 && now - sentAt_[i] < resendMicros) continue;
@@ -75,25 +98,50 @@ bool SnapshotReceiver::Accept(const SnapshotChunk& chunk) {
         total_ = chunk.totalSize;
         chunkCount_ = (total_ + kSnapshotChunkBytes - 1) / kSnapshotChunkBytes;
         received_ = 0;
+        failed_ = false;
         blob_.assign(total_, 0);
+        plain_.clear();
         have_.assign(chunkCount_, 0);
     }
     const size_t offset = size_t{chunk.index} * kSnapshotChunkBytes;
     // The codec already checked index and length against totalSize; check again before copying.
-    if (chunk.index >= chunkCount_ || offset + chunk.bytes.size() > blob_.size()) return false;
+    // (Against total_: the compressed bytes are freed once decompressed, and a repeated chunk
+    // is still acked.)
+    if (chunk.index >= chunkCount_ || offset + chunk.bytes.size() > total_) return false;
     if (!have_[chunk.index]) {
         if (!chunk.bytes.empty()) std::memcpy(blob_.data() + offset, chunk.bytes.data(), chunk.bytes.size());
         have_[chunk.index] = 1;
         ++received_;
+        if (received_ == chunkCount_) Decompress();
     }
     return true;
+}
+
+void SnapshotReceiver::Decompress() {
+    // The announced size is checked before anything is allocated, and the frame must fill the
+    // bytes exactly: a hostile sender can neither make us allocate beyond maxBytes_ nor hide
+    // trailing data.
+    const uint64_t size = ZSTD_getFrameContentSize(blob_.data(), blob_.size());
+    const size_t frameBytes = ZSTD_findFrameCompressedSize(blob_.data(), blob_.size());
+    failed_ = size == ZSTD_CONTENTSIZE_UNKNOWN || size == ZSTD_CONTENTSIZE_ERROR || size == 0 ||
+              size > std::min(maxBytes_, kMaxSnapshotBytes) || ZSTD_isError(frameBytes) || frameBytes != blob_.size();
+    if (!failed_) {
+        plain_.resize(static_cast<size_t>(size));
+        const size_t n = ZSTD_decompress(plain_.data(), plain_.size(), blob_.data(), blob_.size());
+        failed_ = ZSTD_isError(n) || n != plain_.size();
+    }
+    if (failed_) plain_.clear();
+    blob_.clear();
+    blob_.shrink_to_fit();
 }
 
 void SnapshotReceiver::Reset() noexcept {
     active_ = false;
     frame_ = 0;
     total_ = chunkCount_ = received_ = 0;
+    failed_ = false;
     blob_.clear();
+    plain_.clear();
     have_.clear();
 }
 

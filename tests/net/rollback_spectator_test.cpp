@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <xxhash.h>
+#include <zstd.h>
 
 #include "lockbox/lockbox.h"
 #include "rollback_harness.h"
@@ -290,9 +291,19 @@ TEST(RollbackSpectator, BadSnapshotStreamsAreRefused) {
     sc.lateJoin = true;
     RollbackSpectator spectator(watcher, sc);
     const RollbackShape shape{2, 8};
+    // The state (random bytes, so that its zstd frame also takes 3 chunks) and the frame the
+    // chunks carry; the checksum is the state's.
     std::vector<uint8_t> blob(2500);
-    for (size_t i = 0; i < blob.size(); ++i) blob[i] = static_cast<uint8_t>(i * 13 + 1);
+    uint64_t lcg = seed;
+    for (uint8_t& b : blob) {
+        lcg = lcg * 6364136223846793005ull + 1442695040888963407ull;
+        b = static_cast<uint8_t>(lcg >> 56);
+    }
     const uint64_t good = XXH3_64bits(blob.data(), blob.size());
+    std::vector<uint8_t> wire(ZSTD_compressBound(blob.size()));
+    wire.resize(ZSTD_compress(wire.data(), wire.size(), blob.data(), blob.size(), 1));
+    ASSERT_GT(wire.size(), 2 * size_t{kRbSnapshotChunkBytes});
+    ASSERT_LE(wire.size(), 3 * size_t{kRbSnapshotChunkBytes});
     RollbackDatagramWriter w;
     auto sendChunk = [&](int32_t frame, uint64_t checksum, uint32_t index, const std::vector<uint8_t>& data) {
         const size_t off = size_t{index} * kRbSnapshotChunkBytes;
@@ -330,7 +341,7 @@ TEST(RollbackSpectator, BadSnapshotStreamsAreRefused) {
     EXPECT_EQ(lastAttempt(), 1u);
 
     // 1. Every chunk, but the checksum is wrong: assembled, checked, dropped, asked again.
-    for (uint32_t i = 0; i < 3; ++i) sendChunk(40, good ^ 1, i, blob);
+    for (uint32_t i = 0; i < 3; ++i) sendChunk(40, good ^ 1, i, wire);
     step();
     EXPECT_EQ(spectator.SnapshotsRefused(), 1u);
     EXPECT_FALSE(spectator.TakeSnapshot(frame, got));
@@ -339,7 +350,7 @@ TEST(RollbackSpectator, BadSnapshotStreamsAreRefused) {
     EXPECT_EQ(lastAttempt(), 2u);
 
     // 2. One flipped payload byte under the right checksum: refused the same way.
-    std::vector<uint8_t> flipped = blob;
+    std::vector<uint8_t> flipped = wire;
     flipped[1500] ^= 0x10;
     for (uint32_t i = 0; i < 3; ++i) sendChunk(41, good, i, flipped);
     step();
@@ -347,10 +358,12 @@ TEST(RollbackSpectator, BadSnapshotStreamsAreRefused) {
     EXPECT_FALSE(spectator.TakeSnapshot(frame, got));
 
     // 3. A truncated stream (the last chunk never comes) and malformed datagrams: it waits.
-    sendChunk(42, good, 0, blob);
-    sendChunk(42, good, 1, blob);
+    sendChunk(42, good, 0, wire);
+    sendChunk(42, good, 1, wire);
     w.Begin(RollbackHeader{kRollbackProtocolVersion, 3});
-    ASSERT_TRUE(w.Add(RbSnapshotChunk{42, 2500, good, 2, std::vector<uint8_t>(blob.begin() + 2048, blob.end())}, shape));
+    ASSERT_TRUE(w.Add(RbSnapshotChunk{42, static_cast<uint32_t>(wire.size()), good, 2,
+                                      std::vector<uint8_t>(wire.begin() + 2048, wire.end())},
+                      shape));
     std::vector<uint8_t> cut(w.Bytes().begin(), w.Bytes().end() - 10);  // payload cut short
     host.Send(watcher.Index(), cut);
     const uint64_t refusedBefore = spectator.Refused();
@@ -361,7 +374,7 @@ TEST(RollbackSpectator, BadSnapshotStreamsAreRefused) {
     EXPECT_EQ(spectator.SnapshotsRefused(), 2u);
 
     // 4. The missing chunk arrives: the snapshot is complete, checked and handed out once.
-    sendChunk(42, good, 2, blob);
+    sendChunk(42, good, 2, wire);
     step();
     ASSERT_TRUE(spectator.TakeSnapshot(frame, got));
     EXPECT_EQ(frame, 42);
@@ -371,7 +384,7 @@ TEST(RollbackSpectator, BadSnapshotStreamsAreRefused) {
     EXPECT_EQ(spectator.ConsumedFrame(), 42);
     // A resend after a lost ack is acked again (else the host would never start the stream).
     lastAttempt();
-    sendChunk(42, good, 1, blob);
+    sendChunk(42, good, 1, wire);
     step();
     {
         std::vector<Datagram> in;

@@ -1,7 +1,8 @@
 // The chunked snapshot transfer of both late joins (net/src/SnapshotTransfer.h): a sender and
 // a receiver on a hand-run link with a fixed one-way delay and seeded loss, one Pump per 60 Hz
 // tick. The resend timer follows the round trip, so a receiver farther away than the
-// configured timer no longer gets most chunks twice.
+// configured timer no longer gets most chunks twice. Blobs travel zstd-compressed; the timer
+// tests use random bytes, which do not compress, so their chunk counts are the blob's.
 
 #include <gtest/gtest.h>
 
@@ -11,11 +12,22 @@
 #include <vector>
 
 #include "SnapshotTransfer.h"
+#include "lockbox/lockbox.h"
+#include "lockbox/scenes/LockboxScenes.h"
 
 namespace lockbox::net {
 namespace {
 
 constexpr uint64_t kTick = 16666;
+
+std::vector<uint8_t> RandomBytes(size_t n, uint64_t seed) {
+    std::vector<uint8_t> out(n);
+    for (uint8_t& b : out) {
+        seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+        b = static_cast<uint8_t>(seed >> 56);
+    }
+    return out;
+}
 
 struct TransferRun {
     uint64_t chunksSent = 0;
@@ -26,10 +38,10 @@ struct TransferRun {
 
 // `sampleRtt` false hands OnAck a zero clock, which never samples: the fixed-timer behaviour.
 TransferRun Transfer(uint32_t chunks, uint64_t oneWayMicros, uint32_t lossPct, bool sampleRtt, uint64_t seed = 5) {
-    std::vector<uint8_t> blob(size_t{chunks} * kSnapshotChunkBytes - 100);
-    for (size_t i = 0; i < blob.size(); ++i) blob[i] = static_cast<uint8_t>(i * 31 + 7);
+    const std::vector<uint8_t> blob = RandomBytes(size_t{chunks} * kSnapshotChunkBytes - 100, 99);
     SnapshotSender sender;
     sender.Start(42, blob);
+    EXPECT_EQ(sender.ChunkCount(), chunks);  // random bytes: the frame's few header bytes only
     SnapshotReceiver receiver;
     struct InFlight {
         uint64_t at;
@@ -117,7 +129,8 @@ TEST(SnapshotTransfer, LossyFarLinkStillCompletes) {
 TEST(SnapshotTransfer, ResendTimerHasFloorAndCeiling) {
     SnapshotSender s;
     EXPECT_EQ(s.ResendMicros(100000), 100000u);  // no sample yet
-    s.Start(1, std::vector<uint8_t>(3 * kSnapshotChunkBytes, 1));
+    s.Start(1, RandomBytes(3 * kSnapshotChunkBytes - 100, 3));
+    ASSERT_EQ(s.ChunkCount(), 3u);
     s.Pump(10, 1, 16, [](const SnapshotChunk&) {});
     s.OnAck(SnapshotAck{1, 0}, 10 + 5'000'000);  // a 5 s round trip
     EXPECT_EQ(s.ResendMicros(100000), 1'000'000u);
@@ -126,6 +139,105 @@ TEST(SnapshotTransfer, ResendTimerHasFloorAndCeiling) {
     EXPECT_FALSE(s.Done());
     s.OnAck(SnapshotAck{1, 2}, 30);
     EXPECT_TRUE(s.Done());
+}
+
+// Collects every chunk of one snapshot, in order, each sent once.
+std::vector<SnapshotChunk> AllChunks(SnapshotSender& sender) {
+    std::vector<SnapshotChunk> out;
+    sender.Pump(1, 100000, sender.ChunkCount(), [&](const SnapshotChunk& c) { out.push_back(c); });
+    return out;
+}
+
+TEST(SnapshotTransfer, WorldImagesTravelCompressed) {
+    // A world image after 120 steps of rain: the receiver hands out exactly the saved bytes,
+    // which restore, from several times fewer chunks.
+    auto scene = scenes::MakeLockboxScene("rain");
+    scenes::LockboxEngine engine;
+    scenes::ConfigureWorld(engine, scene->Info(), scenes::RunSettings{});
+    scene->Prepare(scenes::Resolve(scene->Info(), scenes::RunSettings{}));
+    scene->Build(engine);
+    const auto& info = scene->Info();
+    for (int f = 0; f < 120; ++f) {
+        scene->BeforeStep(engine, f);
+        engine.Step(info.hz, info.velocityIterations, info.positionIterations);
+    }
+    std::vector<uint8_t> image;
+    engine.world().Save(image);
+    const uint32_t plainChunks = static_cast<uint32_t>((image.size() + kSnapshotChunkBytes - 1) / kSnapshotChunkBytes);
+
+    SnapshotSender sender;
+    sender.Start(7, image);
+    ASSERT_TRUE(sender.Active());
+    std::printf("[ figures ] rain image after 120 steps: %zu bytes, %u chunks plain, %u compressed\n", image.size(),
+                plainChunks, sender.ChunkCount());
+    EXPECT_LE(sender.ChunkCount() * 3, plainChunks);
+
+    SnapshotReceiver receiver;
+    std::vector<SnapshotChunk> chunks = AllChunks(sender);
+    ASSERT_EQ(chunks.size(), sender.ChunkCount());
+    // Out of order, one repeated: still one snapshot, and the repeat is still acked.
+    std::swap(chunks.front(), chunks.back());
+    for (const SnapshotChunk& c : chunks) ASSERT_TRUE(receiver.Accept(c));
+    ASSERT_TRUE(receiver.Complete());
+    EXPECT_FALSE(receiver.Failed());
+    EXPECT_TRUE(receiver.Accept(chunks[1]));
+    ASSERT_EQ(std::vector<uint8_t>(receiver.Blob().begin(), receiver.Blob().end()), image);
+
+    b2World copy(b2Vec2(Fixed(0), Fixed(0)));
+    ASSERT_TRUE(copy.Restore(receiver.Blob()).ok());
+    EXPECT_EQ(copy.Hash(), engine.world().Hash());
+}
+
+TEST(SnapshotTransfer, CorruptFrameFailsWithoutAHandOut) {
+    const std::vector<uint8_t> plain(5000, 0x5A);
+    SnapshotSender sender;
+    sender.Start(3, plain);
+    std::vector<SnapshotChunk> chunks = AllChunks(sender);
+    ASSERT_EQ(chunks.size(), 1u);
+
+    // A flipped byte in the frame header (its content size field), and a frame with trailing
+    // bytes: both complete, neither hands out bytes.
+    SnapshotChunk flipped = chunks[0];
+    flipped.bytes[5] ^= 0xFF;
+    SnapshotReceiver r1;
+    ASSERT_TRUE(r1.Accept(flipped));
+    EXPECT_TRUE(r1.Complete());
+    EXPECT_TRUE(r1.Failed());
+    EXPECT_TRUE(r1.Blob().empty());
+
+    SnapshotChunk trailing = chunks[0];
+    trailing.bytes.push_back(0);
+    trailing.totalSize = static_cast<uint32_t>(trailing.bytes.size());
+    SnapshotReceiver r2;
+    ASSERT_TRUE(r2.Accept(trailing));
+    EXPECT_TRUE(r2.Failed());
+    EXPECT_TRUE(r2.Blob().empty());
+
+    // Plain bytes that are no zstd frame at all.
+    SnapshotReceiver r3;
+    ASSERT_TRUE(r3.Accept(SnapshotChunk{4, 8, 0, std::vector<uint8_t>(8, 0x11)}));
+    EXPECT_TRUE(r3.Failed());
+
+    // A frame announcing more than the receiver accepts is refused before any allocation.
+    SnapshotReceiver small(4096);
+    ASSERT_TRUE(small.Accept(chunks[0]));
+    EXPECT_TRUE(small.Failed());
+
+    // Reset clears the failure; the intact frame then decompresses.
+    r1.Reset();
+    EXPECT_FALSE(r1.Failed());
+    ASSERT_TRUE(r1.Accept(chunks[0]));
+    EXPECT_FALSE(r1.Failed());
+    EXPECT_EQ(std::vector<uint8_t>(r1.Blob().begin(), r1.Blob().end()), plain);
+}
+
+TEST(SnapshotTransfer, EmptyOrOversizedBlobIsNotSent) {
+    SnapshotSender s;
+    s.Start(1, {});
+    EXPECT_FALSE(s.Active());
+    s.Start(1, std::vector<uint8_t>(size_t{kMaxSnapshotBytes} + 1, 0));
+    EXPECT_FALSE(s.Active());
+    EXPECT_EQ(s.ChunkCount(), 0u);
 }
 
 }  // namespace

@@ -27,8 +27,9 @@ namespace lockbox::net {
 /// First two bytes of every datagram: 'L' 'K'.
 inline constexpr uint16_t kProtocolMagic = 0x4B4Cu;
 /// Bumped whenever a message layout changes. A peer with another version gets
-/// Reject{e_protocolVersion} (the header and Reject layouts never change).
-inline constexpr uint8_t kProtocolVersion = 1;
+/// Reject{e_protocolVersion} (the header and Reject layouts never change). 2: snapshot chunks
+/// carry the state as one zstd frame.
+inline constexpr uint8_t kProtocolVersion = 2;
 /// Bytes of the datagram header.
 inline constexpr size_t kHeaderBytes = 9;
 /// Largest players per session (a slot is one byte; 0xFF means "any slot").

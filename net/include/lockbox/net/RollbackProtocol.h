@@ -27,15 +27,16 @@ namespace lockbox::net {
 /// First two bytes of every rollback datagram: 'R' 'B'.
 inline constexpr uint16_t kRollbackMagic = 0x4252u;
 /// Bumped whenever a message layout changes (2: the late-join snapshot messages; 3: RbView
-/// and RbFrozen, the disconnect agreement; 4: RbHello, the compatibility check).
-inline constexpr uint8_t kRollbackProtocolVersion = 4;
+/// and RbFrozen, the disconnect agreement; 4: RbHello, the compatibility check; 5: snapshot
+/// chunks carry the state as one zstd frame).
+inline constexpr uint8_t kRollbackProtocolVersion = 5;
 /// Bytes of the header.
 inline constexpr size_t kRollbackHeaderBytes = 7;
 /// Largest frame count of one input run.
 inline constexpr uint32_t kRollbackMaxRun = 128;
 /// Payload bytes of every snapshot chunk but the last (a chunk datagram stays under 1100 bytes).
 inline constexpr uint32_t kRbSnapshotChunkBytes = 1024;
-/// Largest snapshot a spectator accepts on the wire (16 MiB = 16384 chunks).
+/// Largest snapshot a spectator accepts, on the wire and decompressed (16 MiB).
 inline constexpr uint32_t kRbMaxSnapshotBytes = 16u << 20;
 
 /// The datagram header.
