@@ -128,6 +128,7 @@ void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     solverData.step = step;
     solverData.positions = m_positions.data();
     solverData.velocities = m_velocities.data();
+    solverData.rotations = m_rotations.data();
 
     b2ContactSolverDef contactSolverDef = ContactSolverDef(step);
     b2ContactSolver contactSolver(&contactSolverDef);

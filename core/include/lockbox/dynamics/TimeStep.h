@@ -73,11 +73,34 @@ struct b2Velocity {
     Fixed w;
 };
 
+/// A body's rotation with the angle it was built from. b2Rot::Set is a pure function of the
+/// angle, so an entry whose angle matches needs no sine or cosine, whichever body or island
+/// set it last; every entry is always a true pair (it starts as angle 0 and its rotation).
+struct b2CachedRot {
+    b2CachedRot() noexcept { q.Set(angle); }
+    /// The rotation of `a`, computed only when `a` differs from the last angle asked for.
+    const b2Rot& For(Fixed a) noexcept {
+        if (a != angle) {
+            angle = a;
+            q.Set(a);
+        }
+        return q;
+    }
+
+    Fixed angle;
+    b2Rot q;
+};
+
 /// Everything a joint solver reads and writes.
 struct b2SolverData {
     b2TimeStep step;
     b2Position* positions = nullptr;
     b2Velocity* velocities = nullptr;
+    b2CachedRot* rotations = nullptr;  ///< per island body, shared with the contact solver
+
+    /// The rotation of angle `a` through island body `index`'s cache entry (any angle is
+    /// right: the entry is recomputed unless it holds exactly that angle).
+    const b2Rot& Rotation(int32 index, Fixed a) const noexcept { return rotations[index].For(a); }
 };
 
 }  // namespace lockbox

@@ -43,7 +43,7 @@ void b2FrictionJoint::InitVelocityConstraints(const b2SolverData& data) {
     b2Vec2 vB = data.velocities[m_indexB].v;
     Fixed wB = data.velocities[m_indexB].w;
 
-    const b2Rot qA(aA), qB(aB);
+    const b2Rot qA = data.Rotation(m_indexA, aA), qB = data.Rotation(m_indexB, aB);
     m_rA = b2Mul(qA, m_localAnchorA - m_localCenterA);
     m_rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
 

@@ -115,7 +115,8 @@ void b2GearJoint::InitVelocityConstraints(const b2SolverData& data) {
         m_constant -= m_ratio * shift;
     }
 
-    const b2Rot qA(pA.a), qB(pB.a), qC(pC.a), qD(pD.a);
+    const b2Rot qA = data.Rotation(m_indexA, pA.a), qB = data.Rotation(m_indexB, pB.a),
+                qC = data.Rotation(m_indexC, pC.a), qD = data.Rotation(m_indexD, pD.a);
     Wide mass;
     if (m_sideA.type == e_revoluteJoint) {
         m_JvAC.SetZero();
@@ -209,7 +210,8 @@ bool b2GearJoint::SolvePositionConstraints(const b2SolverData& data) {
     Fixed aA = data.positions[m_indexA].a, aB = data.positions[m_indexB].a;
     Fixed aC = data.positions[m_indexC].a, aD = data.positions[m_indexD].a;
 
-    const b2Rot qA(aA), qB(aB), qC(aC), qD(aD);
+    const b2Rot qA = data.Rotation(m_indexA, aA), qB = data.Rotation(m_indexB, aB), qC = data.Rotation(m_indexC, aC),
+                qD = data.Rotation(m_indexD, aD);
     b2Vec2 JvAC, JvBD;
     Fixed JwA, JwB, JwC, JwD;
     Wide mass;

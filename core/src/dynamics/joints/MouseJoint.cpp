@@ -36,7 +36,7 @@ void b2MouseJoint::InitVelocityConstraints(const b2SolverData& data) {
     b2Vec2 vB = data.velocities[m_indexB].v;
     Fixed wB = data.velocities[m_indexB].w;
 
-    const b2Rot qB(aB);
+    const b2Rot qB = data.Rotation(m_indexB, aB);
     const Wide mass = m_bodyB->GetMass();
 
     // Spring coefficients in Q32.32 (k = m omega^2 is 3.3e7 N/m for 1000 kg at 29 Hz).

@@ -73,7 +73,7 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
     b2Vec2 vB = data.velocities[m_indexB].v;
     Fixed wB = data.velocities[m_indexB].w;
 
-    const b2Rot qA(aA), qB(aB);
+    const b2Rot qA = data.Rotation(m_indexA, aA), qB = data.Rotation(m_indexB, aB);
     m_rA = b2Mul(qA, m_localAnchorA - m_localCenterA);
     m_rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
 
@@ -242,7 +242,7 @@ bool b2RevoluteJoint::SolvePositionConstraints(const b2SolverData& data) {
     }
 
     // Solve the point-to-point constraint.
-    const b2Rot qA(aA), qB(aB);
+    const b2Rot qA = data.Rotation(m_indexA, aA), qB = data.Rotation(m_indexB, aB);
     const b2Vec2 rA = b2Mul(qA, m_localAnchorA - m_localCenterA);
     const b2Vec2 rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
     const b2Vec2 C = cB + rB - cA - rA;

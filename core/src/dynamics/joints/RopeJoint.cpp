@@ -36,7 +36,7 @@ void b2RopeJoint::InitVelocityConstraints(const b2SolverData& data) {
     b2Vec2 vB = data.velocities[m_indexB].v;
     Fixed wB = data.velocities[m_indexB].w;
 
-    const b2Rot qA(aA), qB(aB);
+    const b2Rot qA = data.Rotation(m_indexA, aA), qB = data.Rotation(m_indexB, aB);
     m_rA = b2Mul(qA, m_localAnchorA - m_localCenterA);
     m_rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
     m_u = cB + m_rB - cA - m_rA;
@@ -109,7 +109,7 @@ bool b2RopeJoint::SolvePositionConstraints(const b2SolverData& data) {
     b2Vec2 cB = data.positions[m_indexB].c;
     Fixed aB = data.positions[m_indexB].a;
 
-    const b2Rot qA(aA), qB(aB);
+    const b2Rot qA = data.Rotation(m_indexA, aA), qB = data.Rotation(m_indexB, aB);
     const b2Vec2 rA = b2Mul(qA, m_localAnchorA - m_localCenterA);
     const b2Vec2 rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
     b2Vec2 u = cB + rB - cA - rA;

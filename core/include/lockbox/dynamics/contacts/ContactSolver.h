@@ -65,24 +65,6 @@ struct b2ContactPositionConstraint {
     int32 pointCount = 0;
 };
 
-/// A body's rotation with the angle it was built from. b2Rot::Set is a pure function of the
-/// angle, so an entry whose angle matches needs no sine or cosine, whichever body or island
-/// set it last; every entry is always a true pair (it starts as angle 0 and its rotation).
-struct b2CachedRot {
-    b2CachedRot() noexcept { q.Set(angle); }
-    /// The rotation of `a`, computed only when `a` differs from the last angle asked for.
-    const b2Rot& For(Fixed a) noexcept {
-        if (a != angle) {
-            angle = a;
-            q.Set(a);
-        }
-        return q;
-    }
-
-    Fixed angle;
-    b2Rot q;
-};
-
 /// Input to the contact solver.
 struct b2ContactSolverDef {
     b2TimeStep step;
