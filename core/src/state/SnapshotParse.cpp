@@ -3,9 +3,6 @@
 // the tree's shape) are checked afterwards in SnapshotValidate.cpp. Nothing here touches a
 // world.
 
-#include <cereal/archives/portable_binary.hpp>
-
-#include <istream>
 #include <string>
 
 #include "ByteStreams.h"
@@ -357,44 +354,9 @@ b2RestoreResult ParseSnapshot(std::span<const uint8> bytes, Image& img) {
     img.Clear();
     img.bytes = bytes.data();
     try {
-        if (bytes.size() < kHeaderBytes) {
-            Fail(b2SnapshotError::e_truncated, "image of " + std::to_string(bytes.size()) +
-                                                   " bytes is shorter than the " + std::to_string(kHeaderBytes) +
-                                                   "-byte header");
-        }
-        if (bytes[0] != 1) {
-            Fail(b2SnapshotError::e_badEndianFlag,
-                 "first byte is " + std::to_string(bytes[0]) + ", expected 1 (little-endian portable binary)");
-        }
-        // The header, through Cereal's portable binary archive (little-endian).
-        uint32 magic = 0, determinism = 0;
-        uint16 format = 0, major = 0, minor = 0, patch = 0;
-        uint64 payload = 0, checksum = 0;
-        {
-            HeaderSource source(bytes.first(kHeaderBytes));
-            std::istream stream(&source);
-            cereal::PortableBinaryInputArchive archive(stream);
-            archive(magic, format, major, minor, patch, determinism, payload, checksum);
-        }
-        if (magic != b2_snapshotMagic) Fail(b2SnapshotError::e_badMagic, "magic " + Hex(magic) + " is not 'LBSN'");
-        if (format != b2_snapshotFormatVersion) {
-            Fail(b2SnapshotError::e_badFormatVersion, "format version " + std::to_string(format) + ", this build reads " +
-                                                          std::to_string(b2_snapshotFormatVersion));
-        }
-        // The engine version (major.minor.patch) is informative: the format and determinism
-        // versions decide whether this build can continue the simulation.
-        if (determinism != b2_determinismVersion) {
-            Fail(b2SnapshotError::e_badDeterminismVersion, "determinism version " + Hex(determinism) +
-                                                               ", this build is " + Hex(b2_determinismVersion));
-        }
+        const HeaderFields header = ReadHeader(bytes);
+        const uint64 payload = header.payload, checksum = header.checksum;
         FieldReader r(bytes, kHeaderBytes);
-        if (payload > r.Remaining()) {
-            Fail(b2SnapshotError::e_truncated, "payload of " + std::to_string(payload) + " bytes announced, " +
-                                                   std::to_string(r.Remaining()) + " present");
-        }
-        if (payload < r.Remaining()) {
-            Fail(b2SnapshotError::e_trailingBytes, std::to_string(r.Remaining() - payload) + " bytes after the payload");
-        }
         const uint64 actual = SnapshotChecksum(bytes, static_cast<size_t>(payload));
         if (actual != checksum) {
             Fail(b2SnapshotError::e_badChecksum,

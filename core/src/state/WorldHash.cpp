@@ -13,13 +13,6 @@ using state_detail::HashWriter;
 
 namespace {
 
-// Category tags open each category's stream so that two categories with equal bytes still
-// hash differently.
-void Tag(HashWriter& w, b2HashCategory c) {
-    w.U32(b2_hashVersion);
-    w.U32(static_cast<uint32>(c));
-}
-
 /// Contacts hashed per body in the interleaved walk (a pace, not a count: only speed depends
 /// on it).
 constexpr int kContactsPerBody = 3;
@@ -93,13 +86,6 @@ void HashAll(const b2World& world, uint64 out[], std::vector<b2BodyHashEntry>* b
     }
 }
 
-uint64 Combine(const uint64 categories[]) {
-    HashWriter w;
-    w.U32(b2_hashVersion);
-    for (uint32 i = 0; i < static_cast<uint32>(b2HashCategory::e_count); ++i) w.U64(categories[i]);
-    return w.Digest();
-}
-
 }  // namespace
 
 std::string_view b2HashCategoryName(b2HashCategory category) noexcept {
@@ -125,14 +111,14 @@ uint64 b2BodyStateHash(const b2Body& body) {
 uint64 b2WorldHash(const b2World& world) {
     uint64 categories[static_cast<uint32>(b2HashCategory::e_count)];
     HashAll(world, categories, nullptr);
-    return Combine(categories);
+    return state_detail::CombineCategories(categories);
 }
 
 b2WorldHashReport b2WorldHashDetailed(const b2World& world) {
     b2WorldHashReport report;
     report.bodies.reserve(static_cast<size_t>(world.GetBodyCount()));
     HashAll(world, report.categories, &report.bodies);
-    report.total = Combine(report.categories);
+    report.total = state_detail::CombineCategories(report.categories);
     return report;
 }
 

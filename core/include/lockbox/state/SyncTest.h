@@ -66,7 +66,8 @@ public:
 
 private:
     uint64 StateHash();
-    void SaveFrame(int32 frame);
+    /// Saves the frame into the ring and returns its state hash (read from the image).
+    uint64 SaveFrame(int32 frame);
     bool LoadFrame(int32 frame, SyncTestResult& result);
     bool CheckFrame(int32 frame, SyncTestResult& result);
     void WrongInputs(int32 frame);

@@ -8,10 +8,13 @@
 /// broad-phase) with their own sub-hashes, and each body has a sub-hash (its fields plus its
 /// fixtures), so a mismatch can be narrowed to a category and then to a body.
 
+#include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "lockbox/common/Settings.h"
+#include "lockbox/state/Snapshot.h"
 
 namespace lockbox {
 
@@ -77,5 +80,23 @@ uint64 b2BodyStateHash(const b2Body& body);
 /// The first category whose sub-hash differs and the first differing body (by position in
 /// list order; a differing body count reports the first body past the shorter list).
 b2HashMismatch b2CompareHashReports(const b2WorldHashReport& a, const b2WorldHashReport& b) noexcept;
+
+/// The world hash read back from a snapshot image (b2SnapshotHash).
+struct b2SnapshotHashResult {
+    b2SnapshotError error = b2SnapshotError::e_ok;
+    std::string message;  ///< what is wrong with the image's framing; empty when ok
+    uint64 total = 0;     ///< b2WorldHash of the world the image was saved from
+    uint64 categories[static_cast<uint32>(b2HashCategory::e_count)] = {};  ///< by b2HashCategory
+    bool ok() const noexcept { return error == b2SnapshotError::e_ok; }
+};
+
+/// The state hash of the world an image was saved from, computed from the image alone: equal
+/// to b2WorldHash (and the categories of b2WorldHashDetailed) of that world at the Save,
+/// because each image section holds exactly the walk its hash category streams. It reads the
+/// image once, in order, so it costs a fraction of b2WorldHash's walk over the world's objects
+/// (docs/determinism.md, "Measured sizes and speeds"): a session that saves every frame gets
+/// the frame's hash almost free. It checks the header and the framing of the sections, not the
+/// checksum or the records (Restore does both): an edited image gives the hash of what it says.
+b2SnapshotHashResult b2SnapshotHash(std::span<const uint8> image);
 
 }  // namespace lockbox

@@ -1,0 +1,86 @@
+// The checks every reader of a snapshot image makes before its sections: the header (through
+// Cereal's portable binary archive, little-endian) and the framing of the six sections.
+// Restore (SnapshotParse.cpp) and the image hash (SnapshotHash.cpp) share them, so an image
+// one accepts the other frames the same way.
+
+#include <cereal/archives/portable_binary.hpp>
+
+#include <istream>
+#include <string>
+
+#include "ByteStreams.h"
+#include "SnapshotCheck.h"
+#include "SnapshotImage.h"
+#include "lockbox/state/WorldHash.h"
+
+namespace lockbox::state_detail {
+
+HeaderFields ReadHeader(std::span<const uint8> bytes) {
+    if (bytes.size() < kHeaderBytes) {
+        Fail(b2SnapshotError::e_truncated, "image of " + std::to_string(bytes.size()) + " bytes is shorter than the " +
+                                               std::to_string(kHeaderBytes) + "-byte header");
+    }
+    if (bytes[0] != 1) {
+        Fail(b2SnapshotError::e_badEndianFlag,
+             "first byte is " + std::to_string(bytes[0]) + ", expected 1 (little-endian portable binary)");
+    }
+    uint32 magic = 0, determinism = 0;
+    uint16 format = 0, major = 0, minor = 0, patch = 0;
+    HeaderFields fields;
+    {
+        HeaderSource source(bytes.first(kHeaderBytes));
+        std::istream stream(&source);
+        cereal::PortableBinaryInputArchive archive(stream);
+        archive(magic, format, major, minor, patch, determinism, fields.payload, fields.checksum);
+    }
+    if (magic != b2_snapshotMagic) Fail(b2SnapshotError::e_badMagic, "magic " + Hex(magic) + " is not 'LBSN'");
+    if (format != b2_snapshotFormatVersion) {
+        Fail(b2SnapshotError::e_badFormatVersion, "format version " + std::to_string(format) + ", this build reads " +
+                                                      std::to_string(b2_snapshotFormatVersion));
+    }
+    // The engine version (major.minor.patch) is informative: the format and determinism
+    // versions decide whether this build can continue the simulation.
+    if (determinism != b2_determinismVersion) {
+        Fail(b2SnapshotError::e_badDeterminismVersion,
+             "determinism version " + Hex(determinism) + ", this build is " + Hex(b2_determinismVersion));
+    }
+    const uint64 present = bytes.size() - kHeaderBytes;
+    if (fields.payload > present) {
+        Fail(b2SnapshotError::e_truncated, "payload of " + std::to_string(fields.payload) + " bytes announced, " +
+                                               std::to_string(present) + " present");
+    }
+    if (fields.payload < present) {
+        Fail(b2SnapshotError::e_trailingBytes, std::to_string(present - fields.payload) + " bytes after the payload");
+    }
+    return fields;
+}
+
+SectionSpans FrameSections(std::span<const uint8> bytes) {
+    static constexpr const char* kNames[kSectionCount] = {"settings", "bodies",     "fixtures",
+                                                          "contacts", "joints",     "broadphase"};
+    SectionSpans sections;
+    size_t at = kHeaderBytes;
+    auto le32 = [&](size_t i) {
+        return uint32{bytes[i]} | (uint32{bytes[i + 1]} << 8) | (uint32{bytes[i + 2]} << 16) |
+               (uint32{bytes[i + 3]} << 24);
+    };
+    for (uint32 s = 0; s < kSectionCount; ++s) {
+        if (bytes.size() - at < 8) Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section header missing");
+        const uint32 tag = le32(at);
+        Check(tag == s + 1, kNames[s], "section tag is wrong", tag);
+        const uint32 length = le32(at + 4);
+        at += 8;
+        if (length > bytes.size() - at) {
+            Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section announces " + std::to_string(length) +
+                                                   " bytes, " + std::to_string(bytes.size() - at) + " are left");
+        }
+        sections[s] = bytes.subspan(at, length);
+        at += length;
+    }
+    if (at != bytes.size()) {
+        Fail(b2SnapshotError::e_trailingBytes, std::to_string(bytes.size() - at) + " bytes after the last section");
+    }
+    return sections;
+}
+
+}  // namespace lockbox::state_detail
