@@ -3,7 +3,7 @@
 // of (a) the bare simulation of the same frames (the game's inputs applied, Step, nothing
 // else) and (b) Player::Verify (restore the seed, the same frames, a state hash after every
 // frame), alternating the two; it prints the median ratio, the input stream's bytes per second
-// before compression and the file's compressed size by chunk type, and writes a CSV.
+// before compression and the file's compressed size by chunk type, and, with --out, writes a CSV.
 //
 // Usage: lockbox_replay_bench [--reps N] [--frames N] [--out FILE] [--only SCENE]
 
@@ -47,7 +47,7 @@ struct Row {
 
 int main(int argc, char** argv) {
     int reps = 5, frames = 600;
-    std::string out = std::string(LOCKBOX_BENCH_RESULTS_DIR) + "/intel-xeon-2c/replay.csv", only;
+    std::string out, only;  // CSV only with --out: the committed tables are not overwritten by accident
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) reps = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::atoi(argv[++i]);

@@ -2,7 +2,8 @@
 // restore of the oldest saved state, then 8 steps each followed by a save (the session saves
 // every re-simulated frame so a later rollback can start from it). The bar: at most 8 ms p99
 // for a 256-body scene on the CI machine (MK11 fits 8 frames in 16 ms; half is left to the
-// game). Prints a table and writes bench/results/intel-xeon-2c/rollback.csv.
+// game). Prints a table and, with --out, writes it as CSV (the committed tables live in
+// bench/results/<machine>/rollback.csv).
 //
 // Scenes (all about 256 bodies):
 //  - pyramid22: large_pyramid with a base of 22 rows, 253 touching boxes + ground, sleep off:
@@ -184,7 +185,7 @@ int main(int argc, char** argv) {
     int reps = 300;
     int depth = 8;
     std::string only;
-    std::string out = std::string(LOCKBOX_BENCH_RESULTS_DIR) + "/intel-xeon-2c/rollback.csv";
+    std::string out;  // no CSV unless asked: the committed tables are not overwritten by accident
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = std::atoi(argv[++i]);
         else if (std::strcmp(argv[i], "--depth") == 0 && i + 1 < argc) depth = std::atoi(argv[++i]);
@@ -209,15 +210,17 @@ int main(int argc, char** argv) {
     cases.push_back({"rain256", scenes::MakeLockboxScene("rain"), 256, 0, false,
                      scenes::MakeScene<Box2DFloatEngine>("rain")});
 
-    std::FILE* csv = std::fopen(out.c_str(), "w");
-    if (csv == nullptr) {
+    std::FILE* csv = out.empty() ? nullptr : std::fopen(out.c_str(), "w");
+    if (!out.empty() && csv == nullptr) {
         std::fprintf(stderr, "cannot write %s\n", out.c_str());
         return 1;
     }
-    std::fprintf(csv,
-                 "scene,bodies,bodies_end,contacts,depth,reps,image_bytes,cpu_p50_ms,cpu_p99_ms,cpu_max_ms,wall_p50_ms,"
-                 "wall_p99_ms,restore_p50_ms,step_p50_ms,save_p50_ms,budget_ms,within_budget,float_bodies,float_steps_p50_ms,"
-                 "float_steps_p99_ms\n");
+    if (csv != nullptr) {
+        std::fprintf(csv,
+                     "scene,bodies,bodies_end,contacts,depth,reps,image_bytes,cpu_p50_ms,cpu_p99_ms,cpu_max_ms,"
+                     "wall_p50_ms,wall_p99_ms,restore_p50_ms,step_p50_ms,save_p50_ms,budget_ms,within_budget,"
+                     "float_bodies,float_steps_p50_ms,float_steps_p99_ms\n");
+    }
     std::printf("rollback of depth %d = restore + %d steps + %d saves, %d reps\n", depth, depth, depth, reps);
     std::printf("%-18s %6s %6s %9s %9s %9s %9s %9s %9s %9s %9s %6s %9s %9s\n", "scene", "bodies", "contct",
                 "cpu p50", "cpu p99", "cpu max", "wall p50", "wall p99", "restore", "step", "save", "<=8ms", "f32 p50",
@@ -230,14 +233,18 @@ int main(int argc, char** argv) {
         std::printf("%-18s %6d %6d %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %6s %9.3f %9.3f\n", r.name.c_str(),
                     r.bodies, r.contacts, r.cpuP50, r.cpuP99, r.cpuMax, r.wallP50, r.wallP99, r.restoreP50, r.stepP50,
                     r.saveP50, within ? "yes" : "NO", r.floatP50, r.floatP99);
-        std::fprintf(csv, "%s,%d,%d,%d,%d,%d,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,8,%d,%d,%.4f,%.4f\n",
+        if (csv != nullptr)
+            std::fprintf(csv, "%s,%d,%d,%d,%d,%d,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,8,%d,%d,%.4f,%.4f\n",
                      r.name.c_str(), r.bodies, r.bodiesEnd, r.contacts, depth, reps, r.imageBytes, r.cpuP50, r.cpuP99,
                      r.cpuMax, r.wallP50, r.wallP99, r.restoreP50, r.stepP50, r.saveP50, within ? 1 : 0,
                      r.floatBodies, r.floatP50, r.floatP99);
     }
-    std::fclose(csv);
-    std::printf("wrote %s (ms; cpu = thread CPU time; restore/step/save are per-operation medians; f32 = float\n"
-                "Box2D 2.4.1, the same scene, %d plain steps per rep)\n",
-                out.c_str(), depth);
+    std::printf("(ms; cpu = thread CPU time; restore/step/save are per-operation medians; f32 = float Box2D 2.4.1,\n"
+                "the same scene, %d plain steps per rep)\n",
+                depth);
+    if (csv != nullptr) {
+        std::fclose(csv);
+        std::printf("wrote %s\n", out.c_str());
+    }
     return 0;
 }
