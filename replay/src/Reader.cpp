@@ -199,7 +199,11 @@ Error ParseReplay(std::span<const uint8> bytes, ReplayFile& out) {
     out.fileBytes = bytes.size();
     if (Error e = detail::DecodeHeader(bytes, out.header)) return e;
     const Header& h = out.header;
-    if (h.determinismVersion != b2_determinismVersion || h.snapshotFormatVersion != b2_snapshotFormatVersion) {
+    // Snapshots of an older format that Restore still reads replay the same bits (format 2
+    // only added the joints' reaction directions, which no step reads).
+    const bool snapshotsReadable =
+        h.snapshotFormatVersion >= b2_snapshotOldestReadable && h.snapshotFormatVersion <= b2_snapshotFormatVersion;
+    if (h.determinismVersion != b2_determinismVersion || !snapshotsReadable) {
         Error e;
         e.code = ErrorCode::e_badEngine;
         e.offset = 14;
@@ -211,7 +215,8 @@ Error ParseReplay(std::span<const uint8> bytes, ReplayFile& out) {
             char buf[16];
             std::snprintf(buf, sizeof buf, "%08x", b2_determinismVersion);
             return std::string(buf);
-        }() + " and " + std::to_string(b2_snapshotFormatVersion);
+        }() + " and reads snapshot formats " + std::to_string(b2_snapshotOldestReadable) + " to " +
+                    std::to_string(b2_snapshotFormatVersion);
         return e;
     }
     Parser p(out);

@@ -27,9 +27,11 @@
 
 namespace lockbox::snapshot_hash {
 
-/// The scene whose snapshot is compared: light (runs quickly under qemu) and with every kind
-/// of state a snapshot carries that this scene can have (bodies, fixtures, contacts, joints).
-inline constexpr std::string_view kScene = "ragdolls";
+/// The scenes whose snapshots are compared: light (they run quickly under qemu) and together
+/// holding every kind of state a snapshot carries: ragdolls (polygons, contacts, revolute
+/// joints) and car (a chain shape, circles, wheel joints, whose reaction directions fill the
+/// joint-reaction section that no hash covers).
+inline constexpr std::string_view kScenes[] = {"ragdolls", "car"};
 /// Steps before the snapshot: enough for contacts and warm-start impulses to exist.
 inline constexpr int kSteps = 60;
 

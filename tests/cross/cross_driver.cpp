@@ -1,6 +1,6 @@
 // Standalone cross-build driver (tests/cross/run.sh): prints the fixed-function hashes, the
 // golden scene hashes of the light scenes (steps 1, 60, 600) and, once b2World::Save exists,
-// the XXH3-64 of one scene's snapshot bytes; compares them with the golden values, and exits 1
+// the XXH3-64 of two scenes' snapshot bytes; compares them with the golden values, and exits 1
 // on any mismatch. Built without CMake or GoogleTest so that every compiler, flag set and
 // architecture builds the same sources the same way. run.sh also compares the printed lines
 // of every cell with each other, so the output (stdout) holds results only; timings go to
@@ -16,7 +16,7 @@
 //   --limits LIST        `name:N` entries: limit these scenes to the steps <= N (the other
 //                        scenes run as usual).
 //   --replays LIST       comma-separated replay files to verify (ReplayVerify.h)
-//   --snapshot-golden F  the file holding the golden `snapshot ...` line (SnapshotHash.h). A
+//   --snapshot-golden F  the file holding the golden `snapshot ...` lines (SnapshotHash.h). A
 //                        missing line prints "new " and is not a failure (run.sh still
 //                        requires every cell to print the same line).
 #include <chrono>
@@ -116,11 +116,11 @@ int main(int argc, char** argv) {
     }
 
 #if defined(LOCKBOX_CROSS_HAS_SNAPSHOT)
-    {
+    for (const std::string_view scene : lockbox::snapshot_hash::kScenes) {
         namespace sh = lockbox::snapshot_hash;
         t0 = std::chrono::steady_clock::now();
-        const std::string line = sh::SnapshotLine(sh::kScene, sh::kSteps);
-        const std::string want = snapshotGolden.empty() ? std::string() : sh::ReadSnapshotGolden(snapshotGolden, sh::kScene);
+        const std::string line = sh::SnapshotLine(scene, sh::kSteps);
+        const std::string want = snapshotGolden.empty() ? std::string() : sh::ReadSnapshotGolden(snapshotGolden, scene);
         const bool ok = !line.empty() && (want.empty() || want == line);
         mismatches += ok ? 0 : 1;
         std::printf("%s %s\n", !ok ? "FAIL" : want.empty() ? "new " : "ok  ", line.c_str());

@@ -76,6 +76,8 @@ struct FieldChunks {
 struct JointStateSizes {
     std::array<uint64, e_ropeJoint + 1> chunks{};
     uint32 largest = 0;
+    /// Bytes of each type's VisitReactionState fields in the joint-reaction section.
+    std::array<uint32, e_ropeJoint + 1> reaction{};
 };
 
 inline const JointStateSizes& JointStateBytes() {
@@ -93,7 +95,12 @@ inline const JointStateSizes& JointStateBytes() {
                 FieldChunks chunks{reinterpret_cast<const char*>(&prototype)};
                 chunks.Mark(&prototype, sizeof(b2Joint));
                 prototype.VisitState(chunks);
+                VisitJointReaction(prototype, chunks);
                 s.chunks[static_cast<size_t>(t)] = chunks.mask;
+                ByteCount reactionCount;
+                JointFieldWriter<ByteCount> reactionWriter{reactionCount};
+                VisitJointReaction(prototype, reactionWriter);
+                s.reaction[static_cast<size_t>(t)] = static_cast<uint32>(reactionCount.bytes);
             });
         }
         return s;

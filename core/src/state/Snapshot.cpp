@@ -1,6 +1,7 @@
-// b2World::Save, SaveStats, Restore and Hash: the snapshot image is a fixed header then six
-// sections (settings, bodies, fixtures, contacts, joints, broad-phase), each a tag, a byte
-// length and the state walk of StateWalk.h, all through Cereal's portable binary archive.
+// b2World::Save, SaveStats, Restore and Hash: the snapshot image is a fixed header then seven
+// sections (settings, bodies, fixtures, contacts, joints, broad-phase, joint reactions), each
+// a tag, a byte length and a walk of StateWalk.h (the first six are the hash categories'), the
+// header through Cereal's portable binary archive.
 // docs/determinism.md ("Snapshot format") is the layout's reference.
 
 #include <cereal/archives/portable_binary.hpp>
@@ -70,6 +71,7 @@ void b2World::Save(std::vector<uint8>& out) const {
     WriteSection(w, e_sectionContacts, [&] { WriteContacts(w, *this); });
     WriteSection(w, e_sectionJoints, [&] { WriteJoints(w, *this); });
     WriteSection(w, e_sectionBroadPhase, [&] { WriteBroadPhase(w, *this); });
+    WriteSection(w, e_sectionJointReactions, [&] { WriteJointReactions(w, *this); });
     const uint64 payload = w.Position() - kHeaderBytes;
     w.Finish();
     {
@@ -96,8 +98,9 @@ b2SnapshotStats b2World::SaveStats() const {
     b2SnapshotStats stats;
     stats.headerBytes = static_cast<uint32>(kHeaderBytes);
     stats.totalBytes = static_cast<uint32>(image.size());
-    uint32* bySection[kSectionCount] = {&stats.settingsBytes, &stats.bodyBytes, &stats.fixtureBytes,
-                                        &stats.contactBytes, &stats.jointBytes, &stats.broadPhaseBytes};
+    uint32* bySection[kSectionCount] = {&stats.settingsBytes, &stats.bodyBytes,       &stats.fixtureBytes,
+                                        &stats.contactBytes,  &stats.jointBytes,      &stats.broadPhaseBytes,
+                                        &stats.jointReactionBytes};
     // Walk the section headers: tag, length (little-endian), contents. The 8 header bytes
     // count toward their section.
     size_t at = kHeaderBytes;

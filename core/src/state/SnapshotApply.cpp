@@ -267,11 +267,17 @@ void ApplyContacts(Image& img, b2World& world) {
     cm.m_contactCount = static_cast<int32>(img.contacts.size());
 }
 
-/// A joint's visited fields, straight from its record into the joint; solver temporaries
-/// are left as they are (every step recomputes them before use).
+/// A joint's visited fields, straight from its record into the joint, then its reaction
+/// directions when the image has them; other solver temporaries are left as they are (every
+/// step recomputes them before use, and no query reads them).
 void ReadJointState(const Image& img, const JointImage& ji, b2World& world) {
+    b2Joint& joint = *world.m_joints[static_cast<size_t>(ji.id)];
     JointStateReader reader{ReadCursor(img.bytes + ji.stateAt), world};
-    VisitJointState(*world.m_joints[static_cast<size_t>(ji.id)], reader);
+    VisitJointState(joint, reader);
+    if (ji.reactionAt != 0) {
+        JointStateReader reaction{ReadCursor(img.bytes + ji.reactionAt), world};
+        VisitJointReaction(joint, reaction);
+    }
 }
 
 void ApplyJoints(Image& img, b2World& world) {

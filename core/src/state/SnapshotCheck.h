@@ -50,22 +50,25 @@ inline std::string Hex(uint64 v) {
 
 /// The header fields the readers use once ReadHeader has checked the rest.
 struct HeaderFields {
+    uint16 format = 0;    ///< b2_snapshotFormatVersion, or an older one this build reads
     uint64 payload = 0;   ///< bytes after the header (equal to the bytes present)
     uint64 checksum = 0;  ///< the header's payload checksum (not verified by ReadHeader)
 };
 
-/// Checks an image's header (SnapshotHeader.cpp): length, endianness flag, magic, format and
-/// determinism versions, and the announced payload length against the bytes present. Fails
-/// (throws SnapshotFailure) naming the first problem.
+/// Checks an image's header (SnapshotHeader.cpp): length, endianness flag, magic, format
+/// version (the current one or b2_snapshotOldestReadable on), determinism version, and the
+/// announced payload length against the bytes present. Fails (throws SnapshotFailure) naming
+/// the first problem.
 HeaderFields ReadHeader(std::span<const uint8> bytes);
 
-/// The six sections' contents (without their tag and length), in image order.
-using SectionSpans = std::array<std::span<const uint8>, 6>;
+/// The sections' contents (without their tag and length), in image order; an image of format
+/// 1 has no joint-reaction section (its span is empty).
+using SectionSpans = std::array<std::span<const uint8>, 7>;
 
-/// Checks the framing of an image whose header ReadHeader accepted: six sections with the
-/// tags 1..6 in order, each length within the image, nothing after the last. Fails naming the
-/// section.
-SectionSpans FrameSections(std::span<const uint8> bytes);
+/// Checks the framing of an image whose header ReadHeader accepted: the sections of its
+/// format with the tags 1, 2, ... in order, each length within the image, nothing after the
+/// last. Fails naming the section.
+SectionSpans FrameSections(std::span<const uint8> bytes, uint16 format);
 
 /// Cross-reference checks of a parsed image (SnapshotValidate.cpp): ids, lists, the tree.
 void ValidateImage(Image& image);

@@ -1,7 +1,8 @@
 // b2SnapshotHash: the world hash of a saved image, from its bytes. Each image section is the
 // state walk of one hash category (StateWalk.h), so a category's hash is XXH3-64 of its tag
 // (version, category index) followed by the section's contents, and the world hash combines
-// the six as b2WorldHash does (WorldHash.cpp).
+// the six as b2WorldHash does (WorldHash.cpp). The joint-reaction section (format 2 on) is
+// not a hash category and is left out.
 
 #include "HashWriter.h"
 #include "SnapshotCheck.h"
@@ -14,8 +15,7 @@ b2SnapshotHashResult b2SnapshotHash(std::span<const uint8> image) {
     b2SnapshotHashResult result;
     SectionSpans sections;
     try {
-        ReadHeader(image);
-        sections = FrameSections(image);
+        sections = FrameSections(image, ReadHeader(image).format);
     } catch (const SnapshotFailure& failure) {
         result.error = failure.error;
         result.message = failure.message;

@@ -34,10 +34,12 @@ HeaderFields ReadHeader(std::span<const uint8> bytes) {
         archive(magic, format, major, minor, patch, determinism, fields.payload, fields.checksum);
     }
     if (magic != b2_snapshotMagic) Fail(b2SnapshotError::e_badMagic, "magic " + Hex(magic) + " is not 'LBSN'");
-    if (format != b2_snapshotFormatVersion) {
+    if (format < b2_snapshotOldestReadable || format > b2_snapshotFormatVersion) {
         Fail(b2SnapshotError::e_badFormatVersion, "format version " + std::to_string(format) + ", this build reads " +
+                                                      std::to_string(b2_snapshotOldestReadable) + " to " +
                                                       std::to_string(b2_snapshotFormatVersion));
     }
+    fields.format = format;
     // The engine version (major.minor.patch) is informative: the format and determinism
     // versions decide whether this build can continue the simulation.
     if (determinism != b2_determinismVersion) {
@@ -55,16 +57,17 @@ HeaderFields ReadHeader(std::span<const uint8> bytes) {
     return fields;
 }
 
-SectionSpans FrameSections(std::span<const uint8> bytes) {
-    static constexpr const char* kNames[kSectionCount] = {"settings", "bodies",     "fixtures",
-                                                          "contacts", "joints",     "broadphase"};
+SectionSpans FrameSections(std::span<const uint8> bytes, uint16 format) {
+    static constexpr const char* kNames[kSectionCount] = {"settings", "bodies",     "fixtures",       "contacts",
+                                                          "joints",   "broadphase", "jointReactions"};
+    const uint32 count = format >= 2 ? kSectionCount : kSectionCountV1;
     SectionSpans sections;
     size_t at = kHeaderBytes;
     auto le32 = [&](size_t i) {
         return uint32{bytes[i]} | (uint32{bytes[i + 1]} << 8) | (uint32{bytes[i + 2]} << 16) |
                (uint32{bytes[i + 3]} << 24);
     };
-    for (uint32 s = 0; s < kSectionCount; ++s) {
+    for (uint32 s = 0; s < count; ++s) {
         if (bytes.size() - at < 8) Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section header missing");
         const uint32 tag = le32(at);
         Check(tag == s + 1, kNames[s], "section tag is wrong", tag);

@@ -34,8 +34,13 @@ enum SectionTag : uint32 {
     e_sectionContacts = 4,
     e_sectionJoints = 5,
     e_sectionBroadPhase = 6,
+    e_sectionJointReactions = 7,  ///< format 2 on: not a hash category (Snapshot.h)
 };
-inline constexpr uint32 kSectionCount = 6;
+/// Sections of a current image; the first kHashedSections are the hash categories' walks.
+inline constexpr uint32 kSectionCount = 7;
+inline constexpr uint32 kHashedSections = 6;
+/// Sections of an image of format version 1 (no joint-reaction section).
+inline constexpr uint32 kSectionCountV1 = 6;
 
 struct PoolImage {
     int32 capacity = 0;
@@ -116,6 +121,7 @@ struct JointImage {
     bool collideConnected = false;
     uint64 userData = 0;
     uint32 stateAt = 0;  ///< offset in Image::bytes of the record's first VisitState field
+    uint32 reactionAt = 0;  ///< offset of its VisitReactionState fields; 0: none in the image
     int32 refBegin = 0, refCount = 0;  ///< body/joint references in Image::refs
 };
 

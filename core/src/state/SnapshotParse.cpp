@@ -294,6 +294,20 @@ void ReadJoints(FieldReader& r, Image& img) {
     }
 }
 
+/// The joint-reaction section: each joint's VisitReactionState fields, in joint-list order
+/// (any values: reaction queries only scale them). Keeps their offsets for the apply.
+void ReadJointReactions(FieldReader& r, Image& img) {
+    const JointStateSizes& sizes = JointStateBytes();
+    for (JointImage& j : img.joints) {
+        const uint32 bytes = sizes.reaction[static_cast<size_t>(j.type)];
+        if (bytes == 0) continue;
+        ReadCursor c = r.Begin(bytes);
+        j.reactionAt = static_cast<uint32>(r.Position());
+        c.Skip(bytes);
+        r.End(c);
+    }
+}
+
 void ReadBroadPhase(FieldReader& r, Image& img) {
     TreeImage& t = img.tree;
     t.proxyCount = r.I32();
@@ -368,6 +382,10 @@ b2RestoreResult ParseSnapshot(std::span<const uint8> bytes, Image& img) {
         ReadSection(r, e_sectionContacts, "contacts", [&] { ReadContacts(r, img); });
         ReadSection(r, e_sectionJoints, "joints", [&] { ReadJoints(r, img); });
         ReadSection(r, e_sectionBroadPhase, "broadphase", [&] { ReadBroadPhase(r, img); });
+        // Format 1 had no joint-reaction section: its joints keep their reaction directions.
+        if (header.format >= 2) {
+            ReadSection(r, e_sectionJointReactions, "jointReactions", [&] { ReadJointReactions(r, img); });
+        }
         if (r.Remaining() != 0) {
             Fail(b2SnapshotError::e_trailingBytes, std::to_string(r.Remaining()) + " bytes after the last section");
         }

@@ -45,6 +45,16 @@ void VisitJointState(b2Joint& j, V& v) {
     WithJointClass(j.GetType(), [&](auto cls) { static_cast<typename decltype(cls)::type&>(j).VisitState(v); });
 }
 
+/// Calls j.VisitReactionState(v) on the concrete joint type; nothing for a type whose reaction
+/// queries read only its VisitState fields (revolute, mouse, weld, friction).
+template <class V>
+void VisitJointReaction(b2Joint& j, V& v) {
+    WithJointClass(j.GetType(), [&](auto cls) {
+        using T = typename decltype(cls)::type;
+        if constexpr (requires(T& t) { t.VisitReactionState(v); }) static_cast<T&>(j).VisitReactionState(v);
+    });
+}
+
 /// Adapts a writer to the joints' VisitState protocol (read-only use of the fields).
 template <class W>
 struct JointFieldWriter {
@@ -294,6 +304,16 @@ void WriteJoint(W& w, const b2Joint& j) {
     JointFieldWriter<W> visitor{w};
     // VisitState is shared with the restore path, which writes the fields; here it only reads.
     VisitJointState(const_cast<b2Joint&>(j), visitor);
+}
+
+/// The joint-reaction section (snapshot only, not hashed): for every joint in joint-list
+/// order, the fields of its VisitReactionState (none for some types).
+template <class W>
+void WriteJointReactions(W& w, const b2World& world) {
+    JointFieldWriter<W> visitor{w};
+    for (const b2Joint* j = world.m_jointList; j; j = j->GetNext()) {
+        VisitJointReaction(const_cast<b2Joint&>(*j), visitor);
+    }
 }
 
 template <class C>

@@ -24,7 +24,12 @@ inline constexpr uint16 lockbox_versionMinor = 7;
 inline constexpr uint16 lockbox_versionPatch = 0;
 
 /// Version of the snapshot layout; bump on any change to docs/determinism.md's format table.
-inline constexpr uint16 b2_snapshotFormatVersion = 1;
+/// History: 1 the six state sections; 2 adds a seventh, the joints' reaction directions (so a
+/// restored joint answers GetReactionForce as the saved one did).
+inline constexpr uint16 b2_snapshotFormatVersion = 2;
+/// The oldest format Restore still reads: a format-1 image restores as it always did, its
+/// joints keeping the reaction directions they had (none in a fresh world) until the next step.
+inline constexpr uint16 b2_snapshotOldestReadable = 1;
 
 /// The four magic bytes that open every snapshot payload header ("LBSN").
 inline constexpr uint32 b2_snapshotMagic = 0x4E53424Cu;  // 'L' 'B' 'S' 'N', low byte first
@@ -69,6 +74,7 @@ struct b2SnapshotStats {
     uint32 contactBytes = 0;     ///< contact pool and contacts with manifolds
     uint32 jointBytes = 0;       ///< joints
     uint32 broadPhaseBytes = 0;  ///< dynamic tree and move buffer
+    uint32 jointReactionBytes = 0;  ///< joints' reaction directions (not hashed)
     uint32 totalBytes = 0;       ///< the whole image
 };
 

@@ -72,6 +72,13 @@ public:
         VisitSide(v, m_sideB);
         v(m_ratio, m_constant, m_impulse);
     }
+    /// Visits the directions the last solve computed that GetReactionForce/GetReactionTorque
+    /// read (solver temporaries, not state a step depends on): the snapshot carries them so a
+    /// restored joint answers those queries as the saved one did.
+    template <class V>
+    void VisitReactionState(V& v) {
+        v(m_JvAC, m_JwA);
+    }
 
 private:
     /// One side of the gear: joint (A side: bodies C -> A; B side: bodies D -> B).

@@ -107,6 +107,13 @@ public:
           m_lowerTranslation, m_upperTranslation, m_enableMotor, m_motorSpeed, m_maxMotorForce, m_impulse,
           m_motorImpulse, m_limitState);
     }
+    /// Visits the directions the last solve computed that GetReactionForce/GetReactionTorque
+    /// read (solver temporaries, not state a step depends on): the snapshot carries them so a
+    /// restored joint answers those queries as the saved one did.
+    template <class V>
+    void VisitReactionState(V& v) {
+        v(m_axis, m_perp);
+    }
 
 private:
     b2WideVec3 m_impulse;  ///< perpendicular (N*s), angular (N*m*s), axial limit (N*s)

@@ -74,6 +74,13 @@ public:
     void VisitState(V& v) {
         v(m_groundAnchorA, m_groundAnchorB, m_localAnchorA, m_localAnchorB, m_constant, m_ratio, m_impulse);
     }
+    /// Visits the directions the last solve computed that GetReactionForce/GetReactionTorque
+    /// read (solver temporaries, not state a step depends on): the snapshot carries them so a
+    /// restored joint answers those queries as the saved one did.
+    template <class V>
+    void VisitReactionState(V& v) {
+        v(m_uB);
+    }
 
 private:
     b2Vec2 m_groundAnchorA;

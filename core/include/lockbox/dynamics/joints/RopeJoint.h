@@ -62,6 +62,13 @@ public:
     void VisitState(V& v) {
         v(m_localAnchorA, m_localAnchorB, m_maxLength, m_length, m_impulse, m_state);
     }
+    /// Visits the directions the last solve computed that GetReactionForce/GetReactionTorque
+    /// read (solver temporaries, not state a step depends on): the snapshot carries them so a
+    /// restored joint answers those queries as the saved one did.
+    template <class V>
+    void VisitReactionState(V& v) {
+        v(m_u);
+    }
 
 private:
     b2Vec2 m_localAnchorA;

@@ -92,6 +92,13 @@ public:
         v(m_localAnchorA, m_localAnchorB, m_localXAxisA, m_localYAxisA, m_enableMotor, m_motorSpeed,
           m_maxMotorTorque, m_frequencyHz, m_dampingRatio, m_impulse, m_motorImpulse, m_springImpulse);
     }
+    /// Visits the directions the last solve computed that GetReactionForce/GetReactionTorque
+    /// read (solver temporaries, not state a step depends on): the snapshot carries them so a
+    /// restored joint answers those queries as the saved one did.
+    template <class V>
+    void VisitReactionState(V& v) {
+        v(m_ax, m_ay);
+    }
 
 private:
     Fixed m_frequencyHz;
