@@ -137,9 +137,10 @@ void ApplyShape(const Image& img, const ShapeImage& si, std::unique_ptr<b2Shape>
     }
 }
 
-void ApplyFixtures(const Image& img, b2World& world) {
+void ApplyFixtures(Image& img, b2World& world) {
     world.m_fixtures.RestoreLayout(img.fixturePool.live, img.fixturePool.free,
                                    [](void* slot, int32) { ::new (slot) b2Fixture(); });
+    img.fixtureSlots.resize(static_cast<size_t>(img.fixturePool.capacity));
     // Fixtures come grouped by body in body-list order, each group in fixture-list order.
     size_t k = 0;
     const size_t count = img.fixtures.size();
@@ -158,6 +159,7 @@ void ApplyFixtures(const Image& img, b2World& world) {
                 if (ahead->m_shape) PrefetchBytes(ahead->m_shape.get(), kShapePrefetchBytes);
             }
             b2Fixture* f = world.m_fixtures.Get(fi.id);
+            img.fixtureSlots[static_cast<size_t>(fi.id)] = {f, body, bi.id};
             f->m_id = fi.id;
             f->m_body = body;
             f->m_density = fi.density;
@@ -245,24 +247,27 @@ void ApplyContacts(Image& img, b2World& world) {
     const size_t count = img.contacts.size();
     for (size_t i = 0; i < count; ++i) {
         const ContactImage& ci = img.contacts[i];
-        if (i + kApplyPrefetch < count) PrefetchObject(cm.GetContact(img.contacts[i + kApplyPrefetch].id));
+        // The whole contact, graph edges included: the walks skip them, this pass writes them.
+        if (i + kApplyPrefetch < count) PrefetchBytes(cm.GetContact(img.contacts[i + kApplyPrefetch].id), sizeof(b2Contact));
         b2Contact* c = cm.GetContact(ci.id);
-        c->m_fixtureA = fixtures.Get(ci.fixtureA);
-        c->m_fixtureB = fixtures.Get(ci.fixtureB);
-        c->m_fixtureIdA = c->m_fixtureA->GetId();
-        c->m_fixtureIdB = c->m_fixtureB->GetId();
+        const Image::FixtureSlot& slotA = img.fixtureSlots[static_cast<size_t>(ci.fixtureA)];
+        const Image::FixtureSlot& slotB = img.fixtureSlots[static_cast<size_t>(ci.fixtureB)];
+        c->m_fixtureA = slotA.fixture;
+        c->m_fixtureB = slotB.fixture;
+        c->m_fixtureIdA = ci.fixtureA;
+        c->m_fixtureIdB = ci.fixtureB;
         c->m_indexA = ci.indexA;
         c->m_indexB = ci.indexB;
         ApplyContactState(img.bytes + ci.stateAt, *c);
-        b2Body* bodyA = c->m_fixtureA->m_body;
-        b2Body* bodyB = c->m_fixtureB->m_body;
+        b2Body* bodyA = slotA.body;
+        b2Body* bodyB = slotB.body;
         c->m_nodeA = b2ContactEdge{bodyB, c, nullptr, nullptr};
         c->m_nodeB = b2ContactEdge{bodyA, c, nullptr, nullptr};
         AppendToWorldList(c, cm.m_contactList, previous);
         // Each body's edges are in world-list order (StateWalk.h): appending in list order
         // rebuilds them while the contact is in cache (a second pass missed on every one).
-        AppendEdge(&c->m_nodeA, bodyA->m_contactList, tails[static_cast<size_t>(bodyA->m_id)]);
-        AppendEdge(&c->m_nodeB, bodyB->m_contactList, tails[static_cast<size_t>(bodyB->m_id)]);
+        AppendEdge(&c->m_nodeA, bodyA->m_contactList, tails[static_cast<size_t>(slotA.bodyId)]);
+        AppendEdge(&c->m_nodeB, bodyB->m_contactList, tails[static_cast<size_t>(slotB.bodyId)]);
     }
     cm.m_contactCount = static_cast<int32>(img.contacts.size());
 }

@@ -165,6 +165,14 @@ struct Image {
     std::vector<FixtureFacts> fixtureFacts;
     /// Restore scratch: the last contact edge of each body while the lists are rebuilt.
     std::vector<b2ContactEdge*> edgeTails;
+    /// Restore scratch, by fixture id: the world's fixture and its body once the fixtures are
+    /// installed, so the contacts find both without a pool lookup or a fixture visit.
+    struct FixtureSlot {
+        b2Fixture* fixture = nullptr;
+        b2Body* body = nullptr;
+        int32 bodyId = -1;
+    };
+    std::vector<FixtureSlot> fixtureSlots;
     /// Restore scratch: which joint ids the image has visited, and the last joint edge of
     /// each body while the lists are rebuilt.
     std::vector<uint8> jointVisited;
