@@ -8,6 +8,7 @@
 
 #include <array>
 #include <bit>
+#include <cstdlib>
 #include <cstdint>
 #include <vector>
 
@@ -103,6 +104,8 @@ inline const JointStateSizes& JointStateBytes() {
                 s.reaction[static_cast<size_t>(t)] = static_cast<uint32>(reactionCount.bytes);
             });
         }
+        // WriteJoint's single room check must cover the largest record.
+        if (kJointHeadBytes + s.largest > kJointRecordMaxBytes) std::abort();
         return s;
     }();
     return sizes;

@@ -250,9 +250,6 @@ void ReadContacts(FieldReader& r, Image& img) {
     }
 }
 
-/// The fixed head of a joint record (id, type, bodies, collideConnected, user data).
-constexpr size_t kJointHeadBytes = 4 + 1 + 4 + 4 + 1 + 8;
-
 /// One joint record from R (a ReadCursor or the FieldReader, see ReadJoints); the state
 /// fields are checked where they lie and only their offset and references are kept.
 template <class R>

@@ -293,26 +293,37 @@ void WriteContact(W& w, const b2Contact& contact) {
     w.End(c);
 }
 
+/// A joint record's fixed head: id, type, body A, body B, collideConnected, user data.
+inline constexpr size_t kJointHeadBytes = 4 + 1 + 4 + 4 + 1 + 8;
+/// Room for any joint record (head and VisitState fields; the largest, a gear joint's, is
+/// about 130 bytes): one room check per joint. JointStateBytes (JointState.h) checks the bound
+/// against the counted sizes.
+inline constexpr size_t kJointRecordMaxBytes = 256;
+
 template <class W>
 void WriteJoint(W& w, const b2Joint& j) {
-    w.I32(j.GetId());
-    w.U8(static_cast<uint32>(j.GetType()));
-    w.I32(j.m_bodyA->GetId());
-    w.I32(j.m_bodyB->GetId());
-    w.Bool(j.m_collideConnected);
-    w.U64(j.m_userData);
-    JointFieldWriter<W> visitor{w};
+    auto c = w.Begin(kJointRecordMaxBytes);
+    c.I32(j.GetId());
+    c.U8(static_cast<uint32>(j.GetType()));
+    c.I32(j.m_bodyA->GetId());
+    c.I32(j.m_bodyB->GetId());
+    c.Bool(j.m_collideConnected);
+    c.U64(j.m_userData);
+    JointFieldWriter<decltype(c)> visitor{c};
     // VisitState is shared with the restore path, which writes the fields; here it only reads.
     VisitJointState(const_cast<b2Joint&>(j), visitor);
+    w.End(c);
 }
 
 /// The joint-reaction section (snapshot only, not hashed): for every joint in joint-list
 /// order, the fields of its VisitReactionState (none for some types).
 template <class W>
 void WriteJointReactions(W& w, const b2World& world) {
-    JointFieldWriter<W> visitor{w};
     for (const b2Joint* j = world.m_jointList; j; j = j->GetNext()) {
+        auto c = w.Begin(kJointRecordMaxBytes);
+        JointFieldWriter<decltype(c)> visitor{c};
         VisitJointReaction(const_cast<b2Joint&>(*j), visitor);
+        w.End(c);
     }
 }
 
