@@ -7,6 +7,8 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "lockbox/lockbox.h"
 #include "lockbox/scenes/LockboxScenes.h"
@@ -40,6 +42,21 @@ struct SceneRun {
         for (int i = 0; i < n; ++i) Advance();
     }
 };
+
+/// [begin, end) of snapshot section `tag`'s contents, found by walking the section headers
+/// (tag and length, little-endian) after the 33-byte header; {0, 0} when it is absent.
+inline std::pair<size_t, size_t> SectionBytes(const std::vector<uint8>& image, uint32 tag) {
+    auto le32 = [&](size_t at) {
+        return uint32{image[at]} | uint32{image[at + 1]} << 8 | uint32{image[at + 2]} << 16 | uint32{image[at + 3]} << 24;
+    };
+    size_t at = 33;
+    while (at + 8 <= image.size()) {
+        const uint32 t = le32(at), length = le32(at + 4);
+        if (t == tag) return {at + 8, at + 8 + length};
+        at += 8 + length;
+    }
+    return {0, 0};
+}
 
 /// Names the first category and body where two worlds differ ("" when equal).
 inline std::string DescribeDifference(const b2World& a, const b2World& b) {

@@ -188,13 +188,9 @@ TEST(JointReactionRestore, InAFreshWorld) {
 /// The image as format 1 wrote it: without the joint-reaction section (the last), with format
 /// version 1 and the payload length and checksum to match.
 std::vector<uint8> AsFormat1(std::vector<uint8> image) {
-    auto le32 = [&](size_t at) {
-        return uint32{image[at]} | uint32{image[at + 1]} << 8 | uint32{image[at + 2]} << 16 | uint32{image[at + 3]} << 24;
-    };
-    size_t at = 33;
-    for (int s = 0; s < 6; ++s) at += 8 + le32(at + 4);
-    EXPECT_EQ(le32(at), 7u) << "the joint-reaction section is not the seventh";
-    image.resize(at);
+    const auto [begin, end] = testing_state::SectionBytes(image, 7);
+    EXPECT_EQ(end, image.size()) << "the joint-reaction section is not the last";
+    image.resize(begin - 8);  // its tag and length go too
     image[5] = 1;  // format version (u16 at offset 5)
     image[6] = 0;
     const uint64 payload = image.size() - 33;

@@ -11,6 +11,7 @@ namespace lockbox {
 namespace {
 
 using testing_state::SceneRun;
+using testing_state::SectionBytes;
 
 class SnapshotHashScenes : public ::testing::TestWithParam<std::string_view> {};
 
@@ -43,21 +44,6 @@ std::vector<uint8> SceneImage(const char* name = "ragdolls") {
     SceneRun run(name);
     run.Advance(10);
     return run.world().Save();
-}
-
-/// [begin, end) of section `tag`'s contents, found by walking the section headers (tag and
-/// length, little-endian) after the 33-byte header.
-std::pair<size_t, size_t> SectionBytes(const std::vector<uint8>& image, uint32 tag) {
-    auto le32 = [&](size_t at) {
-        return uint32{image[at]} | uint32{image[at + 1]} << 8 | uint32{image[at + 2]} << 16 | uint32{image[at + 3]} << 24;
-    };
-    size_t at = 33;
-    while (at + 8 <= image.size()) {
-        const uint32 t = le32(at), length = le32(at + 4);
-        if (t == tag) return {at + 8, at + 8 + length};
-        at += 8 + length;
-    }
-    return {0, 0};
 }
 
 TEST(SnapshotHash, AnEditedSectionChangesItsCategoryOnly) {
