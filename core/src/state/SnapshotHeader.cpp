@@ -1,5 +1,5 @@
 // The checks every reader of a snapshot image makes before its sections: the header (through
-// Cereal's portable binary archive, little-endian) and the framing of the six sections.
+// Cereal's portable binary archive, little-endian) and the framing of the sections.
 // Restore (SnapshotParse.cpp) and the image hash (SnapshotHash.cpp) share them, so an image
 // one accepts the other frames the same way.
 
