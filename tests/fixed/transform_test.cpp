@@ -2,6 +2,8 @@
 // and that normalising a sweep keeps the relative angle exactly.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cmath>
 #include <random>
 
@@ -98,7 +100,7 @@ TEST(Sweep, EndpointsAreExactAndAdvanceMovesTheStart) {
 }
 
 TEST(Sweep, NormalizeKeepsTheRelativeAngle) {
-    for (int32_t a0raw : {-2000000, -411775, -1, 0, 411774, 411775, 9000000}) {
+    for (int32_t a0raw : {-2000000, -411775, -1, 0, 411774, 411775, 9000000, -2147483000, 2147470000}) {
         b2Sweep s;
         s.a0 = Fixed::FromRaw(a0raw);
         s.a = Fixed::FromRaw(a0raw + 12345);
@@ -106,6 +108,33 @@ TEST(Sweep, NormalizeKeepsTheRelativeAngle) {
         EXPECT_GE(s.a0.Raw(), 0);
         EXPECT_LT(s.a0.Raw(), 411775);
         EXPECT_EQ(s.a.Raw() - s.a0.Raw(), 12345);
-        EXPECT_EQ((a0raw - s.a0.Raw()) % 411775, 0);
+        EXPECT_EQ((int64_t{a0raw} - s.a0.Raw()) % 411775, 0);
     }
+}
+
+// Near the ends of the range the whole turns below a0 pass the int32 range (-5216 turns of
+// raw 411775 for a0 = INT32_MIN): the shift is computed in 64 bits (no overflow, no UB), a0
+// still lands in [0, 2*pi), and an end angle pushed past the range saturates like any Fixed
+// subtraction. Found by the restore fuzzer (an accepted image with such an angle, then a TOI).
+TEST(Sweep, NormalizeAtTheEndsOfTheRange) {
+    // Saturations are expected here: checked builds report them to a handler that returns.
+    const lockbox::OverflowTrapHandler previous = lockbox::SetOverflowTrapHandler([](const char*, int64_t, int64_t) {});
+    const int32_t lowest = std::numeric_limits<int32_t>::min();
+    const int32_t highest = std::numeric_limits<int32_t>::max();
+    for (int32_t a0raw : {lowest, lowest + 1, lowest + 411775, highest, highest - 1}) {
+        for (int32_t araw : {a0raw, lowest, highest, 0}) {
+            b2Sweep s;
+            s.a0 = Fixed::FromRaw(a0raw);
+            s.a = Fixed::FromRaw(araw);
+            s.Normalize();
+            ASSERT_GE(s.a0.Raw(), 0) << a0raw;
+            ASSERT_LT(s.a0.Raw(), 411775) << a0raw;
+            const int64_t shift = int64_t{a0raw} - s.a0.Raw();
+            EXPECT_EQ(shift % 411775, 0) << a0raw;
+            const int64_t exact = int64_t{araw} - shift;
+            const int64_t expected = exact > highest ? highest : exact < -int64_t{highest} ? -int64_t{highest} : exact;
+            EXPECT_EQ(s.a.Raw(), expected) << a0raw << " " << araw;
+        }
+    }
+    lockbox::SetOverflowTrapHandler(previous);
 }

@@ -31,14 +31,18 @@ struct b2Sweep {
     }
 
     /// Shifts both angles by the same whole number of turns so that a0 lies in [0, 2*pi).
-    /// The shift is a multiple of the Q16.16 2*pi (raw 411775), so a - a0 is unchanged.
+    /// The shift is a multiple of the Q16.16 2*pi (raw 411775), so a - a0 is unchanged (a
+    /// saturates, as any Fixed subtraction, should it leave the range).
     constexpr void Normalize() noexcept {
-        constexpr int32_t kTwoPiRaw = 411775;
-        int32_t turns = a0.Raw() / kTwoPiRaw;
-        if (a0.Raw() - turns * kTwoPiRaw < 0) --turns;  // floor
-        const Fixed d = Fixed::FromRaw(turns * kTwoPiRaw);
-        a0 -= d;
-        a -= d;
+        constexpr int64_t kTwoPiRaw = 411775;
+        // In 64 bits: near the ends of the range the whole turns below a0 pass INT32_MIN
+        // (-5216 turns for a0 = -2^31 raw).
+        const int64_t raw0 = a0.Raw();
+        int64_t turns = raw0 / kTwoPiRaw;
+        if (raw0 - turns * kTwoPiRaw < 0) --turns;  // floor
+        const int64_t shift = turns * kTwoPiRaw;
+        a0 = Fixed::FromRaw(static_cast<int32_t>(raw0 - shift));  // in [0, 2*pi)
+        a = Fixed::FromRaw(detail::NarrowRaw(int64_t{a.Raw()} - shift, "b2Sweep::Normalize", a.Raw(), shift));
     }
 };
 
