@@ -6,6 +6,10 @@
 //      contacts, resealed (near-valid images: the cross-reference checks);
 //   3: a real image cut to a length taken from the input.
 // Every refused image must leave the world's hash unchanged; every accepted one must step.
+// b2SnapshotHash reads every input too (its framing checks face the same hostile bytes), and
+// for an accepted image of the current format it must give the restored world's hash, and
+// saving that world must give the image back (but for the informative engine version and the
+// checksum that covers it): an accepted image is canonical.
 
 #include <cstddef>
 #include <cstdint>
@@ -15,6 +19,7 @@
 
 #include "lockbox/lockbox.h"
 #include "lockbox/scenes/LockboxScenes.h"
+#include "lockbox/state/WorldHash.h"
 
 namespace {
 
@@ -74,6 +79,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     Base& base = TheBase();
     b2World& world = base.engine.world();
     const std::vector<uint8> image = MakeImage(data, size, base.image);
+    const b2SnapshotHashResult imageHash = b2SnapshotHash(image);
     const b2RestoreResult result = world.Restore(image);
     if (!result.ok()) {
         if (world.Hash() != base.hash) {
@@ -81,6 +87,30 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             std::abort();
         }
         return 0;
+    }
+    if (!imageHash.ok()) {
+        std::fprintf(stderr, "an image Restore accepts is refused by b2SnapshotHash: %s\n", imageHash.message.c_str());
+        std::abort();
+    }
+    if (image.size() > 6 && image[5] == b2_snapshotFormatVersion && image[6] == 0) {
+        if (imageHash.total != world.Hash()) {
+            std::fprintf(stderr, "accepted image: b2SnapshotHash differs from the restored world's hash\n");
+            std::abort();
+        }
+        // The engine version (bytes 7..12) is informative and the checksum (25..32) covers
+        // it: everything else must come back as it was.
+        std::vector<uint8> again = world.Save();
+        if (again.size() != image.size()) {
+            std::fprintf(stderr, "accepted image: saving the restored world gives another size\n");
+            std::abort();
+        }
+        for (size_t i = 0; i < image.size(); ++i) {
+            if ((i >= 7 && i < 13) || (i >= 25 && i < 33)) continue;
+            if (again[i] != image[i]) {
+                std::fprintf(stderr, "accepted image: byte %zu comes back as %u, not %u\n", i, again[i], image[i]);
+                std::abort();
+            }
+        }
     }
     for (int i = 0; i < 3; ++i) world.Step(Fixed::FromRatio(1, 60), 8, 3);
     // Back to the base state for the next input.
