@@ -215,6 +215,8 @@ void RollbackPeer::Handle(Remote& r, const RollbackMessage& m, uint64_t now) {
         OnView(r, *v);
     } else if (const auto* fz = std::get_if<RbFrozen>(&m)) {
         OnFrozen(r, *fz);
+    } else if (const auto* wish = std::get_if<RbDelayWish>(&m)) {
+        r.delayWish = wish->frames;
     } else if (std::holds_alternative<RbDisconnect>(m)) {
         DropRemote(r, false);  // it left: nothing to tell
     }
@@ -251,6 +253,7 @@ void RollbackPeer::SendTo(Remote& r, uint64_t now) {
     if (r.echoPending && writer_.Add(RbQualityReply{r.echoTime, now - r.echoReceivedAt}, shape_, limit))
         r.echoPending = false;
     AddAgreement(limit);
+    if (delayWish_ >= 0) writer_.Add(RbDelayWish{static_cast<uint8_t>(delayWish_)}, shape_, limit);
     const size_t width = shape_.inputBytes;
     for (uint32_t lp : localPlayers_) {
         const int32_t end = session_.ReceivedFrame(lp);
@@ -316,6 +319,17 @@ bool RollbackPeer::WaitThisTick() {
     // Samples taken before the wait describe a lead this tick just gave back.
     for (Remote& r : remotes_) r.localAdvantage.clear();
     return true;
+}
+
+void RollbackPeer::AskInputDelay(uint32_t frames) noexcept {
+    delayWish_ = static_cast<int32_t>(std::min(frames, kRollbackMaxInputDelay));
+}
+
+uint32_t RollbackPeer::RemoteDelayWish() const noexcept {
+    uint32_t wish = 0;
+    for (const Remote& r : remotes_)
+        if (r.alive) wish = std::max<uint32_t>(wish, r.delayWish);
+    return wish;
 }
 
 uint64_t RollbackPeer::RttMicros(size_t index) const noexcept {

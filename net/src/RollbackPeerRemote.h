@@ -31,6 +31,7 @@ struct RollbackPeer::Remote {
     std::deque<int32_t> localAdvantage, remoteAdvantage;
     std::map<int32_t, uint8_t> hashCopies;  // final hash frame -> datagrams that carried it
     bool interrupted = false;
+    uint8_t delayWish = 0;  // the input delay it asked this peer for (RbDelayWish)
     RollbackIncompatibility incompatible = RollbackIncompatibility::e_none;
 
     Remote() { frozenHeard.fill(-1); }

@@ -144,11 +144,52 @@ InputResult RollbackSession::AddLocalInput(uint32_t player, std::span<const uint
     if (input.size() != m.Bytes()) return InputResult::e_badSize;
     Impl::Player& p = m.players[player];
     if (p.disconnected || p.frozen) return InputResult::e_disconnected;
-    const int32_t target = m.current + static_cast<int32_t>(m.config.inputDelay);
+    int32_t target = m.current + static_cast<int32_t>(m.config.inputDelay) + p.surplus;
+    // A queue that ran short (ticks without an input) has already given back what it owed.
+    if (p.received < target && p.surplus > 0) {
+        const int32_t paid = std::min(p.surplus, target - p.received);
+        p.surplus -= paid;
+        target -= paid;
+    }
     if (p.received > target) return InputResult::e_alreadyAdded;
+    if (p.surplus > 0 && p.received == target && p.received > 0 &&
+        std::memcmp(m.InputAt(p, p.received - 1), input.data(), m.Bytes()) == 0) {
+        // The player repeats itself: the queued frame already says this.
+        --p.surplus;
+        ++m.stats.inputsAbsorbed;
+        return InputResult::e_ok;
+    }
     m.Store(p, p.received, input);
     return InputResult::e_ok;
 }
+
+bool RollbackSession::SetInputDelay(uint32_t frames) {
+    Impl& m = *impl_;
+    if (frames > kRollbackMaxInputDelay) return false;
+    const int32_t change = static_cast<int32_t>(frames) - static_cast<int32_t>(m.config.inputDelay);
+    m.config.inputDelay = frames;
+    if (change == 0) return true;
+    std::vector<uint8_t> repeat(m.Bytes(), 0);
+    for (Impl::Player& p : m.players) {
+        if (!p.local || p.disconnected || p.frozen) continue;
+        if (change < 0) {
+            p.surplus += -change;
+            continue;
+        }
+        // A raise first cancels what a lowering still owed, then repeats the latest input
+        // into the frames that open, so the queue stays contiguous for the peers.
+        const int32_t cancelled = std::min(p.surplus, change);
+        p.surplus -= cancelled;
+        if (p.received > 0) std::memcpy(repeat.data(), m.InputAt(p, p.received - 1), m.Bytes());
+        for (int32_t k = cancelled; k < change; ++k) {
+            m.Store(p, p.received, repeat);
+            ++m.stats.inputsRepeated;
+        }
+    }
+    return true;
+}
+
+uint32_t RollbackSession::InputDelay() const noexcept { return impl_->config.inputDelay; }
 
 std::vector<RollbackRequest> RollbackSession::AdvanceFrame() {
     Impl& m = *impl_;

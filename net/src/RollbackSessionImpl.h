@@ -47,6 +47,9 @@ struct RollbackSession::Impl {
         bool disconnected = false;     // the cut is set: zeros from disconnectFrame on
         int32_t received = 0;          // frames before this are known
         int32_t disconnectFrame = INT32_MAX;
+        // Frames a lowered input delay still owes: the local queue runs this much deeper than
+        // the delay until as many repeated inputs have been absorbed (SetInputDelay).
+        int32_t surplus = 0;
         std::vector<uint8_t> ring;     // kInputRing * inputBytes
         std::vector<int32_t> ringFrame;
     };

@@ -251,6 +251,16 @@ void Dec(Reader& r, RbHello& m, const RollbackShape&) {
     m.inputBytes = static_cast<uint32_t>(bytes);
 }
 
+bool Enc(Writer& w, const RbDelayWish& m, const RollbackShape&) {
+    if (m.frames > kRollbackMaxInputDelay) return false;
+    w.U8(m.frames);
+    return true;
+}
+void Dec(Reader& r, RbDelayWish& m, const RollbackShape&) {
+    m.frames = r.U8();
+    if (r.ok() && m.frames > kRollbackMaxInputDelay) r.Fail(DecodeError::e_badValue);
+}
+
 // Input-carrying messages need a valid shape to be sized at all.
 template <class M>
 constexpr bool kNeedsShape = std::is_same_v<M, RbInputs> || std::is_same_v<M, RbInputAck> ||

@@ -15,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include "lockbox/net/RollbackBudgetGuard.h"
 #include "lockbox/net/RollbackPeer.h"
 #include "lockbox/net/RollbackSession.h"
 #include "lockbox/net/RollbackWorldAdapter.h"
@@ -68,7 +69,7 @@ private:
 struct Board {
     std::atomic<int32_t> frame{0}, confirmed{0};
     std::atomic<uint64_t> rollbacks{0}, resimulated{0}, resimNanos{0}, rollbackSteps{0};
-    std::atomic<uint32_t> deepest{0};
+    std::atomic<uint32_t> deepest{0}, inputDelay{0};
     std::atomic<bool> done{false}, failed{false}, desync{false};
     std::mutex lock;
     std::map<int32_t, uint64_t> finals;  // frame -> final hash (under lock)
@@ -96,6 +97,13 @@ void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net:
     net::RollbackPeer peer(*session, *transport, cfg);
     replay::ScriptedInputs script(o.seed * 1000 + me, 1);
     std::vector<uint8_t> input;
+    bool pending = false;  // a drawn input the session has not taken yet
+    std::unique_ptr<net::RollbackBudgetGuard> budget;
+    if (o.budgetMs > 0) {
+        net::RollbackBudgetConfig bc;
+        bc.budgetMicros = static_cast<uint32_t>(o.budgetMs) * 1000;
+        budget = std::make_unique<net::RollbackBudgetGuard>(bc, static_cast<uint32_t>(o.inputDelay));
+    }
     const auto tick = std::chrono::microseconds(1000000 / 60);
     auto next = Clock::now();
     // Play past `frames` until both sides have confirmed it, then a little longer so the
@@ -104,24 +112,32 @@ void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net:
     while (Clock::now() < deadline && lingerTicks > 0) {
         peer.Poll();
         if (!peer.WaitThisTick()) {
-            if (session->ReceivedFrame(me) <= session->CurrentFrame() + o.inputDelay) {
-                script.Next(input);
-                session->AddLocalInput(me, input);
-            }
+            if (!pending) script.Next(input);
+            pending = session->AddLocalInput(me, input) == net::InputResult::e_alreadyAdded;
+            const uint64_t resimBefore = session->Stats().framesResimulated;
             const auto reqs = session->AdvanceFrame();
             const bool rollback = std::any_of(reqs.begin(), reqs.end(), [](const net::RollbackRequest& r) {
                 return std::holds_alternative<net::LoadState>(r);
             });
             const auto t0 = Clock::now();
             if (!adapter.Execute(*session, reqs)) board.failed = true;
+            const auto nanos = static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count());
             if (rollback) {
                 // Every Advance of a rollback batch (the re-simulated frames and the new one)
                 // with its save: the cost per frame of catching up.
                 board.rollbackSteps += static_cast<uint64_t>(std::count_if(
                     reqs.begin(), reqs.end(),
                     [](const net::RollbackRequest& r) { return std::holds_alternative<net::AdvanceRequest>(r); }));
-                board.resimNanos += static_cast<uint64_t>(
-                    std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count());
+                board.resimNanos += nanos;
+            }
+            if (budget) {
+                // The guard picks the delay the other player should use; this player uses
+                // the one the other asks for (docs/rollback.md, "The budget guard").
+                const auto depth = static_cast<uint32_t>(session->Stats().framesResimulated - resimBefore);
+                if (budget->Record(depth, static_cast<uint32_t>(std::min<uint64_t>(nanos / 1000, UINT32_MAX))))
+                    peer.AskInputDelay(budget->Delay());
+                const uint32_t wanted = std::max(static_cast<uint32_t>(o.inputDelay), peer.RemoteDelayWish());
+                if (wanted != session->InputDelay()) session->SetInputDelay(wanted);
             }
         }
         peer.Flush();
@@ -131,6 +147,7 @@ void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net:
         board.rollbacks = s.rollbacks;
         board.resimulated = s.framesResimulated;
         board.deepest = s.deepestRollback;
+        board.inputDelay = session->InputDelay();
         {
             std::lock_guard<std::mutex> guard(board.lock);
             for (const auto& [f, h] : session->FinalHashes()) board.finals[f] = h;
@@ -152,8 +169,8 @@ void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net:
 
 int RunRollbackMatch(const RollbackOptions& o) {
     if (o.frames < 1 || o.frames > 1000000 || o.inputDelay < 0 || o.inputDelay > 16 || o.window < 1 ||
-        o.window > 64 || o.latencyMs < 0 || o.latencyMs > 1000) {
-        std::fprintf(stderr, "rollback: frames 1..1000000, delay 0..16, window 1..64, latency 0..1000 ms\n");
+        o.window > 64 || o.latencyMs < 0 || o.latencyMs > 1000 || o.budgetMs < 0 || o.budgetMs > 1000) {
+        std::fprintf(stderr, "rollback: frames 1..1000000, delay 0..16, window 1..64, latency 0..1000 ms, budget 0..1000 ms\n");
         return 2;
     }
     if (!replay::SceneGame(o.scene).ok()) {
@@ -174,8 +191,10 @@ int RunRollbackMatch(const RollbackOptions& o) {
         return 1;
     }
     const uint64_t delay = static_cast<uint64_t>(o.latencyMs) * 1000;
-    std::printf("rollback match: scene %s, %d frames, input delay %d, window %d, one-way latency %d ms (loopback UDP)\n",
+    std::printf("rollback match: scene %s, %d frames, input delay %d, window %d, one-way latency %d ms (loopback UDP)",
                 o.scene.c_str(), o.frames, o.inputDelay, o.window, o.latencyMs);
+    if (o.budgetMs > 0) std::printf(", budget guard %d ms", o.budgetMs);
+    std::printf("\n");
     const auto start = Clock::now();
     // Three times real time plus slack: the match always ends.
     const auto deadline = start + std::chrono::milliseconds(int64_t{o.frames} * 50 + 15000);
@@ -194,9 +213,10 @@ int RunRollbackMatch(const RollbackOptions& o) {
             const Board& bd = boards[i];
             const uint64_t rb = bd.rollbacks;
             const uint64_t resim = bd.rollbackSteps;
-            std::printf("  player %d: frame %5d confirmed %5d  rollbacks/s %3llu  deepest %u  resim %.3f ms/frame\n", i,
+            std::printf("  player %d: frame %5d confirmed %5d  rollbacks/s %3llu  deepest %u  resim %.3f ms/frame  delay %u\n", i,
                         bd.frame.load(), bd.confirmed.load(), static_cast<unsigned long long>(rb - lastRollbacks[i]),
-                        bd.deepest.load(), resim ? static_cast<double>(bd.resimNanos) / 1e6 / static_cast<double>(resim) : 0.0);
+                        bd.deepest.load(), resim ? static_cast<double>(bd.resimNanos) / 1e6 / static_cast<double>(resim) : 0.0,
+                        bd.inputDelay.load());
             lastRollbacks[i] = rb;
         }
         std::fflush(stdout);
@@ -221,12 +241,12 @@ int RunRollbackMatch(const RollbackOptions& o) {
         const Board& bd = boards[i];
         const uint64_t resim = bd.rollbackSteps;
         std::printf("player %d: %d frames in %.1f s, %llu rollbacks (%.1f/s), deepest %u, %llu frames resimulated, "
-                    "resim %.3f ms/frame%s%s\n",
+                    "resim %.3f ms/frame, input delay %u at the end%s%s\n",
                     i, bd.frame.load(), seconds, static_cast<unsigned long long>(bd.rollbacks.load()),
                     static_cast<double>(bd.rollbacks) / seconds, bd.deepest.load(),
                     static_cast<unsigned long long>(bd.resimulated.load()),
                     resim ? static_cast<double>(bd.resimNanos) / 1e6 / static_cast<double>(resim) : 0.0,
-                    bd.failed ? ", RESTORE FAILED" : "", bd.desync ? ", DESYNC" : "");
+                    bd.inputDelay.load(), bd.failed ? ", RESTORE FAILED" : "", bd.desync ? ", DESYNC" : "");
         ok = ok && !bd.failed && !bd.desync && bd.confirmed >= o.frames;
     }
     if (ok)

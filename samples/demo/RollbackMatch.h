@@ -5,7 +5,8 @@
 // RollbackPeer; both push bodies around with scripted inputs at 60 Hz. A fixed one-way delay
 // can be added in front of each socket so the predictions are wrong now and then. Every
 // second each player prints its frame, rollbacks per second, the deepest rollback and the
-// re-simulation time per frame; at the end the demo prints the hash both players agreed on.
+// re-simulation time per frame (and, with a budget, the input delay the budget guard chose);
+// at the end the demo prints the hash both players agreed on.
 
 #include <cstdint>
 #include <string>
@@ -20,6 +21,9 @@ struct RollbackOptions {
     int window = 8;                  ///< prediction window, 1 .. 64
     int latencyMs = 40;              ///< extra one-way delay added before each send, 0 .. 1000
     uint64_t seed = 1;               ///< scripted inputs of player i use seed * 1000 + i
+    /// > 0: each player runs a RollbackBudgetGuard with this budget (ms per rollback tick, p99)
+    /// on its measured re-simulation times and the players apply each other's delay wish.
+    int budgetMs = 0;
 };
 
 /// Plays the match; returns the process exit code (0: both players confirmed every frame,

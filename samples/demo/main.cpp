@@ -8,7 +8,7 @@
 //   lockbox_demo [--scene NAME] [--clients N] [--frames N] [--transport udp|enet]
 //                [--authoritative] [--input-delay N] [--seed S] [--replay FILE]
 //   lockbox_demo --mode rollback [--scene NAME] [--frames N] [--input-delay N] [--window N]
-//                [--latency-ms N] [--seed S]                 a 2-player rollback match (RollbackMatch.h)
+//                [--latency-ms N] [--seed S] [--budget-ms N] a 2-player rollback match (RollbackMatch.h)
 //   lockbox_demo --offline [--scene NAME] [--steps N]   Hello World, then one scene, no network
 #include <cstdio>
 #include <cstdlib>
@@ -26,7 +26,7 @@ int Usage() {
                  "usage: lockbox_demo [--scene NAME] [--clients 1..16] [--frames N] [--transport udp|enet]\n"
                  "                    [--authoritative] [--input-delay N] [--seed S] [--replay FILE]\n"
                  "       lockbox_demo --mode rollback [--scene NAME] [--frames N] [--input-delay N] [--window N]\n"
-                 "                    [--latency-ms N] [--seed S]\n"
+                 "                    [--latency-ms N] [--seed S] [--budget-ms N]\n"
                  "       lockbox_demo --offline [--scene NAME] [--steps N]\n");
     return 2;
 }
@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
     bool offline = false;
     bool rollback = false;
     lockbox::demo::RollbackOptions roll;
-    long delay = -1, window = -1, latency = -1;
+    long delay = -1, window = -1, latency = -1, budget = -1;
     std::string scene;
     long steps = -1;
     for (int i = 1; i < argc; ++i) {
@@ -61,6 +61,9 @@ int main(int argc, char** argv) {
             rollback = std::strcmp(argv[++i], "rollback") == 0;
         } else if (a == "--window" && hasValue && ParseInt(argv[i + 1], 1, 64, v)) {
             window = v;
+            ++i;
+        } else if (a == "--budget-ms" && hasValue && ParseInt(argv[i + 1], 0, 1000, v)) {
+            budget = v;
             ++i;
         } else if (a == "--latency-ms" && hasValue && ParseInt(argv[i + 1], 0, 1000, v)) {
             latency = v;
@@ -101,6 +104,7 @@ int main(int argc, char** argv) {
         if (delay >= 0) roll.inputDelay = static_cast<int>(delay);
         if (window >= 0) roll.window = static_cast<int>(window);
         if (latency >= 0) roll.latencyMs = static_cast<int>(latency);
+        if (budget >= 0) roll.budgetMs = static_cast<int>(budget);
         return lockbox::demo::RunRollbackMatch(roll);
     }
     if (delay >= 0) match.inputDelay = static_cast<int>(delay);

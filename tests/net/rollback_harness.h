@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "lockbox/net/RelayServer.h"
+#include "lockbox/net/RollbackBudgetGuard.h"
 #include "lockbox/net/RelayedTransport.h"
 #include "lockbox/net/RollbackPeer.h"
 #include "lockbox/net/RollbackSession.h"
@@ -84,6 +85,12 @@ struct RbSpec {
     std::vector<RbExit> exits;          ///< peers leaving during the match
     std::vector<RbLinkCut> linkCuts;    ///< one-way link cuts
     std::string scene = "vertical_stack";
+    /// > 0: every peer runs a RollbackBudgetGuard with this budget (settle and lowering
+    /// periods from guardConfig), fed a synthetic cost of guardFrameMicros per frame a tick
+    /// steps (the virtual clock has no real CPU time), and applies its delay.
+    uint32_t guardBudgetMicros = 0;
+    uint32_t guardFrameMicros = 1000;
+    RollbackBudgetConfig guardConfig;
 
     /// True once peer `i` has left (downPeer or an exit) at `tick`.
     bool Gone(uint32_t i, int64_t tick) const {
@@ -120,6 +127,13 @@ struct RbPeer {
     bool finalChanged = false;  // a frame's final hash changed after it was final
     std::map<uint32_t, int64_t> frozenTick;  // player -> tick this peer froze it
     std::map<uint32_t, int64_t> cutTick;     // player -> tick this peer cut it
+    std::vector<uint8_t> pending;            // the drawn local input not taken yet
+    bool hasPending = false;
+    std::vector<uint8_t> accepted;           // local inputs the session took, in order
+    std::vector<uint8_t> confirmedLocal;     // the local player's confirmed inputs, frame 0 on
+    std::unique_ptr<RollbackBudgetGuard> guard;
+    std::vector<std::pair<int64_t, uint32_t>> rollbackCosts;  // (tick, guardFrameMicros per frame stepped)
+    uint32_t maxDelay = 0;                   // guard runs: the largest delay applied
 };
 
 struct RbResult {
@@ -225,6 +239,12 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
         if (i == 0 && specEnd != nullptr) cfg.spectators.push_back(addressOf(spec.peers));
         p.net = std::make_unique<RollbackPeer>(*p.session, linkOf(i), cfg);
         p.inputs = std::make_unique<replay::ScriptedInputs>(spec.seed * 1000 + i, 1);
+        if (spec.guardBudgetMicros > 0) {
+            RollbackBudgetConfig gc = spec.guardConfig;
+            gc.budgetMicros = spec.guardBudgetMicros;
+            p.guard = std::make_unique<RollbackBudgetGuard>(gc, spec.inputDelay);
+            p.maxDelay = spec.inputDelay;
+        }
     }
     const int64_t limit = int64_t{spec.frames} * 6 + 1200;
     std::vector<uint8_t> input;
@@ -253,15 +273,33 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
                 p.net->Poll();
                 const bool wait = p.net->WaitThisTick() && spec.timeSync;
                 if (!wait) {
-                    // An input is drawn only when the session takes it, so frame f always gets
-                    // the f-th draw whatever the waits. Peers keep playing past `frames` until
-                    // every peer has confirmed it.
-                    if (s.ReceivedFrame(i) <= s.CurrentFrame() + static_cast<int32_t>(spec.inputDelay)) {
-                        p.inputs->Next(input);
-                        s.AddLocalInput(i, input);
+                    // A drawn input waits until the session takes it, so without a budget
+                    // guard frame f always gets the f-th draw whatever the waits. Peers keep
+                    // playing past `frames` until every peer has confirmed it.
+                    if (!p.hasPending) {
+                        p.inputs->Next(p.pending);
+                        p.hasPending = true;
                     }
+                    const InputResult added = s.AddLocalInput(i, p.pending);
+                    if (added != InputResult::e_alreadyAdded) {
+                        if (added == InputResult::e_ok) p.accepted.insert(p.accepted.end(), p.pending.begin(), p.pending.end());
+                        p.hasPending = false;
+                    }
+                    const uint64_t resimBefore = s.Stats().framesResimulated;
                     const auto reqs = s.AdvanceFrame();
                     if (!p.adapter->Execute(s, reqs)) p.executeFailed = true;
+                    const auto depth = static_cast<uint32_t>(s.Stats().framesResimulated - resimBefore);
+                    const uint32_t micros = (depth + 1) * spec.guardFrameMicros;
+                    if (depth > 0) p.rollbackCosts.emplace_back(tick, micros);
+                    if (p.guard) {
+                        // The guard says what the others' delay should be (their inputs
+                        // arriving late is what makes this peer roll back); each peer uses
+                        // the largest delay asked of it.
+                        if (p.guard->Record(depth, micros)) p.net->AskInputDelay(p.guard->Delay());
+                        const uint32_t delay = std::max(spec.inputDelay, p.net->RemoteDelayWish());
+                        if (delay != s.InputDelay()) s.SetInputDelay(delay);
+                        p.maxDelay = std::max(p.maxDelay, delay);
+                    }
                 }
                 p.net->Flush();
             }
@@ -270,6 +308,12 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
                 if (!fresh && it->second != h) p.finalChanged = true;
             }
             for (const RollbackEvent& e : s.TakeEvents()) p.events.push_back(e);
+            const int32_t confirmedEnd = std::min(s.ConfirmedFrame(), s.ReceivedFrame(i));
+            for (auto f = static_cast<int32_t>(p.confirmedLocal.size() / replay::SceneInput::kBytes); f < confirmedEnd; ++f) {
+                const auto in = s.ConfirmedInput(i, f);
+                if (in.empty()) break;
+                p.confirmedLocal.insert(p.confirmedLocal.end(), in.begin(), in.end());
+            }
             for (uint32_t q = 0; q < spec.peers; ++q) {
                 if (s.FrozenFrame(q) >= 0) p.frozenTick.emplace(q, tick);
                 if (s.CutFrame(q) >= 0) p.cutTick.emplace(q, tick);

@@ -44,6 +44,8 @@ std::vector<RollbackMessage> Sample() {
     m.push_back(RbFrozen{2, 123});
     m.push_back(RbFrozen{0, 0});
     m.push_back(RbHello{0xFEDC0001u, static_cast<uint8_t>(kShape.players), kShape.inputBytes});
+    m.push_back(RbDelayWish{0});
+    m.push_back(RbDelayWish{kRollbackMaxInputDelay});
     return m;
 }
 
@@ -131,6 +133,7 @@ TEST(RollbackWire, ViewAndFrozenAreStrict) {
     EXPECT_FALSE(w.Add(RbView{{1, 2, 3}}, RollbackShape{}));  // no shape
     EXPECT_FALSE(w.Add(RbFrozen{3, 1}, kShape));            // no such player
     EXPECT_FALSE(w.Add(RbFrozen{0, -1}, kShape));
+    EXPECT_FALSE(w.Add(RbDelayWish{kRollbackMaxInputDelay + 1}, kShape));
     EXPECT_EQ(w.MessageCount(), 0u);
 
     RollbackHeader h;
@@ -160,6 +163,10 @@ TEST(RollbackWire, ViewAndFrozenAreStrict) {
     bad[kRollbackHeaderBytes + 1] = 3;  // player 3 of 3
     EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badValue);
     EXPECT_EQ(DecodeRollbackDatagram(bytes, RollbackShape{}, h, out), DecodeError::e_noShape);
+    bytes = Encode({RbDelayWish{3}});
+    bad = bytes;
+    bad[kRollbackHeaderBytes + 1] = kRollbackMaxInputDelay + 1;
+    EXPECT_EQ(DecodeRollbackDatagram(bad, kShape, h, out), DecodeError::e_badValue);
     // A version-2 datagram (before the agreement) is refused by its header.
     bad = bytes;
     bad[2] = 2;

@@ -131,6 +131,14 @@ public:
     /// waitSpacingTicks ticks ago. Call once per tick.
     bool WaitThisTick();
 
+    /// Asks every remote to use an input delay of at least `frames` (clamped to
+    /// kRollbackMaxInputDelay): this peer's RollbackBudgetGuard::Delay(). Carried by an
+    /// RbDelayWish in every datagram from now on.
+    void AskInputDelay(uint32_t frames) noexcept;
+    /// The largest input delay a live remote asked this peer for (0 when none asked): apply
+    /// it, or more, with RollbackSession::SetInputDelay.
+    uint32_t RemoteDelayWish() const noexcept;
+
     /// Smoothed RTT to remote `index` (config order), microseconds; 0 before the first sample.
     uint64_t RttMicros(size_t index) const noexcept;
     /// False once remote `index` left, timed out or was named gone by another live remote
@@ -182,6 +190,7 @@ private:
     RollbackPeerStats stats_;
     uint32_t ticksSinceWait_ = 0;
     bool left_ = false;
+    int32_t delayWish_ = -1;  // what AskInputDelay set; -1: never asked, nothing sent
     std::array<bool, kRollbackMaxPlayers> removed_{};  // local players a remote named gone
 };
 

@@ -28,8 +28,8 @@ namespace lockbox::net {
 inline constexpr uint16_t kRollbackMagic = 0x4252u;
 /// Bumped whenever a message layout changes (2: the late-join snapshot messages; 3: RbView
 /// and RbFrozen, the disconnect agreement; 4: RbHello, the compatibility check; 5: snapshot
-/// chunks carry the state as one zstd frame).
-inline constexpr uint8_t kRollbackProtocolVersion = 5;
+/// chunks carry the state as one zstd frame; 6: RbDelayWish, the budget guard's delay).
+inline constexpr uint8_t kRollbackProtocolVersion = 6;
 /// Bytes of the header.
 inline constexpr size_t kRollbackHeaderBytes = 7;
 /// Largest frame count of one input run.
@@ -173,15 +173,24 @@ struct RbHello {
     bool operator==(const RbHello&) const = default;
 };
 
+/// The input delay the sender asks the receiver to use at least: its budget guard's choice
+/// (RollbackBudgetGuard.h). A peer's rollbacks are as deep as the other peers' inputs are
+/// late, so it is their delay that makes them shallower. Sent in every datagram to every
+/// remote once the game has set a wish (RollbackPeer::AskInputDelay).
+struct RbDelayWish {
+    uint8_t frames = 0;  ///< 0 .. kRollbackMaxInputDelay
+    bool operator==(const RbDelayWish&) const = default;
+};
+
 /// Any rollback message.
 using RollbackMessage = std::variant<RbInputs, RbInputAck, RbQuality, RbQualityReply, RbHash, RbConfirmed,
                                      RbConfirmedAck, RbKeepAlive, RbDisconnect, RbJoinRequest, RbSnapshotChunk,
-                                     RbSnapshotAck, RbView, RbFrozen, RbHello>;
+                                     RbSnapshotAck, RbView, RbFrozen, RbHello, RbDelayWish>;
 
 /// Type byte of each message (the variant index + 1).
 enum class RollbackMessageType : uint8_t {
     e_inputs = 1, e_inputAck, e_quality, e_qualityReply, e_hash, e_confirmed, e_confirmedAck, e_keepAlive,
-    e_disconnect, e_joinRequest, e_snapshotChunk, e_snapshotAck, e_view, e_frozen, e_hello, e_end
+    e_disconnect, e_joinRequest, e_snapshotChunk, e_snapshotAck, e_view, e_frozen, e_hello, e_delayWish, e_end
 };
 
 /// The reason a datagram from a known sender shows, from its decoding (`error`, `header`

@@ -149,6 +149,11 @@ struct RollbackStats {
     /// ReportFrozen values below the final frame, ignored (only a peer that died before
     /// others heard it can cause one; see docs/rollback.md, "Disconnects").
     uint64_t frozenReportsIgnored = 0;
+    /// Local inputs repeated into the frames a raised input delay opened (SetInputDelay).
+    uint64_t inputsRepeated = 0;
+    /// Local inputs taken as a repeat of the previous one while a lowered input delay
+    /// catches up (SetInputDelay): the frame they would have filled is not added.
+    uint64_t inputsAbsorbed = 0;
 };
 
 /// Settings checked by RollbackSessionBuilder.
@@ -206,8 +211,23 @@ public:
 
     /// Queues local `player`'s input for frame CurrentFrame() + inputDelay. Once per tick per
     /// local player; e_alreadyAdded while the session waits at the window edge (that tick's
-    /// input is not taken: the previous one is still queued).
+    /// input is not taken: the previous one is still queued). While a lowered input delay
+    /// catches up (SetInputDelay), an input equal to the player's previous one is taken as
+    /// its repeat and fills no frame (e_ok); a different one is queued as usual.
     InputResult AddLocalInput(uint32_t player, std::span<const uint8_t> input);
+
+    /// Changes the input delay during the match (0 .. kRollbackMaxInputDelay; false, and no
+    /// change, beyond). Peers need not agree: each only changes which frame its own local
+    /// inputs land on, and nothing a player meant is lost. Raising by k repeats every local
+    /// player's latest input into the k frames that open (what a remote peer would have
+    /// predicted anyway; counted in inputsRepeated). Lowering by k takes effect as the player
+    /// repeats itself: each of its next k inputs that equals its previous one is absorbed
+    /// (inputsAbsorbed), so a held input is held one frame shorter and no press or release is
+    /// dropped; an input that keeps changing keeps the longer delay until it repeats.
+    /// RollbackBudgetGuard (RollbackBudgetGuard.h) chooses the delay from measured costs.
+    bool SetInputDelay(uint32_t frames);
+    /// The input delay asked for (the builder's, or the latest SetInputDelay).
+    uint32_t InputDelay() const noexcept;
 
     /// The requests of one tick, to be executed in order before the next call: any rollback
     /// first (LoadState, then Advance + SaveState for every frame up to the current one),

@@ -1,0 +1,275 @@
+// The rollback budget guard: RollbackSession::SetInputDelay (raising repeats, lowering absorbs
+// repeats, no input lost) and RollbackBudgetGuard's policy, alone on scripted costs and in a
+// SimNet match over a slow link where it must bring the re-simulation cost under budget.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "RollbackMixGame.h"
+#include "lockbox/net/RollbackBudgetGuard.h"
+#include "lockbox/net/RollbackSession.h"
+#include "rollback_harness.h"
+
+namespace lockbox::net {
+namespace {
+
+std::vector<uint8_t> In(uint8_t v) { return std::vector<uint8_t>(2, v); }
+
+std::unique_ptr<RollbackSession> Solo(uint32_t delay) {
+    return RollbackSessionBuilder().Players(2).InputBytes(2).LocalPlayer(0).InputDelay(delay).PredictionWindow(kRollbackMaxWindow).Build();
+}
+
+// The local player's inputs as the frames got them, frame 0 on (first byte of each).
+std::vector<uint8_t> LocalStream(const RollbackSession& s) {
+    std::vector<uint8_t> out;
+    for (int32_t f = 0; f < s.ReceivedFrame(0); ++f) out.push_back(s.ConfirmedInput(0, f)[0]);
+    return out;
+}
+
+// Runs of equal values collapsed to one: what a player meant, whatever it was held for.
+template <class T>
+std::vector<T> Collapse(const std::vector<T>& v) {
+    std::vector<T> out;
+    for (const T& x : v)
+        if (out.empty() || !(out.back() == x)) out.push_back(x);
+    return out;
+}
+
+TEST(RollbackInputDelay, RaisingRepeatsTheLatestInputIntoTheOpenedFrames) {
+    auto s = Solo(1);
+    EXPECT_EQ(s->AddLocalInput(0, In(7)), InputResult::e_ok);  // frame 1 (frame 0 is the delay's zero)
+    s->AdvanceFrame();
+    EXPECT_TRUE(s->SetInputDelay(4));
+    EXPECT_EQ(s->InputDelay(), 4u);
+    EXPECT_EQ(s->Stats().inputsRepeated, 3u);
+    // Frames 2..4 repeat 7; the next input lands on CurrentFrame() + 4 = frame 5.
+    EXPECT_EQ(s->ReceivedFrame(0), 5);
+    EXPECT_EQ(s->AddLocalInput(0, In(9)), InputResult::e_ok);
+    EXPECT_EQ(s->AddLocalInput(0, In(9)), InputResult::e_alreadyAdded);
+    EXPECT_EQ(LocalStream(*s), (std::vector<uint8_t>{0, 7, 7, 7, 7, 9}));
+    EXPECT_FALSE(s->SetInputDelay(kRollbackMaxInputDelay + 1));
+    EXPECT_EQ(s->InputDelay(), 4u);
+}
+
+TEST(RollbackInputDelay, LoweringAbsorbsOnlyRepeatsSoNoPressIsLost) {
+    auto s = Solo(4);
+    const std::vector<uint8_t> script = {1, 1, 2, 3, 3, 3, 4, 5, 5, 5, 5, 6, 6, 6};
+    std::vector<int32_t> lead;  // queued frames ahead of the current one after each tick
+    for (size_t t = 0; t < script.size(); ++t) {
+        if (t == 2) {
+            EXPECT_TRUE(s->SetInputDelay(1));
+        }
+        EXPECT_EQ(s->AddLocalInput(0, In(script[t])), InputResult::e_ok) << t;
+        s->AdvanceFrame();
+        lead.push_back(s->ReceivedFrame(0) - s->CurrentFrame());
+    }
+    // Three frames were owed; the repeats at ticks 4, 5 and 8 paid them (the 2 -> 3 and 3 -> 4
+    // changes were queued, not dropped).
+    EXPECT_EQ(s->Stats().inputsAbsorbed, 3u);
+    EXPECT_EQ(lead.front(), 4);
+    EXPECT_EQ(lead.back(), 1);
+    const std::vector<uint8_t> got = LocalStream(*s);
+    std::vector<uint8_t> meant = {0, 0, 0, 0};  // the delay's four leading zero frames
+    for (uint8_t v : script) meant.push_back(v);
+    EXPECT_EQ(Collapse(got), Collapse(meant));
+    EXPECT_EQ(got.size() + 3, meant.size());
+}
+
+TEST(RollbackInputDelay, ARaiseCancelsWhatALoweringStillOwes) {
+    auto s = Solo(3);
+    EXPECT_TRUE(s->SetInputDelay(0));  // owes 3, nothing repeated yet
+    EXPECT_TRUE(s->SetInputDelay(2));  // cancels 2 of the 3 owed: still owes 1, repeats none
+    EXPECT_EQ(s->Stats().inputsRepeated, 0u);
+    EXPECT_EQ(s->AddLocalInput(0, In(5)), InputResult::e_ok);
+    s->AdvanceFrame();
+    EXPECT_EQ(s->AddLocalInput(0, In(5)), InputResult::e_ok);  // a repeat: absorbed
+    EXPECT_EQ(s->Stats().inputsAbsorbed, 1u);
+    s->AdvanceFrame();
+    EXPECT_EQ(s->ReceivedFrame(0) - s->CurrentFrame(), 2);  // the delay asked for
+}
+
+TEST(RollbackInputDelay, TheWindowEdgeStillRefusesASecondInputPerTick) {
+    auto s = RollbackSessionBuilder().Players(2).InputBytes(2).LocalPlayer(0).PredictionWindow(2).InputDelay(3).Build();
+    for (int t = 0; t < 3; ++t) {
+        s->AddLocalInput(0, In(1));
+        s->AdvanceFrame();
+    }
+    EXPECT_TRUE(s->SetInputDelay(1));  // owes 2 while the session waits at the edge
+    const int32_t before = s->ReceivedFrame(0);
+    EXPECT_EQ(s->AddLocalInput(0, In(1)), InputResult::e_alreadyAdded);
+    EXPECT_EQ(s->AddLocalInput(0, In(2)), InputResult::e_alreadyAdded);
+    EXPECT_EQ(s->ReceivedFrame(0), before);
+    EXPECT_EQ(s->Stats().inputsAbsorbed, 0u);
+}
+
+RollbackBudgetConfig Quick() {
+    RollbackBudgetConfig c;
+    c.budgetMicros = 4000;
+    c.rollbacksKept = 20;
+    c.minRollbacks = 10;
+    c.settleTicks = 10;
+    c.lowerAfterTicks = 50;
+    return c;
+}
+
+TEST(RollbackBudgetGuard, ChecksItsSettings) {
+    EXPECT_TRUE(RollbackBudgetGuard::Check(RollbackBudgetConfig{}).empty());
+    RollbackBudgetConfig c;
+    c.budgetMicros = 0;
+    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
+    c = {};
+    c.percentile = 101;
+    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
+    c = {};
+    c.maxDelay = kRollbackMaxInputDelay + 1;
+    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
+    c = {};
+    c.minDelay = 5;
+    c.maxDelay = 4;
+    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
+    c = {};
+    c.rollbacksKept = 9;
+    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
+    c = {};
+    c.minRollbacks = c.rollbacksKept + 1;
+    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
+    c = {};
+    c.lowerMarginPercent = 0;
+    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
+    EXPECT_EQ(RollbackBudgetGuard(RollbackBudgetConfig{}, 40).Delay(), 16u);  // clamped
+}
+
+TEST(RollbackBudgetGuard, RaisesAtOnceByWhatTheCostModelNeeds) {
+    RollbackBudgetGuard g(Quick(), 0);
+    int changes = 0;
+    // Depth-8 rollbacks at 1 ms per frame stepped: 9 ms against a 4 ms budget. Depth 3
+    // (4 frames, 4 ms) is the first that fits: a raise of 5.
+    for (int t = 0; t < 10; ++t) changes += g.Record(8, 9000) ? 1 : 0;
+    EXPECT_EQ(changes, 1);  // the 10th rollback (settled, enough of them) raised
+    EXPECT_EQ(g.Delay(), 5u);
+    EXPECT_EQ(g.Raises(), 1u);
+    EXPECT_EQ(g.RollbacksKept(), 0u);  // the old delay's samples are dropped
+    // Rollbacks now depth 3 at the same per-frame cost: within budget, no further change.
+    for (int t = 0; t < 40; ++t) changes += g.Record(3, 4000) ? 1 : 0;
+    EXPECT_EQ(changes, 1);
+    EXPECT_EQ(g.CostPercentileMicros(), 4000u);
+}
+
+TEST(RollbackBudgetGuard, StopsAtTheLargestDelayAllowed) {
+    RollbackBudgetConfig c = Quick();
+    c.maxDelay = 3;
+    RollbackBudgetGuard g(c, 1);
+    for (int t = 0; t < 30; ++t) g.Record(12, 13000);
+    EXPECT_EQ(g.Delay(), 3u);
+}
+
+TEST(RollbackBudgetGuard, OnePercentOfOutliersDoesNotRaise) {
+    RollbackBudgetConfig c = Quick();
+    c.rollbacksKept = 200;
+    c.minRollbacks = 100;
+    c.lowerAfterTicks = 100000;
+    RollbackBudgetGuard g(c, 2);
+    // 99 % of rollbacks at 2 ms, 1 % at 30 ms: the 99th percentile is 2 ms.
+    for (int t = 0; t < 400; ++t) EXPECT_FALSE(g.Record(t % 100 == 99 ? 29 : 1, t % 100 == 99 ? 30000 : 2000)) << t;
+    EXPECT_EQ(g.Delay(), 2u);
+}
+
+TEST(RollbackBudgetGuard, LowersSlowlyAndOnlyWithRoomToSpare) {
+    RollbackBudgetGuard g(Quick(), 4);
+    // Depth-1 rollbacks at 1 ms per frame: one frame deeper costs 3 ms, within 75 % of 4 ms.
+    int t = 0;
+    for (; t < 49; ++t) EXPECT_FALSE(g.Record(1, 2000));
+    EXPECT_TRUE(g.Record(1, 2000));  // tick 50: the first moment a lowering is considered
+    EXPECT_EQ(g.Delay(), 3u);
+    EXPECT_EQ(g.Lowerings(), 1u);
+    // No rollbacks at all: the per-frame cost remembered (1 ms) predicts 2 ms for the new
+    // depth-1 rollbacks a lower delay brings; it lowers once per quiet period.
+    for (t = 0; t < 50; ++t) g.Record(0, 0);
+    EXPECT_EQ(g.Delay(), 2u);
+    for (t = 0; t < 50; ++t) g.Record(0, 0);
+    EXPECT_EQ(g.Delay(), 1u);
+
+    // Depth-2 rollbacks (3 ms): one deeper would be 4 ms, over 75 % of the budget: stays.
+    RollbackBudgetGuard h(Quick(), 4);
+    for (t = 0; t < 300; ++t) EXPECT_FALSE(h.Record(2, 3000));
+    EXPECT_EQ(h.Delay(), 4u);
+}
+
+TEST(RollbackBudgetGuard, NeverLowersWithoutHavingSeenACost) {
+    RollbackBudgetGuard g(Quick(), 3);
+    for (int t = 0; t < 500; ++t) EXPECT_FALSE(g.Record(0, 0));
+    EXPECT_EQ(g.Delay(), 3u);
+}
+
+// 150 ms RTT with jitter and loss and no input delay: rollbacks 5-8 frames deep. With 1 ms
+// per frame stepped and a 4 ms budget the guards must raise the delay, then hold the cost
+// under budget, the peers agree on every final hash, and no local press is lost.
+void ExpectGuardKeepsBudget(uint64_t seed, uint32_t peers) {
+    using namespace rbtest;
+    RbSpec spec;
+    spec.seed = seed;
+    spec.peers = peers;
+    spec.rttMs = 150;
+    spec.jitterMs = 30;
+    spec.lossPct = 5;
+    spec.frames = 1500;
+    spec.inputDelay = 0;
+    RbSpec guarded = spec;
+    guarded.guardBudgetMicros = 4000;
+    guarded.guardFrameMicros = 1000;
+    SCOPED_TRACE(guarded.Describe());
+
+    const RbResult plain = RunRbMatch(spec);
+    const RbResult r = RunRbMatch(guarded);
+    ExpectHealthy(guarded, r);
+    // Ticks from 10 s on (the guards have settled) whose re-simulation costs over the budget,
+    // in thousandths of those ticks.
+    auto overBudget = [&](const RbResult& run, const RbPeer& p) {
+        const int64_t ticks = std::max<int64_t>(run.ticks - 600, 1);
+        int64_t over = 0;
+        for (const auto& [tick, micros] : p.rollbackCosts) over += tick >= 600 && micros > guarded.guardBudgetMicros ? 1 : 0;
+        return over * 1000 / ticks;
+    };
+    int64_t plainWorst = 0;
+    for (const RbPeer& p : plain.peers) plainWorst = std::max(plainWorst, overBudget(plain, p));
+    EXPECT_GE(plainWorst, 50);  // without the guard, one tick in twenty or more is over budget
+    for (size_t i = 0; i < r.peers.size(); ++i) {
+        const RbPeer& p = r.peers[i];
+        SCOPED_TRACE(testing::Message() << "peer " << i);
+        EXPECT_GE(p.session->InputDelay(), 2u);
+        // The 99th percentile tick stays inside the budget.
+        EXPECT_LE(overBudget(r, p), 10);
+        std::printf("budget guard seed %llu peer %zu/%u: delay %u (max %u), wish %u, raises %u, lowerings %u, "
+                    "over budget %lld/1000 ticks (%lld without the guard), repeated %llu absorbed %llu\n",
+                    static_cast<unsigned long long>(seed), i, peers, p.session->InputDelay(), p.maxDelay,
+                    p.guard->Delay(), p.guard->Raises(), p.guard->Lowerings(), static_cast<long long>(overBudget(r, p)),
+                    static_cast<long long>(overBudget(plain, plain.peers[i])),
+                    static_cast<unsigned long long>(p.session->Stats().inputsRepeated),
+                    static_cast<unsigned long long>(p.session->Stats().inputsAbsorbed));
+        // Nothing the player meant is lost: the confirmed stream, runs collapsed, is the
+        // taken inputs' (after the initial delay's zero frames), runs collapsed.
+        const size_t bytes = replay::SceneInput::kBytes;
+        auto rows = [&](const std::vector<uint8_t>& flat) {
+            std::vector<std::vector<uint8_t>> out;
+            for (size_t k = 0; k + bytes <= flat.size(); k += bytes) out.emplace_back(flat.begin() + k, flat.begin() + k + bytes);
+            return out;
+        };
+        const auto confirmed = Collapse(rows(p.confirmedLocal));
+        const auto taken = Collapse(rows(p.accepted));
+        ASSERT_GE(taken.size(), confirmed.size());
+        EXPECT_GE(confirmed.size() + 2, taken.size());  // only the unconfirmed tail may be missing
+        EXPECT_TRUE(std::equal(confirmed.begin(), confirmed.end(), taken.begin()));
+    }
+}
+
+TEST(RollbackBudgetGuard, KeepsASlowLinkMatchInsideTheBudget) {
+    for (uint64_t seed : {5u, 6u, 7u}) ExpectGuardKeepsBudget(seed, 2);
+}
+
+TEST(RollbackBudgetGuard, KeepsAFourPeerMatchInsideTheBudget) { ExpectGuardKeepsBudget(8, 4); }
+
+}  // namespace
+}  // namespace lockbox::net
