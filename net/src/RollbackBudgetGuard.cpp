@@ -15,6 +15,7 @@ std::string_view RollbackBudgetGuard::Check(const RollbackBudgetConfig& c) noexc
     if (c.maxDelay > kRollbackMaxInputDelay) return "max delay must be in 0..16";
     if (c.minDelay > c.maxDelay) return "min delay must not exceed max delay";
     if (c.rollbacksKept < 10 || c.rollbacksKept > 4096) return "rollbacks kept must be in 10..4096";
+    if (c.sampleTicks < 1) return "sample ticks must be at least 1";
     if (c.minRollbacks < 1 || c.minRollbacks > c.rollbacksKept) return "min rollbacks must be in 1..rollbacks kept";
     if (c.lowerMarginPercent < 1 || c.lowerMarginPercent > 100) return "lower margin must be in 1..100 percent";
     return {};
@@ -29,6 +30,7 @@ RollbackBudgetGuard::RollbackBudgetGuard(const RollbackBudgetConfig& config, uin
 uint64_t RollbackBudgetGuard::PredictedPercentile(int32_t shift) const {
     scratch_.clear();
     for (const Sample& s : kept_) {
+        if (ticks_ - s.tick > config_.sampleTicks) continue;  // the link may have changed since
         const int64_t depth = int64_t{s.depth} - shift;
         if (depth <= 0) continue;  // that rollback no longer happens
         // Cost scales with the steps the tick does: the re-simulated frames and the new one.
@@ -62,9 +64,10 @@ void RollbackBudgetGuard::Changed() {
 }
 
 bool RollbackBudgetGuard::Record(uint32_t depth, uint32_t micros) {
+    ++ticks_;
     ++sinceChange_;
     if (depth > 0) {
-        const Sample s{depth, micros};
+        const Sample s{ticks_, depth, micros};
         if (kept_.size() < config_.rollbacksKept) {
             kept_.push_back(s);
         } else {

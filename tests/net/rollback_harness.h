@@ -91,6 +91,8 @@ struct RbSpec {
     uint32_t guardBudgetMicros = 0;
     uint32_t guardFrameMicros = 1000;
     RollbackBudgetConfig guardConfig;
+    /// (tick, RTT ms): from that tick on every link has this RTT (loss and jitter unchanged).
+    std::vector<std::pair<int64_t, uint32_t>> rttChanges;
 
     /// True once peer `i` has left (downPeer or an exit) at `tick`.
     bool Gone(uint32_t i, int64_t tick) const {
@@ -251,6 +253,11 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
     for (int64_t tick = 0; tick < limit; ++tick) {
         bool done = true;
         if (relay) relay->Poll();
+        for (const auto& [at, rtt] : spec.rttChanges)
+            if (at == tick) {
+                link.latencyMicros = rtt * 500u;
+                net.SetAllLinks(link);
+            }
         for (const RbLinkCut& c : spec.linkCuts)
             if (c.tick == tick && c.from < spec.peers && c.to < spec.peers)
                 cuttable[c.from]->blocked.push_back(addressOf(c.to));
@@ -418,6 +425,27 @@ inline size_t ExpectHealthy(const RbSpec& spec, const RbResult& r) {
     }
     EXPECT_LE(r.SpreadP95(), 1);
     return compared;
+}
+
+/// Nothing peer `p`'s player meant is lost (what SetInputDelay promises): its confirmed input
+/// stream, runs of equal inputs collapsed, is what the session took from it, runs collapsed;
+/// only the unconfirmed tail may be missing.
+inline void ExpectNoInputLost(const RbPeer& p) {
+    const size_t bytes = replay::SceneInput::kBytes;
+    auto collapsed = [&](const std::vector<uint8_t>& flat) {
+        std::vector<std::vector<uint8_t>> out;
+        for (size_t k = 0; k + bytes <= flat.size(); k += bytes) {
+            std::vector<uint8_t> row(flat.begin() + static_cast<std::ptrdiff_t>(k),
+                                     flat.begin() + static_cast<std::ptrdiff_t>(k + bytes));
+            if (out.empty() || out.back() != row) out.push_back(std::move(row));
+        }
+        return out;
+    };
+    const auto confirmed = collapsed(p.confirmedLocal);
+    const auto taken = collapsed(p.accepted);
+    ASSERT_GE(taken.size(), confirmed.size());
+    EXPECT_GE(confirmed.size() + 2, taken.size());
+    EXPECT_TRUE(std::equal(confirmed.begin(), confirmed.end(), taken.begin()));
 }
 
 }  // namespace lockbox::net::rbtest

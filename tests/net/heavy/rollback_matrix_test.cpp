@@ -80,5 +80,41 @@ TEST(RollbackLong, TenThousandFramesNoFalseDesync) {
     CheckAndPrint(spec, RunRbMatch(spec));
 }
 
+// The budget guard on a link that gets slow and then fast again (RTT 50 -> 250 -> 50 ms,
+// 5 % loss, 30 ms jitter; 1 ms per frame stepped, 4 ms budget), every frame compared: the
+// delay goes up while the link is slow and comes back down after, no false desync, no
+// input lost through the changes.
+TEST(RollbackLong, BudgetGuardFollowsAChangingLink) {
+    for (uint32_t peers : {2u, 3u}) {
+        RbSpec spec;
+        spec.seed = 20000 + peers;
+        spec.peers = peers;
+        spec.rttMs = 50;
+        spec.lossPct = 5;
+        spec.jitterMs = 30;
+        spec.frames = 8000;
+        spec.inputDelay = 0;
+        spec.desyncInterval = 1;
+        spec.guardBudgetMicros = 4000;
+        spec.guardFrameMicros = 1000;
+        spec.rttChanges = {{2000, 250}, {4500, 50}};
+        const RbResult r = RunRbMatch(spec);
+        CheckAndPrint(spec, r);
+        for (size_t i = 0; i < r.peers.size(); ++i) {
+            const RbPeer& p = r.peers[i];
+            SCOPED_TRACE(testing::Message() << spec.Describe() << " peer " << i);
+            EXPECT_GE(p.maxDelay, 6u);                     // 125 ms one way is 7.5 frames
+            EXPECT_LE(p.session->InputDelay() + 3, p.maxDelay);  // and most of it given back
+            EXPECT_GE(p.guard->Lowerings(), 3u);
+            ExpectNoInputLost(p);
+            std::printf("guard on a changing link: peers %u peer %zu: max delay %u, final %u, raises %u, lowerings %u, "
+                        "repeated %llu, absorbed %llu\n",
+                        peers, i, p.maxDelay, p.session->InputDelay(), p.guard->Raises(), p.guard->Lowerings(),
+                        static_cast<unsigned long long>(p.session->Stats().inputsRepeated),
+                        static_cast<unsigned long long>(p.session->Stats().inputsAbsorbed));
+        }
+    }
+}
+
 }  // namespace
 }  // namespace lockbox::net::rbtest

@@ -7,7 +7,8 @@
 ///
 /// The game reports every tick (Record): how many frames that tick re-simulated (0 when it
 /// did not roll back) and how long executing its requests took. The guard keeps the latest
-/// rollbacks; when the chosen percentile of their cost is over the budget it raises the delay
+/// rollbacks (and forgets those older than sampleTicks, so a link that got fast again is not
+/// judged by its slow past); when the chosen percentile of their cost is over the budget it raises the delay
 /// at once by as many frames as its cost model says are needed, and it lowers the delay by
 /// one frame only after a long quiet period and only when the model predicts the rollbacks,
 /// one frame deeper, would still stay clearly under the budget. Raise quickly, lower slowly:
@@ -34,6 +35,7 @@ struct RollbackBudgetConfig {
     uint32_t minDelay = 0;             ///< the guard never goes below this
     uint32_t maxDelay = 16;            ///< nor above this (<= kRollbackMaxInputDelay)
     uint32_t rollbacksKept = 120;      ///< the latest rollbacks the percentile is taken over, 10 .. 4096
+    uint32_t sampleTicks = 1200;       ///< a rollback older than this many ticks no longer counts (>= 1)
     uint32_t minRollbacks = 20;        ///< a raise needs at least this many since the last change, 1 .. rollbacksKept
     uint32_t settleTicks = 60;         ///< ticks after any change before the next raise is considered
     uint32_t lowerAfterTicks = 600;    ///< ticks after any change before a lowering is considered
@@ -58,7 +60,8 @@ public:
 
     /// The input delay the session should use.
     uint32_t Delay() const noexcept { return delay_; }
-    /// The chosen percentile of the rollbacks kept since the last change (0 with none).
+    /// The chosen percentile of the cost of the rollbacks kept since the last change and not
+    /// older than sampleTicks (0 with none).
     uint32_t CostPercentileMicros() const;
     /// Rollbacks kept since the last change.
     uint32_t RollbacksKept() const noexcept { return static_cast<uint32_t>(kept_.size()); }
@@ -68,11 +71,13 @@ public:
 
 private:
     struct Sample {
+        uint64_t tick = 0;
         uint32_t depth = 0;
         uint32_t micros = 0;
     };
     // The percentile of the kept rollbacks' cost as if each were `shift` frames shallower
-    // (negative: deeper); rollbacks that vanish (depth <= shift) drop out.
+    // (negative: deeper); rollbacks that vanish (depth <= shift) or are older than
+    // sampleTicks drop out.
     uint64_t PredictedPercentile(int32_t shift) const;
     void Changed();
 
@@ -80,6 +85,7 @@ private:
     uint32_t delay_ = 0;
     std::vector<Sample> kept_;   // a ring once full
     size_t next_ = 0;            // ring position of the oldest sample when full
+    uint64_t ticks_ = 0;         // Record calls so far
     uint64_t sinceChange_ = 0;   // ticks
     uint64_t frameMicros_ = 0;   // the latest per-frame cost seen (0: none yet)
     uint32_t raises_ = 0;
