@@ -1,10 +1,16 @@
 // The joints' exact matrix division (WideMatrix.h) at the edge of its 128-bit range: a
 // numerator of 127 or 128 bits (found by the snapshot-restore fuzzer through a prismatic joint
 // between bodies with extreme restored values) must divide correctly instead of shifting by a
-// negative count.
+// negative count. And the native 128-bit paths of the joint solvers' hot loops (b2Cross of an
+// arm and an impulse, the prepared 2x2 solve, the shifted division) against the portable
+// limbs: the same bits and the same overflow reports on random and extreme inputs.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <random>
+
 #include "lockbox/dynamics/joints/WideMatrix.h"
+#include "lockbox/fixed/Overflow.h"
 
 namespace lockbox {
 namespace {
@@ -34,6 +40,106 @@ TEST(WideMatrixDivShift, OrdinaryValuesAreUnchanged) {
     const S128 d{false, U128{0, 4}};
     EXPECT_EQ(detail::DivShiftS128(n, d, 32, "test"), int64_t{3} << 30);
 }
+
+// Counts overflow reports in both build kinds: the checked build calls the handler (which
+// returns, accepting the saturation), the default build counts saturations.
+int g_trapped = 0;
+uint64_t Reports() { return SaturationCount() + static_cast<uint64_t>(g_trapped); }
+
+class NativeWide : public ::testing::Test {
+protected:
+    void SetUp() override {
+        previous_ = SetOverflowTrapHandler([](const char*, int64_t, int64_t) { ++g_trapped; });
+    }
+    void TearDown() override { SetOverflowTrapHandler(previous_); }
+
+    // A raw of a random bit width (0..bits), random sign, now and then an extreme.
+    int64_t Raw(int bits) {
+        const uint64_t pick = rng_() % 64;
+        if (pick == 0) return bits >= 63 ? INT64_MAX : (int64_t{1} << bits) - 1;
+        if (pick == 1) return bits >= 63 ? -INT64_MAX : -((int64_t{1} << bits) - 1);
+        if (pick == 2) return 0;
+        const int width = static_cast<int>(rng_() % static_cast<uint64_t>(bits + 1));
+        const uint64_t mask = width >= 63 ? static_cast<uint64_t>(INT64_MAX) : (uint64_t{1} << width) - 1;
+        const auto v = static_cast<int64_t>(rng_() & mask);
+        return (rng_() & 1) != 0 ? -v : v;
+    }
+
+    std::mt19937_64 rng_{20261125};
+    OverflowTrapHandler previous_ = nullptr;
+};
+
+TEST_F(NativeWide, CrossOfArmAndImpulseMatchesThePortableLimbs) {
+    for (int i = 0; i < 300000; ++i) {
+        const b2Vec2 r(Fixed::FromRaw(static_cast<int32_t>(Raw(31))), Fixed::FromRaw(static_cast<int32_t>(Raw(31))));
+        const b2WideVec2 p(Wide::FromRaw(Raw(63)), Wide::FromRaw(Raw(63)));
+        const uint64_t before = Reports();
+        const int64_t got = b2Cross(r, p).Raw();
+        const uint64_t gotReports = Reports() - before;
+        const int64_t want = detail::CrossArmImpulseRaw(r.x.Raw(), r.y.Raw(), p.x.Raw(), p.y.Raw(), "test");
+        ASSERT_EQ(got, want) << r.x.Raw() << " " << r.y.Raw() << " " << p.x.Raw() << " " << p.y.Raw();
+        ASSERT_EQ(gotReports, Reports() - before - gotReports);
+    }
+}
+
+TEST_F(NativeWide, PreparedSolveMatchesThePortableLimbs) {
+    int singular = 0;
+    for (int i = 0; i < 300000; ++i) {
+        const int bits = static_cast<int>(rng_() % 64);
+        b2WideVec2 ex(Wide::FromRaw(Raw(bits)), Wide::FromRaw(Raw(bits)));
+        b2WideVec2 ey(Wide::FromRaw(Raw(bits)), Wide::FromRaw(Raw(bits)));
+        if (i % 50 == 0) ey = ex;  // singular: x = 0
+        const b2WideSolver22 k(ex, ey);
+        singular += detail::IsZero(k.det) ? 1 : 0;
+        const b2WideVec2 b(Wide::FromRaw(Raw(63)), Wide::FromRaw(Raw(63)));
+        const uint64_t before = Reports();
+        const b2WideVec2 got = k.Solve(b);
+        const uint64_t gotReports = Reports() - before;
+        const b2WideVec2 want = k.SolvePortable(b);
+        ASSERT_EQ(got.x.Raw(), want.x.Raw()) << i;
+        ASSERT_EQ(got.y.Raw(), want.y.Raw()) << i;
+        ASSERT_EQ(gotReports, Reports() - before - gotReports) << i;
+    }
+    EXPECT_GT(singular, 6000);
+}
+
+TEST_F(NativeWide, NormalisingScaleRoundsLikeThe128BitShift) {
+    for (int i = 0; i < 300000; ++i) {
+        const int64_t raw = i % 1000 == 0 ? (i % 2000 == 0 ? INT64_MAX : -INT64_MAX) : Raw(63);
+        const int s = 1 + static_cast<int>(rng_() % 28);
+        ASSERT_EQ(detail::ScaleRaw(raw, s), detail::ToS64(detail::ShrRoundS128(detail::MulS64(raw, 1), s))) << raw << " " << s;
+    }
+}
+
+#ifdef LOCKBOX_NATIVE_INT128
+TEST_F(NativeWide, ShiftedDivisionMatchesThePortableLimbs) {
+    using detail::NativeI128;
+    using detail::NativeU128;
+    auto wide = [&](int bits) {
+        // A value of up to `bits` (<= 127) magnitude bits.
+        NativeU128 m = (static_cast<NativeU128>(rng_()) << 64) | rng_();
+        m &= bits >= 128 ? ~NativeU128{0} : (NativeU128{1} << bits) - 1;
+        if (bits == 127) m &= ~(NativeU128{1} << 127);
+        const auto v = static_cast<NativeI128>(m);
+        return (rng_() & 1) != 0 ? -v : v;
+    };
+    auto toS128 = [](NativeI128 v) {
+        const NativeU128 m = detail::MagnitudeU128(v);
+        return S128{v < 0, U128{static_cast<uint64_t>(m >> 64), static_cast<uint64_t>(m)}};
+    };
+    for (int i = 0; i < 300000; ++i) {
+        const NativeI128 n = wide(static_cast<int>(rng_() % 128));
+        const NativeI128 d = i % 97 == 0 ? NativeI128{0} : wide(static_cast<int>(rng_() % 128));
+        const int shift = static_cast<int>(rng_() % 100);
+        const uint64_t before = Reports();
+        const int64_t got = detail::DivShiftNative(n, d, shift, "test");
+        const uint64_t gotReports = Reports() - before;
+        const int64_t want = detail::DivShiftS128(toS128(n), toS128(d), shift, "test");
+        ASSERT_EQ(got, want) << i;
+        ASSERT_EQ(gotReports, Reports() - before - gotReports) << i;
+    }
+}
+#endif
 
 }  // namespace
 }  // namespace lockbox

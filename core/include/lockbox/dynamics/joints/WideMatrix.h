@@ -8,6 +8,10 @@
 /// largest entry has kNormBits significant bits, and solved by Cramer's rule with exact 128-bit
 /// cofactors and one rounded division per component.
 
+#include <bit>
+#include <cstdint>
+#include <type_traits>
+
 #include "lockbox/fixed/Math.h"
 #include "lockbox/fixed/detail/Int128.h"
 
@@ -78,10 +82,51 @@ constexpr b2WideVec3 operator+(const b2WideVec3& a, const b2WideVec3& b) noexcep
 /// Component-wise arithmetic (saturating Wide operations).
 constexpr b2WideVec3 operator-(const b2WideVec3& a, const b2WideVec3& b) noexcept { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 
+namespace detail {
+#ifdef LOCKBOX_NATIVE_INT128
+// Native twins of the sign-magnitude S128 paths below, for the joint solvers' hot loops. Each
+// computes the same exact integer and rounds it the same way (half away from zero on the
+// magnitude, saturating to +-INT64_MAX with the same overflow report), so the bits match the
+// portable limbs (tested on random and extreme inputs in joint_wide_native_test, and by the
+// portable128 preset's golden hashes).
+
+/// |v| of a value known to be above -2^127.
+inline NativeU128 MagnitudeU128(NativeI128 v) noexcept {
+    return v < 0 ? static_cast<NativeU128>(0) - static_cast<NativeU128>(v) : static_cast<NativeU128>(v);
+}
+
+/// NarrowWide of a non-negative magnitude and a sign.
+inline int64_t NarrowMagnitude(NativeU128 mag, bool negative, const char* op, int64_t a, int64_t b) noexcept {
+    constexpr uint64_t kMax = static_cast<uint64_t>(INT64_MAX);
+    if (mag > kMax) [[unlikely]] {
+        OnOverflow(op, a, b);
+        return negative ? -static_cast<int64_t>(kMax) : static_cast<int64_t>(kMax);
+    }
+    const auto m = static_cast<int64_t>(mag);
+    return negative ? -m : m;
+}
+#endif
+
+/// r x P of raw Q16.16 r and raw Q32.32 P, rounded once to a Q32.32 raw (the portable form).
+constexpr int64_t CrossArmImpulseRaw(int32_t rx, int32_t ry, int64_t px, int64_t py, const char* op) noexcept {
+    const S128 e = SubS128(MulS64(rx, py), MulS64(ry, px));
+    return NarrowWide(ShrRoundS128(e, 16), op, rx, py);
+}
+}  // namespace detail
+
 /// Exact r x P (N*m*s) of a Q16.16 arm and a Q32.32 impulse, rounded once to Q32.32.
 constexpr Wide b2Cross(const b2Vec2& r, const b2WideVec2& p) noexcept {
-    const detail::S128 e = detail::SubS128(detail::MulS64(r.x.Raw(), p.y.Raw()), detail::MulS64(r.y.Raw(), p.x.Raw()));
-    return Wide::FromRaw(detail::NarrowWide(detail::ShrRoundS128(e, 16), "b2Cross(b2Vec2, b2WideVec2)", r.x.Raw(), p.y.Raw()));
+    constexpr const char* kOp = "b2Cross(b2Vec2, b2WideVec2)";
+#ifdef LOCKBOX_NATIVE_INT128
+    if (!std::is_constant_evaluated()) {
+        using namespace detail;
+        // |r| < 2^31 and |P| < 2^63: each product is below 2^94, the difference below 2^95.
+        const NativeI128 e = static_cast<NativeI128>(r.x.Raw()) * p.y.Raw() - static_cast<NativeI128>(r.y.Raw()) * p.x.Raw();
+        const NativeU128 mag = (MagnitudeU128(e) + (NativeU128{1} << 15)) >> 16;
+        return Wide::FromRaw(NarrowMagnitude(mag, e < 0, kOp, r.x.Raw(), p.y.Raw()));
+    }
+#endif
+    return Wide::FromRaw(detail::CrossArmImpulseRaw(r.x.Raw(), r.y.Raw(), p.x.Raw(), p.y.Raw(), kOp));
 }
 
 namespace detail {
@@ -109,6 +154,31 @@ constexpr int64_t DivShiftS128(S128 n, S128 d, int shift, const char* op) noexce
     return NarrowWide(DivRoundS128(n, d), op, 0, 0);
 }
 
+#ifdef LOCKBOX_NATIVE_INT128
+/// DivShiftS128 of native values. The common case (n << shift fits in 126 bits, so d is not
+/// shifted) is one native division; the rest goes through the portable code.
+inline int64_t DivShiftNative(NativeI128 n, NativeI128 d, int shift, const char* op) noexcept {
+    if (n == 0) return 0;
+    NativeU128 nm = MagnitudeU128(n);
+    const auto hi = static_cast<uint64_t>(nm >> 64);
+    const int width = hi != 0 ? 64 + static_cast<int>(std::bit_width(hi)) : static_cast<int>(std::bit_width(static_cast<uint64_t>(nm)));
+    if (shift < 0 || shift > 126 - width) {
+        auto toS128 = [](NativeI128 v) {
+            const NativeU128 m = MagnitudeU128(v);
+            return S128{v < 0, U128{static_cast<uint64_t>(m >> 64), static_cast<uint64_t>(m)}};
+        };
+        return DivShiftS128(toS128(n), toS128(d), shift, op);
+    }
+    const NativeU128 dm = MagnitudeU128(d);
+    if (dm == 0) return 0;
+    nm <<= shift;
+    NativeU128 q = nm / dm;
+    const NativeU128 rem = nm - q * dm;
+    if (rem >= dm - rem) ++q;  // 2 rem >= d: ties away from zero
+    return NarrowMagnitude(q, q != 0 && ((n < 0) != (d < 0)), op, 0, 0);
+}
+#endif
+
 /// Significant bits kept in the largest entry of a normalised K. 36 bits (a relative
 /// resolution of 1.5e-11, far better than float's 6e-8) leave room for the exact 3x3
 /// cofactor sums times a right-hand side of up to 2^47 raw (32768 m/s) inside 127 bits.
@@ -125,7 +195,11 @@ constexpr int NormShift(const int64_t* raws, int count) noexcept {
 /// raw * 2^-s with rounding (s > 0) or exact raw * 2^-s (s <= 0, never overflows since the
 /// result has kNormBits bits).
 constexpr int64_t ScaleRaw(int64_t raw, int s) noexcept {
-    if (s > 0) return ToS64(ShrRoundS128(MulS64(raw, 1), s));
+    if (s > 0) {
+        // s <= 28 (64 - kNormBits): |raw| + half stays below 2^64, so 64 bits round exactly.
+        const uint64_t m = (AbsU64(raw) + (uint64_t{1} << (s - 1))) >> s;
+        return raw < 0 ? -static_cast<int64_t>(m) : static_cast<int64_t>(m);
+    }
     return raw * (int64_t{1} << (-s));
 }
 }  // namespace detail
@@ -191,6 +265,21 @@ struct b2WideSolver22 {
     /// Solves K x = b for a Q32.32 right-hand side (m/s); x is an impulse (N*s). A singular K
     /// gives x = 0.
     constexpr b2WideVec2 Solve(const b2WideVec2& b) const noexcept {
+#ifdef LOCKBOX_NATIVE_INT128
+        if (!std::is_constant_evaluated()) {
+            using namespace detail;
+            // |a| < 2^36 (normalised) and |b| < 2^63: products below 2^99, exact.
+            const NativeI128 nx = static_cast<NativeI128>(a22) * b.x.Raw() - static_cast<NativeI128>(a12) * b.y.Raw();
+            const NativeI128 ny = static_cast<NativeI128>(a11) * b.y.Raw() - static_cast<NativeI128>(a21) * b.x.Raw();
+            const NativeI128 d = NativeDet();
+            return {Wide::FromRaw(DivShiftNative(nx, d, 32 - s, "b2WideMat22::Solve")),
+                    Wide::FromRaw(DivShiftNative(ny, d, 32 - s, "b2WideMat22::Solve"))};
+        }
+#endif
+        return SolvePortable(b);
+    }
+    /// Solve through the portable 128-bit limbs only (the same bits; for the tests).
+    constexpr b2WideVec2 SolvePortable(const b2WideVec2& b) const noexcept {
         using namespace detail;
         const S128 nx = SubS128(MulS64(a22, b.x.Raw()), MulS64(a12, b.y.Raw()));
         const S128 ny = SubS128(MulS64(a11, b.y.Raw()), MulS64(a21, b.x.Raw()));
@@ -200,6 +289,15 @@ struct b2WideSolver22 {
     }
     /// Solves K x = b for a Q16.16 right-hand side.
     constexpr b2WideVec2 Solve(const b2Vec2& b) const noexcept { return Solve(b2WideVec2(b)); }
+
+private:
+#ifdef LOCKBOX_NATIVE_INT128
+    /// det as a native value (|det| < 2^73).
+    detail::NativeI128 NativeDet() const noexcept {
+        const auto m = static_cast<detail::NativeI128>((static_cast<detail::NativeU128>(det.mag.hi) << 64) | det.mag.lo);
+        return det.negative ? -m : m;
+    }
+#endif
 };
 
 /// A 3x3 K made ready for many solves (see b2WideSolver22): Solve33 gives the bits of
