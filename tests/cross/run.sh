@@ -5,7 +5,8 @@
 # (no CMake; a jumbo build planned by tests/cross/unity.py; xxHash header-only through
 # -DXXH_INLINE_ALL) for every configuration ("cell") of
 #   {g++, clang++} x {-O0, -O2, -O3 (+ -march=native -ffast-math natively, -ffast-math cross)}
-#   x {x86-64 native, i686 (static, runs natively), aarch64 and s390x (qemu-user)}
+#   x {x86-64 native, i686 (static; natively, or under qemu-i386 on a kernel without 32-bit
+#      support), aarch64 and s390x (qemu-user)}
 # runs each one against tests/golden/hashes.txt, the fixed-function golden values and
 # tests/cross/snapshot_golden.txt, checks that all cells printed the same values, prints a
 # pass/fail matrix with per-cell times, and exits non-zero on any mismatch, build failure or
@@ -81,6 +82,19 @@ if [ -n "$keep" ]; then
 else
     work=$(mktemp -d /tmp/lockbox-cross.XXXXXX)
     trap 'rm -rf "$work"' EXIT
+fi
+
+# i686 binaries run natively where the kernel can run 32-bit programs. Some kernels (VMs built
+# without IA-32 emulation) cannot: there the i686 cells run under qemu-i386 like the other
+# foreign architectures, with the emulated cells' limits.
+i686_runner=""
+if command -v i686-linux-gnu-g++ > /dev/null 2>&1; then
+    printf 'int main() { return 0; }\n' > "$work/i686-probe.cpp"
+    if i686-linux-gnu-g++ -static "$work/i686-probe.cpp" -o "$work/i686-probe" > /dev/null 2>&1 &&
+        ! "$work/i686-probe" > /dev/null 2>&1; then
+        i686_runner="qemu-i386"
+        echo "[cross] i686: this kernel cannot run 32-bit programs; the i686 cells run under qemu-i386"
+    fi
 fi
 
 # A private copy of the sources: a run takes minutes to hours, and the working tree may change
@@ -169,6 +183,7 @@ runner() {  # $1 arch
     case "$1" in
         aarch64) echo "qemu-aarch64 -L /usr/aarch64-linux-gnu" ;;
         s390x) echo "qemu-s390x -L /usr/s390x-linux-gnu" ;;
+        i686) echo "$i686_runner" ;;
         *) echo "" ;;
     esac
 }
