@@ -103,6 +103,30 @@ TEST_F(NativeWide, PreparedSolveMatchesThePortableLimbs) {
     EXPECT_GT(singular, 6000);
 }
 
+TEST_F(NativeWide, Prepared3x3SolveMatchesThePortableLimbs) {
+    int native = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const int bits = static_cast<int>(rng_() % 64);
+        auto col = [&]() { return b2WideVec3(Wide::FromRaw(Raw(bits)), Wide::FromRaw(Raw(bits)), Wide::FromRaw(Raw(bits))); };
+        const b2WideVec3 ex = col(), ey = col();
+        const b2WideVec3 ez = i % 50 == 0 ? ex : col();  // singular now and then
+        const b2WideSolver33 k(ex, ey, ez);
+        // Mostly Q16.16-range right-hand sides (the native path), some beyond (the limbs).
+        const int rhsBits = i % 10 == 0 ? 63 : 47;
+        const b2WideVec3 b(Wide::FromRaw(Raw(rhsBits)), Wide::FromRaw(Raw(rhsBits)), Wide::FromRaw(Raw(rhsBits)));
+        native += rhsBits == 47 ? 1 : 0;
+        const uint64_t before = Reports();
+        const b2WideVec3 got = k.Solve33(b);
+        const uint64_t gotReports = Reports() - before;
+        const b2WideVec3 want = k.Solve33Portable(b);
+        ASSERT_EQ(got.x.Raw(), want.x.Raw()) << i;
+        ASSERT_EQ(got.y.Raw(), want.y.Raw()) << i;
+        ASSERT_EQ(got.z.Raw(), want.z.Raw()) << i;
+        ASSERT_EQ(gotReports, Reports() - before - gotReports) << i;
+    }
+    EXPECT_GT(native, 150000);
+}
+
 TEST_F(NativeWide, NormalisingScaleRoundsLikeThe128BitShift) {
     for (int i = 0; i < 300000; ++i) {
         const int64_t raw = i % 1000 == 0 ? (i % 2000 == 0 ? INT64_MAX : -INT64_MAX) : Raw(63);

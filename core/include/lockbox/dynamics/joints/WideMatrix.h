@@ -320,6 +320,24 @@ struct b2WideSolver33 {
 
     /// Solves K x = b (b in m/s and rad/s as Q32.32). A singular K gives x = 0.
     constexpr b2WideVec3 Solve33(const b2WideVec3& b) const noexcept {
+#ifdef LOCKBOX_NATIVE_INT128
+        // A right-hand side of Q16.16 range (|raw| <= 2^47, every joint's velocity error) keeps
+        // every cofactor sum below 2^122: native products are then exact, as the limbs are.
+        constexpr int64_t kLimit = int64_t{1} << 47;
+        auto small = [](Wide v) { return v.Raw() >= -kLimit && v.Raw() <= kLimit; };
+        if (!std::is_constant_evaluated() && small(b.x) && small(b.y) && small(b.z)) {
+            using namespace detail;
+            const int64_t bv[3] = {b.x.Raw(), b.y.Raw(), b.z.Raw()};
+            const NativeI128 d = NativeDet();
+            return {Wide::FromRaw(DivShiftNative(NativeTriple(bv, m + 3, m + 6), d, 32 - s, "b2WideMat33::Solve33")),
+                    Wide::FromRaw(DivShiftNative(NativeTriple(m, bv, m + 6), d, 32 - s, "b2WideMat33::Solve33")),
+                    Wide::FromRaw(DivShiftNative(NativeTriple(m, m + 3, bv), d, 32 - s, "b2WideMat33::Solve33"))};
+        }
+#endif
+        return Solve33Portable(b);
+    }
+    /// Solve33 through the portable 128-bit limbs only (the same bits; for the tests).
+    constexpr b2WideVec3 Solve33Portable(const b2WideVec3& b) const noexcept {
         using namespace detail;
         const int64_t bv[3] = {b.x.Raw(), b.y.Raw(), b.z.Raw()};
         const S128 nx = Triple(bv, m + 3, m + 6);
@@ -333,6 +351,21 @@ struct b2WideSolver33 {
     constexpr b2WideVec3 Solve33(const b2Vec3& b) const noexcept { return Solve33(b2WideVec3(b)); }
 
 private:
+#ifdef LOCKBOX_NATIVE_INT128
+    /// det as a native value (|det| < 2^110).
+    detail::NativeI128 NativeDet() const noexcept {
+        const auto v = static_cast<detail::NativeI128>((static_cast<detail::NativeU128>(det.mag.hi) << 64) | det.mag.lo);
+        return det.negative ? -v : v;
+    }
+    /// Triple in native integers; callers keep every entry below 2^47 (see Solve33).
+    static detail::NativeI128 NativeTriple(const int64_t* a, const int64_t* p, const int64_t* q) noexcept {
+        using detail::NativeI128;
+        const NativeI128 cx = static_cast<NativeI128>(p[1]) * q[2] - static_cast<NativeI128>(p[2]) * q[1];
+        const NativeI128 cy = static_cast<NativeI128>(p[2]) * q[0] - static_cast<NativeI128>(p[0]) * q[2];
+        const NativeI128 cz = static_cast<NativeI128>(p[0]) * q[1] - static_cast<NativeI128>(p[1]) * q[0];
+        return cx * a[0] + cy * a[1] + cz * a[2];
+    }
+#endif
     /// Exact a . (p x q) of raw 3-vectors.
     static constexpr detail::S128 Triple(const int64_t* a, const int64_t* p, const int64_t* q) noexcept {
         using namespace detail;
