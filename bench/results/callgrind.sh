@@ -14,7 +14,7 @@ ir() {
         sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
 }
 echo "scene,steps,engine,instructions,instructions_per_step" > "$out"
-for spec in hello:60 pyramid20:120 chain60:120; do
+for spec in hello:60 pyramid20:120 chain60:120 ragdolls:120; do
     scene=${spec%%:*}
     steps=${spec##*:}
     for engine in lockbox box2d-float; do
