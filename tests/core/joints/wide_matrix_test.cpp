@@ -91,6 +91,11 @@ TEST_F(NativeWide, PreparedSolveMatchesThePortableLimbs) {
         if (i % 50 == 0) ey = ex;  // singular: x = 0
         const b2WideSolver22 k(ex, ey);
         singular += detail::IsZero(k.det) ? 1 : 0;
+        // The determinant the constructor computed equals the limbs' exact one.
+        const detail::S128 limbDet = detail::SubS128(detail::MulS64(k.a11, k.a22), detail::MulS64(k.a12, k.a21));
+        ASSERT_EQ(k.det.negative, limbDet.negative);
+        ASSERT_EQ(k.det.mag.hi, limbDet.mag.hi);
+        ASSERT_EQ(k.det.mag.lo, limbDet.mag.lo);
         const b2WideVec2 b(Wide::FromRaw(Raw(63)), Wide::FromRaw(Raw(63)));
         const uint64_t before = Reports();
         const b2WideVec2 got = k.Solve(b);
@@ -111,6 +116,18 @@ TEST_F(NativeWide, Prepared3x3SolveMatchesThePortableLimbs) {
         const b2WideVec3 ex = col(), ey = col();
         const b2WideVec3 ez = i % 50 == 0 ? ex : col();  // singular now and then
         const b2WideSolver33 k(ex, ey, ez);
+        {
+            // The determinant the constructor computed equals the limbs' exact c0 . (c1 x c2).
+            using namespace detail;
+            const int64_t* m = k.m;
+            const S128 cx = SubS128(MulS64(m[4], m[8]), MulS64(m[5], m[7]));
+            const S128 cy = SubS128(MulS64(m[5], m[6]), MulS64(m[3], m[8]));
+            const S128 cz = SubS128(MulS64(m[3], m[7]), MulS64(m[4], m[6]));
+            const S128 limbDet = AddS128(AddS128(MulS128S64(cx, m[0]), MulS128S64(cy, m[1])), MulS128S64(cz, m[2]));
+            ASSERT_EQ(k.det.negative, limbDet.negative) << i;
+            ASSERT_EQ(k.det.mag.hi, limbDet.mag.hi) << i;
+            ASSERT_EQ(k.det.mag.lo, limbDet.mag.lo) << i;
+        }
         // Mostly Q16.16-range right-hand sides (the native path), some beyond (the limbs).
         const int rhsBits = i % 10 == 0 ? 63 : 47;
         const b2WideVec3 b(Wide::FromRaw(Raw(rhsBits)), Wide::FromRaw(Raw(rhsBits)), Wide::FromRaw(Raw(rhsBits)));

@@ -96,6 +96,12 @@ inline NativeU128 MagnitudeU128(NativeI128 v) noexcept {
 }
 
 /// NarrowWide of a non-negative magnitude and a sign.
+/// The sign-and-magnitude form of a native value.
+inline S128 FromNative(NativeI128 v) noexcept {
+    const NativeU128 m = MagnitudeU128(v);
+    return S128{v < 0, U128{static_cast<uint64_t>(m >> 64), static_cast<uint64_t>(m)}};
+}
+
 inline int64_t NarrowMagnitude(NativeU128 mag, bool negative, const char* op, int64_t a, int64_t b) noexcept {
     constexpr uint64_t kMax = static_cast<uint64_t>(INT64_MAX);
     if (mag > kMax) [[unlikely]] {
@@ -163,11 +169,7 @@ inline int64_t DivShiftNative(NativeI128 n, NativeI128 d, int shift, const char*
     const auto hi = static_cast<uint64_t>(nm >> 64);
     const int width = hi != 0 ? 64 + static_cast<int>(std::bit_width(hi)) : static_cast<int>(std::bit_width(static_cast<uint64_t>(nm)));
     if (shift < 0 || shift > 126 - width) {
-        auto toS128 = [](NativeI128 v) {
-            const NativeU128 m = MagnitudeU128(v);
-            return S128{v < 0, U128{static_cast<uint64_t>(m >> 64), static_cast<uint64_t>(m)}};
-        };
-        return DivShiftS128(toS128(n), toS128(d), shift, op);
+        return DivShiftS128(FromNative(n), FromNative(d), shift, op);
     }
     const NativeU128 dm = MagnitudeU128(d);
     if (dm == 0) return 0;
@@ -259,6 +261,13 @@ struct b2WideSolver22 {
         a21 = ScaleRaw(ex.y.Raw(), s);
         a12 = ScaleRaw(ey.x.Raw(), s);
         a22 = ScaleRaw(ey.y.Raw(), s);
+#ifdef LOCKBOX_NATIVE_INT128
+        if (!std::is_constant_evaluated()) {
+            // |a| <= 2^36: the exact determinant is below 2^73 either way.
+            det = FromNative(static_cast<NativeI128>(a11) * a22 - static_cast<NativeI128>(a12) * a21);
+            return;
+        }
+#endif
         det = SubS128(MulS64(a11, a22), MulS64(a12, a21));
     }
 
@@ -315,6 +324,12 @@ struct b2WideSolver33 {
                                  ey.z.Raw(), ez.x.Raw(), ez.y.Raw(), ez.z.Raw()};
         s = NormShift(raws, 9);
         for (int i = 0; i < 9; ++i) m[i] = ScaleRaw(raws[i], s);
+#ifdef LOCKBOX_NATIVE_INT128
+        if (!std::is_constant_evaluated()) {
+            det = FromNative(NativeTriple(m, m + 3, m + 6));  // entries <= 2^36: below 2^111
+            return;
+        }
+#endif
         det = Triple(m, m + 3, m + 6);
     }
 
