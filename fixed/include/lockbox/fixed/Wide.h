@@ -27,6 +27,21 @@ constexpr int64_t NarrowWide(const S128& v, const char* op, int64_t a, int64_t b
     return v.negative ? -static_cast<int64_t>(v.mag.lo) : static_cast<int64_t>(v.mag.lo);
 }
 
+#ifdef LOCKBOX_NATIVE_INT128
+/// A rounded magnitude with its sign as a Q32.32 raw, saturating to +-INT64_MAX (with the
+/// overflow report of operation `op` on operands a and b), as NarrowWide does for limbs.
+[[gnu::always_inline]] constexpr int64_t NarrowMagnitude(NativeU128 mag, bool negative, const char* op, int64_t a,
+                                                         int64_t b) noexcept {
+    constexpr uint64_t kMax = static_cast<uint64_t>(std::numeric_limits<int64_t>::max());
+    if (mag > kMax) [[unlikely]] {
+        OnOverflow(op, a, b);
+        return negative ? -static_cast<int64_t>(kMax) : static_cast<int64_t>(kMax);
+    }
+    const auto m = static_cast<int64_t>(mag);
+    return negative ? -m : m;
+}
+#endif
+
 /// round(a * b / 2^shift), ties away from zero, saturating to +-INT64_MAX.
 // Always inlined: the hot solver loops call it several hundred times per contact, and the
 // fast path is a handful of instructions once the shift is a constant.
@@ -48,14 +63,7 @@ constexpr int64_t NarrowWide(const S128& v, const char* op, int64_t a, int64_t b
     // result has the product's sign, which is then non-zero.
     const NativeU128 mag = static_cast<NativeU128>(AbsU64(a)) * AbsU64(b);
     const NativeU128 r = (mag + (static_cast<NativeU128>(1) << (shift - 1))) >> shift;
-    const bool negative = (a < 0) != (b < 0);
-    constexpr uint64_t kMax = static_cast<uint64_t>(std::numeric_limits<int64_t>::max());
-    if (r > kMax) [[unlikely]] {
-        OnOverflow(op, a, b);
-        return negative ? -static_cast<int64_t>(kMax) : static_cast<int64_t>(kMax);
-    }
-    const int64_t m = static_cast<int64_t>(r);
-    return negative ? -m : m;
+    return NarrowMagnitude(r, (a < 0) != (b < 0), op, a, b);
 #else
     return NarrowWide(ShrRoundS128(MulS64(a, b), shift), op, a, b);
 #endif

@@ -87,7 +87,7 @@ namespace detail {
 // Native twins of the sign-magnitude S128 paths below, for the joint solvers' hot loops. Each
 // computes the same exact integer and rounds it the same way (half away from zero on the
 // magnitude, saturating to +-INT64_MAX with the same overflow report), so the bits match the
-// portable limbs (tested on random and extreme inputs in joint_wide_native_test, and by the
+// portable limbs (tested on random and extreme inputs in wide_matrix_test, and by the
 // portable128 preset's golden hashes).
 
 /// |v| of a value known to be above -2^127.
@@ -95,22 +95,12 @@ inline NativeU128 MagnitudeU128(NativeI128 v) noexcept {
     return v < 0 ? static_cast<NativeU128>(0) - static_cast<NativeU128>(v) : static_cast<NativeU128>(v);
 }
 
-/// NarrowWide of a non-negative magnitude and a sign.
 /// The sign-and-magnitude form of a native value.
 inline S128 FromNative(NativeI128 v) noexcept {
     const NativeU128 m = MagnitudeU128(v);
     return S128{v < 0, U128{static_cast<uint64_t>(m >> 64), static_cast<uint64_t>(m)}};
 }
 
-inline int64_t NarrowMagnitude(NativeU128 mag, bool negative, const char* op, int64_t a, int64_t b) noexcept {
-    constexpr uint64_t kMax = static_cast<uint64_t>(INT64_MAX);
-    if (mag > kMax) [[unlikely]] {
-        OnOverflow(op, a, b);
-        return negative ? -static_cast<int64_t>(kMax) : static_cast<int64_t>(kMax);
-    }
-    const auto m = static_cast<int64_t>(mag);
-    return negative ? -m : m;
-}
 #endif
 
 /// r x P of raw Q16.16 r and raw Q32.32 P, rounded once to a Q32.32 raw (the portable form).
