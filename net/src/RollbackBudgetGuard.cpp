@@ -74,7 +74,8 @@ bool RollbackBudgetGuard::Record(uint32_t depth, uint32_t micros) {
             kept_[next_] = s;
             next_ = (next_ + 1) % kept_.size();
         }
-        if (frameMicros_ == 0) frameMicros_ = uint64_t{micros} / (uint64_t{depth} + 1);
+        if (!costSeen_) frameMicros_ = uint64_t{micros} / (uint64_t{depth} + 1);
+        costSeen_ = true;
         if (sinceChange_ >= config_.settleTicks && kept_.size() >= config_.minRollbacks &&
             delay_ < config_.maxDelay && PredictedPercentile(0) > config_.budgetMicros) {
             // The smallest raise the model says fits; the largest allowed if none does.
@@ -87,7 +88,7 @@ bool RollbackBudgetGuard::Record(uint32_t depth, uint32_t micros) {
             return true;
         }
     }
-    if (delay_ > config_.minDelay && sinceChange_ >= config_.lowerAfterTicks && frameMicros_ > 0) {
+    if (delay_ > config_.minDelay && sinceChange_ >= config_.lowerAfterTicks && costSeen_) {
         // One frame less delay: every rollback one frame deeper, and ticks that did not roll
         // back may now re-simulate one frame (two frames' worth of steps).
         const uint64_t deeper = std::max(PredictedPercentile(-1), 2 * frameMicros_);

@@ -152,8 +152,7 @@ InputResult RollbackSession::AddLocalInput(uint32_t player, std::span<const uint
         target -= paid;
     }
     if (p.received > target) return InputResult::e_alreadyAdded;
-    if (p.surplus > 0 && p.received == target && p.received > 0 &&
-        std::memcmp(m.InputAt(p, p.received - 1), input.data(), m.Bytes()) == 0) {
+    if (p.surplus > 0 && p.received == target && p.received > 0 && m.IsRepeat(player, p, input)) {
         // The player repeats itself: the queued frame already says this.
         --p.surplus;
         ++m.stats.inputsAbsorbed;

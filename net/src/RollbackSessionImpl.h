@@ -95,6 +95,14 @@ struct RollbackSession::Impl {
         p.received = frame + 1;
     }
 
+    // Whether local `next` may stand for a repeat of the player's latest queued input (while
+    // a lowered input delay catches up): equal bytes, or what the game's RepeatTest accepts.
+    bool IsRepeat(uint32_t player, Player& p, std::span<const uint8_t> next) {
+        const std::span<const uint8_t> previous(InputAt(p, p.received - 1), Bytes());
+        if (std::memcmp(previous.data(), next.data(), Bytes()) == 0) return true;
+        return config.repeatTest && config.repeatTest(player, previous, next);
+    }
+
     // First frame whose inputs this session does not all hold (a frozen player counts with
     // its frozen frame). The prediction window is measured from here.
     int32_t Held() const noexcept;

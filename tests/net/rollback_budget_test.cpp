@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "RollbackMixGame.h"
@@ -76,6 +77,52 @@ TEST(RollbackInputDelay, LoweringAbsorbsOnlyRepeatsSoNoPressIsLost) {
     for (uint8_t v : script) meant.push_back(v);
     EXPECT_EQ(Collapse(got), Collapse(meant));
     EXPECT_EQ(got.size() + 3, meant.size());
+}
+
+// Analog input: byte 0 is the buttons, byte 1 a stick that moves every tick, so no two
+// inputs are equal.
+std::vector<uint32_t> AnalogLowering(InputRepeatTest test, uint64_t* absorbed) {
+    auto s = RollbackSessionBuilder().Players(2).InputBytes(2).LocalPlayer(0).InputDelay(4)
+                 .PredictionWindow(kRollbackMaxWindow).RepeatTest(std::move(test)).Build();
+    const std::vector<uint8_t> buttons = {0, 0, 0, 1, 1, 0, 0, 0, 2, 2, 2, 0};
+    std::vector<uint32_t> lead;
+    for (size_t t = 0; t < buttons.size(); ++t) {
+        if (t == 2) {
+            EXPECT_TRUE(s->SetInputDelay(1));
+        }
+        const std::vector<uint8_t> in = {buttons[t], static_cast<uint8_t>(100 + t)};
+        EXPECT_EQ(s->AddLocalInput(0, in), InputResult::e_ok) << t;
+        s->AdvanceFrame();
+        lead.push_back(static_cast<uint32_t>(s->ReceivedFrame(0) - s->CurrentFrame()));
+    }
+    // Every button edge arrived, in order, whatever was absorbed.
+    std::vector<uint8_t> got;
+    for (int32_t f = 4; f < s->ReceivedFrame(0); ++f) got.push_back(s->ConfirmedInput(0, f)[0]);
+    EXPECT_EQ(Collapse(got), (std::vector<uint8_t>{0, 1, 0, 2, 0}));
+    *absorbed = s->Stats().inputsAbsorbed;
+    return lead;
+}
+
+TEST(RollbackInputDelay, AnalogInputPaysBackALoweringOnlyWithARepeatTest) {
+    uint64_t absorbed = 0;
+    // Equal bytes only (the default): the stick never repeats, the old delay stays.
+    std::vector<uint32_t> lead = AnalogLowering({}, &absorbed);
+    EXPECT_EQ(absorbed, 0u);
+    EXPECT_EQ(lead.back(), 4u);
+    // "The same buttons": ticks 2, 4 and 6 repeat their predecessor's buttons and pay the
+    // three frames owed; the press at tick 3 and the release at tick 5 are queued.
+    int calls = 0;
+    lead = AnalogLowering(
+        [&calls](uint32_t player, std::span<const uint8_t> previous, std::span<const uint8_t> next) {
+            EXPECT_EQ(player, 0u);
+            ++calls;
+            return previous[0] == next[0];
+        },
+        &absorbed);
+    EXPECT_EQ(absorbed, 3u);
+    EXPECT_EQ(calls, 5);  // asked only while frames were owed (ticks 2..6)
+    EXPECT_EQ(lead[6], 1u);
+    EXPECT_EQ(lead.back(), 1u);
 }
 
 TEST(RollbackInputDelay, ARaiseCancelsWhatALoweringStillOwes) {
@@ -221,6 +268,17 @@ TEST(RollbackBudgetGuard, NeverLowersWithoutHavingSeenACost) {
     RollbackBudgetGuard g(Quick(), 3);
     for (int t = 0; t < 500; ++t) EXPECT_FALSE(g.Record(0, 0));
     EXPECT_EQ(g.Delay(), 3u);
+}
+
+TEST(RollbackBudgetGuard, LowersWhenTheSeenCostRoundsToZeroMicroseconds) {
+    // A cheap game: its rollbacks take under a microsecond, so the per-frame cost remembered
+    // is 0. That is a cost seen, not none: the delay still comes down after the quiet period.
+    RollbackBudgetGuard g(Quick(), 3);
+    EXPECT_FALSE(g.Record(1, 0));
+    int t = 1;
+    while (!g.Record(0, 0)) ASSERT_LT(++t, 200);
+    EXPECT_EQ(t, 49);  // the 50th tick since the start: lowerAfterTicks
+    EXPECT_EQ(g.Delay(), 2u);
 }
 
 // 150 ms RTT with jitter and loss and no input delay: rollbacks 5-8 frames deep. With 1 ms

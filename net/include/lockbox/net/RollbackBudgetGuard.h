@@ -87,7 +87,8 @@ private:
     size_t next_ = 0;            // ring position of the oldest sample when full
     uint64_t ticks_ = 0;         // Record calls so far
     uint64_t sinceChange_ = 0;   // ticks
-    uint64_t frameMicros_ = 0;   // the latest per-frame cost seen (0: none yet)
+    uint64_t frameMicros_ = 0;   // the latest per-frame cost seen (0 also when under 1 us)
+    bool costSeen_ = false;      // any rollback recorded: lowering is never blind
     uint32_t raises_ = 0;
     uint32_t lowerings_ = 0;
     mutable std::vector<uint64_t> scratch_;

@@ -125,6 +125,16 @@ using InputPredictor =
     std::function<void(uint32_t player, int32_t frame, std::span<const uint8_t> last, int32_t lastFrame,
                        std::span<uint8_t> out)>;
 
+/// Whether local `next` may stand as a repeat of the player's `previous` input (the one
+/// queued last) while a lowered input delay catches up (RollbackSession::SetInputDelay): true
+/// drops `next`, and the frame it would have filled is paid back. The default takes equal
+/// bytes only, so nothing is ever dropped; but a player whose input changes every tick (an
+/// analog stick) then never pays back a lowering. A game with analog input can accept, for
+/// example, "the same buttons": one tick's stick sample is dropped (the next one supersedes
+/// it) and no button edge is lost. Called only during such a catch-up.
+using InputRepeatTest =
+    std::function<bool(uint32_t player, std::span<const uint8_t> previous, std::span<const uint8_t> next)>;
+
 /// What AddLocalInput / AddRemoteInput said.
 enum class InputResult : uint8_t {
     e_ok = 0,
@@ -166,6 +176,7 @@ struct RollbackConfig {
     uint32_t checkDistance = 8;          ///< sync test: frames re-simulated per check (>= 1)
     uint32_t desyncInterval = 10;        ///< compare hashes of frames f with f % interval == 0; 0: never
     InputPredictor predictor;            ///< empty: repeat the last confirmed input
+    InputRepeatTest repeatTest;          ///< empty: equal bytes are a repeat
 };
 
 class RollbackSession;
@@ -189,6 +200,9 @@ public:
     RollbackSessionBuilder& DesyncInterval(uint32_t frames) { config_.desyncInterval = frames; return *this; }
     /// A custom predictor (default: repeat the last confirmed input).
     RollbackSessionBuilder& Predictor(InputPredictor predictor) { config_.predictor = std::move(predictor); return *this; }
+    /// What counts as a repeated local input while a lowered input delay catches up (default:
+    /// equal bytes). See InputRepeatTest.
+    RollbackSessionBuilder& RepeatTest(InputRepeatTest test) { config_.repeatTest = std::move(test); return *this; }
 
     /// Empty when the settings are valid, else a one-line reason.
     std::string_view Check() const noexcept;
@@ -212,8 +226,8 @@ public:
     /// Queues local `player`'s input for frame CurrentFrame() + inputDelay. Once per tick per
     /// local player; e_alreadyAdded while the session waits at the window edge (that tick's
     /// input is not taken: the previous one is still queued). While a lowered input delay
-    /// catches up (SetInputDelay), an input equal to the player's previous one is taken as
-    /// its repeat and fills no frame (e_ok); a different one is queued as usual.
+    /// catches up (SetInputDelay), an input that repeats the player's previous one (equal
+    /// bytes, or the builder's RepeatTest) fills no frame (e_ok); another is queued as usual.
     InputResult AddLocalInput(uint32_t player, std::span<const uint8_t> input);
 
     /// Changes the input delay during the match (0 .. kRollbackMaxInputDelay; false, and no
@@ -223,7 +237,8 @@ public:
     /// predicted anyway; counted in inputsRepeated). Lowering by k takes effect as the player
     /// repeats itself: each of its next k inputs that equals its previous one is absorbed
     /// (inputsAbsorbed), so a held input is held one frame shorter and no press or release is
-    /// dropped; an input that keeps changing keeps the longer delay until it repeats.
+    /// dropped; an input that keeps changing keeps the longer delay until it repeats (or until
+    /// the builder's RepeatTest accepts it, for analog input).
     /// RollbackBudgetGuard (RollbackBudgetGuard.h) chooses the delay from measured costs.
     bool SetInputDelay(uint32_t frames);
     /// The input delay asked for (the builder's, or the latest SetInputDelay).
