@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "RollbackMixGame.h"
@@ -164,31 +165,27 @@ RollbackBudgetConfig Quick() {
 
 TEST(RollbackBudgetGuard, ChecksItsSettings) {
     EXPECT_TRUE(RollbackBudgetGuard::Check(RollbackBudgetConfig{}).empty());
-    RollbackBudgetConfig c;
-    c.budgetMicros = 0;
-    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
-    c = {};
-    c.percentile = 101;
-    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
-    c = {};
-    c.maxDelay = kRollbackMaxInputDelay + 1;
-    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
-    c = {};
-    c.minDelay = 5;
-    c.maxDelay = 4;
-    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
-    c = {};
-    c.rollbacksKept = 9;
-    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
-    c = {};
-    c.minRollbacks = c.rollbacksKept + 1;
-    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
-    c = {};
-    c.sampleTicks = 0;
-    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
-    c = {};
-    c.lowerMarginPercent = 0;
-    EXPECT_FALSE(RollbackBudgetGuard::Check(c).empty());
+    // Each setting just outside its range, with the words the reason must name.
+    struct Bad {
+        void (*spoil)(RollbackBudgetConfig&);
+        const char* names;
+    };
+    const Bad bad[] = {
+        {[](RollbackBudgetConfig& c) { c.budgetMicros = 0; }, "budget"},
+        {[](RollbackBudgetConfig& c) { c.percentile = 101; }, "percentile"},
+        {[](RollbackBudgetConfig& c) { c.maxDelay = kRollbackMaxInputDelay + 1; }, "max delay"},
+        {[](RollbackBudgetConfig& c) { c.minDelay = 5; c.maxDelay = 4; }, "min delay"},
+        {[](RollbackBudgetConfig& c) { c.rollbacksKept = 9; }, "rollbacks kept"},
+        {[](RollbackBudgetConfig& c) { c.minRollbacks = c.rollbacksKept + 1; }, "min rollbacks"},
+        {[](RollbackBudgetConfig& c) { c.sampleTicks = 0; }, "sample ticks"},
+        {[](RollbackBudgetConfig& c) { c.lowerMarginPercent = 0; }, "lower margin"},
+    };
+    for (const Bad& b : bad) {
+        RollbackBudgetConfig c;
+        b.spoil(c);
+        const std::string_view why = RollbackBudgetGuard::Check(c);
+        EXPECT_NE(why.find(b.names), std::string_view::npos) << b.names << ": " << why;
+    }
     EXPECT_EQ(RollbackBudgetGuard(RollbackBudgetConfig{}, 40).Delay(), 16u);  // clamped
 }
 
@@ -286,17 +283,8 @@ TEST(RollbackBudgetGuard, LowersWhenTheSeenCostRoundsToZeroMicroseconds) {
 // under budget, the peers agree on every final hash, and no local press is lost.
 void ExpectGuardKeepsBudget(uint64_t seed, uint32_t peers) {
     using namespace rbtest;
-    RbSpec spec;
-    spec.seed = seed;
-    spec.peers = peers;
-    spec.rttMs = 150;
-    spec.jitterMs = 30;
-    spec.lossPct = 5;
-    spec.frames = 1500;
-    spec.inputDelay = 0;
-    RbSpec guarded = spec;
-    guarded.guardBudgetMicros = 4000;
-    guarded.guardFrameMicros = 1000;
+    const RbSpec spec = SlowLinkSpec(seed, peers, 150, 1500, false);
+    const RbSpec guarded = SlowLinkSpec(seed, peers, 150, 1500, true);
     SCOPED_TRACE(guarded.Describe());
 
     const RbResult plain = RunRbMatch(spec);

@@ -113,6 +113,24 @@ struct RbSpec {
     }
 };
 
+/// The budget guard's test link: `rttMs`, 30 ms jitter, 5 % loss, no input delay; with
+/// `guarded`, a 4 ms budget on a synthetic cost of 1 ms per frame stepped.
+inline RbSpec SlowLinkSpec(uint64_t seed, uint32_t peers, uint32_t rttMs, int32_t frames, bool guarded) {
+    RbSpec spec;
+    spec.seed = seed;
+    spec.peers = peers;
+    spec.rttMs = rttMs;
+    spec.jitterMs = 30;
+    spec.lossPct = 5;
+    spec.frames = frames;
+    spec.inputDelay = 0;
+    if (guarded) {
+        spec.guardBudgetMicros = 4000;
+        spec.guardFrameMicros = 1000;
+    }
+    return spec;
+}
+
 /// The forced-divergence game shared with the lockstep tests (NudgeGame.h).
 using RbNudgeGame = lockbox::net::test_games::NudgeGame;
 

@@ -86,17 +86,8 @@ TEST(RollbackLong, TenThousandFramesNoFalseDesync) {
 // input lost through the changes.
 TEST(RollbackLong, BudgetGuardFollowsAChangingLink) {
     for (uint32_t peers : {2u, 3u}) {
-        RbSpec spec;
-        spec.seed = 20000 + peers;
-        spec.peers = peers;
-        spec.rttMs = 50;
-        spec.lossPct = 5;
-        spec.jitterMs = 30;
-        spec.frames = 8000;
-        spec.inputDelay = 0;
+        RbSpec spec = SlowLinkSpec(20000 + peers, peers, 50, 8000, true);
         spec.desyncInterval = 1;
-        spec.guardBudgetMicros = 4000;
-        spec.guardFrameMicros = 1000;
         spec.rttChanges = {{2000, 250}, {4500, 50}};
         const RbResult r = RunRbMatch(spec);
         CheckAndPrint(spec, r);
