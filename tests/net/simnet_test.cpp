@@ -398,7 +398,7 @@ TEST(SimNetTest, LinksDrawIndependently) {
     // The draws of 0 -> 1 do not depend on traffic on other links or on extra endpoints.
     const uint64_t seed = 13;
     SCOPED_TRACE(SeedTrace(seed));
-    auto lostPattern = [seed](bool otherTraffic) {
+    auto lostPattern = [=](bool otherTraffic) {
         SimNet net(seed);
         for (int i = 0; i < (otherTraffic ? 4 : 2); ++i) net.AddEndpoint();
         LinkProfile p;

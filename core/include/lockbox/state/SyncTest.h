@@ -79,7 +79,6 @@ private:
     std::vector<std::vector<uint8>> m_user;    ///< the game's state, same ring
     std::vector<uint64> m_hashes;              ///< first-run hash after each frame
     std::vector<uint8> m_scratch;
-    uint64 m_rng = 0;
 };
 
 }  // namespace lockbox
