@@ -212,6 +212,24 @@ TEST(RollbackLeaveMore, TwoPeersLeaveOneAfterTheOther) {
     }
 }
 
+// Eight peers (the most a session takes), three leaving: peer 7 abruptly after its link to
+// peer 0 died, peer 6 with RbDisconnect, and peer 5 going down while the agreement about
+// peer 7 is still pending. The five survivors agree on each cut.
+TEST(RollbackLeaveMore, ThreeOfEightPeersLeave) {
+    RbSpec spec;
+    spec.seed = 36001;
+    spec.peers = kRollbackMaxPlayers;
+    spec.rttMs = 50;
+    spec.lossPct = 5;
+    spec.jitterMs = 30;
+    spec.frames = 900;
+    spec.linkCuts = {RbLinkCut{7, 0, 150}};
+    spec.exits = {RbExit{7, 180, false}, RbExit{6, 300, true}, RbExit{5, 200, false}};
+    const RbResult r = RunRbMatch(spec);
+    const auto cuts = ExpectAgreement(spec, r, 300);
+    EXPECT_EQ(cuts.size(), 3u) << spec.Describe();
+}
+
 // A half-broken link: peer 2's datagrams stop reaching peer 0, while peer 1 still hears it
 // and peer 2 never leaves. Peer 0 times it out and says so; peer 1 cuts it too (gossip) at
 // peer 0's smaller frozen frame, although it still hears it. Peer 2, named gone, is out of

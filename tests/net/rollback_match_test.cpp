@@ -45,7 +45,9 @@ TEST_P(RollbackMatchFast, PeersAgree) {
 
 INSTANTIATE_TEST_SUITE_P(Subset, RollbackMatchFast,
                          ::testing::Values(Cell{2, 0, 0, 0}, Cell{2, 50, 5, 0}, Cell{2, 150, 20, 30},
-                                           Cell{4, 50, 5, 30}, Cell{4, 150, 20, 0}));
+                                           Cell{4, 50, 5, 30}, Cell{4, 150, 20, 0},
+                                           // the most a session takes: every peer sends to seven
+                                           Cell{kRollbackMaxPlayers, 50, 5, 30}));
 
 // Peer 0's clock runs 2 % fast. With time sync it idles now and then and the peers stay
 // within a frame of each other; without, it runs ahead until the window stops it.
@@ -92,7 +94,7 @@ TEST(RollbackMatch, SpectatorSeesTheConfirmedStates) {
 // impairments, so a relayed link has twice the latency and about twice the loss.
 TEST(RollbackMatch, RelayedPeersAndSpectatorAgree) {
     for (const auto& [peers, rtt, loss, jitter] :
-         std::vector<std::array<uint32_t, 4>>{{2, 0, 0, 0}, {3, 50, 5, 30}, {4, 50, 10, 0}}) {
+         std::vector<std::array<uint32_t, 4>>{{2, 0, 0, 0}, {3, 50, 5, 30}, {4, 50, 10, 0}, {8, 50, 5, 30}}) {
         RbSpec spec;
         spec.seed = 900 + peers * 10 + loss;
         spec.peers = peers;
