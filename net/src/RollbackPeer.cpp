@@ -293,9 +293,13 @@ void RollbackPeer::Leave() {
     writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
     writer_.Add(RbDisconnect{}, shape_, limit);
     // Several copies: one of them gets through a lossy link; the remote times out otherwise.
-    for (int copy = 0; copy < 3; ++copy)
+    // Spectators hear it too: theirs is the only host, so they lose it now (e_hostLost).
+    for (int copy = 0; copy < 3; ++copy) {
         for (Remote& r : remotes_)
             if (r.alive && transport_.Send(r.peer, writer_.Bytes())) ++stats_.datagramsSent;
+        for (const Spectator& sp : spectators_)
+            if (!sp.incompatible && transport_.Send(sp.peer, writer_.Bytes())) ++stats_.datagramsSent;
+    }
     left_ = true;
 }
 

@@ -92,9 +92,16 @@ void RollbackSpectator::Poll() {
             continue;
         }
         lastHeard_ = now;
-        alive_ = true;
+        if (!hostLeft_) {  // a host that said goodbye stays gone; its last datagrams still count
+            alive_ = true;
+            if (interrupted_ || lostReported_) events_.push_back({SpectatorEvent::Kind::e_resumed, received_});
+            interrupted_ = lostReported_ = false;
+        }
         for (const RollbackMessage& m : messages_) {
-            if (std::holds_alternative<RbDisconnect>(m)) alive_ = false;
+            if (std::holds_alternative<RbDisconnect>(m)) {
+                hostLeft_ = true;
+                HostLost();
+            }
             if (const auto* chunk = std::get_if<RbSnapshotChunk>(&m)) TakeChunk(*chunk);
             const auto* c = std::get_if<RbConfirmed>(&m);
             // Before its snapshot a late joiner has no frame to continue from.
@@ -111,7 +118,27 @@ void RollbackSpectator::Poll() {
             }
         }
     }
-    if (now - lastHeard_ > config_.timeoutMicros) alive_ = false;
+    const uint64_t silence = now - lastHeard_;
+    if (config_.interruptTimeoutMicros > 0 && silence > config_.interruptTimeoutMicros && !interrupted_ &&
+        !lostReported_) {
+        interrupted_ = true;
+        events_.push_back({SpectatorEvent::Kind::e_interrupted, received_});
+    }
+    if (silence > config_.timeoutMicros) HostLost();
+}
+
+void RollbackSpectator::HostLost() {
+    alive_ = false;
+    if (lostReported_) return;
+    lostReported_ = true;
+    interrupted_ = false;
+    events_.push_back({SpectatorEvent::Kind::e_hostLost, received_});
+}
+
+std::vector<SpectatorEvent> RollbackSpectator::TakeEvents() {
+    std::vector<SpectatorEvent> out;
+    out.swap(events_);
+    return out;
 }
 
 void RollbackSpectator::Flush() {

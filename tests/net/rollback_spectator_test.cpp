@@ -33,6 +33,9 @@ struct JoinSpec {
     bool listed = true;          ///< false: the host admits it through maxLateSpectators
     uint64_t cutFromMicros = 0;  ///< both directions between the players drop in [from, to)
     uint64_t cutToMicros = 0;
+    uint64_t hostCutFromMicros = 0;  ///< the host -> spectator direction drops in [from, to)
+    uint64_t hostCutToMicros = 0;
+    int64_t hostLeaveTick = -1;      ///< the host (player 0) calls Leave then and stops
 
     std::string Describe() const {
         std::ostringstream s;
@@ -57,6 +60,8 @@ struct JoinResult {
     std::map<int32_t, uint64_t> spectatorHashes;  ///< every frame the spectator reached
     int32_t firstSpectatorFrame = -1;  ///< the first frame the spectator stepped
     uint64_t refusedSnapshots = 0;
+    std::vector<std::pair<int64_t, SpectatorEvent>> spectatorEvents;  ///< (tick, event)
+    bool hostAliveAtEnd = false;
 };
 
 JoinResult RunJoin(const JoinSpec& spec) {
@@ -73,6 +78,8 @@ JoinResult RunJoin(const JoinSpec& spec) {
         net.Blackout(0, 1, spec.cutFromMicros, spec.cutToMicros);
         net.Blackout(1, 0, spec.cutFromMicros, spec.cutToMicros);
     }
+    if (spec.hostCutToMicros > spec.hostCutFromMicros)
+        net.Blackout(0, specEnd.Index(), spec.hostCutFromMicros, spec.hostCutToMicros);
     out.peers.resize(2);
     for (uint32_t i = 0; i < 2; ++i) {
         RbPeer& p = out.peers[i];
@@ -120,6 +127,10 @@ JoinResult RunJoin(const JoinSpec& spec) {
         for (uint32_t i = 0; i < 2; ++i) {
             RbPeer& p = out.peers[i];
             RollbackSession& s = *p.session;
+            if (i == 0 && spec.hostLeaveTick >= 0 && tick >= spec.hostLeaveTick) {
+                if (tick == spec.hostLeaveTick) p.net->Leave();
+                continue;
+            }
             p.net->Poll();
             if (!p.net->WaitThisTick()) {
                 if (s.ReceivedFrame(i) <= s.CurrentFrame() + 1) {
@@ -166,6 +177,8 @@ JoinResult RunJoin(const JoinSpec& spec) {
                 out.spectatorHashes[specFrame] = specHash.StateHash();
             }
             spectator->Flush();
+            for (const SpectatorEvent& e : spectator->TakeEvents()) out.spectatorEvents.emplace_back(tick, e);
+            out.hostAliveAtEnd = spectator->HostAlive();
             if (out.catchUpMicros == 0 && out.snapshotFrame >= 0 && specFrame >= backlogEnd)
                 out.catchUpMicros = net.NowMicros() - joinStart;
             out.refusedSnapshots = spectator->SnapshotsRefused();
@@ -456,6 +469,71 @@ TEST(RollbackInterrupt, LongCutInterruptsThenDisconnects) {
         EXPECT_FALSE(r.peers[i].net->RemoteAlive(0));
         EXPECT_FALSE(r.peers[i].executeFailed);
     }
+}
+
+// The spectator side of interruptions: a spectator from frame 0 whose host goes silent.
+JoinSpec HostCutSpec(uint64_t seed, uint64_t cutToMicros) {
+    JoinSpec spec;
+    spec.seed = seed;
+    spec.lossPct = 0;
+    spec.jitterMs = 0;
+    spec.frames = 600;
+    spec.joinTick = 0;
+    spec.lateJoin = false;
+    spec.hostCutFromMicros = 3'000'000;
+    spec.hostCutToMicros = cutToMicros;
+    return spec;
+}
+
+std::vector<SpectatorEvent::Kind> SpectatorKinds(const JoinResult& r) {
+    std::vector<SpectatorEvent::Kind> kinds;
+    for (const auto& [tick, e] : r.spectatorEvents) kinds.push_back(e.kind);
+    return kinds;
+}
+
+// Microseconds from the start of the host's silence to an event's tick.
+uint64_t SinceCut(const JoinSpec& spec, int64_t tick) {
+    return static_cast<uint64_t>(tick) * kTickMicros - spec.hostCutFromMicros;
+}
+
+TEST(SpectatorInterrupt, ShortSilenceInterruptsThenResumes) {
+    using K = SpectatorEvent::Kind;
+    const JoinSpec spec = HostCutSpec(701, 4'000'000);  // 1 s
+    SCOPED_TRACE(spec.Describe());
+    const JoinResult r = RunJoin(spec);
+    ASSERT_TRUE(r.finished) << "ticks=" << r.ticks;
+    ASSERT_EQ(SpectatorKinds(r), (std::vector<K>{K::e_interrupted, K::e_resumed}));
+    // Reported after the 500 ms timeout (plus the last datagram's flight), and resumed once
+    // the link is back.
+    EXPECT_GT(SinceCut(spec, r.spectatorEvents[0].first), 500'000u);
+    EXPECT_LT(SinceCut(spec, r.spectatorEvents[0].first), 600'000u);
+    EXPECT_GE(SinceCut(spec, r.spectatorEvents[1].first), 1'000'000u);
+    EXPECT_TRUE(r.hostAliveAtEnd);
+    EXPECT_GT(ExpectSpectatorAgrees(r), 500u);  // it caught up on every frame of the silence
+}
+
+TEST(SpectatorInterrupt, LongSilenceLosesTheHostUntilItIsHeardAgain) {
+    using K = SpectatorEvent::Kind;
+    const JoinSpec spec = HostCutSpec(702, 6'000'000);  // 3 s, past the 2 s timeout
+    SCOPED_TRACE(spec.Describe());
+    const JoinResult r = RunJoin(spec);
+    ASSERT_TRUE(r.finished) << "ticks=" << r.ticks;
+    ASSERT_EQ(SpectatorKinds(r), (std::vector<K>{K::e_interrupted, K::e_hostLost, K::e_resumed}));
+    EXPECT_GT(SinceCut(spec, r.spectatorEvents[1].first), 2'000'000u);
+    EXPECT_TRUE(r.hostAliveAtEnd);
+    EXPECT_GT(ExpectSpectatorAgrees(r), 500u);
+}
+
+TEST(SpectatorInterrupt, AHostThatLeavesIsLostAtOnce) {
+    using K = SpectatorEvent::Kind;
+    JoinSpec spec = HostCutSpec(703, 0);
+    spec.hostLeaveTick = 240;
+    SCOPED_TRACE(spec.Describe());
+    const JoinResult r = RunJoin(spec);
+    // The host's RbDisconnect arrives a one-way trip later: no 2 s wait, no resume after.
+    ASSERT_EQ(SpectatorKinds(r), (std::vector<K>{K::e_hostLost}));
+    EXPECT_LE(r.spectatorEvents[0].first, spec.hostLeaveTick + 3);
+    EXPECT_FALSE(r.hostAliveAtEnd);
 }
 
 }  // namespace

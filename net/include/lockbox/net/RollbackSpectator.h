@@ -35,6 +35,9 @@ struct RollbackSpectatorConfig {
     uint32_t inputBytes = 8;                ///< 1 .. kRollbackMaxInputBytes
     PeerId host = kNoPeer;                  ///< the peer that sends the confirmed inputs
     uint64_t timeoutMicros = 2000000;       ///< silence after which HostAlive() turns false
+    /// Silence after which HostInterrupted() turns true and e_interrupted is queued (like a
+    /// player's RollbackPeerConfig::interruptTimeoutMicros); 0 turns the reports off.
+    uint64_t interruptTimeoutMicros = 500000;
     uint32_t maxBufferedFrames = 4096;      ///< frames kept before Next takes them (more are not acked)
     bool lateJoin = false;                  ///< ask the host for a snapshot instead of starting at frame 0
     uint32_t maxSnapshotBytes = kRbMaxSnapshotBytes;  ///< larger snapshots are refused, 1 .. kRbMaxSnapshotBytes
@@ -50,6 +53,18 @@ enum class SpectatorState : uint8_t {
     /// The host runs another protocol, match, engine determinism version or session shape
     /// (Incompatibility() says which): nothing more is taken from it and Next gives nothing.
     e_incompatible = 3,
+};
+
+/// What happened to the link to the host (RollbackSpectator::TakeEvents), so a spectator can
+/// show "waiting for the host" before it gives up, as players do with their events.
+struct SpectatorEvent {
+    enum class Kind : uint8_t {
+        e_interrupted = 0,  ///< nothing from the host for interruptTimeoutMicros
+        e_resumed = 1,      ///< heard again after e_interrupted, or after an e_hostLost of silence
+        e_hostLost = 2,     ///< timeoutMicros of silence, or the host's RbDisconnect
+    };
+    Kind kind = Kind::e_interrupted;
+    int32_t frame = 0;  ///< ReceivedFrame() at that moment
 };
 
 class RollbackSpectator {
@@ -84,8 +99,14 @@ public:
     int32_t ReceivedFrame() const noexcept { return received_; }
     /// Frames handed out by Next.
     int32_t ConsumedFrame() const noexcept { return consumed_; }
-    /// False after the host's RbDisconnect or timeoutMicros of silence; true again when heard.
+    /// False after timeoutMicros of silence (true again when heard), and for good after the
+    /// host's RbDisconnect.
     bool HostAlive() const noexcept { return alive_; }
+    /// True from interruptTimeoutMicros of silence until the host is heard again.
+    bool HostInterrupted() const noexcept { return interrupted_; }
+    /// The link events since the last call, oldest first (each outage: e_interrupted, then
+    /// e_resumed, or e_hostLost and e_resumed if the host comes back).
+    std::vector<SpectatorEvent> TakeEvents();
     /// Datagrams refused (malformed, another match, not from the host, incompatible).
     uint64_t Refused() const noexcept { return refused_; }
     /// Why the host cannot be followed (e_none unless State() is e_incompatible).
@@ -93,6 +114,7 @@ public:
 
 private:
     void TakeChunk(const RbSnapshotChunk& c);
+    void HostLost();  // alive_ false; e_hostLost once per outage
 
     Transport& transport_;
     RollbackSpectatorConfig config_;
@@ -102,6 +124,10 @@ private:
     int32_t consumed_ = 0;
     uint64_t lastHeard_ = 0;
     bool alive_ = true;
+    bool interrupted_ = false;
+    bool lostReported_ = false;  // e_hostLost queued for the current outage
+    bool hostLeft_ = false;      // the host's RbDisconnect: gone for good
+    std::vector<SpectatorEvent> events_;
     uint64_t refused_ = 0;
     SpectatorState state_ = SpectatorState::e_following;
     RollbackIncompatibility incompatibility_ = RollbackIncompatibility::e_none;
