@@ -418,15 +418,21 @@ TEST(RollbackSpectator, BadSnapshotStreamsAreRefused) {
     EXPECT_FALSE(WorldGameAdapter::RestoreSnapshot(game.world(), game, std::vector<uint8_t>{1, 2}));
 }
 
-// Two players at 50 ms RTT whose link is cut from 2 s to `cutToMicros`.
-JoinSpec CutSpec(uint64_t seed, uint64_t cutToMicros) {
+// A clean 50 ms RTT link (no loss, no jitter), so event times are exact.
+JoinSpec QuietSpec(uint64_t seed, int32_t frames, int64_t joinTick) {
     JoinSpec spec;
     spec.seed = seed;
     spec.rttMs = 50;
     spec.lossPct = 0;
     spec.jitterMs = 0;
-    spec.frames = 360;
-    spec.joinTick = -1;
+    spec.frames = frames;
+    spec.joinTick = joinTick;
+    return spec;
+}
+
+// Two players whose link is cut from 2 s to `cutToMicros`; no spectator.
+JoinSpec CutSpec(uint64_t seed, uint64_t cutToMicros) {
+    JoinSpec spec = QuietSpec(seed, 360, -1);
     spec.cutFromMicros = 2'000'000;
     spec.cutToMicros = cutToMicros;
     return spec;
@@ -473,12 +479,7 @@ TEST(RollbackInterrupt, LongCutInterruptsThenDisconnects) {
 
 // The spectator side of interruptions: a spectator from frame 0 whose host goes silent.
 JoinSpec HostCutSpec(uint64_t seed, uint64_t cutToMicros) {
-    JoinSpec spec;
-    spec.seed = seed;
-    spec.lossPct = 0;
-    spec.jitterMs = 0;
-    spec.frames = 600;
-    spec.joinTick = 0;
+    JoinSpec spec = QuietSpec(seed, 600, 0);
     spec.lateJoin = false;
     spec.hostCutFromMicros = 3'000'000;
     spec.hostCutToMicros = cutToMicros;
