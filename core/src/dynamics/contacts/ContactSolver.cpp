@@ -9,8 +9,6 @@
 
 namespace lockbox {
 
-using solver::WVec2;
-
 namespace {
 
 // Box2D's k_maxConditionNumber: the block solver is used only while the 2x2 K is well
@@ -136,31 +134,37 @@ void b2ContactSolver::InitializeVelocityConstraints() {
 
         vc->normal = worldManifold.normal;
         vc->tangent = b2Cross(vc->normal, Fixed(1));
+        vc->pushA = b2WideVec2(mA * vc->normal.x, mA * vc->normal.y);
+        vc->pushB = b2WideVec2(mB * vc->normal.x, mB * vc->normal.y);
+        vc->samePush = vc->pushA.x == vc->pushB.x && vc->pushA.y == vc->pushB.y;
         const b2Vec2 tangent = vc->tangent;
         // The normal denominators are also the diagonal of the block solver's K.
         Wide kNormals[b2_maxManifoldPoints];
 
         for (int32 j = 0; j < vc->pointCount; ++j) {
             b2VelocityConstraintPoint* vcp = vc->points + j;
-            vcp->rA = worldManifold.points[j] - cA;
-            vcp->rB = worldManifold.points[j] - cB;
+            const b2Vec2 rA = worldManifold.points[j] - cA;
+            const b2Vec2 rB = worldManifold.points[j] - cB;
 
-            vcp->rnA = b2Cross(vcp->rA, vc->normal);
-            vcp->rnB = b2Cross(vcp->rB, vc->normal);
+            vcp->rnA = b2Cross(rA, vc->normal);
+            vcp->rnB = b2Cross(rB, vc->normal);
             const Wide kNormal = solver::EffectiveInverseMass(mA, mB, iA, iB, vcp->rnA, vcp->rnB);
             kNormals[j] = kNormal;
             vcp->normalMass = kNormal > Wide() ? Wide(1) / kNormal : Wide();
+            vcp->turnNA = iA * vcp->rnA;
+            vcp->turnNB = iB * vcp->rnB;
 
-            const Fixed rtA = b2Cross(vcp->rA, tangent);
-            const Fixed rtB = b2Cross(vcp->rB, tangent);
-            const Wide kTangent = solver::EffectiveInverseMass(mA, mB, iA, iB, rtA, rtB);
+            vcp->rtA = b2Cross(rA, tangent);
+            vcp->rtB = b2Cross(rB, tangent);
+            const Wide kTangent = solver::EffectiveInverseMass(mA, mB, iA, iB, vcp->rtA, vcp->rtB);
             vcp->tangentMass = kTangent > Wide() ? Wide(1) / kTangent : Wide();
+            vcp->turnTA = iA * vcp->rtA;
+            vcp->turnTB = iB * vcp->rtB;
 
             // Restitution only above the threshold speed (inelastic resting contact).
             vcp->velocityBias = Fixed();
-            const b2Vec2 dv = solver::RelativeVelocity(vA, wA, vcp->rA, vB, wB, vcp->rB);
-            const Fixed vRel = b2Dot(vc->normal, dv);
-            if (vRel < -b2_velocityThreshold) vcp->velocityBias = -(vc->restitution * vRel);
+            const Wide vRel = solver::SpeedAlong(vA, wA, vcp->rnA, vB, wB, vcp->rnB, vc->normal);
+            if (vRel < -Wide(b2_velocityThreshold)) vcp->velocityBias = -(vRel * vc->restitution).ToFixed();
         }
 
         // Two points: prepare the block solver if K is well conditioned, else keep one point.
@@ -196,13 +200,24 @@ void b2ContactSolver::WarmStart() {
         Fixed wA = m_velocities[vc->indexA].w;
         b2Vec2 vB = m_velocities[vc->indexB].v;
         Fixed wB = m_velocities[vc->indexB].w;
-        const b2Vec2 normal = vc->normal;
-        const b2Vec2 tangent = vc->tangent;
+        // The tangent (n.y, -n.x) moves a body by (push.y, -push.x) per N*s.
+        const b2WideVec2 pA = vc->pushA, pB = vc->pushB;
         for (int32 j = 0; j < vc->pointCount; ++j) {
             const b2VelocityConstraintPoint* vcp = vc->points + j;
-            const WVec2 P = solver::Add(solver::Scale(vcp->normalImpulse, normal),
-                                        solver::Scale(vcp->tangentImpulse, tangent));
-            solver::ApplyPair(vA, wA, vB, wB, vc->invMassA, vc->invIA, vc->invMassB, vc->invIB, vcp->rA, vcp->rB, P);
+            const Wide n = vcp->normalImpulse, t = vcp->tangentImpulse;
+            const Fixed dxA = (n * pA.x + t * pA.y).ToFixed();
+            const Fixed dyA = (n * pA.y - t * pA.x).ToFixed();
+            vA.x -= dxA;
+            vA.y -= dyA;
+            if (vc->samePush) {
+                vB.x += dxA;
+                vB.y += dyA;
+            } else {
+                vB.x += (n * pB.x + t * pB.y).ToFixed();
+                vB.y += (n * pB.y - t * pB.x).ToFixed();
+            }
+            wA -= (n * vcp->turnNA + t * vcp->turnTA).ToFixed();
+            wB += (n * vcp->turnNB + t * vcp->turnTB).ToFixed();
         }
         m_velocities[vc->indexA].v = vA;
         m_velocities[vc->indexA].w = wA;
@@ -214,52 +229,47 @@ void b2ContactSolver::WarmStart() {
 void b2ContactSolver::SolveVelocityConstraints() {
     for (int32 i = 0; i < m_count; ++i) {
         b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
-        const Wide mA = vc->invMassA, mB = vc->invMassB;
-        const Wide iA = vc->invIA, iB = vc->invIB;
         b2Vec2 vA = m_velocities[vc->indexA].v;
         Fixed wA = m_velocities[vc->indexA].w;
         b2Vec2 vB = m_velocities[vc->indexB].v;
         Fixed wB = m_velocities[vc->indexB].w;
         const b2Vec2 normal = vc->normal;
         const b2Vec2 tangent = vc->tangent;
+        const b2WideVec2 pushNA = vc->pushA, pushNB = vc->pushB;
+        const b2WideVec2 pushTA(pushNA.y, -pushNA.x), pushTB(pushNB.y, -pushNB.x);
+        const bool same = vc->samePush;
 
         // Friction first: non-penetration matters more, so it gets the last word.
         for (int32 j = 0; j < vc->pointCount; ++j) {
             b2VelocityConstraintPoint* vcp = vc->points + j;
-            const b2Vec2 dv = solver::RelativeVelocity(vA, wA, vcp->rA, vB, wB, vcp->rB);
-            const Fixed vt = b2Dot(dv, tangent);
-            Wide lambda = vcp->tangentMass * (-vt);
+            const Wide vt = solver::SpeedAlong(vA, wA, vcp->rtA, vB, wB, vcp->rtB, tangent);
+            Wide lambda = -(vcp->tangentMass * vt);
             const Wide maxFriction = vcp->normalImpulse * vc->friction;
             const Wide newImpulse = Clamp(vcp->tangentImpulse + lambda, -maxFriction, maxFriction);
             lambda = newImpulse - vcp->tangentImpulse;
             vcp->tangentImpulse = newImpulse;
-            const WVec2 P = solver::Scale(lambda, tangent);
-            solver::ApplyPair(vA, wA, vB, wB, mA, iA, mB, iB, vcp->rA, vcp->rB, P);
+            solver::ApplyAlong(vA, wA, vB, wB, lambda, pushTA, pushTB, same, vcp->turnTA, vcp->turnTB);
         }
 
         if (vc->pointCount == 1) {
             b2VelocityConstraintPoint* vcp = vc->points;
-            const b2Vec2 dv = solver::RelativeVelocity(vA, wA, vcp->rA, vB, wB, vcp->rB);
-            const Fixed vn = b2Dot(dv, normal);
-            Wide lambda = -(vcp->normalMass * (vn - vcp->velocityBias));
+            const Wide vn = solver::SpeedAlong(vA, wA, vcp->rnA, vB, wB, vcp->rnB, normal);
+            Wide lambda = -(vcp->normalMass * (vn - Wide(vcp->velocityBias)));
             const Wide newImpulse = Max(vcp->normalImpulse + lambda, Wide());
             lambda = newImpulse - vcp->normalImpulse;
             vcp->normalImpulse = newImpulse;
-            const WVec2 P = solver::Scale(lambda, normal);
-            solver::ApplyPair(vA, wA, vB, wB, mA, iA, mB, iB, vcp->rA, vcp->rB, P);
+            solver::ApplyAlong(vA, wA, vB, wB, lambda, pushNA, pushNB, same, vcp->turnNA, vcp->turnNB);
         } else {
             // Block solver (Box2D's total enumeration of the 2-point LCP):
             //   vn = K x + b', x >= 0, vn >= 0, x_i vn_i = 0, with b' = vn0 - bias - K a.
             b2VelocityConstraintPoint* cp1 = vc->points + 0;
             b2VelocityConstraintPoint* cp2 = vc->points + 1;
             const Wide a1 = cp1->normalImpulse, a2 = cp2->normalImpulse;
-            const b2Vec2 dv1 = solver::RelativeVelocity(vA, wA, cp1->rA, vB, wB, cp1->rB);
-            const b2Vec2 dv2 = solver::RelativeVelocity(vA, wA, cp2->rA, vB, wB, cp2->rB);
-            const Fixed vn1 = b2Dot(dv1, normal);
-            const Fixed vn2 = b2Dot(dv2, normal);
+            const Wide vn1 = solver::SpeedAlong(vA, wA, cp1->rnA, vB, wB, cp1->rnB, normal);
+            const Wide vn2 = solver::SpeedAlong(vA, wA, cp2->rnA, vB, wB, cp2->rnB, normal);
             const b2WideSym22& K = vc->K;
-            const Wide b1 = Wide(vn1 - cp1->velocityBias) - (K.k11 * a1 + K.k12 * a2);
-            const Wide b2 = Wide(vn2 - cp2->velocityBias) - (K.k12 * a1 + K.k22 * a2);
+            const Wide b1 = (vn1 - Wide(cp1->velocityBias)) - (K.k11 * a1 + K.k12 * a2);
+            const Wide b2 = (vn2 - Wide(cp2->velocityBias)) - (K.k12 * a1 + K.k22 * a2);
 
             Wide x1, x2;
             bool solved = false;
@@ -289,18 +299,11 @@ void b2ContactSolver::SolveVelocityConstraints() {
             }
             // No solution: give up this iteration (as Box2D; rare and harmless).
             if (solved) {
-                const WVec2 P1 = solver::Scale(x1 - a1, normal);
-                const WVec2 P2 = solver::Scale(x2 - a2, normal);
-                const WVec2 P = solver::Add(P1, P2);
-                Fixed dxA, dxB, dyA, dyB;
-                solver::LinearChanges(mA, mB, P.x, dxA, dxB);
-                solver::LinearChanges(mA, mB, P.y, dyA, dyB);
-                vA.x -= dxA;
-                vA.y -= dyA;
-                wA -= MulToFixed(iA, solver::Cross(cp1->rA, P1) + solver::Cross(cp2->rA, P2));
-                vB.x += dxB;
-                vB.y += dyB;
-                wB += MulToFixed(iB, solver::Cross(cp1->rB, P1) + solver::Cross(cp2->rB, P2));
+                // Both impulses act along the normal: one linear impulse, two lever arms.
+                const Wide d1 = x1 - a1, d2 = x2 - a2;
+                solver::PushPair(vA, vB, d1 + d2, pushNA, pushNB, same);
+                wA -= (d1 * cp1->turnNA + d2 * cp2->turnNA).ToFixed();
+                wB += (d1 * cp1->turnNB + d2 * cp2->turnNB).ToFixed();
                 cp1->normalImpulse = x1;
                 cp2->normalImpulse = x2;
             }

@@ -5,61 +5,50 @@
 #include <cstdint>
 #include <limits>
 
+#include "lockbox/dynamics/joints/WideMatrix.h"
 #include "lockbox/fixed/Math.h"
 
 namespace lockbox::solver {
 
-// An impulse vector, N*s (Q32.32).
-struct WVec2 {
-    Wide x, y;
-};
-
-// lambda * d for a unit direction d.
-[[gnu::always_inline]] inline WVec2 Scale(Wide lambda, const b2Vec2& d) noexcept {
-    return {lambda * d.x, lambda * d.y};
-}
-
-[[gnu::always_inline]] inline WVec2 Add(const WVec2& a, const WVec2& b) noexcept {
-    return {a.x + b.x, a.y + b.y};
-}
-
-// r x P (N*m*s), r in metres.
-[[gnu::always_inline]] inline Wide Cross(const b2Vec2& r, const WVec2& p) noexcept {
-    return r.x * p.y - r.y * p.x;
-}
-
-// invMass * p for body A and body B (m/s, each rounded once from the Q32.32 product). Both
-// bodies of a contact often have the same inverse mass; then B's product is A's value and is
-// not computed again. A value at the Fixed limit may be a saturation, which the second
-// evaluation would report again: it is recomputed then, so overflow reports stay identical.
-[[gnu::always_inline]] inline void LinearChanges(Wide mA, Wide mB, Wide p, Fixed& dA,
-                                                 Fixed& dB) noexcept {
-    dA = MulToFixed(mA, p);
-    const bool reuse = mA == mB && dA.Raw() != Fixed::kMaxRaw && dA.Raw() != -Fixed::kMaxRaw;
-    dB = reuse ? dA : MulToFixed(mB, p);
-}
-
-// vA -= mA P, wA -= iA (rA x P), vB += mB P, wB += iB (rB x P), each velocity component rounded
-// once from the Q32.32 products; the linear products are shared through LinearChanges.
-[[gnu::always_inline]] inline void ApplyPair(b2Vec2& vA, Fixed& wA, b2Vec2& vB, Fixed& wB, Wide mA,
-                                             Wide iA, Wide mB, Wide iB, const b2Vec2& rA,
-                                             const b2Vec2& rB, const WVec2& p) noexcept {
-    Fixed dxA, dxB, dyA, dyB;
-    LinearChanges(mA, mB, p.x, dxA, dxB);
-    LinearChanges(mA, mB, p.y, dyA, dyB);
+// The impulse lambda d on the pair's linear velocities: vA -= lambda pushA, vB += lambda pushB,
+// with pushA = mA d and pushB = mB d; each component rounded once. With equal pushes B's change
+// is A's (computed, and reported on saturation, once).
+[[gnu::always_inline]] inline void PushPair(b2Vec2& vA, b2Vec2& vB, Wide lambda, const b2WideVec2& pushA,
+                                            const b2WideVec2& pushB, bool samePush) noexcept {
+    const Fixed dxA = MulToFixed(lambda, pushA.x);
+    const Fixed dyA = MulToFixed(lambda, pushA.y);
     vA.x -= dxA;
     vA.y -= dyA;
-    wA -= MulToFixed(iA, Cross(rA, p));
-    vB.x += dxB;
-    vB.y += dyB;
-    wB += MulToFixed(iB, Cross(rB, p));
+    if (samePush) {
+        vB.x += dxA;
+        vB.y += dyA;
+    } else {
+        vB.x += MulToFixed(lambda, pushB.x);
+        vB.y += MulToFixed(lambda, pushB.y);
+    }
 }
 
-// Relative velocity of the contact point on B with respect to A, m/s.
-[[gnu::always_inline]] inline b2Vec2 RelativeVelocity(const b2Vec2& vA, Fixed wA, const b2Vec2& rA,
-                                                      const b2Vec2& vB, Fixed wB,
-                                                      const b2Vec2& rB) noexcept {
-    return vB + b2Cross(wB, rB) - vA - b2Cross(wA, rA);
+// The speed of B's contact point relative to A's along the unit direction d, in Q32.32 with
+// no rounding: d . (vB - vA) + wB (rB x d) - wA (rA x d), where armA = rA x d and
+// armB = rB x d. The velocity differences are exact in 33 bits and |d| < 2^31 raw, so each
+// linear product stays below 2^63; the sums are checked (saturate and report, never wrap).
+[[gnu::always_inline]] inline Wide SpeedAlong(const b2Vec2& vA, Fixed wA, Fixed armA,
+                                              const b2Vec2& vB, Fixed wB, Fixed armB,
+                                              const b2Vec2& d) noexcept {
+    const int64_t dvx = int64_t{vB.x.Raw()} - vA.x.Raw();
+    const int64_t dvy = int64_t{vB.y.Raw()} - vA.y.Raw();
+    const Wide linear = Wide::FromRaw(dvx * d.x.Raw()) + Wide::FromRaw(dvy * d.y.Raw());
+    return linear + MulWide(wB, armB) - MulWide(wA, armA);
+}
+
+// The impulse lambda d on the pair: PushPair, then wA -= lambda turnA and wB += lambda turnB,
+// where turnA = iA (rA x d) and turnB = iB (rB x d).
+[[gnu::always_inline]] inline void ApplyAlong(b2Vec2& vA, Fixed& wA, b2Vec2& vB, Fixed& wB, Wide lambda,
+                                              const b2WideVec2& pushA, const b2WideVec2& pushB,
+                                              bool samePush, Wide turnA, Wide turnB) noexcept {
+    PushPair(vA, vB, lambda, pushA, pushB, samePush);
+    wA -= MulToFixed(lambda, turnA);
+    wB += MulToFixed(lambda, turnB);
 }
 
 // Effective mass denominator mA + mB + iA rnA^2 + iB rnB^2 (1/kg), with the squares exact.

@@ -10,6 +10,7 @@
 
 #include "lockbox/collision/Collision.h"
 #include "lockbox/common/Settings.h"
+#include "lockbox/dynamics/joints/WideMatrix.h"
 #include "lockbox/dynamics/TimeStep.h"
 #include "lockbox/fixed/Math.h"
 
@@ -22,16 +23,21 @@ struct b2WideSym22 {
     Wide k11, k12, k22;
 };
 
-/// Per-point velocity data.
+/// Per-point velocity data. The iterations never need the anchors themselves: a point's
+/// speed along a direction d is d . (vB - vA) + wB (rB x d) - wA (rA x d), and an impulse
+/// lambda d moves body A by mA lambda d and turns it by iA lambda (rA x d); so the lever arms
+/// (r x d), the angular responses iA (rA x d) and the linear ones mA d (per contact) are
+/// computed once per step.
 struct b2VelocityConstraintPoint {
-    b2Vec2 rA;           ///< anchor relative to A's centre, m
-    b2Vec2 rB;           ///< anchor relative to B's centre, m
     Wide normalImpulse;  ///< accumulated, N*s
     Wide tangentImpulse; ///< accumulated, N*s
     Wide normalMass;     ///< 1 / K_normal, kg
     Wide tangentMass;    ///< 1 / K_tangent, kg
+    Wide turnNA, turnNB; ///< iA (rA x normal), iB (rB x normal): rad/s per N*s
+    Wide turnTA, turnTB; ///< the same for the tangent
     Fixed velocityBias;  ///< restitution target, m/s
-    Fixed rnA, rnB;      ///< cross(r, normal), m (cached for the block solver)
+    Fixed rnA, rnB;      ///< rA x normal, rB x normal, m
+    Fixed rtA, rtB;      ///< rA x tangent, rB x tangent, m
 };
 
 /// One contact's velocity constraint.
@@ -39,6 +45,9 @@ struct b2ContactVelocityConstraint {
     b2VelocityConstraintPoint points[b2_maxManifoldPoints];
     b2Vec2 normal;           ///< unit, from A to B
     b2Vec2 tangent;          ///< b2Cross(normal, 1), computed once per step (unit)
+    b2WideVec2 pushA;        ///< invMassA * normal, m/s per N*s (the tangent's is (y, -x))
+    b2WideVec2 pushB;        ///< invMassB * normal
+    bool samePush = false;   ///< pushA == pushB: B's linear change is A's, computed once
     b2WideSym22 normalMass;  ///< inverse of K (block solver only)
     b2WideSym22 K;           ///< block solver matrix, 1/kg
     int32 indexA = 0, indexB = 0;
