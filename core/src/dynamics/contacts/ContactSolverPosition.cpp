@@ -101,14 +101,22 @@ Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 count, b2P
             const Wide K = solver::EffectiveInverseMass(mA, mB, iA, iB, rnA, rnB);
             const Wide impulse = K > Wide() ? -(Wide(C) / K) : Wide();
 
-            // Position changes are rounded once from impulse * inverse mass.
+            // Position changes are rounded once from impulse * inverse mass. Equal masses give
+            // B the very changes of A (computed, and reported on saturation, once).
             const Wide linA = mA * impulse;
-            const Wide linB = mB * impulse;
-            cA.x -= MulToFixed(linA, normal.x);
-            cA.y -= MulToFixed(linA, normal.y);
+            const Fixed dxA = MulToFixed(linA, normal.x);
+            const Fixed dyA = MulToFixed(linA, normal.y);
+            cA.x -= dxA;
+            cA.y -= dyA;
             aA -= MulToFixed(iA * impulse, rnA);
-            cB.x += MulToFixed(linB, normal.x);
-            cB.y += MulToFixed(linB, normal.y);
+            if (mB == mA) {
+                cB.x += dxA;
+                cB.y += dyA;
+            } else {
+                const Wide linB = mB * impulse;
+                cB.x += MulToFixed(linB, normal.x);
+                cB.y += MulToFixed(linB, normal.y);
+            }
             aB += MulToFixed(iB * impulse, rnB);
         }
 
