@@ -122,6 +122,7 @@ void b2PrismaticJoint::InitVelocityConstraints(const b2SolverData& data) {
     m_motorMass = Invert(mA + mB + iA * MulWide(m_a1, m_a1) + iB * MulWide(m_a2, m_a2));
     m_K = MakeK(mA, mB, iA, iB, m_s1, m_s2, m_a1, m_a2);
     m_pointSolver = m_K.Upper22();
+    m_pointMass = Inverse(m_pointSolver);
 
     if (m_enableLimit) {
         const Fixed jointTranslation = b2Dot(m_axis, f.d);
@@ -218,7 +219,7 @@ void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, d.x, d.y, d.z);
     } else {
         // Limit is inactive: just solve the prismatic constraint in block form.
-        const b2WideVec2 df = m_pointSolver.Solve(-Cdot1);
+        const b2WideVec2 df = -Mul(m_pointMass, Cdot1);
         m_impulse.x += df.x;
         m_impulse.y += df.y;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, df.x, df.y, Wide());

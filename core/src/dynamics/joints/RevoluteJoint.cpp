@@ -81,6 +81,7 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
     const bool fixedRotation = (iA + iB == Wide());
     m_mass = PointAngleK(m_invMassA, m_invMassB, iA, iB, m_rA, m_rB);
     m_pointSolver = m_mass.Upper22();
+    m_pointMass = Inverse(m_pointSolver);
     m_motorMass = Invert(iA + iB);
 
     if (!m_enableMotor || fixedRotation) m_motorImpulse = Wide();
@@ -193,7 +194,7 @@ void b2RevoluteJoint::SolveVelocityConstraints(const b2SolverData& data) {
         wB += MulToFixed(iB, b2Cross(m_rB, P) + impulse.z);
     } else {
         // Solve the point-to-point constraint.
-        const b2WideVec2 impulse = m_pointSolver.Solve(-Cdot1);
+        const b2WideVec2 impulse = -Mul(m_pointMass, Cdot1);
         m_impulse.x += impulse.x;
         m_impulse.y += impulse.y;
         const BodyData A{m_indexA, m_localCenterA, mA, iA};

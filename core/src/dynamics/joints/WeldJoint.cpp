@@ -88,6 +88,7 @@ void b2WeldJoint::InitVelocityConstraints(const b2SolverData& data) {
         invM += m_gamma;
         m_angularMass = Invert(invM);
         m_pointSolver = m_K.Upper22();
+        m_pointMass = Inverse(m_pointSolver);
     } else {
         m_gamma = Wide();
         m_bias = Wide();
@@ -124,7 +125,7 @@ void b2WeldJoint::SolveVelocityConstraints(const b2SolverData& data) {
         wB += MulToFixed(iB, impulse2);
 
         const b2Vec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
-        const b2WideVec2 impulse1 = -m_pointSolver.Solve(Cdot1);
+        const b2WideVec2 impulse1 = -Mul(m_pointMass, Cdot1);
         m_impulse.x += impulse1.x;
         m_impulse.y += impulse1.y;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, impulse1, Wide());

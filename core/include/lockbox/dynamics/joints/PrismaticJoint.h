@@ -136,6 +136,7 @@ private:
     Fixed m_a1, m_a2;  ///< arms of the axial constraint, m
     b2WideMat33 m_K;
     b2WideSolver22 m_pointSolver;  ///< m_K's upper block, prepared once per step
+    b2WideMat22 m_pointMass;       ///< its inverse, once per step: the point iterations' product
     b2WideSolver33 m_limitSolver;  ///< m_K, prepared once per step while the limit is solved
     Wide m_motorMass;  ///< kg
 };

@@ -131,8 +131,9 @@ private:
     b2Vec2 m_localCenterA;
     b2Vec2 m_localCenterB;
     Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
-    b2WideMat33 m_mass;  ///< the K matrix (1/kg, 1/(kg m), 1/(kg m^2)); solved, never inverted
+    b2WideMat33 m_mass;  ///< the K matrix (1/kg, 1/(kg m), 1/(kg m^2)); its point block is also inverted
     b2WideSolver22 m_pointSolver;  ///< m_mass's point block, prepared once per step
+    b2WideMat22 m_pointMass;       ///< its inverse (kg), once per step: the point iterations' product
     b2WideSolver33 m_limitSolver;  ///< m_mass, prepared once per step while the limit is solved
     Wide m_motorMass;    ///< 1/(iA + iB), kg*m^2
     b2LimitState m_limitState = e_inactiveLimit;

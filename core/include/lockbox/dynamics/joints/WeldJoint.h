@@ -87,6 +87,7 @@ private:
     Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
     b2WideMat33 m_K;       ///< solved, never inverted
     b2WideSolver22 m_pointSolver;  ///< m_K's upper block, prepared once per step (soft weld)
+    b2WideMat22 m_pointMass;       ///< its inverse, once per step: the point iterations' product
     b2WideSolver33 m_rigidSolver;  ///< m_K, prepared once per step (rigid weld)
     Wide m_angularMass;    ///< soft angular effective mass, kg*m^2
 };

@@ -396,6 +396,22 @@ struct b2WideMat22 {
     constexpr b2WideSolver22 Prepared() const noexcept { return b2WideSolver22(ex, ey); }
 };
 
+/// K^-1 of a prepared K, column by column, each entry exactly rounded (a singular K gives the
+/// zero matrix). For a K applied many times per step: a product per iteration instead of a
+/// solve with its two 128-bit divisions.
+constexpr b2WideMat22 Inverse(const b2WideSolver22& k) noexcept {
+    return {k.Solve(b2WideVec2(Wide(1), Wide())), k.Solve(b2WideVec2(Wide(), Wide(1)))};
+}
+
+/// M v for a Q16.16 vector, each component two rounded products summed (checked).
+constexpr b2WideVec2 Mul(const b2WideMat22& m, const b2Vec2& v) noexcept {
+    return {m.ex.x * v.x + m.ey.x * v.y, m.ex.y * v.x + m.ey.y * v.y};
+}
+/// M v for a Q32.32 vector, likewise.
+constexpr b2WideVec2 Mul(const b2WideMat22& m, const b2WideVec2& v) noexcept {
+    return {m.ex.x * v.x + m.ey.x * v.y, m.ex.y * v.x + m.ey.y * v.y};
+}
+
 /// 3x3 matrix of Q32.32 entries, column-major (the point-plus-angle K of revolute, prismatic
 /// and weld joints).
 struct b2WideMat33 {
