@@ -403,12 +403,10 @@ constexpr b2WideMat22 Inverse(const b2WideSolver22& k) noexcept {
     return {k.Solve(b2WideVec2(Wide(1), Wide())), k.Solve(b2WideVec2(Wide(), Wide(1)))};
 }
 
-/// M v for a Q16.16 vector, each component two rounded products summed (checked).
-constexpr b2WideVec2 Mul(const b2WideMat22& m, const b2Vec2& v) noexcept {
-    return {m.ex.x * v.x + m.ey.x * v.y, m.ex.y * v.x + m.ey.y * v.y};
-}
-/// M v for a Q32.32 vector, likewise.
-constexpr b2WideVec2 Mul(const b2WideMat22& m, const b2WideVec2& v) noexcept {
+/// M v for a Q16.16 (b2Vec2) or Q32.32 (b2WideVec2) vector, each component two rounded
+/// products summed (checked).
+template <class Vec>
+constexpr b2WideVec2 Mul(const b2WideMat22& m, const Vec& v) noexcept {
     return {m.ex.x * v.x + m.ey.x * v.y, m.ex.y * v.x + m.ey.y * v.y};
 }
 
