@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <limits>
 
-#include "lockbox/dynamics/joints/WideMatrix.h"
 #include "lockbox/fixed/Math.h"
+#include "lockbox/fixed/WideVec.h"
 
 namespace lockbox::solver {
 

@@ -10,9 +10,9 @@
 
 #include "lockbox/collision/Collision.h"
 #include "lockbox/common/Settings.h"
-#include "lockbox/dynamics/joints/WideMatrix.h"
 #include "lockbox/dynamics/TimeStep.h"
 #include "lockbox/fixed/Math.h"
+#include "lockbox/fixed/WideVec.h"
 
 namespace lockbox {
 
