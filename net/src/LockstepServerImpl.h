@@ -78,7 +78,7 @@ struct LockstepServer::Impl {
     uint64_t pullRequestedAt = 0;
     bool haveCache = false;
     int32_t cacheFrame = 0;
-    std::vector<uint8_t> cache;
+    CompressedSnapshot cache;
 
     std::vector<ServerEvent> events;
     ServerStats stats;

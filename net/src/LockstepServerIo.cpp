@@ -103,9 +103,10 @@ void LockstepServer::Impl::Handle(int32_t s, PeerId peer, const Message& message
             pullSource = -1;
             return;
         }
-        haveCache = true;
+        // Kept compressed: every joiner it is sent to shares the one compression.
+        cache = SnapshotSender::Compress(pull.Blob());
+        haveCache = cache != nullptr;
         cacheFrame = pull.Frame();
-        cache.assign(pull.Blob().begin(), pull.Blob().end());
         pull.Reset();
         pullSource = -1;
         return;

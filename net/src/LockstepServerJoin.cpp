@@ -88,12 +88,15 @@ void LockstepServer::Impl::OnHash(int32_t s, int32_t frame, uint64_t hash) {
 }
 
 void LockstepServer::Impl::Snapshots(uint64_t now) {
+    // Joiners served in the same tick share one saved and compressed state.
+    CompressedSnapshot current;
     for (size_t i = 0; i < slots.size(); ++i) {
         Slot& slot = slots[i];
         if (slot.state != State::e_joining || slot.snapshot.Active() || slot.loaded) continue;
         if (config.world != nullptr) {
             if (simulated != confirmedNext) continue;  // serve a state every confirmed input is known for
-            slot.snapshot.Start(simulated, LockstepClient::SnapshotBlob(*config.world, *config.game));
+            if (current == nullptr) current = SnapshotSender::Compress(LockstepClient::SnapshotBlob(*config.world, *config.game));
+            slot.snapshot.Start(simulated, current);
             continue;
         }
         // Relay mode: a recent snapshot from a live client (10 s of fast-forward at most).

@@ -61,12 +61,14 @@ SnapshotOfferResult RollbackPeer::OfferSnapshot(int32_t frame, std::span<const u
     if (state.empty() || state.size() > kRbMaxSnapshotBytes) return SnapshotOfferResult::e_badSize;
     if (!InputsKept(frame)) return SnapshotOfferResult::e_inputsGone;
     const uint64_t checksum = XXH3_64bits(state.data(), state.size());
+    // Compressed once for every spectator that waits for it.
+    const CompressedSnapshot compressed = SnapshotSender::Compress(state);
     for (Spectator& s : spectators_) {
         if (!s.wantsSnapshot) continue;
         s.wantsSnapshot = false;
         s.checksum = checksum;
         s.acked = frame;
-        s.sender.Start(frame, std::vector<uint8_t>(state.begin(), state.end()));
+        s.sender.Start(frame, compressed);
     }
     ++stats_.snapshotsOffered;
     return SnapshotOfferResult::e_ok;

@@ -15,23 +15,23 @@ namespace {
 // images are mostly small integers and repeated shapes), and a late join compresses once.
 constexpr int kCompressionLevel = 1;
 
-// One zstd frame of `plain`; empty when it fails or would exceed kMaxSnapshotBytes.
-std::vector<uint8_t> Compress(const std::vector<uint8_t>& plain) {
-    std::vector<uint8_t> out(ZSTD_compressBound(plain.size()));
-    const size_t n = ZSTD_compress(out.data(), out.size(), plain.data(), plain.size(), kCompressionLevel);
-    if (ZSTD_isError(n) || n > kMaxSnapshotBytes) return {};
-    out.resize(n);
-    return out;
-}
-
 }  // namespace
 
-void SnapshotSender::Start(int32_t frame, std::vector<uint8_t> blob) {
-    const bool fits = !blob.empty() && blob.size() <= kMaxSnapshotBytes;
-    blob_ = fits ? Compress(blob) : std::vector<uint8_t>{};
-    active_ = !blob_.empty();
+CompressedSnapshot SnapshotSender::Compress(std::span<const uint8_t> plain) {
+    if (plain.empty() || plain.size() > kMaxSnapshotBytes) return nullptr;
+    std::vector<uint8_t> out(ZSTD_compressBound(plain.size()));
+    const size_t n = ZSTD_compress(out.data(), out.size(), plain.data(), plain.size(), kCompressionLevel);
+    if (ZSTD_isError(n) || n > kMaxSnapshotBytes) return nullptr;
+    out.resize(n);
+    return std::make_shared<const std::vector<uint8_t>>(std::move(out));
+}
+
+void SnapshotSender::Start(int32_t frame, CompressedSnapshot compressed) {
+    blob_ = std::move(compressed);
+    active_ = blob_ != nullptr && !blob_->empty();
+    if (!active_) blob_.reset();
     frame_ = frame;
-    chunkCount_ = active_ ? static_cast<uint32_t>((blob_.size() + kSnapshotChunkBytes - 1) / kSnapshotChunkBytes) : 0;
+    chunkCount_ = active_ ? static_cast<uint32_t>((blob_->size() + kSnapshotChunkBytes - 1) / kSnapshotChunkBytes) : 0;
     acked_ = 0;
     ackedFlags_.assign(chunkCount_, 0);
     sentAt_.assign(chunkCount_, 0);
@@ -41,7 +41,7 @@ void SnapshotSender::Start(int32_t frame, std::vector<uint8_t> blob) {
 
 void SnapshotSender::Stop() noexcept {
     active_ = false;
-    blob_.clear();
+    blob_.reset();
     chunkCount_ = acked_ = 0;
 }
 
@@ -74,12 +74,13 @@ size_t SnapshotSender::Pump(uint64_t now, uint64_t resendMicros, size_t window,
         // sentAt_ 0 means never; a resend waits resendMicros after the last send.
         if (sentAt_[i] != 0 && now - sentAt_[i] < resendMicros) continue;
         const size_t offset = size_t{i} * kSnapshotChunkBytes;
-        const size_t len = std::min<size_t>(kSnapshotChunkBytes, blob_.size() - offset);
+        const std::vector<uint8_t>& blob = *blob_;
+        const size_t len = std::min<size_t>(kSnapshotChunkBytes, blob.size() - offset);
         chunk_.frame = frame_;
-        chunk_.totalSize = static_cast<uint32_t>(blob_.size());
+        chunk_.totalSize = static_cast<uint32_t>(blob.size());
         chunk_.index = i;
-        chunk_.bytes.assign(blob_.begin() + static_cast<std::ptrdiff_t>(offset),
-                            blob_.begin() + static_cast<std::ptrdiff_t>(offset + len));
+        chunk_.bytes.assign(blob.begin() + static_cast<std::ptrdiff_t>(offset),
+                            blob.begin() + static_cast<std::ptrdiff_t>(offset + len));
         send(chunk_);
         sentAt_[i] = now == 0 ? 1 : now;
         sends_[i] = static_cast<uint8_t>(std::min(sends_[i] + 1, 2));

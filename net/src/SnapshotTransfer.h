@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -17,12 +18,21 @@
 
 namespace lockbox::net {
 
+/// A snapshot blob as one zstd frame, compressed once and shared by every sender of it (a
+/// late join offered to several joiners at once compresses it once).
+using CompressedSnapshot = std::shared_ptr<const std::vector<uint8_t>>;
+
 /// Sends one snapshot blob, compressed, in kSnapshotChunkBytes pieces.
 class SnapshotSender {
 public:
-    /// Starts sending `blob` (1 .. kMaxSnapshotBytes bytes, and at most that compressed) as the
-    /// snapshot of `frame`; otherwise sends nothing (Active() false).
-    void Start(int32_t frame, std::vector<uint8_t> blob);
+    /// `blob` (1 .. kMaxSnapshotBytes bytes, and at most that compressed) as one zstd frame;
+    /// null otherwise.
+    static CompressedSnapshot Compress(std::span<const uint8_t> blob);
+    /// Starts sending `blob` (see Compress) as the snapshot of `frame`; a blob Compress refuses
+    /// sends nothing (Active() false).
+    void Start(int32_t frame, std::span<const uint8_t> blob) { Start(frame, Compress(blob)); }
+    /// Starts sending an already compressed blob; null sends nothing (Active() false).
+    void Start(int32_t frame, CompressedSnapshot compressed);
     /// Forgets the current snapshot.
     void Stop() noexcept;
     bool Active() const noexcept { return active_; }
@@ -44,7 +54,7 @@ public:
 private:
     bool active_ = false;
     int32_t frame_ = 0;
-    std::vector<uint8_t> blob_;  ///< the compressed snapshot
+    CompressedSnapshot blob_;  ///< the compressed snapshot (shared, never modified)
     uint32_t chunkCount_ = 0, acked_ = 0;
     std::vector<uint8_t> ackedFlags_;
     std::vector<uint64_t> sentAt_;  ///< 0: never sent

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <deque>
+#include <span>
 #include <vector>
 
 #include "SnapshotTransfer.h"
@@ -233,11 +234,49 @@ TEST(SnapshotTransfer, CorruptFrameFailsWithoutAHandOut) {
 
 TEST(SnapshotTransfer, EmptyOrOversizedBlobIsNotSent) {
     SnapshotSender s;
-    s.Start(1, {});
+    s.Start(1, std::span<const uint8_t>{});
     EXPECT_FALSE(s.Active());
     s.Start(1, std::vector<uint8_t>(size_t{kMaxSnapshotBytes} + 1, 0));
     EXPECT_FALSE(s.Active());
     EXPECT_EQ(s.ChunkCount(), 0u);
+    EXPECT_EQ(SnapshotSender::Compress(std::span<const uint8_t>{}), nullptr);
+    s.Start(1, CompressedSnapshot{});
+    EXPECT_FALSE(s.Active());
+}
+
+// One compression shared by several senders (a late join offered to several joiners at once):
+// each sends the chunks a sender of its own would, and each receiver gets the blob back; a
+// sender that stops leaves the others' bytes intact.
+TEST(SnapshotTransfer, SharedCompressionSendsTheSameChunks) {
+    const std::vector<uint8_t> plain = RandomBytes(2 * kSnapshotChunkBytes, 11);
+    std::vector<uint8_t> compressible(5 * kSnapshotChunkBytes);
+    for (size_t i = 0; i < compressible.size(); ++i) compressible[i] = static_cast<uint8_t>(i % 7 == 0 ? plain[i % plain.size()] : 0);
+    const CompressedSnapshot shared = SnapshotSender::Compress(compressible);
+    ASSERT_NE(shared, nullptr);
+    SnapshotSender own, a, b;
+    own.Start(9, compressible);
+    a.Start(9, shared);
+    b.Start(9, shared);
+    ASSERT_EQ(a.ChunkCount(), own.ChunkCount());
+    ASSERT_LT(own.ChunkCount(), 5u);  // it did compress
+    auto collect = [](SnapshotSender& s) {
+        std::vector<SnapshotChunk> out;
+        s.Pump(1, 100000, 64, [&](const SnapshotChunk& c) { out.push_back(c); });
+        return out;
+    };
+    const std::vector<SnapshotChunk> ownChunks = collect(own);
+    b.Stop();
+    const std::vector<SnapshotChunk> aChunks = collect(a);
+    ASSERT_EQ(aChunks.size(), ownChunks.size());
+    SnapshotReceiver receiver;
+    for (size_t i = 0; i < aChunks.size(); ++i) {
+        EXPECT_EQ(aChunks[i].bytes, ownChunks[i].bytes);
+        EXPECT_EQ(aChunks[i].totalSize, ownChunks[i].totalSize);
+        EXPECT_TRUE(receiver.Accept(aChunks[i]));
+    }
+    ASSERT_TRUE(receiver.Complete());
+    ASSERT_FALSE(receiver.Failed());
+    EXPECT_EQ(std::vector<uint8_t>(receiver.Blob().begin(), receiver.Blob().end()), compressible);
 }
 
 }  // namespace
