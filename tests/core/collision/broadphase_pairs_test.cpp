@@ -158,6 +158,24 @@ TEST(BroadPhasePairs, ShiftedByWholeMetresGivesTheSamePairs) {
     }
 }
 
+// UpdatePairs sorts on the packed key: for every pair of non-negative ids (the tree's node
+// indices) its order must be b2PairLessThan's, up to the largest id.
+TEST(BroadPhasePairs, PackedKeyOrdersLikeThePairComparison) {
+    Rng rng(77);
+    const int32 edges[] = {0, 1, 2, 0x7FFF, 0x8000, 0xFFFF, 0x10000, 0x7FFFFFFE, 0x7FFFFFFF};
+    std::vector<b2Pair> pairs;
+    for (int32 a : edges)
+        for (int32 b : edges) pairs.push_back(b2Pair{a, b});
+    for (int i = 0; i < 2000; ++i) {
+        const int32 a = static_cast<int32>(rng.Next() % 0x80000000u);
+        const int32 b = static_cast<int32>(rng.Next() % (i % 2 == 0 ? 64u : 0x80000000u));
+        pairs.push_back(b2Pair{a, b});
+    }
+    for (size_t i = 0; i < pairs.size(); ++i)
+        for (size_t j = 0; j < pairs.size(); j += 7)
+            ASSERT_EQ(PairKey(pairs[i]) < PairKey(pairs[j]), b2PairLessThan(pairs[i], pairs[j])) << i << " " << j;
+}
+
 TEST(BroadPhasePairs, SortedUniqueAndNoSelfPairs) {
     b2BroadPhase bp;
     // Five overlapping boxes created in an order that is not the id order of their pairs.

@@ -36,6 +36,11 @@ struct b2Pair {
     int32 proxyIdB = -1;  ///< the larger proxy id
 };
 
+/// (proxyIdA, proxyIdB) as one key; for ids >= 0 its order is b2PairLessThan's.
+constexpr uint64 PairKey(const b2Pair& pair) noexcept {
+    return (uint64{static_cast<uint32>(pair.proxyIdA)} << 32) | static_cast<uint32>(pair.proxyIdB);
+}
+
 /// Lexicographic order on (proxyIdA, proxyIdB): the pair order of UpdatePairs.
 constexpr bool b2PairLessThan(const b2Pair& pair1, const b2Pair& pair2) noexcept {
     if (pair1.proxyIdA != pair2.proxyIdA) return pair1.proxyIdA < pair2.proxyIdA;
@@ -154,7 +159,11 @@ void b2BroadPhase::UpdatePairs(T* callback) {
     m_moveBuffer.clear();
 
     // Total order on (A, B): equal elements are identical, so any sort gives the same sequence.
-    std::sort(m_pairBuffer.begin(), m_pairBuffer.end(), b2PairLessThan);
+    // Proxy ids are never negative here, so (A, B) packed into one unsigned key orders exactly
+    // as b2PairLessThan does, in one comparison the sort can inline.
+    std::sort(m_pairBuffer.begin(), m_pairBuffer.end(), [](const b2Pair& p1, const b2Pair& p2) noexcept {
+        return PairKey(p1) < PairKey(p2);
+    });
 
     // Report each distinct pair once.
     const size_t count = m_pairBuffer.size();
