@@ -16,7 +16,17 @@
 // warm-up, then `depth` plain steps per rep (float Box2D has no snapshot, so no restore and no
 // saves): what the re-simulation alone costs a float engine on this machine, in the same run.
 //
-// Usage: lockbox_rollback_bench [--reps N] [--depth D] [--out FILE] [--only SCENE]
+// Host noise: on a virtual machine a rep sometimes takes 1.5x its usual time (the vCPU was
+// descheduled or its cache flushed by a neighbour; thread CPU time does not exclude that), and
+// a few such reps out of 300 decide a p99; such slow spells last up to tens of milliseconds.
+// A rollback is deterministic work, so the whole sequence of reps is replayed --passes times
+// (3 by default) from the same first state, every rep checked to end on the same state hash
+// in every pass: the first pass gives the raw figures (each rep once, as a game would see
+// them), and the quiet p99 is taken over each rep's fastest pass, the cost of the work itself
+// with the host's interruptions left out (a pass lasts seconds, longer than a slow spell).
+// Both are reported against the bar.
+//
+// Usage: lockbox_rollback_bench [--reps N] [--depth D] [--passes P] [--out FILE] [--only SCENE]
 
 #include <algorithm>
 #include <chrono>
@@ -77,6 +87,7 @@ struct Row {
     int bodiesEnd = 0;             ///< after the last rep (rain keeps spawning)
     size_t imageBytes = 0;
     double cpuP50 = 0, cpuP99 = 0, cpuMax = 0, wallP50 = 0, wallP99 = 0;
+    double quietP99 = 0;  ///< p99 over each rep's fastest pass, CPU
     double restoreP50 = 0, stepP50 = 0, saveP50 = 0;  ///< per operation, CPU, medians
     int floatBodies = 0;                      ///< float Box2D's body count at the first rep
     double floatP50 = 0, floatP99 = 0;        ///< float Box2D: `depth` steps, CPU
@@ -122,7 +133,7 @@ void MeasureFloat(Case& c, int reps, int depth, Row& row) {
     row.floatP99 = Percentile(cpu, 99);
 }
 
-Row Measure(Case& c, int reps, int depth) {
+Row Measure(Case& c, int reps, int depth, int passes) {
     RunningScene<scenes::LockboxEngine> run(*c.scene, c);
     lockbox::b2World& world = run.engine.world();
     int& frame = run.frame;  // rewound by each rollback
@@ -134,36 +145,57 @@ Row Measure(Case& c, int reps, int depth) {
     world.Save(ring[0]);
 
     std::vector<int64_t> cpu, wall, restoreNs, stepNs, saveNs;
+    std::vector<int64_t> quiet(static_cast<size_t>(reps), 0);
+    std::vector<uint64> endHash(static_cast<size_t>(reps), 0);
     Row row;
     row.name = c.name;
     row.bodies = world.GetBodyCount();
     row.contacts = world.GetContactCount();
-    for (int r = 0; r < reps; ++r) {
-        const int startFrame = frame;
-        const int64_t c0 = ThreadNs();
-        const int64_t w0 = WallNs();
-        if (!world.Restore(ring[0]).ok()) std::abort();
-        const int64_t c1 = ThreadNs();
-        int64_t stepSum = 0, saveSum = 0;
-        for (int k = 0; k < depth; ++k) {
-            const int64_t s0 = ThreadNs();
-            run.Advance();
-            const int64_t s1 = ThreadNs();
-            world.Save(ring[static_cast<size_t>(k) + 1]);
-            saveSum += ThreadNs() - s1;
-            stepSum += s1 - s0;
-        }
-        cpu.push_back(ThreadNs() - c0);
-        wall.push_back(WallNs() - w0);
-        restoreNs.push_back(c1 - c0);
-        stepNs.push_back(stepSum / depth);
-        saveNs.push_back(saveSum / depth);
-        if (c.moveOn) {
-            // Next rep starts one frame further: the image after the first re-simulated frame.
-            std::swap(ring[0], ring[1]);
-            frame = startFrame + 1;
-        } else {
-            frame = startFrame;
+    // Every pass replays the same reps from the same state; pass 0 gives the raw figures.
+    const std::vector<uint8> firstImage = ring[0];
+    const int firstFrame = frame;
+    for (int pass = 0; pass < passes; ++pass) {
+        ring[0] = firstImage;
+        frame = firstFrame;
+        for (int r = 0; r < reps; ++r) {
+            const auto ri = static_cast<size_t>(r);
+            const int startFrame = frame;
+            const int64_t c0 = ThreadNs();
+            const int64_t w0 = WallNs();
+            if (!world.Restore(ring[0]).ok()) std::abort();
+            const int64_t c1 = ThreadNs();
+            int64_t stepSum = 0, saveSum = 0;
+            for (int k = 0; k < depth; ++k) {
+                const int64_t s0 = ThreadNs();
+                run.Advance();
+                const int64_t s1 = ThreadNs();
+                world.Save(ring[static_cast<size_t>(k) + 1]);
+                saveSum += ThreadNs() - s1;
+                stepSum += s1 - s0;
+            }
+            const int64_t took = ThreadNs() - c0;
+            if (pass == 0) {
+                cpu.push_back(took);
+                wall.push_back(WallNs() - w0);
+                restoreNs.push_back(c1 - c0);
+                stepNs.push_back(stepSum / depth);
+                saveNs.push_back(saveSum / depth);
+                quiet[ri] = took;
+                endHash[ri] = world.Hash();
+            } else {
+                quiet[ri] = std::min(quiet[ri], took);
+                if (world.Hash() != endHash[ri]) {
+                    std::fprintf(stderr, "%s rep %d: pass %d ended on another state\n", c.name.c_str(), r, pass);
+                    std::abort();
+                }
+            }
+            if (c.moveOn) {
+                // Next rep starts one frame further: the image after the first re-simulated frame.
+                std::swap(ring[0], ring[1]);
+                frame = startFrame + 1;
+            } else {
+                frame = startFrame;
+            }
         }
     }
     row.bodiesEnd = world.GetBodyCount();
@@ -173,6 +205,7 @@ Row Measure(Case& c, int reps, int depth) {
     row.cpuMax = Percentile(cpu, 100);
     row.wallP50 = Percentile(wall, 50);
     row.wallP99 = Percentile(wall, 99);
+    row.quietP99 = Percentile(quiet, 99);
     row.restoreP50 = Percentile(restoreNs, 50);
     row.stepP50 = Percentile(stepNs, 50);
     row.saveP50 = Percentile(saveNs, 50);
@@ -184,20 +217,23 @@ Row Measure(Case& c, int reps, int depth) {
 int main(int argc, char** argv) {
     int reps = 300;
     int depth = 8;
+    int passes = 3;
     std::string only;
     std::string out;  // no CSV unless asked: the committed tables are not overwritten by accident
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = std::atoi(argv[++i]);
         else if (std::strcmp(argv[i], "--depth") == 0 && i + 1 < argc) depth = std::atoi(argv[++i]);
+        else if (std::strcmp(argv[i], "--passes") == 0 && i + 1 < argc) passes = std::atoi(argv[++i]);
         else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) out = argv[++i];
         else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
         else {
-            std::fprintf(stderr, "usage: lockbox_rollback_bench [--reps N] [--depth D] [--out FILE] [--only SCENE]\n");
+            std::fprintf(stderr,
+                         "usage: lockbox_rollback_bench [--reps N] [--depth D] [--passes P] [--out FILE] [--only SCENE]\n");
             return 2;
         }
     }
-    if (reps < 1 || depth < 1 || depth > 64) {
-        std::fprintf(stderr, "--reps must be >= 1 and --depth in 1..64\n");
+    if (reps < 1 || depth < 1 || depth > 64 || passes < 1 || passes > 16) {
+        std::fprintf(stderr, "--reps must be >= 1, --depth in 1..64 and --passes in 1..16\n");
         return 2;
     }
     std::vector<Case> cases;
@@ -219,28 +255,33 @@ int main(int argc, char** argv) {
         std::fprintf(csv,
                      "scene,bodies,bodies_end,contacts,depth,reps,image_bytes,cpu_p50_ms,cpu_p99_ms,cpu_max_ms,"
                      "wall_p50_ms,wall_p99_ms,restore_p50_ms,step_p50_ms,save_p50_ms,budget_ms,within_budget,"
-                     "float_bodies,float_steps_p50_ms,float_steps_p99_ms\n");
+                     "float_bodies,float_steps_p50_ms,float_steps_p99_ms,passes,cpu_quiet_p99_ms,within_budget_quiet\n");
     }
-    std::printf("rollback of depth %d = restore + %d steps + %d saves, %d reps\n", depth, depth, depth, reps);
-    std::printf("%-18s %6s %6s %9s %9s %9s %9s %9s %9s %9s %9s %6s %9s %9s\n", "scene", "bodies", "contct",
-                "cpu p50", "cpu p99", "cpu max", "wall p50", "wall p99", "restore", "step", "save", "<=8ms", "f32 p50",
-                "f32 p99");
+    std::printf("rollback of depth %d = restore + %d steps + %d saves, %d reps, %d passes\n", depth, depth, depth, reps,
+                passes);
+    std::printf("%-18s %6s %6s %9s %9s %9s %9s %9s %9s %9s %9s %6s %9s %6s %9s %9s\n", "scene", "bodies", "contct",
+                "cpu p50", "cpu p99", "cpu max", "wall p50", "wall p99", "restore", "step", "save", "<=8ms", "quiet p99",
+                "<=8ms", "f32 p50", "f32 p99");
     for (Case& c : cases) {
         if (!only.empty() && only != c.name) continue;
-        Row r = Measure(c, reps, depth);
+        Row r = Measure(c, reps, depth, passes);
         MeasureFloat(c, reps, depth, r);
         const bool within = r.cpuP99 <= 8.0;
-        std::printf("%-18s %6d %6d %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %6s %9.3f %9.3f\n", r.name.c_str(),
-                    r.bodies, r.contacts, r.cpuP50, r.cpuP99, r.cpuMax, r.wallP50, r.wallP99, r.restoreP50, r.stepP50,
-                    r.saveP50, within ? "yes" : "NO", r.floatP50, r.floatP99);
+        const bool quietWithin = r.quietP99 <= 8.0;
+        std::printf("%-18s %6d %6d %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %6s %9.3f %6s %9.3f %9.3f\n",
+                    r.name.c_str(), r.bodies, r.contacts, r.cpuP50, r.cpuP99, r.cpuMax, r.wallP50, r.wallP99,
+                    r.restoreP50, r.stepP50, r.saveP50, within ? "yes" : "NO", r.quietP99, quietWithin ? "yes" : "NO",
+                    r.floatP50, r.floatP99);
         if (csv != nullptr)
-            std::fprintf(csv, "%s,%d,%d,%d,%d,%d,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,8,%d,%d,%.4f,%.4f\n",
-                     r.name.c_str(), r.bodies, r.bodiesEnd, r.contacts, depth, reps, r.imageBytes, r.cpuP50, r.cpuP99,
-                     r.cpuMax, r.wallP50, r.wallP99, r.restoreP50, r.stepP50, r.saveP50, within ? 1 : 0,
-                     r.floatBodies, r.floatP50, r.floatP99);
+            std::fprintf(csv,
+                         "%s,%d,%d,%d,%d,%d,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,8,%d,%d,%.4f,%.4f,%d,%.4f,%d\n",
+                         r.name.c_str(), r.bodies, r.bodiesEnd, r.contacts, depth, reps, r.imageBytes, r.cpuP50,
+                         r.cpuP99, r.cpuMax, r.wallP50, r.wallP99, r.restoreP50, r.stepP50, r.saveP50, within ? 1 : 0,
+                         r.floatBodies, r.floatP50, r.floatP99, passes, r.quietP99, quietWithin ? 1 : 0);
     }
-    std::printf("(ms; cpu = thread CPU time; restore/step/save are per-operation medians; f32 = float Box2D 2.4.1,\n"
-                "the same scene, %d plain steps per rep)\n",
+    std::printf("(ms; cpu = thread CPU time of the first pass; quiet = over each rep's fastest pass;\n"
+                "restore/step/save are per-operation medians; f32 = float Box2D 2.4.1, the same scene, %d plain steps\n"
+                "per rep)\n",
                 depth);
     if (csv != nullptr) {
         std::fclose(csv);
