@@ -76,9 +76,8 @@ struct LockstepServer::Impl {
     SnapshotReceiver pull;
     int32_t pullSource = -1;
     uint64_t pullRequestedAt = 0;
-    bool haveCache = false;
     int32_t cacheFrame = 0;
-    CompressedSnapshot cache;
+    CompressedSnapshot cache;  ///< null: none
 
     std::vector<ServerEvent> events;
     ServerStats stats;

@@ -105,7 +105,6 @@ void LockstepServer::Impl::Handle(int32_t s, PeerId peer, const Message& message
         }
         // Kept compressed: every joiner it is sent to shares the one compression.
         cache = SnapshotSender::Compress(pull.Blob());
-        haveCache = cache != nullptr;
         cacheFrame = pull.Frame();
         pull.Reset();
         pullSource = -1;

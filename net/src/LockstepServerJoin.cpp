@@ -95,12 +95,13 @@ void LockstepServer::Impl::Snapshots(uint64_t now) {
         if (slot.state != State::e_joining || slot.snapshot.Active() || slot.loaded) continue;
         if (config.world != nullptr) {
             if (simulated != confirmedNext) continue;  // serve a state every confirmed input is known for
-            if (current == nullptr) current = SnapshotSender::Compress(LockstepClient::SnapshotBlob(*config.world, *config.game));
+            if (current == nullptr)
+                current = SnapshotSender::Compress(LockstepClient::SnapshotBlob(*config.world, *config.game));
             slot.snapshot.Start(simulated, current);
             continue;
         }
         // Relay mode: a recent snapshot from a live client (10 s of fast-forward at most).
-        if (haveCache && static_cast<int64_t>(cacheFrame) + 10 * static_cast<int64_t>(config.tickRate) >= confirmedNext) {
+        if (cache != nullptr && static_cast<int64_t>(cacheFrame) + 10 * static_cast<int64_t>(config.tickRate) >= confirmedNext) {
             slot.snapshot.Start(cacheFrame, cache);
             continue;
         }
@@ -128,7 +129,7 @@ void LockstepServer::Impl::TrimHistory() {
     for (const Slot& s : slots)
         if (s.receivesConfirmed && s.state != State::e_free && s.state != State::e_disconnected)
             keep = std::min<int64_t>(keep, s.acked);
-    if (haveCache) keep = std::min<int64_t>(keep, cacheFrame);
+    if (cache != nullptr) keep = std::min<int64_t>(keep, cacheFrame);
     for (const Slot& s : slots)
         if (s.snapshot.Active()) keep = std::min<int64_t>(keep, s.snapshot.Frame());
     if (config.world != nullptr) keep = std::min<int64_t>(keep, simulated);

@@ -27,11 +27,9 @@ CompressedSnapshot SnapshotSender::Compress(std::span<const uint8_t> plain) {
 }
 
 void SnapshotSender::Start(int32_t frame, CompressedSnapshot compressed) {
-    blob_ = std::move(compressed);
-    active_ = blob_ != nullptr && !blob_->empty();
-    if (!active_) blob_.reset();
+    blob_ = compressed != nullptr && !compressed->empty() ? std::move(compressed) : nullptr;
     frame_ = frame;
-    chunkCount_ = active_ ? static_cast<uint32_t>((blob_->size() + kSnapshotChunkBytes - 1) / kSnapshotChunkBytes) : 0;
+    chunkCount_ = Active() ? static_cast<uint32_t>((blob_->size() + kSnapshotChunkBytes - 1) / kSnapshotChunkBytes) : 0;
     acked_ = 0;
     ackedFlags_.assign(chunkCount_, 0);
     sentAt_.assign(chunkCount_, 0);
@@ -40,13 +38,12 @@ void SnapshotSender::Start(int32_t frame, CompressedSnapshot compressed) {
 }
 
 void SnapshotSender::Stop() noexcept {
-    active_ = false;
     blob_.reset();
     chunkCount_ = acked_ = 0;
 }
 
 void SnapshotSender::OnAck(const SnapshotAck& ack, uint64_t now) noexcept {
-    if (!active_ || ack.frame != frame_ || ack.index >= chunkCount_ || ackedFlags_[ack.index]) return;
+    if (!Active() || ack.frame != frame_ || ack.index >= chunkCount_ || ackedFlags_[ack.index]) return;
     ackedFlags_[ack.index] = 1;
     ++acked_;
     // A resent chunk's ack may answer either send: no sample from it.
@@ -62,7 +59,7 @@ uint64_t SnapshotSender::ResendMicros(uint64_t floor) const noexcept {
 
 size_t SnapshotSender::Pump(uint64_t now, uint64_t resendMicros, size_t window,
                             const std::function<void(const SnapshotChunk&)>& send) {
-    if (!active_ || Done()) return 0;
+    if (!Active() || Done()) return 0;
     resendMicros = ResendMicros(resendMicros);
     size_t sent = 0;
     // One sweep from where the last call stopped (cursor_ moves as chunks go, so the sweep

@@ -35,9 +35,9 @@ public:
     void Start(int32_t frame, CompressedSnapshot compressed);
     /// Forgets the current snapshot.
     void Stop() noexcept;
-    bool Active() const noexcept { return active_; }
+    bool Active() const noexcept { return blob_ != nullptr; }
     /// True when every chunk was acknowledged.
-    bool Done() const noexcept { return active_ && acked_ == chunkCount_; }
+    bool Done() const noexcept { return Active() && acked_ == chunkCount_; }
     int32_t Frame() const noexcept { return frame_; }
     /// Chunks of the current snapshot (of its compressed bytes).
     uint32_t ChunkCount() const noexcept { return chunkCount_; }
@@ -52,9 +52,8 @@ public:
     uint64_t ResendMicros(uint64_t floor) const noexcept;
 
 private:
-    bool active_ = false;
     int32_t frame_ = 0;
-    CompressedSnapshot blob_;  ///< the compressed snapshot (shared, never modified)
+    CompressedSnapshot blob_;  ///< the compressed snapshot (shared, never modified); null: inactive
     uint32_t chunkCount_ = 0, acked_ = 0;
     std::vector<uint8_t> ackedFlags_;
     std::vector<uint64_t> sentAt_;  ///< 0: never sent
