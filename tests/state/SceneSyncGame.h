@@ -44,7 +44,8 @@ inline std::vector<std::string_view> SceneNames(bool large) {
 
 /// Runs the sync test on a freshly built scene; returns its result. stride as in
 /// SyncTestConfig.
-inline SyncTestResult RunSceneSyncTest(std::string_view name, int32 frames, bool mispredict, int32 stride = 1) {
+inline SyncTestResult RunSceneSyncTest(std::string_view name, int32 frames, bool mispredict, int32 stride = 1,
+                                       bool useFrames = false) {
     SceneRun run(name);
     if (!run.scene) {
         SyncTestResult missing;
@@ -56,6 +57,7 @@ inline SyncTestResult RunSceneSyncTest(std::string_view name, int32 frames, bool
     SyncTestConfig config;
     config.mispredict = mispredict;
     config.stride = stride;
+    config.frames = useFrames;
     SyncTest test(run.world(), game, config);
     return test.Run(frames);
 }

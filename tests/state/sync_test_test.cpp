@@ -32,6 +32,18 @@ TEST_P(SceneSync, MispredictedBranchLeavesNoTrace) {
     EXPECT_EQ(r.rollbacks, kFrames - 7);
 }
 
+TEST_P(SceneSync, RollbackThroughFramesReproducesEveryFrame) {
+    const SyncTestResult r = RunSceneSyncTest(GetParam(), kFrames, /*mispredict=*/false, 1, /*useFrames=*/true);
+    EXPECT_TRUE(r.ok) << r.message;
+    EXPECT_EQ(r.framesResimulated, (kFrames - 7) * 8);
+}
+
+TEST_P(SceneSync, MispredictThroughFramesLeavesNoTrace) {
+    const SyncTestResult r = RunSceneSyncTest(GetParam(), kFrames, /*mispredict=*/true, 1, /*useFrames=*/true);
+    EXPECT_TRUE(r.ok) << r.message;
+    EXPECT_EQ(r.rollbacks, kFrames - 7);
+}
+
 // After create/destroy churn (the mispredicted branches) and restores, every body's edge lists
 // still follow the world lists: the invariant that lets snapshots leave them out.
 TEST(SyncTestTool, EdgeListsFollowWorldListsAfterChurn) {

@@ -65,6 +65,7 @@ void b2Body::GetMassData(b2MassData* data) const {
 }
 
 void b2Body::ResetMassData() {
+    m_world->MarkStructureChanged();
     m_mass = Wide();
     m_invMass = Wide();
     m_I = Wide();
@@ -126,6 +127,7 @@ void b2Body::ResetMassData() {
 
 void b2Body::SetMassData(const b2MassData* massData) {
     if (m_world->CheckLocked("b2Body::SetMassData")) return;
+    m_world->MarkStructureChanged();
     if (m_type != b2_dynamicBody) return;
 
     m_invMass = Wide();
@@ -216,6 +218,7 @@ void b2Body::WrapAngle() noexcept {
 void b2Body::SetType(b2BodyType type) {
     if (m_world->CheckLocked("b2Body::SetType")) return;
     if (m_type == type) return;
+    m_world->MarkStructureChanged();
     m_type = type;
     ResetMassData();
     if (m_type == b2_staticBody) {
@@ -230,6 +233,28 @@ void b2Body::SetType(b2BodyType type) {
     m_torque = Fixed();
     // The type rule may now accept or reject existing pairs.
     for (b2ContactEdge* ce = m_contactList; ce; ce = ce->next) ce->contact->FlagForFiltering();
+}
+
+// Set-up fields that rollback frames share through the structure image: each setter marks
+// the world's structure changed.
+void b2Body::SetLinearDamping(Fixed d) noexcept {
+    m_world->MarkStructureChanged();
+    m_linearDamping = d;
+}
+
+void b2Body::SetAngularDamping(Fixed d) noexcept {
+    m_world->MarkStructureChanged();
+    m_angularDamping = d;
+}
+
+void b2Body::SetGravityScale(Fixed s) noexcept {
+    m_world->MarkStructureChanged();
+    m_gravityScale = s;
+}
+
+void b2Body::SetUserData(uint64 data) noexcept {
+    m_world->MarkStructureChanged();
+    m_userData = data;
 }
 
 void b2Body::SetBullet(bool flag) noexcept {
@@ -264,6 +289,8 @@ void b2Body::SetAwake(bool flag) {
 void b2Body::SetActive(bool flag) {
     if (m_world->CheckLocked("b2Body::SetActive")) return;
     if (flag == IsActive()) return;
+    // Proxies are made or dropped: a structural change for rollback frames.
+    m_world->MarkStructureChanged();
     b2BroadPhase* broadPhase = &m_world->m_contactManager.m_broadPhase;
     if (flag) {
         m_flags |= e_activeFlag;

@@ -62,8 +62,8 @@ void b2Body::UpdateExtents() {
     m_minExtent = Fixed::FromRaw(Fixed::kMaxRaw);
     m_maxExtent = Fixed();
     for (const b2Fixture* f = m_fixtureList; f; f = f->m_next) {
-        m_minExtent = Min(m_minExtent, MinExtent(f->GetShape()));
-        m_maxExtent = Max(m_maxExtent, MaxExtent(f->GetShape(), m_sweep.localCenter));
+        m_minExtent = Min(m_minExtent, MinExtent(f->m_shape.get()));
+        m_maxExtent = Max(m_maxExtent, MaxExtent(f->m_shape.get(), m_sweep.localCenter));
     }
     if (m_fixtureList == nullptr) m_minExtent = Fixed();
 }

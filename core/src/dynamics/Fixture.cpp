@@ -63,7 +63,45 @@ void b2Fixture::Synchronize(b2BroadPhase* broadPhase, const b2Transform& transfo
     }
 }
 
+namespace {
+/// Fixture set-up is structure for rollback frames (lockbox/state/WorldFrame.h).
+void MarkChanged(b2Body* body) noexcept {
+    if (body != nullptr && body->GetWorld() != nullptr) body->GetWorld()->MarkStructureChanged();
+}
+}  // namespace
+
+b2Shape* b2Fixture::GetShape() noexcept {
+    MarkChanged(m_body);
+    return m_shape.get();
+}
+
+void b2Fixture::SetSensor(bool sensor) noexcept {
+    MarkChanged(m_body);
+    m_isSensor = sensor;
+}
+
+void b2Fixture::SetUserData(uint64 data) noexcept {
+    MarkChanged(m_body);
+    m_userData = data;
+}
+
+void b2Fixture::SetDensity(Fixed density) noexcept {
+    MarkChanged(m_body);
+    m_density = density;
+}
+
+void b2Fixture::SetFriction(Fixed friction) noexcept {
+    MarkChanged(m_body);
+    m_friction = friction;
+}
+
+void b2Fixture::SetRestitution(Fixed restitution) noexcept {
+    MarkChanged(m_body);
+    m_restitution = restitution;
+}
+
 void b2Fixture::SetFilterData(const b2Filter& filter) {
+    MarkChanged(m_body);
     m_filter = filter;
     if (m_body == nullptr) return;
     for (b2ContactEdge* edge = m_body->GetContactList(); edge; edge = edge->next) {

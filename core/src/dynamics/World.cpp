@@ -54,6 +54,7 @@ bool b2World::CheckLocked(const char* what) const {
 
 b2Body* b2World::CreateBody(const b2BodyDef* def) {
     if (CheckLocked("b2World::CreateBody called inside a Step callback (the world is locked)")) return nullptr;
+    MarkStructureChanged();
     const int32 id = m_bodies.Create(def, this, b2_nullId);
     b2Body* b = m_bodies.Get(id);
     b->m_id = id;
@@ -70,6 +71,7 @@ b2Body* b2World::CreateBody(const b2BodyDef* def) {
 void b2World::DestroyBody(b2Body* b) {
     if (CheckLocked("b2World::DestroyBody called inside a Step callback (the world is locked)")) return;
     if (b == nullptr) return;
+    MarkStructureChanged();
 
     // Delete the attached joints (and any gear coupling them), telling the listener. The list
     // head is re-read each time: destroying a gear may unlink other edges of this body.
@@ -117,6 +119,7 @@ b2Fixture* b2World::CreateFixtureSlot(b2Body* body, const b2FixtureDef* def) {
         }
         return nullptr;
     }
+    MarkStructureChanged();
     const int32 id = m_fixtures.Create();
     b2Fixture* fixture = m_fixtures.Get(id);
     fixture->Create(body, def, id);
@@ -135,6 +138,7 @@ b2Fixture* b2World::CreateFixtureSlot(b2Body* body, const b2FixtureDef* def) {
 }
 
 void b2World::DestroyFixtureSlot(b2Fixture* fixture) {
+    MarkStructureChanged();
     b2Body* body = fixture->m_body;
 
     // Unlink from the body's singly linked list.

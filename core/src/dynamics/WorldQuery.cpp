@@ -61,19 +61,19 @@ void b2World::RayCast(b2RayCastCallback* callback, const b2Vec2& point1, const b
 void b2World::DrawShape(b2Fixture* fixture, const b2Transform& xf, const b2Color& color) {
     switch (fixture->GetType()) {
         case b2Shape::e_circle: {
-            const auto* circle = static_cast<const b2CircleShape*>(fixture->GetShape());
+            const auto* circle = static_cast<const b2CircleShape*>(fixture->m_shape.get());
             const b2Vec2 center = b2Mul(xf, circle->m_p);
             const b2Vec2 axis = b2Mul(xf.q, b2Vec2(1, 0));
             m_debugDraw->DrawSolidCircle(center, circle->m_radius, axis, color);
             break;
         }
         case b2Shape::e_edge: {
-            const auto* edge = static_cast<const b2EdgeShape*>(fixture->GetShape());
+            const auto* edge = static_cast<const b2EdgeShape*>(fixture->m_shape.get());
             m_debugDraw->DrawSegment(b2Mul(xf, edge->m_vertex1), b2Mul(xf, edge->m_vertex2), color);
             break;
         }
         case b2Shape::e_chain: {
-            const auto* chain = static_cast<const b2ChainShape*>(fixture->GetShape());
+            const auto* chain = static_cast<const b2ChainShape*>(fixture->m_shape.get());
             if (chain->m_count < 2) break;
             b2Vec2 v1 = b2Mul(xf, chain->m_vertices[0]);
             for (int32 i = 1; i < chain->m_count; ++i) {
@@ -85,7 +85,7 @@ void b2World::DrawShape(b2Fixture* fixture, const b2Transform& xf, const b2Color
             break;
         }
         case b2Shape::e_polygon: {
-            const auto* poly = static_cast<const b2PolygonShape*>(fixture->GetShape());
+            const auto* poly = static_cast<const b2PolygonShape*>(fixture->m_shape.get());
             b2Vec2 vertices[b2_maxPolygonVertices];
             for (int32 i = 0; i < poly->m_vertexCount; ++i) vertices[i] = b2Mul(xf, poly->m_vertices[i]);
             m_debugDraw->DrawSolidPolygon(vertices, poly->m_vertexCount, color);

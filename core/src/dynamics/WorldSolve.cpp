@@ -194,8 +194,8 @@ void b2World::SolveTOI(const b2TimeStep& step) {
                 }
 
                 b2TOIInput input;
-                input.proxyA.Set(fA->GetShape(), c->GetChildIndexA());
-                input.proxyB.Set(fB->GetShape(), c->GetChildIndexB());
+                input.proxyA.Set(fA->m_shape.get(), c->GetChildIndexA());
+                input.proxyB.Set(fB->m_shape.get(), c->GetChildIndexB());
                 input.sweepA = bA->m_sweep;
                 input.sweepB = bB->m_sweep;
                 input.tMax = 1;

@@ -43,6 +43,7 @@ const char* b2SnapshotErrorName(b2SnapshotError error) noexcept {
         case b2SnapshotError::e_corrupt: return "corrupt";
         case b2SnapshotError::e_trailingBytes: return "trailing bytes";
         case b2SnapshotError::e_locked: return "locked";
+        case b2SnapshotError::e_foreignFrame: return "foreign frame";
     }
     return "unknown";
 }
@@ -125,6 +126,7 @@ b2RestoreResult b2World::Restore(std::span<const uint8> image) {
     b2RestoreResult result = ParseSnapshot(image, parsed);
     if (!result.ok()) return result;
     ApplySnapshot(parsed, *this);
+    MarkStructureChanged();
     return result;
 }
 

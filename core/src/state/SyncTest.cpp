@@ -36,6 +36,7 @@ SyncTest::SyncTest(b2World& world, SyncTestGame& game, SyncTestConfig config)
     const size_t ring = static_cast<size_t>(m_config.checkDistance) + 1;
     m_images.resize(ring);
     m_user.resize(ring);
+    if (m_config.frames) m_frames.resize(ring);
 }
 
 uint64 SyncTest::StateHash() {
@@ -48,6 +49,7 @@ uint64 SyncTest::StateHash() {
 uint64 SyncTest::SaveFrame(int32 frame) {
     const size_t slot = static_cast<size_t>(frame) % m_images.size();
     m_world.Save(m_images[slot]);
+    if (m_config.frames) m_world.SaveFrame(m_frames[slot]);
     m_user[slot].clear();
     m_game.SaveUserState(m_user[slot]);
     // The frame's hash read from the image just written: the value StateHash() gives, at a
@@ -61,7 +63,8 @@ uint64 SyncTest::SaveFrame(int32 frame) {
 
 bool SyncTest::LoadFrame(int32 frame, SyncTestResult& result) {
     const size_t slot = static_cast<size_t>(frame) % m_images.size();
-    const b2RestoreResult restored = m_world.Restore(m_images[slot]);
+    const b2RestoreResult restored =
+        m_config.frames ? m_world.RestoreFrame(m_frames[slot]) : m_world.Restore(m_images[slot]);
     if (!restored.ok()) {
         result.ok = false;
         result.firstBadFrame = frame;

@@ -38,6 +38,20 @@ TEST_P(SceneSyncFull, Mispredict) {
     EXPECT_TRUE(r.ok) << r.message;
 }
 
+// The same through rollback frames (SaveFrame/RestoreFrame): their fast path between
+// structural changes, and their structure image when a branch created or destroyed objects.
+TEST_P(SceneSyncFull, RollbackThroughFrames) {
+    const Plan p = PlanFor(GetParam());
+    const SyncTestResult r = RunSceneSyncTest(GetParam(), p.frames, false, p.stride, /*useFrames=*/true);
+    EXPECT_TRUE(r.ok) << r.message;
+}
+
+TEST_P(SceneSyncFull, MispredictThroughFrames) {
+    const Plan p = PlanFor(GetParam());
+    const SyncTestResult r = RunSceneSyncTest(GetParam(), p.frames, true, p.stride, /*useFrames=*/true);
+    EXPECT_TRUE(r.ok) << r.message;
+}
+
 INSTANTIATE_TEST_SUITE_P(AllScenes, SceneSyncFull, ::testing::ValuesIn(scenes::AllSceneNames()),
                          [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 

@@ -110,11 +110,11 @@ public:
     b2Vec2 GetLinearVelocityFromLocalPoint(const b2Vec2& localPoint) const;
 
     Fixed GetLinearDamping() const noexcept { return m_linearDamping; }
-    void SetLinearDamping(Fixed d) noexcept { m_linearDamping = d; }
+    void SetLinearDamping(Fixed d) noexcept;
     Fixed GetAngularDamping() const noexcept { return m_angularDamping; }
-    void SetAngularDamping(Fixed d) noexcept { m_angularDamping = d; }
+    void SetAngularDamping(Fixed d) noexcept;
     Fixed GetGravityScale() const noexcept { return m_gravityScale; }
-    void SetGravityScale(Fixed s) noexcept { m_gravityScale = s; }
+    void SetGravityScale(Fixed s) noexcept;
 
     /// Changes the type; resets mass, wakes, and re-filters contacts (refused while locked).
     void SetType(b2BodyType type);
@@ -146,7 +146,7 @@ public:
     b2Body* GetNext() noexcept { return m_next; }
     const b2Body* GetNext() const noexcept { return m_next; }
     uint64 GetUserData() const noexcept { return m_userData; }
-    void SetUserData(uint64 data) noexcept { m_userData = data; }
+    void SetUserData(uint64 data) noexcept;
     b2World* GetWorld() noexcept { return m_world; }
     const b2World* GetWorld() const noexcept { return m_world; }
     /// Small integer id (stable across snapshot and restore).

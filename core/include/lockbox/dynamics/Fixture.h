@@ -59,12 +59,14 @@ class b2Fixture {
 public:
     /// Shape type (the child shape type for chains is e_edge at collision time).
     b2Shape::Type GetType() const noexcept { return m_shape->GetType(); }
-    /// The fixture's own shape (a clone of the definition's). Do not change its geometry.
-    b2Shape* GetShape() noexcept { return m_shape.get(); }
+    /// The fixture's own shape (a clone of the definition's), to change: marks the world's
+    /// structure changed (b2World::MarkStructureChanged), so read through a const fixture.
+    /// Do not change its geometry.
+    b2Shape* GetShape() noexcept;
     const b2Shape* GetShape() const noexcept { return m_shape.get(); }
 
     /// Makes this a sensor (or not). Takes effect at the next contact update.
-    void SetSensor(bool sensor) noexcept { m_isSensor = sensor; }
+    void SetSensor(bool sensor) noexcept;
     bool IsSensor() const noexcept { return m_isSensor; }
 
     /// Replaces the filter data. Contacts of this fixture are re-filtered at the start of the
@@ -80,7 +82,7 @@ public:
     const b2Fixture* GetNext() const noexcept { return m_next; }
 
     uint64 GetUserData() const noexcept { return m_userData; }
-    void SetUserData(uint64 data) noexcept { m_userData = data; }
+    void SetUserData(uint64 data) noexcept;
     /// Small integer id (world-wide, stable across snapshot and restore).
     int32 GetId() const noexcept { return m_id; }
 
@@ -92,14 +94,14 @@ public:
     void GetMassData(b2MassData* massData) const;
 
     /// Density, kg/m^2. Call b2Body::ResetMassData afterwards to update the body.
-    void SetDensity(Fixed density) noexcept { m_density = density; }
+    void SetDensity(Fixed density) noexcept;
     Fixed GetDensity() const noexcept { return m_density; }
     Fixed GetFriction() const noexcept { return m_friction; }
     /// Affects contacts created after the call only (as in 2.2.1).
-    void SetFriction(Fixed friction) noexcept { m_friction = friction; }
+    void SetFriction(Fixed friction) noexcept;
     Fixed GetRestitution() const noexcept { return m_restitution; }
     /// Affects contacts created after the call only (as in 2.2.1).
-    void SetRestitution(Fixed restitution) noexcept { m_restitution = restitution; }
+    void SetRestitution(Fixed restitution) noexcept;
 
     /// The fat-free AABB of a child as of the last synchronisation (m).
     const b2AABB& GetAABB(int32 childIndex) const { return m_proxies[static_cast<size_t>(childIndex)].aabb; }

@@ -74,6 +74,8 @@ public:
     int32 GetCapacity() const noexcept { return static_cast<int32>(m_live.size()); }
     /// The free-slot stack, bottom first (the next Create takes the back).
     const std::vector<int32>& GetFreeList() const noexcept { return m_free; }
+    /// One flag per slot id, 1 for live (the layout RestoreLayout takes).
+    const std::vector<uint8>& GetLiveFlags() const noexcept { return m_live; }
 
     /// Snapshot restore: makes the slot layout exactly `live` (one flag per id; its size is the
     /// new capacity) with the free stack `freeList`. Objects in slots that stay live keep their

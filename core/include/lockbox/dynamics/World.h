@@ -28,6 +28,7 @@
 #include "lockbox/dynamics/WorldCallbacks.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/state/Snapshot.h"
+#include "lockbox/state/WorldFrame.h"
 
 namespace lockbox {
 
@@ -37,6 +38,13 @@ struct Image;
 struct ImageDeleter {
     void operator()(Image* image) const noexcept;
 };
+struct FrameCache;
+/// Frees a world's frame cache (defined where FrameCache is complete).
+struct FrameCacheDeleter {
+    void operator()(FrameCache* cache) const noexcept;
+};
+/// A serial no other world of this process has (frames check it): not state.
+uint64 NextWorldSerial() noexcept;
 }  // namespace state_detail
 
 
@@ -138,6 +146,25 @@ public:
     /// ids exist in both keep their address; the others are destroyed or created without
     /// listener calls. The whole image is validated first: on any error nothing changes.
     b2RestoreResult Restore(std::span<const uint8> image);
+    /// Copies what steps and inputs change into a rollback frame of this world (lockbox/state/
+    /// WorldFrame.h); the structure goes in by reference to one portable image per structure
+    /// epoch (made by the first SaveFrame after a structural change). Call outside Step.
+    void SaveFrame(b2WorldFrame& frame) const;
+    /// Puts the world back to a frame this world saved: in place, as Restore, and without the
+    /// image checks (the frame never left the process). When the structure changed since the
+    /// frame (a body, fixture or joint created or destroyed, a fixture or mass setting
+    /// changed), the frame's structure image is restored first, through Restore. Refuses an
+    /// empty frame or another world's (e_foreignFrame) and a call inside Step (e_locked).
+    b2RestoreResult RestoreFrame(const b2WorldFrame& frame);
+    /// Tells the world that its structure changed. Every API call that changes the structure
+    /// calls it; call it yourself after changing a shape through a b2Shape pointer taken
+    /// before the last SaveFrame (b2Fixture::GetShape() marks the change when called, so a
+    /// shape edited right after GetShape() needs nothing more).
+    void MarkStructureChanged() noexcept { m_structureEpoch = ++m_epochSource; }
+    /// The structure epoch: changes with every structural change, never repeats a value this
+    /// world gave before (frames compare it).
+    uint64 GetStructureEpoch() const noexcept { return m_structureEpoch; }
+
     /// Fixed-point saturations counted during this world's Steps (0 in checked builds, which
     /// trap instead). Part of the state hash, so peers see a numeric limit being hit.
     uint64 GetSaturationCount() const noexcept { return m_saturationCount; }
@@ -217,6 +244,13 @@ public:
     uint64 m_saturationCount = 0;  ///< saturations inside this world's Steps (state)
     /// Parsed-image scratch kept between restores, so a rollback restore reuses its buffers.
     std::unique_ptr<state_detail::Image, state_detail::ImageDeleter> m_restoreScratch;
+    /// Rollback frames (not state): this world's serial, its structure epoch and the epoch
+    /// source (never restored, so an epoch value is never reused), and the frames' shared
+    /// structure image and restore scratch.
+    uint64 m_serial = state_detail::NextWorldSerial();
+    uint64 m_structureEpoch = 0;
+    uint64 m_epochSource = 0;
+    mutable std::unique_ptr<state_detail::FrameCache, state_detail::FrameCacheDeleter> m_frameCache;
     b2Profile m_profile;
     bool m_headroomTelemetry = false;  ///< fill m_profile.headroom at the end of each Step
     b2StepObserver* m_stepObserver = nullptr;  ///< step fenceposts (not state)

@@ -46,6 +46,7 @@ enum class b2SnapshotError : uint32 {
     e_corrupt,              ///< well formed but inconsistent (the message names the field)
     e_trailingBytes,        ///< bytes after the last section
     e_locked,               ///< Restore called inside Step
+    e_foreignFrame,         ///< RestoreFrame given an empty frame or another world's
 };
 
 /// Recomputes the checksum of an image after its bytes were edited (tools, tests, fuzzing);

@@ -40,6 +40,10 @@ struct SyncTestConfig {
     int32 stride = 1;
     bool mispredict = false;  ///< re-simulate with wrong inputs first, then roll back again
     uint64 seed = 0x5eedULL;  ///< wrong-input generator seed (mispredict mode)
+    /// Roll back through rollback frames (b2World::SaveFrame/RestoreFrame) instead of portable
+    /// images (Save/Restore). The images are still saved: they give each frame's hash and the
+    /// first run's state for a mismatch report.
+    bool frames = false;
 };
 
 /// What a sync test found.
@@ -76,6 +80,7 @@ private:
     SyncTestGame& m_game;
     SyncTestConfig m_config;
     std::vector<std::vector<uint8>> m_images;  ///< ring of k + 1 world images, by frame
+    std::vector<b2WorldFrame> m_frames;        ///< same ring, in frames mode
     std::vector<std::vector<uint8>> m_user;    ///< the game's state, same ring
     std::vector<uint64> m_hashes;              ///< first-run hash after each frame
     std::vector<uint8> m_scratch;

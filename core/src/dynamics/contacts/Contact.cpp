@@ -61,15 +61,15 @@ void b2Contact::ResetRestitution() {
 void b2Contact::GetWorldManifold(b2WorldManifold* worldManifold) const {
     const b2Body* bodyA = m_fixtureA->GetBody();
     const b2Body* bodyB = m_fixtureB->GetBody();
-    const b2Shape* shapeA = m_fixtureA->GetShape();
-    const b2Shape* shapeB = m_fixtureB->GetShape();
+    const b2Shape* shapeA = m_fixtureA->m_shape.get();
+    const b2Shape* shapeB = m_fixtureB->m_shape.get();
     worldManifold->Initialize(&m_manifold, bodyA->GetTransform(), shapeA->m_radius, bodyB->GetTransform(),
                               shapeB->m_radius);
 }
 
 void b2Contact::Evaluate(b2Manifold* manifold, const b2Transform& xfA, const b2Transform& xfB) {
-    const b2Shape* shapeA = m_fixtureA->GetShape();
-    const b2Shape* shapeB = m_fixtureB->GetShape();
+    const b2Shape* shapeA = m_fixtureA->m_shape.get();
+    const b2Shape* shapeB = m_fixtureB->m_shape.get();
     const b2Shape::Type typeA = shapeA->GetType();
     const b2Shape::Type typeB = shapeB->GetType();
     const bool circleB = typeB == b2Shape::e_circle;
@@ -130,7 +130,7 @@ void b2Contact::Update(b2ContactListener* listener, b2Profile* profile) {
 
     if (profile) ++profile->contactsUpdated;
     if (sensor) {
-        touching = b2TestOverlap(m_fixtureA->GetShape(), m_indexA, m_fixtureB->GetShape(), m_indexB, xfA, xfB);
+        touching = b2TestOverlap(m_fixtureA->m_shape.get(), m_indexA, m_fixtureB->m_shape.get(), m_indexB, xfA, xfB);
         // Sensors don't generate manifolds.
         m_manifold.pointCount = 0;
     } else {

@@ -86,8 +86,8 @@ b2ContactSolver::b2ContactSolver(b2ContactSolverDef* def)
         pc->localNormal = manifold->localNormal;
         pc->localPoint = manifold->localPoint;
         pc->pointCount = pointCount;
-        pc->radiusA = fixtureA->GetShape()->m_radius;
-        pc->radiusB = fixtureB->GetShape()->m_radius;
+        pc->radiusA = fixtureA->m_shape.get()->m_radius;
+        pc->radiusB = fixtureB->m_shape.get()->m_radius;
         pc->type = manifold->type;
 
         for (int32 j = 0; j < pointCount; ++j) {

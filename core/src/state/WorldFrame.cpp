@@ -1,0 +1,365 @@
+// b2World::SaveFrame and RestoreFrame (lockbox/state/WorldFrame.h): a rollback frame holds what
+// steps and inputs change, in native arrays, and shares the rest, the structure, through one
+// portable image per structure epoch. Under an unchanged epoch every structural field of the
+// world equals the frame's, so a restore writes the arrays back and relinks the contacts; when
+// the epoch differs, the structure image goes in first through b2World::Restore.
+//
+// The split mirrors the full restore (SnapshotApply.cpp): what it writes from the body,
+// contact, joint and broad-phase sections is either here or set-up that only a structural
+// call changes, and every structural call marks the epoch (World.h, MarkStructureChanged).
+// Checked builds prove it on every restore: the world hash after RestoreFrame must equal the
+// hash taken at SaveFrame.
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+
+#include "ByteCursor.h"
+#include "ByteStreams.h"
+#include "JointState.h"
+#include "ListWalk.h"
+#include "StateWalk.h"
+#include "lockbox/state/WorldFrame.h"
+#include "lockbox/state/WorldHash.h"
+
+namespace lockbox {
+
+namespace state_detail {
+
+/// Per world: the structure image of the current epoch, and restore scratch.
+struct FrameCache {
+    std::shared_ptr<const std::vector<uint8>> structure;
+    uint64 structureEpoch = 0;
+    /// By fixture id, for the contacts: valid for `slotsEpoch` only.
+    struct FixtureSlot {
+        b2Fixture* fixture = nullptr;
+        b2Body* body = nullptr;
+        int32 bodyId = -1;
+    };
+    std::vector<FixtureSlot> slots;
+    bool slotsValid = false;
+    uint64 slotsEpoch = 0;
+    std::vector<int32> recordOf;             ///< contact id -> record, for contacts made anew
+    std::vector<b2ContactEdge*> edgeTails;   ///< last contact edge of each body (by id)
+};
+
+void FrameCacheDeleter::operator()(FrameCache* cache) const noexcept { delete cache; }
+
+uint64 NextWorldSerial() noexcept {
+    static std::atomic<uint64> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+}
+
+}  // namespace state_detail
+
+using namespace state_detail;
+using namespace frame_detail;
+
+b2FrameStats b2WorldFrame::Stats() const noexcept {
+    b2FrameStats s;
+    auto bytes = [](const auto& v) { return static_cast<uint32>(v.size() * sizeof(v[0])); };
+    s.bodyBytes = bytes(m_bodies);
+    s.forceBytes = bytes(m_forces);
+    s.proxyBytes = bytes(m_proxies);
+    s.contactBytes = bytes(m_contacts) + bytes(m_points) + bytes(m_contactLive) + bytes(m_contactFree);
+    s.jointBytes = bytes(m_joints);
+    s.broadPhaseBytes = bytes(m_nodes) + bytes(m_moveBuffer);
+    s.frameBytes = static_cast<uint32>(sizeof(b2WorldFrame)) + s.bodyBytes + s.forceBytes + s.proxyBytes +
+                   s.contactBytes + s.jointBytes + s.broadPhaseBytes;
+    s.structureBytes = m_structure ? static_cast<uint32>(m_structure->size()) : 0;
+    return s;
+}
+
+namespace {
+
+void SaveSettings(const b2World& world, Settings& s) {
+    s.gravity = world.m_gravity;
+    s.allowSleep = world.m_allowSleep;
+    s.warmStarting = world.m_warmStarting;
+    s.continuous = world.m_continuousPhysics;
+    s.subStepping = world.m_subStepping;
+    s.autoClear = world.m_autoClearForces;
+    s.stepComplete = world.m_stepComplete;
+    s.bounds = world.m_bounds;
+    s.flags = world.m_flags;
+    s.invDt0 = world.m_inv_dt0;
+    s.saturations = world.m_saturationCount;
+}
+
+void RestoreSettings(const Settings& s, b2World& world) {
+    world.m_gravity = s.gravity;
+    world.m_allowSleep = s.allowSleep;
+    world.m_warmStarting = s.warmStarting;
+    world.m_continuousPhysics = s.continuous;
+    world.m_subStepping = s.subStepping;
+    world.m_autoClearForces = s.autoClear;
+    world.m_stepComplete = s.stepComplete;
+    world.m_bounds = s.bounds;
+    world.m_flags = s.flags;
+    world.m_inv_dt0 = s.invDt0;
+    world.m_saturationCount = s.saturations;
+}
+
+/// Links a contact edge at the tail of a body's list, given the list's current tail.
+void AppendEdge(b2ContactEdge* edge, b2Body* body, b2ContactEdge*& tail) {
+    edge->prev = tail;
+    edge->next = nullptr;
+    if (tail != nullptr) tail->next = edge;
+    else body->m_contactList = edge;
+    tail = edge;
+}
+
+}  // namespace
+
+/// The frame's arrays, filled from the world and written back (a friend of b2WorldFrame).
+struct FrameAccess {
+    static void Save(const b2World& world, b2WorldFrame& f) {
+        SaveSettings(world, f.m_settings);
+
+        // Bodies, their pending forces and their proxies' boxes, in one walk of the body list.
+        f.m_bodies.resize(static_cast<size_t>(world.m_bodyCount));
+        f.m_forces.clear();
+        f.m_proxies.clear();
+        size_t i = 0;
+        for (const b2Body* b = world.m_bodyList; b != nullptr; b = b->m_next, ++i) {
+            if (b->m_next != nullptr) PrefetchObject(b->m_next);
+            BodyMotion& m = f.m_bodies[i];
+            m.xf = b->m_xf;
+            m.c0 = b->m_sweep.c0;
+            m.c = b->m_sweep.c;
+            m.a0 = b->m_sweep.a0;
+            m.a = b->m_sweep.a;
+            m.alpha0 = b->m_sweep.alpha0;
+            m.v = b->m_linearVelocity;
+            m.w = b->m_angularVelocity;
+            m.sleepSteps = b->m_sleepSteps;
+            m.flags = b->m_flags;
+            if (b->m_force.x != Fixed() || b->m_force.y != Fixed() || b->m_torque != Fixed()) {
+                f.m_forces.push_back({static_cast<int32>(i), b->m_force, b->m_torque});
+            }
+            for (const b2Fixture* fx = b->m_fixtureList; fx != nullptr; fx = fx->m_next) {
+                for (int32 k = 0; k < fx->m_proxyCount; ++k) f.m_proxies.push_back(fx->m_proxies[static_cast<size_t>(k)].aabb);
+            }
+            if (b->m_next != nullptr && b->m_next->m_fixtureList != nullptr) PrefetchObject(b->m_next->m_fixtureList);
+        }
+
+        // Contacts: the pool's layout, then each contact in list order.
+        const b2ContactManager& cm = world.m_contactManager;
+        f.m_contactLive = cm.GetPool().GetLiveFlags();
+        f.m_contactFree = cm.GetPool().GetFreeList();
+        f.m_contacts.resize(static_cast<size_t>(cm.m_contactCount));
+        f.m_points.clear();
+        i = 0;
+        for (const b2Contact* c = cm.m_contactList; c != nullptr; c = c->m_next, ++i) {
+            if (c->m_next != nullptr) PrefetchObject(c->m_next);
+            ContactRecord& r = f.m_contacts[i];
+            r.id = c->m_id;
+            r.fixtureA = c->m_fixtureIdA;
+            r.indexA = c->m_indexA;
+            r.fixtureB = c->m_fixtureIdB;
+            r.indexB = c->m_indexB;
+            r.flags = c->m_flags;
+            r.toiCount = c->m_toiCount;
+            r.toi = c->m_toi;
+            r.friction = c->m_friction;
+            r.restitution = c->m_restitution;
+            const b2Manifold& m = c->m_manifold;
+            r.manifoldType = static_cast<uint8>(m.type);
+            r.pointCount = static_cast<uint8>(m.pointCount);
+            r.localNormal = m.localNormal;
+            r.localPoint = m.localPoint;
+            for (int32 p = 0; p < m.pointCount; ++p) f.m_points.push_back(m.points[p]);
+        }
+
+        // Joints: user data, then the fields the full snapshot writes (VisitState, reaction).
+        {
+            FieldWriter w(f.m_joints, 0);
+            for (const b2Joint* j = world.m_jointList; j != nullptr; j = j->m_next) {
+                auto c = w.Begin(8 + 2 * kJointRecordMaxBytes);
+                c.U64(j->m_userData);
+                JointFieldWriter<decltype(c)> visitor{c};
+                VisitJointState(const_cast<b2Joint&>(*j), visitor);
+                VisitJointReaction(const_cast<b2Joint&>(*j), visitor);
+                w.End(c);
+            }
+            w.Finish();
+        }
+
+        // Broad-phase: tree, proxy count and move buffer.
+        const b2BroadPhase& bp = cm.m_broadPhase;
+        const b2DynamicTree& tree = bp.GetTree();
+        f.m_nodes = tree.GetNodes();
+        f.m_treeRoot = tree.GetRoot();
+        f.m_treeFree = tree.GetFreeList();
+        f.m_treeNodeCount = tree.GetNodeCount();
+        f.m_treeInsertions = tree.GetInsertionCount();
+        f.m_proxyCount = bp.GetProxyCount();
+        f.m_moveBuffer = bp.GetMoveBuffer();
+    }
+
+    /// Writes the frame's arrays into a world whose structure is the frame's (same epoch).
+    static void Apply(const b2WorldFrame& f, b2World& world, FrameCache& cache) {
+        RestoreSettings(f.m_settings, world);
+
+        // Bodies, forces and proxy boxes; every contact list is rebuilt below.
+        size_t i = 0, force = 0, proxy = 0;
+        for (b2Body* b = world.m_bodyList; b != nullptr; b = b->m_next, ++i) {
+            if (b->m_next != nullptr) PrefetchObject(b->m_next);
+            const BodyMotion& m = f.m_bodies[i];
+            b->m_xf = m.xf;
+            b->m_sweep.c0 = m.c0;
+            b->m_sweep.c = m.c;
+            b->m_sweep.a0 = m.a0;
+            b->m_sweep.a = m.a;
+            b->m_sweep.alpha0 = m.alpha0;
+            b->m_linearVelocity = m.v;
+            b->m_angularVelocity = m.w;
+            b->m_sleepSteps = m.sleepSteps;
+            b->m_flags = static_cast<uint16>(m.flags);
+            b->m_islandIndex = 0;
+            b->m_contactList = nullptr;
+            if (force < f.m_forces.size() && f.m_forces[force].body == static_cast<int32>(i)) {
+                b->m_force = f.m_forces[force].force;
+                b->m_torque = f.m_forces[force].torque;
+                ++force;
+            } else {
+                b->m_force.SetZero();
+                b->m_torque = Fixed();
+            }
+            for (b2Fixture* fx = b->m_fixtureList; fx != nullptr; fx = fx->m_next) {
+                for (int32 k = 0; k < fx->m_proxyCount; ++k) fx->m_proxies[static_cast<size_t>(k)].aabb = f.m_proxies[proxy++];
+            }
+            if (b->m_next != nullptr && b->m_next->m_fixtureList != nullptr) PrefetchObject(b->m_next->m_fixtureList);
+        }
+
+        // The fixtures by id, once per structure epoch (their addresses hold while it lasts).
+        if (!cache.slotsValid || cache.slotsEpoch != world.m_structureEpoch) {
+            cache.slots.assign(static_cast<size_t>(world.m_fixtures.GetCapacity()), FrameCache::FixtureSlot{});
+            for (b2Body* b = world.m_bodyList; b != nullptr; b = b->m_next) {
+                for (b2Fixture* fx = b->m_fixtureList; fx != nullptr; fx = fx->m_next) {
+                    cache.slots[static_cast<size_t>(fx->m_id)] = {fx, b, b->m_id};
+                }
+            }
+            cache.slotsValid = true;
+            cache.slotsEpoch = world.m_structureEpoch;
+        }
+
+        // Contacts: the pool's layout (a slot live only in the frame gets a contact built from
+        // its record), then every contact's fields, list links and edges in list order.
+        b2ContactManager& cm = world.m_contactManager;
+        const size_t count = f.m_contacts.size();
+        cache.recordOf.resize(f.m_contactLive.size());
+        for (size_t k = 0; k < count; ++k) cache.recordOf[static_cast<size_t>(f.m_contacts[k].id)] = static_cast<int32>(k);
+        cm.RestoreContactLayout(f.m_contactLive, f.m_contactFree, [&](void* slot, int32 id) {
+            const ContactRecord& r = f.m_contacts[static_cast<size_t>(cache.recordOf[static_cast<size_t>(id)])];
+            ::new (slot) b2Contact(cache.slots[static_cast<size_t>(r.fixtureA)].fixture, r.indexA,
+                                   cache.slots[static_cast<size_t>(r.fixtureB)].fixture, r.indexB, id);
+        });
+        cache.edgeTails.assign(static_cast<size_t>(world.m_bodies.GetCapacity()), nullptr);
+        b2Contact* previous = nullptr;
+        cm.m_contactList = nullptr;
+        size_t point = 0;
+        for (size_t k = 0; k < count; ++k) {
+            if (k + 6 < count) PrefetchBytes(cm.GetContact(f.m_contacts[k + 6].id), sizeof(b2Contact));
+            const ContactRecord& r = f.m_contacts[k];
+            b2Contact* c = cm.GetContact(r.id);
+            const FrameCache::FixtureSlot& a = cache.slots[static_cast<size_t>(r.fixtureA)];
+            const FrameCache::FixtureSlot& b = cache.slots[static_cast<size_t>(r.fixtureB)];
+            c->m_fixtureA = a.fixture;
+            c->m_fixtureB = b.fixture;
+            c->m_fixtureIdA = r.fixtureA;
+            c->m_fixtureIdB = r.fixtureB;
+            c->m_indexA = r.indexA;
+            c->m_indexB = r.indexB;
+            c->m_flags = r.flags;
+            c->m_toiCount = r.toiCount;
+            c->m_toi = r.toi;
+            c->m_friction = r.friction;
+            c->m_restitution = r.restitution;
+            b2Manifold& m = c->m_manifold;
+            m.type = static_cast<b2Manifold::Type>(r.manifoldType);
+            m.pointCount = r.pointCount;
+            m.localNormal = r.localNormal;
+            m.localPoint = r.localPoint;
+            for (int32 p = 0; p < m.pointCount; ++p) m.points[p] = f.m_points[point++];
+            c->m_nodeA = b2ContactEdge{b.body, c, nullptr, nullptr};
+            c->m_nodeB = b2ContactEdge{a.body, c, nullptr, nullptr};
+            c->m_prev = previous;
+            c->m_next = nullptr;
+            if (previous != nullptr) previous->m_next = c;
+            else cm.m_contactList = c;
+            previous = c;
+            // Each body's contact edges are in world-list order (StateWalk.h).
+            AppendEdge(&c->m_nodeA, a.body, cache.edgeTails[static_cast<size_t>(a.bodyId)]);
+            AppendEdge(&c->m_nodeB, b.body, cache.edgeTails[static_cast<size_t>(b.bodyId)]);
+        }
+        cm.m_contactCount = static_cast<int32>(count);
+
+        // Joints: the same list (same epoch); user data, VisitState and reaction fields.
+        ReadCursor r(f.m_joints.data());
+        for (b2Joint* j = world.m_jointList; j != nullptr; j = j->m_next) {
+            j->m_userData = r.U64();
+            JointStateReader reader{r, world};
+            VisitJointState(*j, reader);
+            VisitJointReaction(*j, reader);
+            r = reader.r;
+        }
+
+        b2BroadPhase& bp = cm.m_broadPhase;
+        bp.GetTreeForRestore().RestoreState(f.m_nodes, f.m_treeRoot, f.m_treeFree, f.m_treeNodeCount, f.m_treeInsertions);
+        bp.RestoreState(f.m_proxyCount, f.m_moveBuffer);
+    }
+
+    static uint64 CheckHash(const b2WorldFrame& f) { return f.m_checkHash; }
+};
+
+void b2World::SaveFrame(b2WorldFrame& frame) const {
+    if (!m_frameCache) m_frameCache.reset(new FrameCache());
+    FrameCache& cache = *m_frameCache;
+    if (!cache.structure || cache.structureEpoch != m_structureEpoch) {
+        auto image = std::make_shared<std::vector<uint8>>();
+        Save(*image);
+        cache.structure = std::move(image);
+        cache.structureEpoch = m_structureEpoch;
+    }
+    frame.m_serial = m_serial;
+    frame.m_epoch = m_structureEpoch;
+    frame.m_structure = cache.structure;
+    FrameAccess::Save(*this, frame);
+#ifdef LOCKBOX_CHECKED
+    frame.m_checkHash = b2WorldHash(*this);
+#endif
+}
+
+b2RestoreResult b2World::RestoreFrame(const b2WorldFrame& frame) {
+    if (IsLocked()) {
+        CheckLocked("b2World::RestoreFrame called inside a Step callback (the world is locked)");
+        return {b2SnapshotError::e_locked, "the world is locked (inside Step)"};
+    }
+    if (frame.IsEmpty()) return {b2SnapshotError::e_foreignFrame, "the frame is empty (never saved into)"};
+    if (frame.m_serial != m_serial) return {b2SnapshotError::e_foreignFrame, "the frame was saved by another world"};
+    if (!m_frameCache) m_frameCache.reset(new FrameCache());
+    FrameCache& cache = *m_frameCache;
+    if (frame.m_epoch != m_structureEpoch) {
+        // The structure changed since the frame: its epoch's image first (it only ever holds
+        // this world's own Save, so the checks pass; a failure is reported, the world intact).
+        b2RestoreResult result = Restore(*frame.m_structure);
+        if (!result.ok()) return result;
+        m_structureEpoch = frame.m_epoch;
+        cache.structure = frame.m_structure;
+        cache.structureEpoch = frame.m_epoch;
+        cache.slotsValid = false;  // fixtures may sit at other addresses than in that epoch
+    }
+    FrameAccess::Apply(frame, *this, cache);
+#ifdef LOCKBOX_CHECKED
+    if (b2WorldHash(*this) != FrameAccess::CheckHash(frame)) {
+        std::fprintf(stderr,
+                     "lockbox: RestoreFrame did not give the saved state: a structural change did not call "
+                     "b2World::MarkStructureChanged\n");
+        std::abort();
+    }
+#endif
+    return {};
+}
+
+}  // namespace lockbox

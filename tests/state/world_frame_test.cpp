@@ -1,0 +1,246 @@
+// Rollback frames (b2World::SaveFrame / RestoreFrame): every structural call moves the epoch
+// (and motion does not), a restore gives back the saved state and its future across structural
+// changes, pool shrinking and full restores in between, and bad frames are refused with the
+// world untouched.
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "StateTestUtil.h"
+
+namespace lockbox {
+namespace {
+
+using testing_state::SceneRun;
+
+static_assert(sizeof(frame_detail::BodyMotion) == 64, "a body's motion in a frame is 64 bytes");
+
+/// Hash after each of `frames` further frames of a run.
+std::vector<uint64> Future(SceneRun& run, int frames) {
+    std::vector<uint64> out;
+    for (int i = 0; i < frames; ++i) {
+        run.Advance();
+        out.push_back(run.world().Hash());
+    }
+    return out;
+}
+
+b2Body* AddBox(b2World& world, b2Vec2 at) {
+    b2BodyDef bd;
+    bd.type = b2_dynamicBody;
+    bd.position = at;
+    b2Body* body = world.CreateBody(&bd);
+    b2PolygonShape box;
+    box.SetAsBox(Fixed(1) / 4, Fixed(1) / 4);
+    body->CreateFixture(&box, 1);
+    return body;
+}
+
+b2Body* FirstDynamic(b2World& world) {
+    for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
+        if (b->GetType() == b2_dynamicBody) return b;
+    }
+    return nullptr;
+}
+
+TEST(WorldFrame, EveryStructuralCallMovesTheEpoch) {
+    SceneRun run{"ragdolls"};
+    run.Advance(5);
+    b2World& w = run.world();
+    b2Body* body = FirstDynamic(w);
+    ASSERT_NE(body, nullptr);
+    b2Fixture* fixture = body->GetFixtureList();
+    const std::vector<std::pair<const char*, std::function<void()>>> structural = {
+        {"CreateBody", [&] { AddBox(w, b2Vec2(3, 30)); }},
+        {"CreateFixture", [&] {
+             b2CircleShape c;
+             c.m_radius = Fixed(1) / 8;
+             body->CreateFixture(&c, 1);
+         }},
+        {"DestroyFixture", [&] { body->DestroyFixture(body->GetFixtureList()); }},
+        {"ResetMassData", [&] { body->ResetMassData(); }},
+        {"SetMassData", [&] {
+             b2MassData md;
+             body->GetMassData(&md);
+             body->SetMassData(&md);
+         }},
+        {"SetLinearDamping", [&] { body->SetLinearDamping(Fixed(1) / 10); }},
+        {"SetAngularDamping", [&] { body->SetAngularDamping(Fixed(1) / 10); }},
+        {"SetGravityScale", [&] { body->SetGravityScale(Fixed(1) / 2); }},
+        {"Body::SetUserData", [&] { body->SetUserData(7); }},
+        {"SetFixedRotation", [&] { body->SetFixedRotation(true); }},
+        {"SetType", [&] { body->SetType(b2_kinematicBody); }},
+        {"SetActive", [&] { body->SetActive(false); }},
+        {"SetSensor", [&] { fixture->SetSensor(true); }},
+        {"SetFilterData", [&] { fixture->SetFilterData(b2Filter{}); }},
+        {"Fixture::SetUserData", [&] { fixture->SetUserData(9); }},
+        {"SetDensity", [&] { fixture->SetDensity(2); }},
+        {"SetFriction", [&] { fixture->SetFriction(Fixed(1) / 2); }},
+        {"SetRestitution", [&] { fixture->SetRestitution(Fixed(1) / 2); }},
+        {"GetShape (mutable)", [&] { (void)fixture->GetShape(); }},
+        {"CreateJoint", [&] {
+             b2DistanceJointDef jd;
+             b2Body* other = AddBox(w, b2Vec2(-3, 30));
+             jd.Initialize(other, FirstDynamic(w), other->GetPosition(), FirstDynamic(w)->GetPosition());
+             w.CreateJoint(&jd);
+         }},
+        {"DestroyJoint", [&] { w.DestroyJoint(w.GetJointList()); }},
+        {"DestroyBody", [&] { w.DestroyBody(w.GetBodyList()); }},
+        {"Restore", [&] { ASSERT_TRUE(w.Restore(w.Save()).ok()); }},
+        {"MarkStructureChanged", [&] { w.MarkStructureChanged(); }},
+    };
+    std::vector<uint64> seen{w.GetStructureEpoch()};
+    for (const auto& [name, call] : structural) {
+        const uint64 before = w.GetStructureEpoch();
+        call();
+        EXPECT_NE(w.GetStructureEpoch(), before) << name;
+        // Never a value the world gave before: frames of an old epoch stay told apart.
+        for (uint64 old : seen) EXPECT_NE(w.GetStructureEpoch(), old) << name;
+        seen.push_back(w.GetStructureEpoch());
+    }
+}
+
+TEST(WorldFrame, MotionAndStepsKeepTheEpoch) {
+    SceneRun run{"ragdolls"};
+    run.Advance(5);
+    b2World& w = run.world();
+    b2Body* body = FirstDynamic(w);
+    const uint64 epoch = w.GetStructureEpoch();
+    body->SetLinearVelocity(b2Vec2(1, 2));
+    body->SetAngularVelocity(3);
+    body->ApplyForceToCenter(b2Vec2(5, 0));
+    body->ApplyLinearImpulse(b2Vec2(0, 1), body->GetWorldCenter());
+    body->SetTransform(b2Vec2(1, 10), Fixed(1) / 2);
+    body->SetAwake(true);
+    body->SetBullet(true);
+    body->SetSleepingAllowed(true);
+    w.SetGravity(b2Vec2(0, -5));
+    (void)static_cast<const b2Fixture*>(body->GetFixtureList())->GetShape();
+    run.Advance(30);
+    EXPECT_EQ(w.GetStructureEpoch(), epoch) << "a step or a motion input marked the structure changed";
+}
+
+TEST(WorldFrame, RestoreGivesTheSavedStateAndItsFuture) {
+    for (const char* name : {"pyramid20", "ragdolls", "car", "pulley_gear", "rain"}) {
+        SceneRun run{name};
+        run.Advance(40);
+        b2WorldFrame frame;
+        run.world().SaveFrame(frame);
+        const uint64 saved = run.world().Hash();
+        const uint32 bodies = static_cast<uint32>(run.world().GetBodyCount());
+        const int savedStep = run.step;
+        const std::vector<uint64> future = Future(run, 20);
+        ASSERT_TRUE(run.world().RestoreFrame(frame).ok()) << name;
+        EXPECT_EQ(run.world().Hash(), saved) << name;
+        run.step = savedStep;
+        EXPECT_EQ(Future(run, 20), future) << name;
+        const b2FrameStats stats = frame.Stats();
+        EXPECT_EQ(stats.bodyBytes, 64u * bodies) << name;
+        EXPECT_GT(stats.structureBytes, 0u) << name;
+    }
+}
+
+TEST(WorldFrame, RestoreUndoesStructuralChanges) {
+    SceneRun run{"ragdolls"};
+    run.Advance(20);
+    b2World& w = run.world();
+    b2WorldFrame frame;
+    w.SaveFrame(frame);
+    const uint64 saved = w.Hash();
+    const int savedStep = run.step;
+    const std::vector<uint64> future = Future(run, 15);
+    // A branch that changes every kind of structure, with steps in between.
+    for (int i = 0; i < 6; ++i) AddBox(w, b2Vec2(i, 20));
+    run.Advance(3);
+    b2Body* body = FirstDynamic(w);
+    body->GetFixtureList()->SetDensity(5);
+    body->ResetMassData();
+    w.GetBodyList()->GetFixtureList()->GetShape()->m_radius = Fixed(1) / 8;
+    body->GetFixtureList()->SetFilterData(b2Filter{0x0002, 0xFFFD, 0});
+    w.GetBodyList()->GetNext()->SetActive(false);
+    b2DistanceJointDef jd;
+    jd.Initialize(w.GetBodyList(), body, w.GetBodyList()->GetPosition(), body->GetPosition());
+    w.CreateJoint(&jd);
+    run.Advance(3);
+    w.DestroyBody(body);
+    w.DestroyJoint(w.GetJointList());
+    run.Advance(3);
+    ASSERT_TRUE(w.RestoreFrame(frame).ok());
+    EXPECT_EQ(w.Hash(), saved);
+    EXPECT_TRUE(testing_state::EdgesFollowWorldLists(w));
+    run.step = savedStep;
+    EXPECT_EQ(Future(run, 15), future);
+}
+
+TEST(WorldFrame, FramesOfOtherEpochsAndShrunkPoolsRestore) {
+    // Frame A early (few contacts, a small contact pool), frame B later (many). Restoring A
+    // shrinks the pools; B then regrows them at new addresses, and a full Restore in between
+    // moves the epoch: each frame still gives back its state and future.
+    SceneRun run{"pyramid20"};
+    b2World& w = run.world();
+    b2WorldFrame a, b;
+    w.SaveFrame(a);
+    const uint64 hashA = w.Hash();
+    run.Advance(60);
+    w.SaveFrame(b);
+    const uint64 hashB = w.Hash();
+    const int stepB = run.step;
+    const std::vector<uint64> futureB = Future(run, 10);
+    const std::vector<uint8> image = w.Save();
+    ASSERT_TRUE(w.RestoreFrame(a).ok());
+    EXPECT_EQ(w.Hash(), hashA);
+    ASSERT_TRUE(w.RestoreFrame(b).ok());
+    EXPECT_EQ(w.Hash(), hashB);
+    ASSERT_TRUE(w.Restore(image).ok());
+    ASSERT_TRUE(w.RestoreFrame(a).ok());
+    EXPECT_EQ(w.Hash(), hashA);
+    ASSERT_TRUE(w.RestoreFrame(b).ok());
+    run.step = stepB;
+    EXPECT_EQ(Future(run, 10), futureB);
+}
+
+TEST(WorldFrame, EmptyAndForeignFramesAreRefused) {
+    SceneRun run{"ragdolls"};
+    SceneRun other{"ragdolls"};
+    run.Advance(10);
+    other.Advance(10);
+    const uint64 before = run.world().Hash();
+    b2WorldFrame empty;
+    EXPECT_TRUE(empty.IsEmpty());
+    b2RestoreResult r = run.world().RestoreFrame(empty);
+    EXPECT_EQ(r.error, b2SnapshotError::e_foreignFrame);
+    EXPECT_NE(r.message.find("empty"), std::string::npos) << r.message;
+    b2WorldFrame foreign;
+    other.world().SaveFrame(foreign);
+    r = run.world().RestoreFrame(foreign);
+    EXPECT_EQ(r.error, b2SnapshotError::e_foreignFrame);
+    EXPECT_NE(r.message.find("another world"), std::string::npos) << r.message;
+    EXPECT_STREQ(b2SnapshotErrorName(r.error), "foreign frame");
+    EXPECT_EQ(run.world().Hash(), before);
+}
+
+struct RestoreFrameInsideStep : b2ContactListener {
+    b2World* world = nullptr;
+    b2WorldFrame frame;
+    b2SnapshotError seen = b2SnapshotError::e_ok;
+    void BeginContact(b2Contact*) override { seen = world->RestoreFrame(frame).error; }
+};
+
+TEST(WorldFrame, RestoreInsideStepIsRefused) {
+    const b2AssertHandler previous = b2SetAssertHandler([](const char*, const char*, const char*, int) {});
+    SceneRun run{"hello"};
+    RestoreFrameInsideStep listener;
+    listener.world = &run.world();
+    run.world().SaveFrame(listener.frame);
+    run.world().SetContactListener(&listener);
+    for (int i = 0; i < 120 && listener.seen == b2SnapshotError::e_ok; ++i) run.Advance();
+    EXPECT_EQ(listener.seen, b2SnapshotError::e_locked);
+    b2SetAssertHandler(previous);
+}
+
+}  // namespace
+}  // namespace lockbox
