@@ -26,7 +26,11 @@
 // with the host's interruptions left out (a pass lasts seconds, longer than a slow spell).
 // Both are reported against the bar.
 //
-// Usage: lockbox_rollback_bench [--reps N] [--depth D] [--passes P] [--out FILE] [--only SCENE]
+// --frames keeps rollback frames (b2World::SaveFrame/RestoreFrame, what WorldGameAdapter keeps)
+// instead of portable images (Save/Restore).
+//
+// Usage: lockbox_rollback_bench [--reps N] [--depth D] [--passes P] [--frames] [--out FILE]
+//                               [--only SCENE]
 
 #include <algorithm>
 #include <chrono>
@@ -133,6 +137,25 @@ void MeasureFloat(Case& c, int reps, int depth, Row& row) {
     row.floatP99 = Percentile(cpu, 99);
 }
 
+/// The saved states of a rollback ring: portable images or rollback frames.
+struct ImageRing {
+    std::vector<std::vector<uint8>> slots;
+    explicit ImageRing(size_t n) : slots(n) {
+        for (auto& image : slots) image.reserve(1 << 20);
+    }
+    void Save(const lockbox::b2World& w, size_t i) { w.Save(slots[i]); }
+    bool Restore(lockbox::b2World& w, size_t i) { return w.Restore(slots[i]).ok(); }
+    size_t Bytes(size_t i) const { return slots[i].size(); }
+};
+struct FrameRing {
+    std::vector<lockbox::b2WorldFrame> slots;
+    explicit FrameRing(size_t n) : slots(n) {}
+    void Save(const lockbox::b2World& w, size_t i) { w.SaveFrame(slots[i]); }
+    bool Restore(lockbox::b2World& w, size_t i) { return w.RestoreFrame(slots[i]).ok(); }
+    size_t Bytes(size_t i) const { return slots[i].Stats().frameBytes; }
+};
+
+template <class Ring>
 Row Measure(Case& c, int reps, int depth, int passes) {
     RunningScene<scenes::LockboxEngine> run(*c.scene, c);
     lockbox::b2World& world = run.engine.world();
@@ -140,9 +163,8 @@ Row Measure(Case& c, int reps, int depth, int passes) {
 
     // A ring of depth + 1 images as a session keeps; the bench rolls back to the oldest one
     // each rep, then keeps moving forward one frame so the scene evolves between reps.
-    std::vector<std::vector<uint8>> ring(static_cast<size_t>(depth) + 1);
-    for (auto& image : ring) image.reserve(1 << 20);
-    world.Save(ring[0]);
+    Ring ring(static_cast<size_t>(depth) + 1);
+    ring.Save(world, 0);
 
     std::vector<int64_t> cpu, wall, restoreNs, stepNs, saveNs;
     std::vector<int64_t> quiet(static_cast<size_t>(reps), 0);
@@ -152,24 +174,24 @@ Row Measure(Case& c, int reps, int depth, int passes) {
     row.bodies = world.GetBodyCount();
     row.contacts = world.GetContactCount();
     // Every pass replays the same reps from the same state; pass 0 gives the raw figures.
-    const std::vector<uint8> firstImage = ring[0];
+    const auto firstImage = ring.slots[0];
     const int firstFrame = frame;
     for (int pass = 0; pass < passes; ++pass) {
-        ring[0] = firstImage;
+        ring.slots[0] = firstImage;
         frame = firstFrame;
         for (int r = 0; r < reps; ++r) {
             const auto ri = static_cast<size_t>(r);
             const int startFrame = frame;
             const int64_t c0 = ThreadNs();
             const int64_t w0 = WallNs();
-            if (!world.Restore(ring[0]).ok()) std::abort();
+            if (!ring.Restore(world, 0)) std::abort();
             const int64_t c1 = ThreadNs();
             int64_t stepSum = 0, saveSum = 0;
             for (int k = 0; k < depth; ++k) {
                 const int64_t s0 = ThreadNs();
                 run.Advance();
                 const int64_t s1 = ThreadNs();
-                world.Save(ring[static_cast<size_t>(k) + 1]);
+                ring.Save(world, static_cast<size_t>(k) + 1);
                 saveSum += ThreadNs() - s1;
                 stepSum += s1 - s0;
             }
@@ -191,7 +213,7 @@ Row Measure(Case& c, int reps, int depth, int passes) {
             }
             if (c.moveOn) {
                 // Next rep starts one frame further: the image after the first re-simulated frame.
-                std::swap(ring[0], ring[1]);
+                std::swap(ring.slots[0], ring.slots[1]);
                 frame = startFrame + 1;
             } else {
                 frame = startFrame;
@@ -199,7 +221,7 @@ Row Measure(Case& c, int reps, int depth, int passes) {
         }
     }
     row.bodiesEnd = world.GetBodyCount();
-    row.imageBytes = ring[0].size();
+    row.imageBytes = ring.Bytes(0);
     row.cpuP50 = Percentile(cpu, 50);
     row.cpuP99 = Percentile(cpu, 99);
     row.cpuMax = Percentile(cpu, 100);
@@ -218,6 +240,7 @@ int main(int argc, char** argv) {
     int reps = 300;
     int depth = 8;
     int passes = 3;
+    bool frames = false;
     std::string only;
     std::string out;  // no CSV unless asked: the committed tables are not overwritten by accident
     for (int i = 1; i < argc; ++i) {
@@ -226,9 +249,11 @@ int main(int argc, char** argv) {
         else if (std::strcmp(argv[i], "--passes") == 0 && i + 1 < argc) passes = std::atoi(argv[++i]);
         else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) out = argv[++i];
         else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
+        else if (std::strcmp(argv[i], "--frames") == 0) frames = true;
         else {
             std::fprintf(stderr,
-                         "usage: lockbox_rollback_bench [--reps N] [--depth D] [--passes P] [--out FILE] [--only SCENE]\n");
+                         "usage: lockbox_rollback_bench [--reps N] [--depth D] [--passes P] [--frames] [--out FILE] "
+                         "[--only SCENE]\n");
             return 2;
         }
     }
@@ -257,14 +282,14 @@ int main(int argc, char** argv) {
                      "wall_p50_ms,wall_p99_ms,restore_p50_ms,step_p50_ms,save_p50_ms,budget_ms,within_budget,"
                      "float_bodies,float_steps_p50_ms,float_steps_p99_ms,passes,cpu_quiet_p99_ms,within_budget_quiet\n");
     }
-    std::printf("rollback of depth %d = restore + %d steps + %d saves, %d reps, %d passes\n", depth, depth, depth, reps,
-                passes);
+    std::printf("rollback of depth %d = restore + %d steps + %d saves, %d reps, %d passes, %s\n", depth, depth, depth,
+                reps, passes, frames ? "rollback frames" : "portable images");
     std::printf("%-18s %6s %6s %9s %9s %9s %9s %9s %9s %9s %9s %6s %9s %6s %9s %9s\n", "scene", "bodies", "contct",
                 "cpu p50", "cpu p99", "cpu max", "wall p50", "wall p99", "restore", "step", "save", "<=8ms", "quiet p99",
                 "<=8ms", "f32 p50", "f32 p99");
     for (Case& c : cases) {
         if (!only.empty() && only != c.name) continue;
-        Row r = Measure(c, reps, depth, passes);
+        Row r = frames ? Measure<FrameRing>(c, reps, depth, passes) : Measure<ImageRing>(c, reps, depth, passes);
         MeasureFloat(c, reps, depth, r);
         const bool within = r.cpuP99 <= 8.0;
         const bool quietWithin = r.quietP99 <= 8.0;

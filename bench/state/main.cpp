@@ -52,6 +52,12 @@ struct Row {
     int bodies = 0, awake = 0, contacts = 0, joints = 0;
     double stepMs = 0, hashMs = 0, imageHashMs = 0, saveMs = 0, restoreMs = 0;
     b2SnapshotStats stats;
+    // Rollback frames, from their own interleaved pass (a full Restore moves the structure
+    // epoch, so the two kinds cannot share one loop): medians, the step of that pass, and the
+    // mean save (which carries the structure image of frames after a structural change).
+    double frameSaveMs = 0, frameRestoreMs = 0, frameStepMs = 0, frameSaveMeanMs = 0;
+    int frameBodies = 0;  ///< at the end of the frame pass
+    b2FrameStats frameStats;
 };
 
 /// --profile N: after warmup, N rounds of save, hash, cold-cache hash and restore with no
@@ -124,6 +130,25 @@ Row Measure(const Case& c, int reps) {
     row.contacts = world.GetContactCount();
     row.joints = world.GetJointCount();
     for (const b2Body* b = world.GetBodyList(); b; b = b->GetNext()) row.awake += b->IsAwake() ? 1 : 0;
+    {
+        std::vector<double> fs, fr, fstep;
+        b2WorldFrame frame;
+        for (int r = 0; r < reps; ++r) {
+            fs.push_back(TimeMs([&] { world.SaveFrame(frame); }));
+            fr.push_back(TimeMs([&] {
+                if (!world.RestoreFrame(frame).ok()) std::abort();
+            }));
+            fstep.push_back(TimeMs(advance));
+        }
+        row.frameSaveMs = MedianMs(fs);
+        row.frameRestoreMs = MedianMs(fr);
+        row.frameStepMs = MedianMs(fstep);
+        double sum = 0;
+        for (double v : fs) sum += v;
+        row.frameSaveMeanMs = fs.empty() ? 0 : sum / static_cast<double>(fs.size());
+        row.frameStats = frame.Stats();
+        row.frameBodies = world.GetBodyCount();
+    }
     return row;
 }
 
@@ -156,11 +181,17 @@ int main(int argc, char** argv) {
                      "scene,bodies,awake,contacts,joints,step_ms,hash_ms,image_hash_ms,save_ms,restore_ms,"
                      "hash_pct_of_step,image_hash_pct_of_step,save_restore_pct_of_step,image_bytes,body_bytes,"
                      "fixture_bytes,contact_bytes,joint_bytes,broadphase_bytes,bytes_per_body,bytes_per_contact,"
-                     "bytes_per_joint\n");
+                     "bytes_per_joint,frame_step_ms,frame_save_ms,frame_save_mean_ms,frame_restore_ms,"
+                     "frame_save_restore_pct_of_step,frame_bytes,frame_structure_bytes,frame_body_bytes_per_body\n");
     }
     std::printf("%-14s %6s %6s %6s %9s %8s %8s %8s %9s %7s %7s %9s %9s %8s %8s %8s\n", "scene", "bodies", "contct",
                 "joints", "step ms", "hash ms", "img h ms", "save ms", "restor ms", "hash %", "img h %", "s+r %",
                 "image KB", "B/body", "B/cont", "B/joint");
+    struct FrameLine {
+        std::string scene;
+        double stepMs, saveMs, saveMeanMs, restoreMs, pct, frameKb, structureKb, bodyBytes;
+    };
+    std::vector<FrameLine> frames;
     for (const Case& c : cases) {
         if (!only.empty() && only != c.scene) continue;
         const Row r = Measure(c, reps);
@@ -175,16 +206,33 @@ int main(int argc, char** argv) {
                     r.scene.c_str(), r.bodies, r.contacts, r.joints, r.stepMs, r.hashMs, r.imageHashMs, r.saveMs,
                     r.restoreMs, hashPct, imageHashPct, srPct, r.stats.totalBytes / 1024.0, perBody, perContact,
                     perJoint);
+        const double frameSrPct = 100 * (r.frameSaveMs + r.frameRestoreMs) / r.frameStepMs;
+        const double frameBodyBytes =
+            r.frameBodies ? double(r.frameStats.bodyBytes + r.frameStats.forceBytes + r.frameStats.proxyBytes) / r.frameBodies
+                          : 0;
+        frames.push_back({r.scene, r.frameStepMs, r.frameSaveMs, r.frameSaveMeanMs, r.frameRestoreMs, frameSrPct,
+                          r.frameStats.frameBytes / 1024.0, r.frameStats.structureBytes / 1024.0, frameBodyBytes});
         if (csv != nullptr) {
             std::fprintf(csv,
-                         "%s,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%u,%u,%u,%u,%u,%u,%.1f,%.1f,%.1f\n",
+                         "%s,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%u,%u,%u,%u,%u,%u,%.1f,%.1f,%.1f,"
+                         "%.4f,%.4f,%.4f,%.4f,%.3f,%u,%u,%.1f\n",
                          r.scene.c_str(), r.bodies, r.awake, r.contacts, r.joints, r.stepMs, r.hashMs, r.imageHashMs,
                          r.saveMs, r.restoreMs, hashPct, imageHashPct, srPct, r.stats.totalBytes, r.stats.bodyBytes,
                          r.stats.fixtureBytes, r.stats.contactBytes, r.stats.jointBytes, r.stats.broadPhaseBytes,
-                         perBody, perContact, perJoint);
+                         perBody, perContact, perJoint, r.frameStepMs, r.frameSaveMs, r.frameSaveMeanMs,
+                         r.frameRestoreMs, frameSrPct, r.frameStats.frameBytes, r.frameStats.structureBytes,
+                         frameBodyBytes);
         }
     }
-    std::printf("(medians of %d interleaved repetitions, thread CPU time)\n", reps);
+    std::printf("(medians of %d interleaved repetitions, thread CPU time)\n\n", reps);
+    std::printf("rollback frames (SaveFrame/RestoreFrame, own pass)\n");
+    std::printf("%-14s %9s %8s %9s %9s %7s %9s %9s %8s\n", "scene", "step ms", "save ms", "save mean", "restor ms",
+                "s+r %", "frame KB", "struct KB", "B/body");
+    for (const FrameLine& f : frames) {
+        std::printf("%-14s %9.3f %8.3f %9.3f %9.3f %7.2f %9.1f %9.1f %8.1f\n", f.scene.c_str(), f.stepMs, f.saveMs,
+                    f.saveMeanMs, f.restoreMs, f.pct, f.frameKb, f.structureKb, f.bodyBytes);
+    }
+    std::printf("(B/body: motion, pending forces and proxy boxes; contacts, joints and the tree apart)\n");
     if (csv != nullptr) {
         std::fclose(csv);
         std::printf("wrote %s\n", out.c_str());

@@ -26,8 +26,16 @@ namespace lockbox {
 
 namespace state_detail {
 
+/// Buffers of structure images no frame holds any more, kept for the next image: a fresh
+/// buffer of a large world's size costs its page faults, several times the Save itself.
+struct StructurePool {
+    std::vector<std::unique_ptr<std::vector<uint8>>> spare;
+};
+constexpr size_t kSpareStructures = 2;
+
 /// Per world: the structure image of the current epoch, and restore scratch.
 struct FrameCache {
+    std::shared_ptr<StructurePool> pool = std::make_shared<StructurePool>();
     std::shared_ptr<const std::vector<uint8>> structure;
     uint64 structureEpoch = 0;
     /// By fixture id, for the contacts: valid for `slotsEpoch` only.
@@ -313,13 +321,35 @@ struct FrameAccess {
     static uint64 CheckHash(const b2WorldFrame& f) { return f.m_checkHash; }
 };
 
+namespace {
+
+/// The world's image in a buffer from the pool (or a new one), shared: when the last frame
+/// holding it lets go, the buffer goes back to the pool if the world's cache still exists.
+std::shared_ptr<const std::vector<uint8>> SaveStructure(const b2World& world, FrameCache& cache) {
+    std::unique_ptr<std::vector<uint8>> buffer;
+    if (!cache.pool->spare.empty()) {
+        buffer = std::move(cache.pool->spare.back());
+        cache.pool->spare.pop_back();
+    } else {
+        buffer = std::make_unique<std::vector<uint8>>();
+    }
+    world.Save(*buffer);
+    std::weak_ptr<StructurePool> pool = cache.pool;
+    return std::shared_ptr<const std::vector<uint8>>(buffer.release(), [pool](const std::vector<uint8>* image) {
+        std::unique_ptr<std::vector<uint8>> owned(const_cast<std::vector<uint8>*>(image));
+        if (const std::shared_ptr<StructurePool> p = pool.lock(); p && p->spare.size() < kSpareStructures) {
+            p->spare.push_back(std::move(owned));
+        }
+    });
+}
+
+}  // namespace
+
 void b2World::SaveFrame(b2WorldFrame& frame) const {
     if (!m_frameCache) m_frameCache.reset(new FrameCache());
     FrameCache& cache = *m_frameCache;
     if (!cache.structure || cache.structureEpoch != m_structureEpoch) {
-        auto image = std::make_shared<std::vector<uint8>>();
-        Save(*image);
-        cache.structure = std::move(image);
+        cache.structure = SaveStructure(*this, cache);
         cache.structureEpoch = m_structureEpoch;
     }
     frame.m_serial = m_serial;

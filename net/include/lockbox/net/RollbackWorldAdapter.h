@@ -1,14 +1,16 @@
 #pragma once
 /// WorldGameAdapter (issue 11): executes a RollbackSession's requests for a game whose whole
-/// state is one lockbox world plus the replay::Game's user blob. SaveState keeps a world image
-/// (b2World::Save) and the blob (Game::SaveUserState) in a ring slot and reports the folded
-/// hash when asked; LoadState restores both; Advance calls Game::Apply then steps once.
+/// state is one lockbox world plus the replay::Game's user blob. SaveState keeps a rollback
+/// frame of the world (b2World::SaveFrame) and the blob (Game::SaveUserState) in a ring slot and
+/// reports the folded hash when asked; LoadState restores both (RestoreFrame); Advance calls
+/// Game::Apply then steps once.
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "lockbox/net/RollbackSession.h"
+#include "lockbox/state/WorldFrame.h"
 
 namespace lockbox {
 class b2World;
@@ -60,13 +62,14 @@ public:
 private:
     struct Slot {
         int32_t frame = -1;
-        std::vector<uint8_t> image;
+        b2WorldFrame state;  ///< a rollback frame (b2World::SaveFrame), not a portable image
         std::vector<uint8_t> user;
     };
     b2World& world_;
     replay::Game& game_;
     WorldStepSettings settings_;
     std::vector<Slot> slots_;
+    mutable b2WorldFrame scratch_;  ///< the current state while ConfirmedSnapshot visits a slot
     uint64_t resimulated_ = 0;
     int32_t lastAdvanced_ = -1;
 };
