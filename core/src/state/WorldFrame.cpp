@@ -108,6 +108,23 @@ void RestoreSettings(const Settings& s, b2World& world) {
     world.m_saturationCount = s.saturations;
 }
 
+/// Joints lie anywhere in memory and their list gives one address at a time. Frames walk them
+/// by id instead (the table is the same under one structure epoch): the joint kJointAhead ids
+/// on gets its first line requested, and the one half as far its state fields (their chunks
+/// depend on its type, read from that first line).
+constexpr size_t kJointAhead = 8;
+
+void PrefetchJointsAhead(const std::vector<b2Joint*>& table, size_t id) {
+    const JointStateSizes& sizes = JointStateBytes();
+    if (id + kJointAhead < table.size() && table[id + kJointAhead] != nullptr) {
+        __builtin_prefetch(table[id + kJointAhead]);
+    }
+    if (id + kJointAhead / 2 < table.size()) {
+        const b2Joint* near = table[id + kJointAhead / 2];
+        if (near != nullptr) PrefetchJointFields(near, sizes.chunks[static_cast<size_t>(near->GetType())]);
+    }
+}
+
 /// Links a contact edge at the tail of a body's list, given the list's current tail.
 void AppendEdge(b2ContactEdge* edge, b2Body* body, b2ContactEdge*& tail) {
     edge->prev = tail;
@@ -179,10 +196,15 @@ struct FrameAccess {
             for (int32 p = 0; p < m.pointCount; ++p) f.m_points.push_back(m.points[p]);
         }
 
-        // Joints: user data, then the fields the full snapshot writes (VisitState, reaction).
+        // Joints, by id: user data, then the fields the full snapshot writes (VisitState,
+        // reaction).
         {
             FieldWriter w(f.m_joints, 0);
-            for (const b2Joint* j = world.m_jointList; j != nullptr; j = j->m_next) {
+            const std::vector<b2Joint*>& table = world.m_joints;
+            for (size_t id = 0; id < table.size(); ++id) {
+                PrefetchJointsAhead(table, id);
+                const b2Joint* j = table[id];
+                if (j == nullptr) continue;
                 auto c = w.Begin(8 + 2 * kJointRecordMaxBytes);
                 c.U64(j->m_userData);
                 JointFieldWriter<decltype(c)> visitor{c};
@@ -303,9 +325,13 @@ struct FrameAccess {
         }
         cm.m_contactCount = static_cast<int32>(count);
 
-        // Joints: the same list (same epoch); user data, VisitState and reaction fields.
+        // Joints: the same id table (same epoch); user data, VisitState and reaction fields.
         ReadCursor r(f.m_joints.data());
-        for (b2Joint* j = world.m_jointList; j != nullptr; j = j->m_next) {
+        const std::vector<b2Joint*>& table = world.m_joints;
+        for (size_t id = 0; id < table.size(); ++id) {
+            PrefetchJointsAhead(table, id);
+            b2Joint* j = table[id];
+            if (j == nullptr) continue;
             j->m_userData = r.U64();
             JointStateReader reader{r, world};
             VisitJointState(*j, reader);

@@ -106,7 +106,7 @@ private:
     std::vector<int32> m_contactFree;  ///< contact pool: free stack, bottom first
     std::vector<frame_detail::ContactRecord> m_contacts;  ///< contact-list order
     std::vector<b2ManifoldPoint> m_points;  ///< each contact's manifold points, in order
-    std::vector<uint8> m_joints;  ///< per joint (list order): user data, VisitState, reaction
+    std::vector<uint8> m_joints;  ///< per joint (id order): user data, VisitState, reaction
     std::vector<b2TreeNode> m_nodes;
     int32 m_treeRoot = b2_nullNode, m_treeFree = b2_nullNode, m_treeNodeCount = 0, m_treeInsertions = 0;
     int32 m_proxyCount = 0;
