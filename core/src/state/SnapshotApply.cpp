@@ -239,35 +239,19 @@ void ApplyContacts(Image& img, b2World& world) {
         const ContactImage& ci = img.contacts[static_cast<size_t>(recordOf[static_cast<size_t>(id)])];
         ::new (slot) b2Contact(fixtures.Get(ci.fixtureA), ci.indexA, fixtures.Get(ci.fixtureB), ci.indexB, id);
     });
-    b2Contact* previous = nullptr;
     cm.m_contactList = nullptr;
-    // The last contact edge of each body so far, by body id (every body list starts empty).
-    std::vector<b2ContactEdge*>& tails = img.edgeTails;
-    tails.assign(static_cast<size_t>(img.bodyPool.capacity), nullptr);
+    img.edgeTails.assign(static_cast<size_t>(img.bodyPool.capacity), nullptr);
+    ContactListTail tail{nullptr, img.edgeTails};
     const size_t count = img.contacts.size();
     for (size_t i = 0; i < count; ++i) {
         const ContactImage& ci = img.contacts[i];
         // The whole contact, graph edges included: the walks skip them, this pass writes them.
         if (i + kApplyPrefetch < count) PrefetchBytes(cm.GetContact(img.contacts[i + kApplyPrefetch].id), sizeof(b2Contact));
         b2Contact* c = cm.GetContact(ci.id);
-        const Image::FixtureSlot& slotA = img.fixtureSlots[static_cast<size_t>(ci.fixtureA)];
-        const Image::FixtureSlot& slotB = img.fixtureSlots[static_cast<size_t>(ci.fixtureB)];
-        c->m_fixtureA = slotA.fixture;
-        c->m_fixtureB = slotB.fixture;
-        c->m_fixtureIdA = ci.fixtureA;
-        c->m_fixtureIdB = ci.fixtureB;
-        c->m_indexA = ci.indexA;
-        c->m_indexB = ci.indexB;
         ApplyContactState(img.bytes + ci.stateAt, *c);
-        b2Body* bodyA = slotA.body;
-        b2Body* bodyB = slotB.body;
-        c->m_nodeA = b2ContactEdge{bodyB, c, nullptr, nullptr};
-        c->m_nodeB = b2ContactEdge{bodyA, c, nullptr, nullptr};
-        AppendToWorldList(c, cm.m_contactList, previous);
-        // Each body's edges are in world-list order (StateWalk.h): appending in list order
-        // rebuilds them while the contact is in cache (a second pass missed on every one).
-        AppendEdge(&c->m_nodeA, bodyA->m_contactList, tails[static_cast<size_t>(slotA.bodyId)]);
-        AppendEdge(&c->m_nodeB, bodyB->m_contactList, tails[static_cast<size_t>(slotB.bodyId)]);
+        LinkRestoredContact(c, ci.fixtureA, ci.indexA, ci.fixtureB, ci.indexB,
+                            img.fixtureSlots[static_cast<size_t>(ci.fixtureA)],
+                            img.fixtureSlots[static_cast<size_t>(ci.fixtureB)], cm.m_contactList, tail);
     }
     cm.m_contactCount = static_cast<int32>(img.contacts.size());
 }
@@ -353,19 +337,6 @@ void ApplyJoints(Image& img, b2World& world) {
     world.m_jointCount = static_cast<int32>(count);
 }
 
-void ApplySettings(const SettingsImage& s, b2World& world) {
-    world.m_gravity = s.gravity;
-    world.m_allowSleep = s.allowSleep;
-    world.m_warmStarting = s.warmStarting;
-    world.m_continuousPhysics = s.continuous;
-    world.m_subStepping = s.subStepping;
-    world.m_autoClearForces = s.autoClear;
-    world.m_bounds = s.bounds;
-    world.m_flags = s.flags;
-    world.m_inv_dt0 = s.invDt0;
-    world.m_stepComplete = s.stepComplete;
-    world.m_saturationCount = s.saturations;
-}
 
 }  // namespace
 
@@ -378,7 +349,7 @@ void ApplySnapshot(Image& img, b2World& world) {
     bp.GetTreeForRestore().RestoreState(img.tree.nodes, img.tree.root, img.tree.freeList, img.tree.nodeCount,
                                         img.tree.insertionCount);
     bp.RestoreState(img.tree.proxyCount, img.tree.moveBuffer);
-    ApplySettings(img.settings, world);
+    InstallSettings(img.settings, world);
 }
 
 }  // namespace lockbox::state_detail

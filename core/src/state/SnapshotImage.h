@@ -10,8 +10,10 @@
 #include "lockbox/collision/DynamicTree.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
+#include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/state/Snapshot.h"
+#include "ContactLinks.h"
 
 namespace lockbox::state_detail {
 
@@ -59,6 +61,23 @@ struct SettingsImage {
     uint64 saturations = 0;
     int32 bodyCount = 0, jointCount = 0, contactCount = 0;
 };
+
+/// Writes the world switches and step carry-over from a SettingsImage or from a rollback
+/// frame's settings (frame_detail::Settings): both name these fields alike.
+template <class S>
+void InstallSettings(const S& s, b2World& world) {
+    world.m_gravity = s.gravity;
+    world.m_allowSleep = s.allowSleep;
+    world.m_warmStarting = s.warmStarting;
+    world.m_continuousPhysics = s.continuous;
+    world.m_subStepping = s.subStepping;
+    world.m_autoClearForces = s.autoClear;
+    world.m_bounds = s.bounds;
+    world.m_flags = s.flags;
+    world.m_inv_dt0 = s.invDt0;
+    world.m_stepComplete = s.stepComplete;
+    world.m_saturationCount = s.saturations;
+}
 
 /// A body's checked header; the rest of its record (transform through user data) is read
 /// again from the image bytes when applied (ApplyBodyState), as for contacts.
@@ -167,11 +186,6 @@ struct Image {
     std::vector<b2ContactEdge*> edgeTails;
     /// Restore scratch, by fixture id: the world's fixture and its body once the fixtures are
     /// installed, so the contacts find both without a pool lookup or a fixture visit.
-    struct FixtureSlot {
-        b2Fixture* fixture = nullptr;
-        b2Body* body = nullptr;
-        int32 bodyId = -1;
-    };
     std::vector<FixtureSlot> fixtureSlots;
     /// Restore scratch: which joint ids the image has visited, and the last joint edge of
     /// each body while the lists are rebuilt.

@@ -16,6 +16,7 @@
 
 #include "ByteCursor.h"
 #include "ByteStreams.h"
+#include "ContactLinks.h"
 #include "JointState.h"
 #include "ListWalk.h"
 #include "StateWalk.h"
@@ -39,11 +40,6 @@ struct FrameCache {
     std::shared_ptr<const std::vector<uint8>> structure;
     uint64 structureEpoch = 0;
     /// By fixture id, for the contacts: valid for `slotsEpoch` only.
-    struct FixtureSlot {
-        b2Fixture* fixture = nullptr;
-        b2Body* body = nullptr;
-        int32 bodyId = -1;
-    };
     std::vector<FixtureSlot> slots;
     bool slotsValid = false;
     uint64 slotsEpoch = 0;
@@ -94,19 +90,6 @@ void SaveSettings(const b2World& world, Settings& s) {
     s.saturations = world.m_saturationCount;
 }
 
-void RestoreSettings(const Settings& s, b2World& world) {
-    world.m_gravity = s.gravity;
-    world.m_allowSleep = s.allowSleep;
-    world.m_warmStarting = s.warmStarting;
-    world.m_continuousPhysics = s.continuous;
-    world.m_subStepping = s.subStepping;
-    world.m_autoClearForces = s.autoClear;
-    world.m_stepComplete = s.stepComplete;
-    world.m_bounds = s.bounds;
-    world.m_flags = s.flags;
-    world.m_inv_dt0 = s.invDt0;
-    world.m_saturationCount = s.saturations;
-}
 
 /// Joints lie anywhere in memory and their list gives one address at a time. Frames walk them
 /// by id instead (the table is the same under one structure epoch): the joint kJointAhead ids
@@ -123,15 +106,6 @@ void PrefetchJointsAhead(const std::vector<b2Joint*>& table, size_t id) {
         const b2Joint* near = table[id + kJointAhead / 2];
         if (near != nullptr) PrefetchJointFields(near, sizes.chunks[static_cast<size_t>(near->GetType())]);
     }
-}
-
-/// Links a contact edge at the tail of a body's list, given the list's current tail.
-void AppendEdge(b2ContactEdge* edge, b2Body* body, b2ContactEdge*& tail) {
-    edge->prev = tail;
-    edge->next = nullptr;
-    if (tail != nullptr) tail->next = edge;
-    else body->m_contactList = edge;
-    tail = edge;
 }
 
 }  // namespace
@@ -229,7 +203,7 @@ struct FrameAccess {
 
     /// Writes the frame's arrays into a world whose structure is the frame's (same epoch).
     static void Apply(const b2WorldFrame& f, b2World& world, FrameCache& cache) {
-        RestoreSettings(f.m_settings, world);
+        InstallSettings(f.m_settings, world);
 
         // Bodies, forces and proxy boxes; every contact list is rebuilt below.
         size_t i = 0, force = 0, proxy = 0;
@@ -264,7 +238,7 @@ struct FrameAccess {
 
         // The fixtures by id, once per structure epoch (their addresses hold while it lasts).
         if (!cache.slotsValid || cache.slotsEpoch != world.m_structureEpoch) {
-            cache.slots.assign(static_cast<size_t>(world.m_fixtures.GetCapacity()), FrameCache::FixtureSlot{});
+            cache.slots.assign(static_cast<size_t>(world.m_fixtures.GetCapacity()), FixtureSlot{});
             for (b2Body* b = world.m_bodyList; b != nullptr; b = b->m_next) {
                 for (b2Fixture* fx = b->m_fixtureList; fx != nullptr; fx = fx->m_next) {
                     cache.slots[static_cast<size_t>(fx->m_id)] = {fx, b, b->m_id};
@@ -286,21 +260,13 @@ struct FrameAccess {
                                    cache.slots[static_cast<size_t>(r.fixtureB)].fixture, r.indexB, id);
         });
         cache.edgeTails.assign(static_cast<size_t>(world.m_bodies.GetCapacity()), nullptr);
-        b2Contact* previous = nullptr;
+        ContactListTail tail{nullptr, cache.edgeTails};
         cm.m_contactList = nullptr;
         size_t point = 0;
         for (size_t k = 0; k < count; ++k) {
             if (k + 6 < count) PrefetchBytes(cm.GetContact(f.m_contacts[k + 6].id), sizeof(b2Contact));
             const ContactRecord& r = f.m_contacts[k];
             b2Contact* c = cm.GetContact(r.id);
-            const FrameCache::FixtureSlot& a = cache.slots[static_cast<size_t>(r.fixtureA)];
-            const FrameCache::FixtureSlot& b = cache.slots[static_cast<size_t>(r.fixtureB)];
-            c->m_fixtureA = a.fixture;
-            c->m_fixtureB = b.fixture;
-            c->m_fixtureIdA = r.fixtureA;
-            c->m_fixtureIdB = r.fixtureB;
-            c->m_indexA = r.indexA;
-            c->m_indexB = r.indexB;
             c->m_flags = r.flags;
             c->m_toiCount = r.toiCount;
             c->m_toi = r.toi;
@@ -312,16 +278,9 @@ struct FrameAccess {
             m.localNormal = r.localNormal;
             m.localPoint = r.localPoint;
             for (int32 p = 0; p < m.pointCount; ++p) m.points[p] = f.m_points[point++];
-            c->m_nodeA = b2ContactEdge{b.body, c, nullptr, nullptr};
-            c->m_nodeB = b2ContactEdge{a.body, c, nullptr, nullptr};
-            c->m_prev = previous;
-            c->m_next = nullptr;
-            if (previous != nullptr) previous->m_next = c;
-            else cm.m_contactList = c;
-            previous = c;
-            // Each body's contact edges are in world-list order (StateWalk.h).
-            AppendEdge(&c->m_nodeA, a.body, cache.edgeTails[static_cast<size_t>(a.bodyId)]);
-            AppendEdge(&c->m_nodeB, b.body, cache.edgeTails[static_cast<size_t>(b.bodyId)]);
+            LinkRestoredContact(c, r.fixtureA, r.indexA, r.fixtureB, r.indexB,
+                                cache.slots[static_cast<size_t>(r.fixtureA)],
+                                cache.slots[static_cast<size_t>(r.fixtureB)], cm.m_contactList, tail);
         }
         cm.m_contactCount = static_cast<int32>(count);
 
