@@ -90,7 +90,6 @@ void SaveSettings(const b2World& world, Settings& s) {
     s.saturations = world.m_saturationCount;
 }
 
-
 /// Joints lie anywhere in memory and their list gives one address at a time. Frames walk them
 /// by id instead (the table is the same under one structure epoch): the joint kJointAhead ids
 /// on gets its first line requested, and the one half as far its state fields (their chunks
