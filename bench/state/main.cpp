@@ -59,6 +59,7 @@ struct Row {
     double frameSaveMs = 0, frameRestoreMs = 0, frameStepMs = 0, frameSaveMeanMs = 0;
     int frameBodies = 0;  ///< at the end of the frame pass
     double frameBackMs = 0;  ///< median RestoreFrame of a frame 8 frames old
+    double imageBackMs = 0;  ///< median Restore of an image 8 frames old
     int backCrossings = 0;   ///< how many of those 8 crossed a structural change
     b2FrameStats frameStats;
 };
@@ -160,21 +161,26 @@ Row Measure(const Case& c, int reps) {
         row.frameBodies = world.GetBodyCount();
         // A rollback's restore: the frame of 8 frames ago (steps in between change contacts,
         // and in rain a spawn changes the structure, so the structure image goes in too).
-        std::vector<double> back;
+        // The same for images, alternating with the frames so both see the same stretch of
+        // the scene.
+        std::vector<double> back, imageBack;
         b2WorldFrame old;
-        for (int r = 0; r < 8; ++r) {
-            world.SaveFrame(old);
+        for (int r = 0; r < 16; ++r) {
+            const bool frames = r % 2 == 0;
+            if (frames) world.SaveFrame(old);
+            else world.Save(image);
             const uint64 epoch = world.GetStructureEpoch();
             const int at = frame;
             for (int k = 0; k < 8; ++k) advance();
-            row.backCrossings += world.GetStructureEpoch() != epoch ? 1 : 0;
-            back.push_back(TimeMs([&] {
-                if (!world.RestoreFrame(old).ok()) std::abort();
+            if (frames) row.backCrossings += world.GetStructureEpoch() != epoch ? 1 : 0;
+            (frames ? back : imageBack).push_back(TimeMs([&] {
+                if (!(frames ? world.RestoreFrame(old) : world.Restore(image)).ok()) std::abort();
             }));
             frame = at;
             for (int k = 0; k < 8; ++k) advance();
         }
         row.frameBackMs = MedianMs(back);
+        row.imageBackMs = MedianMs(imageBack);
     }
     return row;
 }
@@ -210,7 +216,7 @@ int main(int argc, char** argv) {
                      "fixture_bytes,contact_bytes,joint_bytes,broadphase_bytes,bytes_per_body,bytes_per_contact,"
                      "bytes_per_joint,frame_step_ms,frame_save_ms,frame_save_mean_ms,frame_restore_ms,"
                      "frame_save_restore_pct_of_step,frame_bytes,frame_structure_bytes,frame_body_bytes_per_body,"
-                     "frame_restore_back8_ms,back8_structure_changes\n");
+                     "frame_restore_back8_ms,back8_structure_changes,image_restore_back8_ms\n");
     }
     std::printf("%-14s %6s %6s %6s %9s %8s %8s %8s %9s %7s %7s %9s %9s %8s %8s %8s\n", "scene", "bodies", "contct",
                 "joints", "step ms", "hash ms", "img h ms", "save ms", "restor ms", "hash %", "img h %", "s+r %",
@@ -219,6 +225,7 @@ int main(int argc, char** argv) {
         std::string scene;
         double stepMs, saveMs, saveMeanMs, restoreMs, pct, frameKb, structureKb, bodyBytes, backMs;
         int crossings;
+        double imageBackMs;
     };
     std::vector<FrameLine> frames;
     for (const Case& c : cases) {
@@ -241,30 +248,30 @@ int main(int argc, char** argv) {
                           : 0;
         frames.push_back({r.scene, r.frameStepMs, r.frameSaveMs, r.frameSaveMeanMs, r.frameRestoreMs, frameSrPct,
                           r.frameStats.frameBytes / 1024.0, r.frameStats.structureBytes / 1024.0, frameBodyBytes,
-                          r.frameBackMs, r.backCrossings});
+                          r.frameBackMs, r.backCrossings, r.imageBackMs});
         if (csv != nullptr) {
             std::fprintf(csv,
                          "%s,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%u,%u,%u,%u,%u,%u,%.1f,%.1f,%.1f,"
-                         "%.4f,%.4f,%.4f,%.4f,%.3f,%u,%u,%.1f,%.4f,%d\n",
+                         "%.4f,%.4f,%.4f,%.4f,%.3f,%u,%u,%.1f,%.4f,%d,%.4f\n",
                          r.scene.c_str(), r.bodies, r.awake, r.contacts, r.joints, r.stepMs, r.hashMs, r.imageHashMs,
                          r.saveMs, r.restoreMs, hashPct, imageHashPct, srPct, r.stats.totalBytes, r.stats.bodyBytes,
                          r.stats.fixtureBytes, r.stats.contactBytes, r.stats.jointBytes, r.stats.broadPhaseBytes,
                          perBody, perContact, perJoint, r.frameStepMs, r.frameSaveMs, r.frameSaveMeanMs,
                          r.frameRestoreMs, frameSrPct, r.frameStats.frameBytes, r.frameStats.structureBytes,
-                         frameBodyBytes, r.frameBackMs, r.backCrossings);
+                         frameBodyBytes, r.frameBackMs, r.backCrossings, r.imageBackMs);
         }
     }
     std::printf("(medians of %d interleaved repetitions, thread CPU time)\n\n", reps);
     std::printf("rollback frames (SaveFrame/RestoreFrame, own pass)\n");
-    std::printf("%-14s %9s %8s %9s %9s %7s %9s %9s %8s %9s %6s\n", "scene", "step ms", "save ms", "save mean",
-                "restor ms", "s+r %", "frame KB", "struct KB", "B/body", "back8 ms", "struct");
+    std::printf("%-14s %9s %8s %9s %9s %7s %9s %9s %8s %9s %6s %9s\n", "scene", "step ms", "save ms", "save mean",
+                "restor ms", "s+r %", "frame KB", "struct KB", "B/body", "back8 ms", "struct", "img back8");
     for (const FrameLine& f : frames) {
-        std::printf("%-14s %9.3f %8.3f %9.3f %9.3f %7.2f %9.1f %9.1f %8.1f %9.3f %4d/8\n", f.scene.c_str(), f.stepMs,
-                    f.saveMs, f.saveMeanMs, f.restoreMs, f.pct, f.frameKb, f.structureKb, f.bodyBytes, f.backMs,
-                    f.crossings);
+        std::printf("%-14s %9.3f %8.3f %9.3f %9.3f %7.2f %9.1f %9.1f %8.1f %9.3f %4d/8 %9.3f\n", f.scene.c_str(),
+                    f.stepMs, f.saveMs, f.saveMeanMs, f.restoreMs, f.pct, f.frameKb, f.structureKb, f.bodyBytes,
+                    f.backMs, f.crossings, f.imageBackMs);
     }
     std::printf("(B/body: motion, pending forces and proxy boxes; contacts, joints and the tree apart; back8: "
-                "restore of the frame 8 frames old, struct: how many of 8 such restores crossed a structural change)\n");
+                "restore of the frame 8 frames old, struct: how many of 8 such restores crossed a structural change; img back8: the same for images)\n");
     if (csv != nullptr) {
         std::fclose(csv);
         std::printf("wrote %s\n", out.c_str());
