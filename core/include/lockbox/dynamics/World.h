@@ -148,7 +148,8 @@ public:
     b2RestoreResult Restore(std::span<const uint8> image);
     /// Copies what steps and inputs change into a rollback frame of this world (lockbox/state/
     /// WorldFrame.h); the structure goes in by reference to one portable image per structure
-    /// epoch (made by the first SaveFrame after a structural change). Call outside Step.
+    /// epoch (made by the first SaveFrame after a structural change). Call outside Step. It is
+    /// const but keeps that image in the world: do not call it from two threads at once.
     void SaveFrame(b2WorldFrame& frame) const;
     /// Puts the world back to a frame this world saved: in place, as Restore, and without the
     /// image checks (the frame never left the process). When the structure changed since the
