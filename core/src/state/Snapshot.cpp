@@ -63,16 +63,21 @@ void b2SealSnapshot(std::span<uint8> image) noexcept {
 
 uint64 b2World::Hash() const { return b2WorldHash(*this); }
 
-void b2World::Save(std::vector<uint8>& out) const {
+void b2World::Save(std::vector<uint8>& out) const { SaveImage(*this, out, /*withContacts=*/true); }
+
+void state_detail::SaveImage(const b2World& world, std::vector<uint8>& out, bool withContacts) {
     // Sections first, after room for the header: their size goes into the header.
     FieldWriter w(out, kHeaderBytes);
-    WriteSection(w, e_sectionSettings, [&] { WriteSettings(w, *this); });
-    WriteSection(w, e_sectionBodies, [&] { WriteBodies(w, *this); });
-    WriteSection(w, e_sectionFixtures, [&] { WriteFixtures(w, *this); });
-    WriteSection(w, e_sectionContacts, [&] { WriteContacts(w, *this); });
-    WriteSection(w, e_sectionJoints, [&] { WriteJoints(w, *this); });
-    WriteSection(w, e_sectionBroadPhase, [&] { WriteBroadPhase(w, *this); });
-    WriteSection(w, e_sectionJointReactions, [&] { WriteJointReactions(w, *this); });
+    WriteSection(w, e_sectionSettings, [&] { WriteSettings(w, world, withContacts); });
+    WriteSection(w, e_sectionBodies, [&] { WriteBodies(w, world); });
+    WriteSection(w, e_sectionFixtures, [&] { WriteFixtures(w, world); });
+    WriteSection(w, e_sectionContacts, [&] {
+        if (withContacts) WriteContacts(w, world);
+        else WriteNoContacts(w);
+    });
+    WriteSection(w, e_sectionJoints, [&] { WriteJoints(w, world); });
+    WriteSection(w, e_sectionBroadPhase, [&] { WriteBroadPhase(w, world); });
+    WriteSection(w, e_sectionJointReactions, [&] { WriteJointReactions(w, world); });
     const uint64 payload = w.Position() - kHeaderBytes;
     w.Finish();
     {

@@ -200,6 +200,11 @@ struct Image {
     }
 };
 
+/// b2World::Save's image, or with `withContacts` false the same image without the contacts
+/// (an empty contact section and a contact count of 0; the rollback frames' structure image,
+/// whose frames carry the contacts).
+void SaveImage(const b2World& world, std::vector<uint8>& out, bool withContacts);
+
 /// Reads and validates a whole image. On error the result names the problem and `image` is
 /// unspecified; the world is never involved.
 b2RestoreResult ParseSnapshot(std::span<const uint8> bytes, Image& image);

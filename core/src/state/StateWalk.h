@@ -121,8 +121,10 @@ void WriteAABB(W& w, const b2AABB& box) {
     w.V(box.upperBound);
 }
 
+/// `withContacts` false writes a contact count of 0 (the rollback frames' structure image,
+/// whose contact section is empty: WriteNoContacts).
 template <class W>
-void WriteSettings(W& w, const b2World& world) {
+void WriteSettings(W& w, const b2World& world, bool withContacts = true) {
     w.V(world.GetGravity());
     w.Bool(world.GetAllowSleeping());
     w.Bool(world.GetWarmStarting());
@@ -139,7 +141,7 @@ void WriteSettings(W& w, const b2World& world) {
     w.U64(world.GetSaturationCount());
     w.I32(world.GetBodyCount());
     w.I32(world.GetJointCount());
-    w.I32(world.GetContactCount());
+    w.I32(withContacts ? world.GetContactCount() : 0);
 }
 
 template <class W>
@@ -402,6 +404,14 @@ void WriteContacts(W& w, const b2World& world) {
     WritePool(w, world.GetContactManager().GetPool());
     // The record's fixture ids are cached in the contact: no fixture is visited.
     WalkList(world.GetContactList(), [&](const b2Contact& c) { WriteContact(w, c); }, [](const b2Contact*) {});
+}
+
+/// An empty contact section (an empty pool): a valid image of the world without its contacts.
+template <class W>
+void WriteNoContacts(W& w) {
+    w.I32(0);  // capacity
+    w.I32(0);  // count
+    w.I32(0);  // free stack
 }
 
 /// The joint section: every joint in joint-list order.

@@ -43,7 +43,6 @@ struct FrameCache {
     std::vector<FixtureSlot> slots;
     bool slotsValid = false;
     uint64 slotsEpoch = 0;
-    std::vector<int32> recordOf;             ///< contact id -> record, for contacts made anew
     std::vector<b2ContactEdge*> edgeTails;   ///< last contact edge of each body (by id)
 };
 
@@ -251,13 +250,9 @@ struct FrameAccess {
         // its record), then every contact's fields, list links and edges in list order.
         b2ContactManager& cm = world.m_contactManager;
         const size_t count = f.m_contacts.size();
-        cache.recordOf.resize(f.m_contactLive.size());
-        for (size_t k = 0; k < count; ++k) cache.recordOf[static_cast<size_t>(f.m_contacts[k].id)] = static_cast<int32>(k);
-        cm.RestoreContactLayout(f.m_contactLive, f.m_contactFree, [&](void* slot, int32 id) {
-            const ContactRecord& r = f.m_contacts[static_cast<size_t>(cache.recordOf[static_cast<size_t>(id)])];
-            ::new (slot) b2Contact(cache.slots[static_cast<size_t>(r.fixtureA)].fixture, r.indexA,
-                                   cache.slots[static_cast<size_t>(r.fixtureB)].fixture, r.indexB, id);
-        });
+        // A slot live only in the frame gets a blank contact: the loop below writes every field.
+        cm.RestoreContactLayout(f.m_contactLive, f.m_contactFree,
+                                [](void* slot, int32 id) { ::new (slot) b2Contact(b2RestoreTag{}, id); });
         cache.edgeTails.assign(static_cast<size_t>(world.m_bodies.GetCapacity()), nullptr);
         ContactListTail tail{nullptr, cache.edgeTails};
         cm.m_contactList = nullptr;
@@ -317,7 +312,9 @@ std::shared_ptr<const std::vector<uint8>> SaveStructure(const b2World& world, Fr
     } else {
         buffer = std::make_unique<std::vector<uint8>>();
     }
-    world.Save(*buffer);
+    // Without the contacts: every frame carries them, and a restore across a structural change
+    // would otherwise install them twice.
+    SaveImage(world, *buffer, /*withContacts=*/false);
     std::weak_ptr<StructurePool> pool = cache.pool;
     return std::shared_ptr<const std::vector<uint8>>(buffer.release(), [pool](const std::vector<uint8>* image) {
         std::unique_ptr<std::vector<uint8>> owned(const_cast<std::vector<uint8>*>(image));

@@ -75,4 +75,8 @@ inline constexpr Fixed b2_linearSleepTolerance = Fixed::FromRaw(655);
 /// A body cannot sleep while its angular speed exceeds this: 2 degrees/s (rad/s, raw 2288).
 inline constexpr Fixed b2_angularSleepTolerance = Fixed::FromRaw(2288);
 
+/// Selects the restore constructors of joints and contacts: empty objects that a snapshot or a
+/// rollback frame then fills.
+struct b2RestoreTag {};
+
 }  // namespace lockbox

@@ -88,6 +88,9 @@ public:
     static bool NeedsSwap(b2Shape::Type typeA, b2Shape::Type typeB) noexcept;
 
     b2Contact(b2Fixture* fixtureA, int32 indexA, b2Fixture* fixtureB, int32 indexB, int32 id);
+    /// Rollback frames: a contact whose every field the frame then writes (no fixture is read).
+    b2Contact(b2RestoreTag, int32 id) noexcept : m_fixtureA(nullptr), m_fixtureB(nullptr), m_indexA(0), m_indexB(0),
+        m_fixtureIdA(-1), m_fixtureIdB(-1), m_id(id) {}
     b2Contact(const b2Contact&) = delete;
     b2Contact& operator=(const b2Contact&) = delete;
 

@@ -40,9 +40,6 @@ struct b2JointEdge {
     b2JointEdge* next = nullptr;  ///< next edge in the body's joint list
 };
 
-/// Selects the joints' snapshot-restore constructors (empty joints filled from an image).
-struct b2RestoreTag {};
-
 /// Joint definitions derive from this.
 struct b2JointDef {
     b2JointType type = e_unknownJoint;  ///< set by the concrete definition
