@@ -218,9 +218,8 @@ void b2Body::WrapAngle() noexcept {
 void b2Body::SetType(b2BodyType type) {
     if (m_world->CheckLocked("b2Body::SetType")) return;
     if (m_type == type) return;
-    m_world->MarkStructureChanged();
     m_type = type;
-    ResetMassData();
+    ResetMassData();  // marks the world's structure changed
     if (m_type == b2_staticBody) {
         m_linearVelocity.SetZero();
         m_angularVelocity = Fixed();

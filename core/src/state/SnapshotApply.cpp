@@ -19,16 +19,6 @@ namespace {
 /// order is list order, not memory order, so each object would otherwise be a cache miss.
 constexpr size_t kApplyPrefetch = 6;
 
-/// Appends a node at the tail of a doubly linked world list (bodies, contacts, joints).
-template <class T>
-void AppendToWorldList(T* node, T*& head, T*& tail) {
-    node->m_prev = tail;
-    node->m_next = nullptr;
-    if (tail != nullptr) tail->m_next = node;
-    else head = node;
-    tail = node;
-}
-
 /// A body's state from its image record, read from the transform on (the layout of
 /// WriteBody, StateWalk.h); every value is valid.
 void ApplyBodyState(const uint8* at, b2Body& b) {
@@ -218,17 +208,6 @@ void ApplyContactState(const uint8* at, b2Contact& c) {
     }
 }
 
-/// Links an edge (contact or joint) at the tail of a body's list, given the list's current
-/// tail.
-template <class Edge>
-void AppendEdge(Edge* e, Edge*& head, Edge*& tail) {
-    e->prev = tail;
-    e->next = nullptr;
-    if (tail != nullptr) tail->next = e;
-    else head = e;
-    tail = e;
-}
-
 void ApplyContacts(Image& img, b2World& world) {
     b2ContactManager& cm = world.m_contactManager;
     b2Pool<b2Fixture>& fixtures = world.m_fixtures;
@@ -336,7 +315,6 @@ void ApplyJoints(Image& img, b2World& world) {
     world.m_jointIdHint = 0;
     world.m_jointCount = static_cast<int32>(count);
 }
-
 
 }  // namespace
 

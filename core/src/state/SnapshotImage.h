@@ -13,7 +13,7 @@
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/state/Snapshot.h"
-#include "ContactLinks.h"
+#include "RestoreLinks.h"
 
 namespace lockbox::state_detail {
 

@@ -16,7 +16,7 @@
 
 #include "ByteCursor.h"
 #include "ByteStreams.h"
-#include "ContactLinks.h"
+#include "RestoreLinks.h"
 #include "JointState.h"
 #include "ListWalk.h"
 #include "StateWalk.h"
@@ -40,8 +40,7 @@ struct FrameCache {
     std::shared_ptr<const std::vector<uint8>> structure;
     uint64 structureEpoch = 0;
     /// By fixture id, for the contacts: valid for `slotsEpoch` only.
-    std::vector<FixtureSlot> slots;
-    bool slotsValid = false;
+    std::vector<FixtureSlot> slots;  ///< empty: to be built
     uint64 slotsEpoch = 0;
     std::vector<b2ContactEdge*> edgeTails;   ///< last contact edge of each body (by id)
 };
@@ -235,22 +234,20 @@ struct FrameAccess {
         }
 
         // The fixtures by id, once per structure epoch (their addresses hold while it lasts).
-        if (!cache.slotsValid || cache.slotsEpoch != world.m_structureEpoch) {
+        if (cache.slots.empty() || cache.slotsEpoch != world.m_structureEpoch) {
             cache.slots.assign(static_cast<size_t>(world.m_fixtures.GetCapacity()), FixtureSlot{});
             for (b2Body* b = world.m_bodyList; b != nullptr; b = b->m_next) {
                 for (b2Fixture* fx = b->m_fixtureList; fx != nullptr; fx = fx->m_next) {
                     cache.slots[static_cast<size_t>(fx->m_id)] = {fx, b, b->m_id};
                 }
             }
-            cache.slotsValid = true;
             cache.slotsEpoch = world.m_structureEpoch;
         }
 
-        // Contacts: the pool's layout (a slot live only in the frame gets a contact built from
-        // its record), then every contact's fields, list links and edges in list order.
+        // Contacts: the pool's layout (a slot live only in the frame gets a blank contact), then
+        // every contact's fields, list links and edges in list order.
         b2ContactManager& cm = world.m_contactManager;
         const size_t count = f.m_contacts.size();
-        // A slot live only in the frame gets a blank contact: the loop below writes every field.
         cm.RestoreContactLayout(f.m_contactLive, f.m_contactFree,
                                 [](void* slot, int32 id) { ::new (slot) b2Contact(b2RestoreTag{}, id); });
         cache.edgeTails.assign(static_cast<size_t>(world.m_bodies.GetCapacity()), nullptr);
@@ -296,8 +293,6 @@ struct FrameAccess {
         bp.GetTreeForRestore().RestoreState(f.m_nodes, f.m_treeRoot, f.m_treeFree, f.m_treeNodeCount, f.m_treeInsertions);
         bp.RestoreState(f.m_proxyCount, f.m_moveBuffer);
     }
-
-    static uint64 CheckHash(const b2WorldFrame& f) { return f.m_checkHash; }
 };
 
 namespace {
@@ -359,11 +354,11 @@ b2RestoreResult b2World::RestoreFrame(const b2WorldFrame& frame) {
         m_structureEpoch = frame.m_epoch;
         cache.structure = frame.m_structure;
         cache.structureEpoch = frame.m_epoch;
-        cache.slotsValid = false;  // fixtures may sit at other addresses than in that epoch
+        cache.slots.clear();  // fixtures may sit at other addresses than in that epoch
     }
     FrameAccess::Apply(frame, *this, cache);
 #ifdef LOCKBOX_CHECKED
-    if (b2WorldHash(*this) != FrameAccess::CheckHash(frame)) {
+    if (b2WorldHash(*this) != frame.m_checkHash) {
         std::fprintf(stderr,
                      "lockbox: RestoreFrame did not give the saved state: a structural change did not call "
                      "b2World::MarkStructureChanged\n");

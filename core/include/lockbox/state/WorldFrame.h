@@ -44,7 +44,7 @@ struct BodyForce {
     Fixed torque;
 };
 
-/// A contact without its manifold points (which follow in ContactFrame::points).
+/// A contact without its manifold points (which follow in b2WorldFrame's point array).
 struct ContactRecord {
     int32 id = -1;
     int32 fixtureA = -1, indexA = 0, fixtureB = -1, indexB = 0;

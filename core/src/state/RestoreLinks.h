@@ -1,8 +1,8 @@
 #pragma once
-// Internal to the restores (SnapshotApply.cpp, WorldFrame.cpp): a restored contact's links.
-// Both restores install contacts in world-list order; each body's contact edges are in that
-// order too (StateWalk.h), so appending as the list is rebuilt rebuilds the edges while the
-// contact is in cache.
+// Internal to the restores (SnapshotApply.cpp, WorldFrame.cpp): relinking restored objects.
+// Both restores install bodies, contacts and joints in world-list order; each body's contact
+// and joint edges are in that order too (StateWalk.h), so appending as a list is rebuilt
+// rebuilds the edges while the object is in cache.
 
 #include <vector>
 
@@ -26,12 +26,25 @@ struct ContactListTail {
     std::vector<b2ContactEdge*>& edgeTails;
 };
 
-inline void AppendContactEdge(b2ContactEdge* edge, b2Body* body, b2ContactEdge*& tail) {
-    edge->prev = tail;
-    edge->next = nullptr;
-    if (tail != nullptr) tail->next = edge;
-    else body->m_contactList = edge;
-    tail = edge;
+/// Appends a node at the tail of a doubly linked world list (bodies, contacts, joints).
+template <class T>
+void AppendToWorldList(T* node, T*& head, T*& tail) {
+    node->m_prev = tail;
+    node->m_next = nullptr;
+    if (tail != nullptr) tail->m_next = node;
+    else head = node;
+    tail = node;
+}
+
+/// Links an edge (contact or joint) at the tail of a body's list, given the list's current
+/// tail.
+template <class Edge>
+void AppendEdge(Edge* e, Edge*& head, Edge*& tail) {
+    e->prev = tail;
+    e->next = nullptr;
+    if (tail != nullptr) tail->next = e;
+    else head = e;
+    tail = e;
 }
 
 /// Points contact c at its fixtures (ids and child indices given) and appends it to the world's
@@ -46,13 +59,9 @@ inline void LinkRestoredContact(b2Contact* c, int32 fixtureA, int32 indexA, int3
     c->m_indexB = indexB;
     c->m_nodeA = b2ContactEdge{b.body, c, nullptr, nullptr};
     c->m_nodeB = b2ContactEdge{a.body, c, nullptr, nullptr};
-    c->m_prev = tail.last;
-    c->m_next = nullptr;
-    if (tail.last != nullptr) tail.last->m_next = c;
-    else head = c;
-    tail.last = c;
-    AppendContactEdge(&c->m_nodeA, a.body, tail.edgeTails[static_cast<size_t>(a.bodyId)]);
-    AppendContactEdge(&c->m_nodeB, b.body, tail.edgeTails[static_cast<size_t>(b.bodyId)]);
+    AppendToWorldList(c, head, tail.last);
+    AppendEdge(&c->m_nodeA, a.body->m_contactList, tail.edgeTails[static_cast<size_t>(a.bodyId)]);
+    AppendEdge(&c->m_nodeB, b.body->m_contactList, tail.edgeTails[static_cast<size_t>(b.bodyId)]);
 }
 
 }  // namespace lockbox::state_detail
