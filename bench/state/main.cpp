@@ -2,7 +2,8 @@
 // bodies it measures, in the same run, the median time of a step, of a state hash (the walk
 // over the world, b2WorldHash, and the same value read from the image just saved,
 // b2SnapshotHash), of a save and of an in-place restore, and the snapshot's bytes per
-// section; it prints a table and, with --out, writes it as CSV (the committed tables live in
+// section; and the hash floor (the image hashed again after a step: the packed state bytes
+// read back from memory). It prints tables and, with --out, writes them as CSV (the committed tables live in
 // bench/results/<machine>/state.csv).
 //
 // Usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE] [--profile ROUNDS]
@@ -51,6 +52,10 @@ struct Row {
     std::string scene;
     int bodies = 0, awake = 0, contacts = 0, joints = 0;
     double stepMs = 0, hashMs = 0, imageHashMs = 0, saveMs = 0, restoreMs = 0;
+    /// The hash floor: b2SnapshotHash of the image saved before a step, measured after that
+    /// step. The canonical state bytes, already packed, read back from wherever the step left
+    /// them: what any hash of this state pays at least, however the world stored it.
+    double coldImageHashMs = 0;
     b2SnapshotStats stats;
     // Rollback frames, from their own interleaved pass (a full Restore moves the structure
     // epoch, so the two kinds cannot share one loop): medians, the step of that pass, and the
@@ -87,7 +92,7 @@ Row Measure(const Case& c, int reps) {
     for (int i = 0; i < c.warmup; ++i) advance();
     b2World& world = engine.world();
 
-    std::vector<double> step, hash, imageHash, save, restore;
+    std::vector<double> step, hash, imageHash, coldImageHash, save, restore;
     std::vector<uint8> image;
     image.reserve(1 << 20);
     volatile uint64 sink = 0;
@@ -123,8 +128,10 @@ Row Measure(const Case& c, int reps) {
             if (!world.Restore(image).ok()) std::abort();
         }));
         step.push_back(TimeMs(advance));
+        coldImageHash.push_back(TimeMs([&] { sink = sink + b2SnapshotHash(image).total; }));
     }
     row.stepMs = MedianMs(step);
+    row.coldImageHashMs = MedianMs(coldImageHash);
     row.hashMs = MedianMs(hash);
     row.imageHashMs = MedianMs(imageHash);
     row.saveMs = MedianMs(save);
@@ -216,7 +223,8 @@ int main(int argc, char** argv) {
                      "fixture_bytes,contact_bytes,joint_bytes,broadphase_bytes,bytes_per_body,bytes_per_contact,"
                      "bytes_per_joint,frame_step_ms,frame_save_ms,frame_save_mean_ms,frame_restore_ms,"
                      "frame_save_restore_pct_of_step,frame_bytes,frame_structure_bytes,frame_body_bytes_per_body,"
-                     "frame_restore_back8_ms,back8_structure_changes,image_restore_back8_ms\n");
+                     "frame_restore_back8_ms,back8_structure_changes,image_restore_back8_ms,image_hash_after_step_ms,"
+                     "image_hash_after_step_pct_of_step\n");
     }
     std::printf("%-14s %6s %6s %6s %9s %8s %8s %8s %9s %7s %7s %9s %9s %8s %8s %8s\n", "scene", "bodies", "contct",
                 "joints", "step ms", "hash ms", "img h ms", "save ms", "restor ms", "hash %", "img h %", "s+r %",
@@ -227,6 +235,11 @@ int main(int argc, char** argv) {
         int crossings;
         double imageBackMs;
     };
+    struct FloorLine {
+        std::string scene;
+        double stepMs, hashMs, imageHashMs, coldImageHashMs;
+    };
+    std::vector<FloorLine> floors;
     std::vector<FrameLine> frames;
     for (const Case& c : cases) {
         if (!only.empty() && only != c.scene) continue;
@@ -249,16 +262,18 @@ int main(int argc, char** argv) {
         frames.push_back({r.scene, r.frameStepMs, r.frameSaveMs, r.frameSaveMeanMs, r.frameRestoreMs, frameSrPct,
                           r.frameStats.frameBytes / 1024.0, r.frameStats.structureBytes / 1024.0, frameBodyBytes,
                           r.frameBackMs, r.backCrossings, r.imageBackMs});
+        floors.push_back({r.scene, r.stepMs, r.hashMs, r.imageHashMs, r.coldImageHashMs});
+        const double coldPct = 100 * r.coldImageHashMs / r.stepMs;
         if (csv != nullptr) {
             std::fprintf(csv,
                          "%s,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%u,%u,%u,%u,%u,%u,%.1f,%.1f,%.1f,"
-                         "%.4f,%.4f,%.4f,%.4f,%.3f,%u,%u,%.1f,%.4f,%d,%.4f\n",
+                         "%.4f,%.4f,%.4f,%.4f,%.3f,%u,%u,%.1f,%.4f,%d,%.4f,%.4f,%.3f\n",
                          r.scene.c_str(), r.bodies, r.awake, r.contacts, r.joints, r.stepMs, r.hashMs, r.imageHashMs,
                          r.saveMs, r.restoreMs, hashPct, imageHashPct, srPct, r.stats.totalBytes, r.stats.bodyBytes,
                          r.stats.fixtureBytes, r.stats.contactBytes, r.stats.jointBytes, r.stats.broadPhaseBytes,
                          perBody, perContact, perJoint, r.frameStepMs, r.frameSaveMs, r.frameSaveMeanMs,
                          r.frameRestoreMs, frameSrPct, r.frameStats.frameBytes, r.frameStats.structureBytes,
-                         frameBodyBytes, r.frameBackMs, r.backCrossings, r.imageBackMs);
+                         frameBodyBytes, r.frameBackMs, r.backCrossings, r.imageBackMs, r.coldImageHashMs, coldPct);
         }
     }
     std::printf("(medians of %d interleaved repetitions, thread CPU time)\n\n", reps);
@@ -272,6 +287,14 @@ int main(int argc, char** argv) {
     }
     std::printf("(B/body: motion, pending forces and proxy boxes; contacts, joints and the tree apart; back8: "
                 "restore of the frame 8 frames old, struct: how many of 8 such restores crossed a structural change; img back8: the same for images)\n");
+    std::printf("\nhash floor (shares of the step in the first pass)\n");
+    std::printf("%-14s %9s %8s %8s %8s %9s\n", "scene", "step ms", "walk %", "img h %", "floor ms", "floor %");
+    for (const FloorLine& f : floors) {
+        std::printf("%-14s %9.3f %8.2f %8.2f %8.4f %9.2f\n", f.scene.c_str(), f.stepMs, 100 * f.hashMs / f.stepMs,
+                    100 * f.imageHashMs / f.stepMs, f.coldImageHashMs, 100 * f.coldImageHashMs / f.stepMs);
+    }
+    std::printf("(walk: b2WorldHash; img h: b2SnapshotHash of the image just saved; floor: the same image's hash "
+                "after a step, the packed state bytes read back from where the step left them)\n");
     if (csv != nullptr) {
         std::fclose(csv);
         std::printf("wrote %s\n", out.c_str());
