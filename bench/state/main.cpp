@@ -66,6 +66,7 @@ struct Row {
     double frameBackMs = 0;  ///< median RestoreFrame of a frame 8 frames old
     double imageBackMs = 0;  ///< median Restore of an image 8 frames old
     int backCrossings = 0;   ///< how many of those 8 crossed a structural change
+    int backUndone = 0;      ///< how many of those crossings destroyed the bodies made since
     b2FrameStats frameStats;
 };
 
@@ -180,9 +181,11 @@ Row Measure(const Case& c, int reps) {
             const int at = frame;
             for (int k = 0; k < 8; ++k) advance();
             if (frames) row.backCrossings += world.GetStructureEpoch() != epoch ? 1 : 0;
+            const uint64 undone = world.GetFrameRestoreCounts().undoneCreations;
             (frames ? back : imageBack).push_back(TimeMs([&] {
                 if (!(frames ? world.RestoreFrame(old) : world.Restore(image)).ok()) std::abort();
             }));
+            row.backUndone += static_cast<int>(world.GetFrameRestoreCounts().undoneCreations - undone);
             frame = at;
             for (int k = 0; k < 8; ++k) advance();
         }
@@ -224,7 +227,7 @@ int main(int argc, char** argv) {
                      "bytes_per_joint,frame_step_ms,frame_save_ms,frame_save_mean_ms,frame_restore_ms,"
                      "frame_save_restore_pct_of_step,frame_bytes,frame_structure_bytes,frame_body_bytes_per_body,"
                      "frame_restore_back8_ms,back8_structure_changes,image_restore_back8_ms,image_hash_after_step_ms,"
-                     "image_hash_after_step_pct_of_step\n");
+                     "image_hash_after_step_pct_of_step,back8_undone\n");
     }
     std::printf("%-14s %6s %6s %6s %9s %8s %8s %8s %9s %7s %7s %9s %9s %8s %8s %8s\n", "scene", "bodies", "contct",
                 "joints", "step ms", "hash ms", "img h ms", "save ms", "restor ms", "hash %", "img h %", "s+r %",
@@ -232,7 +235,7 @@ int main(int argc, char** argv) {
     struct FrameLine {
         std::string scene;
         double stepMs, saveMs, saveMeanMs, restoreMs, pct, frameKb, structureKb, bodyBytes, backMs;
-        int crossings;
+        int crossings, undone;
         double imageBackMs;
     };
     struct FloorLine {
@@ -261,32 +264,33 @@ int main(int argc, char** argv) {
                           : 0;
         frames.push_back({r.scene, r.frameStepMs, r.frameSaveMs, r.frameSaveMeanMs, r.frameRestoreMs, frameSrPct,
                           r.frameStats.frameBytes / 1024.0, r.frameStats.structureBytes / 1024.0, frameBodyBytes,
-                          r.frameBackMs, r.backCrossings, r.imageBackMs});
+                          r.frameBackMs, r.backCrossings, r.backUndone, r.imageBackMs});
         floors.push_back({r.scene, r.stepMs, r.hashMs, r.imageHashMs, r.coldImageHashMs});
         const double coldPct = 100 * r.coldImageHashMs / r.stepMs;
         if (csv != nullptr) {
             std::fprintf(csv,
                          "%s,%d,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%u,%u,%u,%u,%u,%u,%.1f,%.1f,%.1f,"
-                         "%.4f,%.4f,%.4f,%.4f,%.3f,%u,%u,%.1f,%.4f,%d,%.4f,%.4f,%.3f\n",
+                         "%.4f,%.4f,%.4f,%.4f,%.3f,%u,%u,%.1f,%.4f,%d,%.4f,%.4f,%.3f,%d\n",
                          r.scene.c_str(), r.bodies, r.awake, r.contacts, r.joints, r.stepMs, r.hashMs, r.imageHashMs,
                          r.saveMs, r.restoreMs, hashPct, imageHashPct, srPct, r.stats.totalBytes, r.stats.bodyBytes,
                          r.stats.fixtureBytes, r.stats.contactBytes, r.stats.jointBytes, r.stats.broadPhaseBytes,
                          perBody, perContact, perJoint, r.frameStepMs, r.frameSaveMs, r.frameSaveMeanMs,
                          r.frameRestoreMs, frameSrPct, r.frameStats.frameBytes, r.frameStats.structureBytes,
-                         frameBodyBytes, r.frameBackMs, r.backCrossings, r.imageBackMs, r.coldImageHashMs, coldPct);
+                         frameBodyBytes, r.frameBackMs, r.backCrossings, r.imageBackMs, r.coldImageHashMs, coldPct,
+                         r.backUndone);
         }
     }
     std::printf("(medians of %d interleaved repetitions, thread CPU time)\n\n", reps);
     std::printf("rollback frames (SaveFrame/RestoreFrame, own pass)\n");
-    std::printf("%-14s %9s %8s %9s %9s %7s %9s %9s %8s %9s %6s %9s\n", "scene", "step ms", "save ms", "save mean",
-                "restor ms", "s+r %", "frame KB", "struct KB", "B/body", "back8 ms", "struct", "img back8");
+    std::printf("%-14s %9s %8s %9s %9s %7s %9s %9s %8s %9s %15s %9s\n", "scene", "step ms", "save ms", "save mean",
+                "restor ms", "s+r %", "frame KB", "struct KB", "B/body", "back8 ms", "struct (undone)", "img back8");
     for (const FrameLine& f : frames) {
-        std::printf("%-14s %9.3f %8.3f %9.3f %9.3f %7.2f %9.1f %9.1f %8.1f %9.3f %4d/8 %9.3f\n", f.scene.c_str(),
+        std::printf("%-14s %9.3f %8.3f %9.3f %9.3f %7.2f %9.1f %9.1f %8.1f %9.3f %6d/8 (%d) %9.3f\n", f.scene.c_str(),
                     f.stepMs, f.saveMs, f.saveMeanMs, f.restoreMs, f.pct, f.frameKb, f.structureKb, f.bodyBytes,
-                    f.backMs, f.crossings, f.imageBackMs);
+                    f.backMs, f.crossings, f.undone, f.imageBackMs);
     }
     std::printf("(B/body: motion, pending forces and proxy boxes; contacts, joints and the tree apart; back8: "
-                "restore of the frame 8 frames old, struct: how many of 8 such restores crossed a structural change; img back8: the same for images)\n");
+                "restore of the frame 8 frames old, struct: how many of 8 such restores crossed a structural change, undone: how many of those only destroyed the bodies made since; img back8: the same for images)\n");
     std::printf("\nhash floor (shares of the step in the first pass)\n");
     std::printf("%-14s %9s %8s %8s %8s %9s\n", "scene", "step ms", "walk %", "img h %", "floor ms", "floor %");
     for (const FloorLine& f : floors) {

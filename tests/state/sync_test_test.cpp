@@ -42,6 +42,10 @@ TEST_P(SceneSync, MispredictThroughFramesLeavesNoTrace) {
     const SyncTestResult r = RunSceneSyncTest(GetParam(), kFrames, /*mispredict=*/true, 1, /*useFrames=*/true);
     EXPECT_TRUE(r.ok) << r.message;
     EXPECT_EQ(r.rollbacks, kFrames - 7);
+    // Both ways across a structural change ran: spawn-only branches undone, the others through
+    // the structure image.
+    EXPECT_GT(r.frameRestores.undoneCreations, 0u);
+    EXPECT_GT(r.frameRestores.restoredStructure, 0u);
 }
 
 // After create/destroy churn (the mispredicted branches) and restores, every body's edge lists

@@ -10,42 +10,17 @@
 #include <utility>
 #include <vector>
 
-#include "StateTestUtil.h"
+#include "FrameTestUtil.h"
 
 namespace lockbox {
 namespace {
 
+using testing_state::AddBox;
+using testing_state::FirstDynamic;
+using testing_state::Future;
 using testing_state::SceneRun;
 
 static_assert(sizeof(frame_detail::BodyMotion) == 64, "a body's motion in a frame is 64 bytes");
-
-/// Hash after each of `frames` further frames of a run.
-std::vector<uint64> Future(SceneRun& run, int frames) {
-    std::vector<uint64> out;
-    for (int i = 0; i < frames; ++i) {
-        run.Advance();
-        out.push_back(run.world().Hash());
-    }
-    return out;
-}
-
-b2Body* AddBox(b2World& world, b2Vec2 at) {
-    b2BodyDef bd;
-    bd.type = b2_dynamicBody;
-    bd.position = at;
-    b2Body* body = world.CreateBody(&bd);
-    b2PolygonShape box;
-    box.SetAsBox(Fixed(1) / 4, Fixed(1) / 4);
-    body->CreateFixture(&box, 1);
-    return body;
-}
-
-b2Body* FirstDynamic(b2World& world) {
-    for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
-        if (b->GetType() == b2_dynamicBody) return b;
-    }
-    return nullptr;
-}
 
 TEST(WorldFrame, EveryStructuralCallMovesTheEpoch) {
     SceneRun run{"ragdolls"};

@@ -65,7 +65,7 @@ void b2Body::GetMassData(b2MassData* data) const {
 }
 
 void b2Body::ResetMassData() {
-    m_world->MarkStructureChanged();
+    m_world->MarkBodyStructureChanged(m_id);
     m_mass = Wide();
     m_invMass = Wide();
     m_I = Wide();
@@ -127,7 +127,7 @@ void b2Body::ResetMassData() {
 
 void b2Body::SetMassData(const b2MassData* massData) {
     if (m_world->CheckLocked("b2Body::SetMassData")) return;
-    m_world->MarkStructureChanged();
+    m_world->MarkBodyStructureChanged(m_id);
     if (m_type != b2_dynamicBody) return;
 
     m_invMass = Wide();
@@ -237,22 +237,22 @@ void b2Body::SetType(b2BodyType type) {
 // Set-up fields that rollback frames share through the structure image: each setter marks
 // the world's structure changed.
 void b2Body::SetLinearDamping(Fixed d) noexcept {
-    m_world->MarkStructureChanged();
+    m_world->MarkBodyStructureChanged(m_id);
     m_linearDamping = d;
 }
 
 void b2Body::SetAngularDamping(Fixed d) noexcept {
-    m_world->MarkStructureChanged();
+    m_world->MarkBodyStructureChanged(m_id);
     m_angularDamping = d;
 }
 
 void b2Body::SetGravityScale(Fixed s) noexcept {
-    m_world->MarkStructureChanged();
+    m_world->MarkBodyStructureChanged(m_id);
     m_gravityScale = s;
 }
 
 void b2Body::SetUserData(uint64 data) noexcept {
-    m_world->MarkStructureChanged();
+    m_world->MarkBodyStructureChanged(m_id);
     m_userData = data;
 }
 
@@ -289,7 +289,7 @@ void b2Body::SetActive(bool flag) {
     if (m_world->CheckLocked("b2Body::SetActive")) return;
     if (flag == IsActive()) return;
     // Proxies are made or dropped: a structural change for rollback frames.
-    m_world->MarkStructureChanged();
+    m_world->MarkBodyStructureChanged(m_id);
     b2BroadPhase* broadPhase = &m_world->m_contactManager.m_broadPhase;
     if (flag) {
         m_flags |= e_activeFlag;

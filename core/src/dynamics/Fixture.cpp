@@ -66,7 +66,7 @@ void b2Fixture::Synchronize(b2BroadPhase* broadPhase, const b2Transform& transfo
 namespace {
 /// Fixture set-up is structure for rollback frames (lockbox/state/WorldFrame.h).
 void MarkChanged(b2Body* body) noexcept {
-    if (body != nullptr && body->GetWorld() != nullptr) body->GetWorld()->MarkStructureChanged();
+    if (body != nullptr && body->GetWorld() != nullptr) body->GetWorld()->MarkBodyStructureChanged(body->GetId());
 }
 }  // namespace
 

@@ -43,6 +43,25 @@ b2World::~b2World() {
     }
 }
 
+void b2World::MarkBodyStructureChanged(int32 bodyId) noexcept {
+    m_structureEpoch = ++m_epochSource;
+    // Only frames read the log: a world that never saved one starts it again each time.
+    if (!m_frameCache) {
+        m_structureLogBase = m_structureEpoch;
+        m_structureLog.clear();
+        return;
+    }
+    // Bounded: when full, the older half goes, and frames from before it restore their
+    // structure image instead.
+    constexpr size_t kLogCapacity = 4096;
+    if (m_structureLog.size() == kLogCapacity) {
+        constexpr size_t kDrop = kLogCapacity / 2;
+        m_structureLogBase = m_structureLog[kDrop - 1].epoch;
+        m_structureLog.erase(m_structureLog.begin(), m_structureLog.begin() + static_cast<std::ptrdiff_t>(kDrop));
+    }
+    m_structureLog.push_back({m_structureEpoch, bodyId});
+}
+
 bool b2World::CheckLocked(const char* what) const {
     if (!IsLocked()) return false;
     if constexpr (b2_assertsEnabled) {
@@ -54,8 +73,8 @@ bool b2World::CheckLocked(const char* what) const {
 
 b2Body* b2World::CreateBody(const b2BodyDef* def) {
     if (CheckLocked("b2World::CreateBody called inside a Step callback (the world is locked)")) return nullptr;
-    MarkStructureChanged();
     const int32 id = m_bodies.Create(def, this, b2_nullId);
+    MarkBodyStructureChanged(id);
     b2Body* b = m_bodies.Get(id);
     b->m_id = id;
 
@@ -71,7 +90,7 @@ b2Body* b2World::CreateBody(const b2BodyDef* def) {
 void b2World::DestroyBody(b2Body* b) {
     if (CheckLocked("b2World::DestroyBody called inside a Step callback (the world is locked)")) return;
     if (b == nullptr) return;
-    MarkStructureChanged();
+    MarkBodyStructureChanged(b->GetId());
 
     // Delete the attached joints (and any gear coupling them), telling the listener. The list
     // head is re-read each time: destroying a gear may unlink other edges of this body.
@@ -119,7 +138,7 @@ b2Fixture* b2World::CreateFixtureSlot(b2Body* body, const b2FixtureDef* def) {
         }
         return nullptr;
     }
-    MarkStructureChanged();
+    MarkBodyStructureChanged(body->GetId());
     const int32 id = m_fixtures.Create();
     b2Fixture* fixture = m_fixtures.Get(id);
     fixture->Create(body, def, id);
@@ -138,8 +157,8 @@ b2Fixture* b2World::CreateFixtureSlot(b2Body* body, const b2FixtureDef* def) {
 }
 
 void b2World::DestroyFixtureSlot(b2Fixture* fixture) {
-    MarkStructureChanged();
     b2Body* body = fixture->m_body;
+    MarkBodyStructureChanged(body->GetId());
 
     // Unlink from the body's singly linked list.
     b2Fixture** node = &body->m_fixtureList;

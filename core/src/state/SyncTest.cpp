@@ -97,7 +97,7 @@ bool SyncTest::CheckFrame(int32 frame, SyncTestResult& result) {
     return false;
 }
 
-void SyncTest::WrongInputs(int32 frame) {
+void SyncTest::WrongInputs(int32 frame, bool spawnOnly, std::vector<int32>& spawned) {
     uint64 rng = m_config.seed ^ (static_cast<uint64>(frame) * 0xD1B54A32D192ED03ULL);
     std::vector<b2Body*> dynamic;
     for (b2Body* b = m_world.GetBodyList(); b; b = b->GetNext()) {
@@ -122,6 +122,17 @@ void SyncTest::WrongInputs(int32 frame) {
         box.SetAsBox(Fixed(1) / 4, Fixed(1) / 4);
         body->CreateFixture(&box, 1);
         dynamic.push_back(body);
+        spawned.push_back(body->GetId());
+    }
+    if (spawnOnly) {
+        // Destroys one of the branch's own bodies now and then (its slot is reused next). An id
+        // the game freed meanwhile is skipped; one it reused holds a body new to the branch too.
+        if (roll % 5 == 0 && !spawned.empty()) {
+            const size_t at = static_cast<size_t>(NextRandom(rng) % spawned.size());
+            if (b2Body* victim = m_world.GetBody(spawned[at])) m_world.DestroyBody(victim);
+            spawned.erase(spawned.begin() + static_cast<std::ptrdiff_t>(at));
+        }
+        return;
     }
     if (roll % 3 == 0 && dynamic.size() >= 2) {
         // A joint between two bodies: exercises joint ids and edges.
@@ -137,6 +148,16 @@ void SyncTest::WrongInputs(int32 frame) {
 }
 
 SyncTestResult SyncTest::Run(int32 frames) {
+    const b2FrameRestoreCounts before = m_world.GetFrameRestoreCounts();
+    SyncTestResult result = RunFrames(frames);
+    const b2FrameRestoreCounts after = m_world.GetFrameRestoreCounts();
+    result.frameRestores.sameStructure = after.sameStructure - before.sameStructure;
+    result.frameRestores.undoneCreations = after.undoneCreations - before.undoneCreations;
+    result.frameRestores.restoredStructure = after.restoredStructure - before.restoredStructure;
+    return result;
+}
+
+SyncTestResult SyncTest::RunFrames(int32 frames) {
     SyncTestResult result;
     const int32 k = m_config.checkDistance;
     m_hashes.assign(static_cast<size_t>(frames < 0 ? 0 : frames) + 1, 0);
@@ -149,8 +170,11 @@ SyncTestResult SyncTest::Run(int32 frames) {
         const int32 from = f + 1 - k;
         if (m_config.mispredict) {
             if (!LoadFrame(from, result)) return result;
+            // Every other rollback (counted in strides, so a stride of 8 alternates too).
+            const bool spawnOnly = (from / m_config.stride) % 2 != 0;
+            std::vector<int32> spawned;
             for (int32 g = from; g <= f; ++g) {
-                WrongInputs(g);
+                WrongInputs(g, spawnOnly, spawned);
                 m_game.Advance(m_world, g);
             }
         }

@@ -27,17 +27,19 @@ namespace lockbox {
 
 namespace state_detail {
 
+using frame_detail::Structure;
+
 /// Buffers of structure images no frame holds any more, kept for the next image: a fresh
 /// buffer of a large world's size costs its page faults, several times the Save itself.
 struct StructurePool {
-    std::vector<std::unique_ptr<std::vector<uint8>>> spare;
+    std::vector<std::unique_ptr<Structure>> spare;
 };
 constexpr size_t kSpareStructures = 2;
 
 /// Per world: the structure image of the current epoch, and restore scratch.
 struct FrameCache {
     std::shared_ptr<StructurePool> pool = std::make_shared<StructurePool>();
-    std::shared_ptr<const std::vector<uint8>> structure;
+    std::shared_ptr<const Structure> structure;
     uint64 structureEpoch = 0;
     /// By fixture id, for the contacts: valid for `slotsEpoch` only.
     std::vector<FixtureSlot> slots;  ///< empty: to be built
@@ -68,7 +70,11 @@ b2FrameStats b2WorldFrame::Stats() const noexcept {
     s.broadPhaseBytes = bytes(m_nodes) + bytes(m_moveBuffer);
     s.frameBytes = static_cast<uint32>(sizeof(b2WorldFrame)) + s.bodyBytes + s.forceBytes + s.proxyBytes +
                    s.contactBytes + s.jointBytes + s.broadPhaseBytes;
-    s.structureBytes = m_structure ? static_cast<uint32>(m_structure->size()) : 0;
+    if (m_structure) {
+        const Structure& st = *m_structure;
+        s.structureBytes = bytes(st.image) + bytes(st.bodyLive) + bytes(st.fixtureLive) + bytes(st.bodyFree) +
+                           bytes(st.fixtureFree);
+    }
     return s;
 }
 
@@ -297,29 +303,106 @@ struct FrameAccess {
 
 namespace {
 
-/// The world's image in a buffer from the pool (or a new one), shared: when the last frame
-/// holding it lets go, the buffer goes back to the pool if the world's cache still exists.
-std::shared_ptr<const std::vector<uint8>> SaveStructure(const b2World& world, FrameCache& cache) {
-    std::unique_ptr<std::vector<uint8>> buffer;
+/// The world's structure in a buffer from the pool (or a new one), shared: when the last
+/// frame holding it lets go, the buffer goes back to the pool if the world's cache still
+/// exists.
+std::shared_ptr<const Structure> SaveStructure(const b2World& world, FrameCache& cache) {
+    std::unique_ptr<Structure> buffer;
     if (!cache.pool->spare.empty()) {
         buffer = std::move(cache.pool->spare.back());
         cache.pool->spare.pop_back();
     } else {
-        buffer = std::make_unique<std::vector<uint8>>();
+        buffer = std::make_unique<Structure>();
     }
     // Without the contacts: every frame carries them, and a restore across a structural change
     // would otherwise install them twice.
-    SaveImage(world, *buffer, /*withContacts=*/false);
+    SaveImage(world, buffer->image, /*withContacts=*/false);
+    buffer->bodyLive = world.m_bodies.GetLiveFlags();
+    buffer->bodyFree = world.m_bodies.GetFreeList();
+    buffer->fixtureLive = world.m_fixtures.GetLiveFlags();
+    buffer->fixtureFree = world.m_fixtures.GetFreeList();
     std::weak_ptr<StructurePool> pool = cache.pool;
-    return std::shared_ptr<const std::vector<uint8>>(buffer.release(), [pool](const std::vector<uint8>* image) {
-        std::unique_ptr<std::vector<uint8>> owned(const_cast<std::vector<uint8>*>(image));
+    return std::shared_ptr<const Structure>(buffer.release(), [pool](const Structure* structure) {
+        std::unique_ptr<Structure> owned(const_cast<Structure*>(structure));
         if (const std::shared_ptr<StructurePool> p = pool.lock(); p && p->spare.size() < kSpareStructures) {
             p->spare.push_back(std::move(owned));
         }
     });
 }
 
+/// True when body slot `id` was free (or did not exist yet) in `s`'s epoch.
+bool IsNewSince(const Structure& s, int32 id) noexcept {
+    return id >= 0 && (static_cast<size_t>(id) >= s.bodyLive.size() || s.bodyLive[static_cast<size_t>(id)] == 0);
+}
+
+/// True when every slot live in `live` is live in `pool`.
+template <class T>
+bool KeepsEverySlot(const b2Pool<T>& pool, const std::vector<uint8>& live) noexcept {
+    for (size_t id = 0; id < live.size(); ++id) {
+        if (live[id] != 0 && !pool.IsLive(static_cast<int32>(id))) return false;
+    }
+    return true;
+}
+
+constexpr size_t kCannotUndo = static_cast<size_t>(-1);
+
 }  // namespace
+
+/// Undoing creations: when every structural change since a frame's epoch was confined to a body
+/// created since (the world's log says so), the frame's structure is the world's without those
+/// bodies, so destroying them (and putting the pools' free stacks back) makes it the frame's.
+/// Everything else such a change touched (contacts, proxies in the tree, the move buffer, the
+/// world's flags) the frame's arrays overwrite.
+struct FrameUndo {
+    /// How many of the log's entries precede the frame's epoch (the log keeps those), or
+    /// kCannotUndo. `newAtFront` gets how many bodies at the head of the body list are new.
+    static size_t Check(const b2World& world, const b2WorldFrame& frame, size_t& newAtFront) {
+        const std::vector<b2StructureChange>& log = world.m_structureLog;
+        size_t start = kCannotUndo;
+        if (frame.m_epoch == world.m_structureLogBase) {
+            start = 0;
+        } else {
+            for (size_t k = log.size(); k-- > 0;) {
+                if (log[k].epoch == frame.m_epoch) {
+                    start = k + 1;
+                    break;
+                }
+            }
+        }
+        if (start == kCannotUndo) return kCannotUndo;
+        const Structure& s = *frame.m_structure;
+        for (size_t k = start; k < log.size(); ++k) {
+            if (!IsNewSince(s, log[k].body)) return kCannotUndo;
+        }
+        // The log implies what follows; checking it keeps a wrong log from corrupting the world.
+        // Every body and fixture of the frame is still there, and creations prepend, so the new
+        // bodies are the list's head and the rest is the frame's list.
+        if (!KeepsEverySlot(world.m_bodies, s.bodyLive) || !KeepsEverySlot(world.m_fixtures, s.fixtureLive)) {
+            return kCannotUndo;
+        }
+        newAtFront = 0;
+        for (const b2Body* b = world.m_bodyList; b != nullptr && IsNewSince(s, b->m_id); b = b->m_next) {
+            if (b->m_jointList != nullptr) return kCannotUndo;
+            ++newAtFront;
+        }
+        if (static_cast<size_t>(world.m_bodyCount) - newAtFront != frame.m_bodies.size()) return kCannotUndo;
+        return start;
+    }
+
+    /// Destroys the `newAtFront` bodies at the list's head with their fixtures, and gives the
+    /// body and fixture pools the frame's layout (Check said yes).
+    static void Apply(b2World& world, const Structure& s, size_t newAtFront) {
+        b2Body* head = world.m_bodyList;
+        for (size_t k = 0; k < newAtFront; ++k) head = head->m_next;
+        world.m_bodyList = head;
+        if (head != nullptr) head->m_prev = nullptr;
+        // Check found every slot of the frame live, so no slot is made here (unreachable).
+        auto none = [](void*, int32) { std::abort(); };
+        world.m_fixtures.RestoreLayout(s.fixtureLive, s.fixtureFree, none);
+        world.m_bodies.RestoreLayout(s.bodyLive, s.bodyFree, none);
+        world.m_bodyCount = world.m_bodies.GetCount();
+    }
+};
 
 void b2World::SaveFrame(b2WorldFrame& frame) const {
     if (!m_frameCache) m_frameCache.reset(new FrameCache());
@@ -346,15 +429,34 @@ b2RestoreResult b2World::RestoreFrame(const b2WorldFrame& frame) {
     if (frame.m_serial != m_serial) return {b2SnapshotError::e_foreignFrame, "the frame was saved by another world"};
     if (!m_frameCache) m_frameCache.reset(new FrameCache());
     FrameCache& cache = *m_frameCache;
-    if (frame.m_epoch != m_structureEpoch) {
-        // The structure changed since the frame: its epoch's image first (it only ever holds
-        // this world's own Save, so the checks pass; a failure is reported, the world intact).
-        b2RestoreResult result = Restore(*frame.m_structure);
-        if (!result.ok()) return result;
+    size_t newAtFront = 0;
+    if (frame.m_epoch == m_structureEpoch) {
+        ++m_frameRestores.sameStructure;
+    } else if (const size_t kept = FrameUndo::Check(*this, frame, newAtFront); kept != kCannotUndo) {
+        FrameUndo::Apply(*this, *frame.m_structure, newAtFront);
+        // The fixtures the frame has kept their addresses: a fixture table of the epoch undone
+        // still serves (the entries of the destroyed ones are never looked up).
+        if (cache.slotsEpoch == m_structureEpoch && cache.slots.size() >= frame.m_structure->fixtureLive.size()) {
+            cache.slotsEpoch = frame.m_epoch;
+        }
+        m_structureLog.resize(kept);
         m_structureEpoch = frame.m_epoch;
         cache.structure = frame.m_structure;
         cache.structureEpoch = frame.m_epoch;
+        ++m_frameRestores.undoneCreations;
+    } else {
+        // The structure changed otherwise since the frame: its epoch's image first (it only
+        // ever holds this world's own Save, so the checks pass; a failure is reported, the
+        // world intact).
+        b2RestoreResult result = Restore(frame.m_structure->image);
+        if (!result.ok()) return result;
+        m_structureEpoch = frame.m_epoch;
+        m_structureLogBase = frame.m_epoch;
+        m_structureLog.clear();
+        cache.structure = frame.m_structure;
+        cache.structureEpoch = frame.m_epoch;
         cache.slots.clear();  // fixtures may sit at other addresses than in that epoch
+        ++m_frameRestores.restoredStructure;
     }
     FrameAccess::Apply(frame, *this, cache);
 #ifdef LOCKBOX_CHECKED
@@ -367,5 +469,7 @@ b2RestoreResult b2World::RestoreFrame(const b2WorldFrame& frame) {
 #endif
     return {};
 }
+
+b2FrameRestoreCounts b2World::GetFrameRestoreCounts() const noexcept { return m_frameRestores; }
 
 }  // namespace lockbox

@@ -39,7 +39,8 @@ TEST_P(SceneSyncFull, Mispredict) {
 }
 
 // The same through rollback frames (SaveFrame/RestoreFrame): their fast path between
-// structural changes, and their structure image when a branch created or destroyed objects.
+// structural changes, their undo of spawn-only branches, and their structure image when a
+// branch changed anything else.
 TEST_P(SceneSyncFull, RollbackThroughFrames) {
     const Plan p = PlanFor(GetParam());
     const SyncTestResult r = RunSceneSyncTest(GetParam(), p.frames, false, p.stride, /*useFrames=*/true);
@@ -50,6 +51,8 @@ TEST_P(SceneSyncFull, MispredictThroughFrames) {
     const Plan p = PlanFor(GetParam());
     const SyncTestResult r = RunSceneSyncTest(GetParam(), p.frames, true, p.stride, /*useFrames=*/true);
     EXPECT_TRUE(r.ok) << r.message;
+    EXPECT_GT(r.frameRestores.undoneCreations, 0u);
+    EXPECT_GT(r.frameRestores.restoredStructure, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, SceneSyncFull, ::testing::ValuesIn(scenes::AllSceneNames()),

@@ -154,14 +154,29 @@ public:
     /// Puts the world back to a frame this world saved: in place, as Restore, and without the
     /// image checks (the frame never left the process). When the structure changed since the
     /// frame (a body, fixture or joint created or destroyed, a fixture or mass setting
-    /// changed), the frame's structure image is restored first, through Restore. Refuses an
-    /// empty frame or another world's (e_foreignFrame) and a call inside Step (e_locked).
+    /// changed), one of two things happens first. If every change since the frame concerned
+    /// only bodies created since (a spawn, and the set-up of what it spawned), those bodies
+    /// and their fixtures are destroyed. Otherwise the frame's structure image is restored,
+    /// through Restore. Refuses an empty frame or another world's (e_foreignFrame) and a call
+    /// inside Step (e_locked).
     b2RestoreResult RestoreFrame(const b2WorldFrame& frame);
+    /// How this world's RestoreFrame calls went so far (lockbox/state/WorldFrame.h).
+    b2FrameRestoreCounts GetFrameRestoreCounts() const noexcept;
     /// Tells the world that its structure changed. Every API call that changes the structure
     /// calls it; call it yourself after changing a shape through a b2Shape pointer taken
     /// before the last SaveFrame (b2Fixture::GetShape() marks the change when called, so a
-    /// shape edited right after GetShape() needs nothing more).
-    void MarkStructureChanged() noexcept { m_structureEpoch = ++m_epochSource; }
+    /// shape edited right after GetShape() needs nothing more). A frame saved before it is
+    /// restored through its structure image.
+    void MarkStructureChanged() noexcept {
+        m_structureEpoch = ++m_epochSource;
+        m_structureLogBase = m_structureEpoch;
+        m_structureLog.clear();
+    }
+    /// A structural change confined to one body: its creation or destruction, its fixtures
+    /// and their settings, its mass, type, activity, damping, gravity scale or user data.
+    /// Called by those API calls; a frame saved before the body existed undoes such changes
+    /// by destroying the body (RestoreFrame).
+    void MarkBodyStructureChanged(int32 bodyId) noexcept;
     /// The structure epoch: changes with every structural change, never repeats a value this
     /// world gave before (frames compare it).
     uint64 GetStructureEpoch() const noexcept { return m_structureEpoch; }
@@ -251,6 +266,12 @@ public:
     uint64 m_serial = state_detail::NextWorldSerial();
     uint64 m_structureEpoch = 0;
     uint64 m_epochSource = 0;
+    /// The structural changes since the epoch m_structureLogBase, oldest first, each confined
+    /// to one body: the last one's epoch is m_structureEpoch (the base, when empty). A change
+    /// not confined to a body starts the log again.
+    std::vector<b2StructureChange> m_structureLog;
+    uint64 m_structureLogBase = 0;
+    b2FrameRestoreCounts m_frameRestores;
     mutable std::unique_ptr<state_detail::FrameCache, state_detail::FrameCacheDeleter> m_frameCache;
     b2Profile m_profile;
     bool m_headroomTelemetry = false;  ///< fill m_profile.headroom at the end of each Step

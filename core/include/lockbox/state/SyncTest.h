@@ -6,9 +6,11 @@
 /// something outside the world changed the result.
 ///
 /// The mispredict mode first re-simulates the k frames with wrong inputs (random impulses,
-/// bodies created and destroyed, chosen by a seeded generator), then restores again and
-/// re-simulates with the right ones. State that leaks out of a discarded branch (contact
-/// caches, pair buffers, id reuse, free-list order) shows up as a mismatch.
+/// bodies created and destroyed, joints created, chosen by a seeded generator), then restores
+/// again and re-simulates with the right ones. Every other branch only spawns (bodies created,
+/// and some of those destroyed again), the case rollback frames undo without their structure
+/// image. State that leaks out of a discarded branch (contact caches, pair buffers, id reuse,
+/// free-list order) shows up as a mismatch.
 
 #include <span>
 #include <string>
@@ -57,6 +59,9 @@ struct SyncTestResult {
     uint64 actual = 0;           ///< re-simulated hash at firstBadFrame
     b2HashMismatch where;        ///< first differing category and body
     std::string message;         ///< a one-line account of the failure; empty when ok
+    /// In frames mode: how the run's RestoreFrame calls went (same structure, spawns undone,
+    /// structure image restored).
+    b2FrameRestoreCounts frameRestores;
 };
 
 /// Runs a game through the sync test. The world must be in its initial state and is left at
@@ -69,12 +74,16 @@ public:
     SyncTestResult Run(int32 frames);
 
 private:
+    SyncTestResult RunFrames(int32 frames);
     uint64 StateHash();
     /// Saves the frame into the ring and returns its state hash (read from the image).
     uint64 SaveFrame(int32 frame);
     bool LoadFrame(int32 frame, SyncTestResult& result);
     bool CheckFrame(int32 frame, SyncTestResult& result);
-    void WrongInputs(int32 frame);
+    /// Wrong inputs for one frame of a mispredicted branch; `spawnOnly` leaves older bodies'
+    /// set-up and the joints alone (bodies are only created, and destroyed among `spawned`,
+    /// the ids of the branch's own bodies: the game may destroy some of them meanwhile).
+    void WrongInputs(int32 frame, bool spawnOnly, std::vector<int32>& spawned);
 
     b2World& m_world;
     SyncTestGame& m_game;

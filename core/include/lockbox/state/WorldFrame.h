@@ -68,6 +68,32 @@ struct Settings {
 
 }  // namespace frame_detail
 
+/// A structural change confined to one body (b2World::MarkBodyStructureChanged): the epoch it
+/// made and the body's id.
+struct b2StructureChange {
+    uint64 epoch = 0;
+    int32 body = -1;
+};
+
+/// How a world's RestoreFrame calls went (b2World::GetFrameRestoreCounts).
+struct b2FrameRestoreCounts {
+    uint64 sameStructure = 0;      ///< the structure was the frame's: arrays only
+    uint64 undoneCreations = 0;    ///< bodies created since the frame were destroyed, then arrays
+    uint64 restoredStructure = 0;  ///< the frame's structure image was restored, then arrays
+};
+
+namespace frame_detail {
+
+/// The structure one epoch shares among its frames: the portable image (Save's layout without
+/// contacts) and the body and fixture pools' layouts, which undoing creations puts back.
+struct Structure {
+    std::vector<uint8> image;
+    std::vector<uint8> bodyLive, fixtureLive;  ///< a flag per slot
+    std::vector<int32> bodyFree, fixtureFree;  ///< free stacks, bottom first
+};
+
+}  // namespace frame_detail
+
 /// Byte counts of one frame (b2WorldFrame::Stats).
 struct b2FrameStats {
     uint32 bodyBytes = 0;       ///< body motion (64 per body)
@@ -77,7 +103,7 @@ struct b2FrameStats {
     uint32 jointBytes = 0;      ///< joints' state fields
     uint32 broadPhaseBytes = 0; ///< tree nodes and move buffer
     uint32 frameBytes = 0;      ///< all of the above plus the fixed part: this frame's own memory
-    uint32 structureBytes = 0;  ///< the shared structure image (shared with other frames)
+    uint32 structureBytes = 0;  ///< the structure image and pool layouts (shared with other frames)
 };
 
 /// A world's state at one moment, for that world's RestoreFrame. Reuse frames (a ring): a
@@ -93,10 +119,11 @@ public:
 private:
     friend class b2World;
     friend struct FrameAccess;
+    friend struct FrameUndo;
 
     uint64 m_serial = 0;  ///< the saving world's serial (b2World::m_serial); 0: empty
     uint64 m_epoch = 0;   ///< the saving world's structure epoch
-    std::shared_ptr<const std::vector<uint8>> m_structure;  ///< portable image of that epoch
+    std::shared_ptr<const frame_detail::Structure> m_structure;  ///< that epoch's structure
     uint64 m_checkHash = 0;  ///< b2WorldHash at the save (checked builds; 0 otherwise)
     frame_detail::Settings m_settings;
     std::vector<frame_detail::BodyMotion> m_bodies;  ///< body-list order
