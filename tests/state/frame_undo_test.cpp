@@ -1,6 +1,6 @@
 // Rollback frames across spawns (b2World::RestoreFrame, lockbox/state/WorldFrame.h): when every
-// structural change since a frame concerned only bodies created since, the restore destroys
-// those bodies instead of restoring the frame's structure image; any other change takes the
+// structural change since a frame concerned only bodies and joints created since, the restore
+// destroys them instead of restoring the frame's structure image; any other change takes the
 // image. Either way the state, its future and the ids handed out next are the saved ones.
 
 #include <gtest/gtest.h>
@@ -83,6 +83,46 @@ TEST(FrameUndo, SetUpOfNewBodiesIsUndoneToo) {
     saved.ExpectBack(run);
 }
 
+TEST(FrameUndo, SpawnedRagdollsWithTheirJointsAreUndone) {
+    // Bodies spawned with joints among them (a chain with a gear, a weld and a distance joint),
+    // one joint destroyed again: all newer than the frame, so undone like bodies.
+    SceneRun run{"ragdolls"};
+    run.Advance(15);
+    b2World& w = run.world();
+    const int32 joints = w.GetJointCount();
+    const SavedFrame saved(run, 12);
+    std::vector<b2Body*> made;
+    for (int i = 0; i < 4; ++i) made.push_back(AddBox(w, b2Vec2(Fixed(i) / 2, 24)));
+    std::vector<b2Joint*> hinges;
+    for (int i = 0; i + 1 < 4; ++i) {
+        b2RevoluteJointDef rd;
+        rd.Initialize(made[static_cast<size_t>(i)], made[static_cast<size_t>(i) + 1],
+                      made[static_cast<size_t>(i)]->GetPosition() + b2Vec2(Fixed(1) / 4, 0));
+        hinges.push_back(w.CreateJoint(&rd));
+    }
+    b2GearJointDef gd;
+    gd.bodyA = made[1];
+    gd.bodyB = made[2];
+    gd.joint1 = hinges[0];
+    gd.joint2 = hinges[1];
+    gd.ratio = 2;
+    w.CreateJoint(&gd);
+    run.Advance(3);
+    b2WeldJointDef wd;
+    wd.Initialize(made[0], made[3], made[0]->GetPosition());
+    w.CreateJoint(&wd);
+    b2DistanceJointDef dd;
+    dd.Initialize(made[0], made[2], made[0]->GetPosition(), made[2]->GetPosition());
+    b2Joint* doomed = w.CreateJoint(&dd);
+    run.Advance(2);
+    w.DestroyJoint(doomed);
+    run.Advance(2);
+    EXPECT_EQ(RestoreAndPath(w, saved.frame), 1);
+    EXPECT_EQ(w.GetJointCount(), joints);
+    EXPECT_TRUE(testing_state::EdgesFollowWorldLists(w));
+    saved.ExpectBack(run);
+}
+
 TEST(FrameUndo, OtherChangesRestoreTheStructureImage) {
     // Changes that touch what the frame had, or are not confined to one body.
     using Change = std::function<void(b2World&, b2Body* older)>;
@@ -96,13 +136,13 @@ TEST(FrameUndo, OtherChangesRestoreTheStructureImage) {
         {"older body destroyed", [](b2World& w, b2Body* older) { w.DestroyBody(older); }},
         {"older body made inactive", [](b2World&, b2Body* older) { older->SetActive(false); }},
         {"older fixture's shape", [](b2World&, b2Body* older) { (void)older->GetFixtureList()->GetShape(); }},
-        {"joint between new bodies", [](b2World& w, b2Body*) {
+        {"joint between a new and an older body", [](b2World& w, b2Body* older) {
              b2Body* a = AddBox(w, b2Vec2(0, 20));
-             b2Body* b = AddBox(w, b2Vec2(1, 20));
              b2DistanceJointDef jd;
-             jd.Initialize(a, b, a->GetPosition(), b->GetPosition());
+             jd.Initialize(a, older, a->GetPosition(), older->GetPosition());
              w.CreateJoint(&jd);
          }},
+        {"older joint destroyed", [](b2World& w, b2Body*) { w.DestroyJoint(w.GetJointList()); }},
         {"MarkStructureChanged", [](b2World& w, b2Body*) {
              AddBox(w, b2Vec2(0, 20));
              w.MarkStructureChanged();

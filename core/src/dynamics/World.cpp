@@ -43,7 +43,13 @@ b2World::~b2World() {
     }
 }
 
-void b2World::MarkBodyStructureChanged(int32 bodyId) noexcept {
+void b2World::MarkBodyStructureChanged(int32 bodyId) noexcept { LogStructureChange({0, bodyId, b2_nullId, b2_nullId}); }
+
+void b2World::MarkJointStructureChanged(const b2Joint& joint) noexcept {
+    LogStructureChange({0, joint.m_bodyA->GetId(), joint.m_bodyB->GetId(), joint.GetId()});
+}
+
+void b2World::LogStructureChange(b2StructureChange change) noexcept {
     m_structureEpoch = ++m_epochSource;
     // Only frames read the log: a world that never saved one starts it again each time.
     if (!m_frameCache) {
@@ -59,7 +65,8 @@ void b2World::MarkBodyStructureChanged(int32 bodyId) noexcept {
         m_structureLogBase = m_structureLog[kDrop - 1].epoch;
         m_structureLog.erase(m_structureLog.begin(), m_structureLog.begin() + static_cast<std::ptrdiff_t>(kDrop));
     }
-    m_structureLog.push_back({m_structureEpoch, bodyId});
+    change.epoch = m_structureEpoch;
+    m_structureLog.push_back(change);
 }
 
 bool b2World::CheckLocked(const char* what) const {

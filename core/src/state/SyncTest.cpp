@@ -125,6 +125,16 @@ void SyncTest::WrongInputs(int32 frame, bool spawnOnly, std::vector<int32>& spaw
         spawned.push_back(body->GetId());
     }
     if (spawnOnly) {
+        // Joins two of the branch's own bodies now and then (a spawned ragdoll's joints).
+        if (roll % 3 == 0 && spawned.size() >= 2) {
+            b2Body* a = m_world.GetBody(spawned[spawned.size() - 1]);
+            b2Body* b = m_world.GetBody(spawned[spawned.size() - 2]);
+            if (a != nullptr && b != nullptr) {
+                b2DistanceJointDef jd;
+                jd.Initialize(a, b, a->GetWorldCenter(), b->GetWorldCenter());
+                m_world.CreateJoint(&jd);
+            }
+        }
         // Destroys one of the branch's own bodies now and then (its slot is reused next). An id
         // the game freed meanwhile is skipped; one it reused holds a body new to the branch too.
         if (roll % 5 == 0 && !spawned.empty()) {

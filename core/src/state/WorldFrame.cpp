@@ -321,6 +321,8 @@ std::shared_ptr<const Structure> SaveStructure(const b2World& world, FrameCache&
     buffer->bodyFree = world.m_bodies.GetFreeList();
     buffer->fixtureLive = world.m_fixtures.GetLiveFlags();
     buffer->fixtureFree = world.m_fixtures.GetFreeList();
+    buffer->jointLive.resize(world.m_joints.size());
+    for (size_t id = 0; id < world.m_joints.size(); ++id) buffer->jointLive[id] = world.m_joints[id] != nullptr ? 1 : 0;
     std::weak_ptr<StructurePool> pool = cache.pool;
     return std::shared_ptr<const Structure>(buffer.release(), [pool](const Structure* structure) {
         std::unique_ptr<Structure> owned(const_cast<Structure*>(structure));
@@ -330,9 +332,16 @@ std::shared_ptr<const Structure> SaveStructure(const b2World& world, FrameCache&
     });
 }
 
-/// True when body slot `id` was free (or did not exist yet) in `s`'s epoch.
-bool IsNewSince(const Structure& s, int32 id) noexcept {
-    return id >= 0 && (static_cast<size_t>(id) >= s.bodyLive.size() || s.bodyLive[static_cast<size_t>(id)] == 0);
+/// True when slot `id` of a layout was free (or did not exist yet) in that layout's epoch.
+bool IsNewSince(const std::vector<uint8>& live, int32 id) noexcept {
+    return id >= 0 && (static_cast<size_t>(id) >= live.size() || live[static_cast<size_t>(id)] == 0);
+}
+
+/// True when everything `change` concerned is newer than `s`'s epoch.
+bool ConcernsOnlyNew(const Structure& s, const b2StructureChange& change) noexcept {
+    if (!IsNewSince(s.bodyLive, change.body)) return false;
+    if (change.joint < 0) return true;
+    return IsNewSince(s.bodyLive, change.otherBody) && IsNewSince(s.jointLive, change.joint);
 }
 
 /// True when every slot live in `live` is live in `pool`.
@@ -348,15 +357,21 @@ constexpr size_t kCannotUndo = static_cast<size_t>(-1);
 
 }  // namespace
 
-/// Undoing creations: when every structural change since a frame's epoch was confined to a body
-/// created since (the world's log says so), the frame's structure is the world's without those
-/// bodies, so destroying them (and putting the pools' free stacks back) makes it the frame's.
-/// Everything else such a change touched (contacts, proxies in the tree, the move buffer, the
-/// world's flags) the frame's arrays overwrite.
+/// Undoing creations: when every structural change since a frame's epoch was confined to bodies
+/// and joints created since (the world's log says so), the frame's structure is the world's
+/// without them, so destroying them (and putting the pools' free stacks back) makes it the
+/// frame's. Everything else such a change touched (contacts, proxies in the tree, the move
+/// buffer, the world's flags, older bodies' motion) the frame's arrays overwrite.
 struct FrameUndo {
+    /// How many bodies and joints at the heads of the world's lists are new (creation
+    /// prepends, so the new ones come first).
+    struct Heads {
+        size_t bodies = 0, joints = 0;
+    };
+
     /// How many of the log's entries precede the frame's epoch (the log keeps those), or
-    /// kCannotUndo. `newAtFront` gets how many bodies at the head of the body list are new.
-    static size_t Check(const b2World& world, const b2WorldFrame& frame, size_t& newAtFront) {
+    /// kCannotUndo.
+    static size_t Check(const b2World& world, const b2WorldFrame& frame, Heads& heads) {
         const std::vector<b2StructureChange>& log = world.m_structureLog;
         size_t start = kCannotUndo;
         if (frame.m_epoch == world.m_structureLogBase) {
@@ -372,28 +387,53 @@ struct FrameUndo {
         if (start == kCannotUndo) return kCannotUndo;
         const Structure& s = *frame.m_structure;
         for (size_t k = start; k < log.size(); ++k) {
-            if (!IsNewSince(s, log[k].body)) return kCannotUndo;
+            if (!ConcernsOnlyNew(s, log[k])) return kCannotUndo;
         }
         // The log implies what follows; checking it keeps a wrong log from corrupting the world.
-        // Every body and fixture of the frame is still there, and creations prepend, so the new
-        // bodies are the list's head and the rest is the frame's list.
+        // Every body, fixture and joint of the frame is still there, and creations prepend, so
+        // the new ones are the lists' heads and the rest are the frame's lists.
         if (!KeepsEverySlot(world.m_bodies, s.bodyLive) || !KeepsEverySlot(world.m_fixtures, s.fixtureLive)) {
             return kCannotUndo;
         }
-        newAtFront = 0;
-        for (const b2Body* b = world.m_bodyList; b != nullptr && IsNewSince(s, b->m_id); b = b->m_next) {
-            if (b->m_jointList != nullptr) return kCannotUndo;
-            ++newAtFront;
+        size_t frameJoints = 0;
+        for (size_t id = 0; id < s.jointLive.size(); ++id) {
+            if (s.jointLive[id] == 0) continue;
+            if (id >= world.m_joints.size() || world.m_joints[id] == nullptr) return kCannotUndo;
+            ++frameJoints;
         }
-        if (static_cast<size_t>(world.m_bodyCount) - newAtFront != frame.m_bodies.size()) return kCannotUndo;
+        heads = Heads{};
+        for (const b2Joint* j = world.m_jointList; j != nullptr && IsNewSince(s.jointLive, j->m_id); j = j->m_next) {
+            // A new joint holds only new bodies (else its bodies' joint lists would change).
+            if (!IsNewSince(s.bodyLive, j->m_bodyA->m_id) || !IsNewSince(s.bodyLive, j->m_bodyB->m_id)) {
+                return kCannotUndo;
+            }
+            ++heads.joints;
+        }
+        if (static_cast<size_t>(world.m_jointCount) - heads.joints != frameJoints) return kCannotUndo;
+        for (const b2Body* b = world.m_bodyList; b != nullptr && IsNewSince(s.bodyLive, b->m_id); b = b->m_next) {
+            ++heads.bodies;
+        }
+        if (static_cast<size_t>(world.m_bodyCount) - heads.bodies != frame.m_bodies.size()) return kCannotUndo;
         return start;
     }
 
-    /// Destroys the `newAtFront` bodies at the list's head with their fixtures, and gives the
-    /// body and fixture pools the frame's layout (Check said yes).
-    static void Apply(b2World& world, const Structure& s, size_t newAtFront) {
+    /// Destroys the new joints, then the new bodies with their fixtures, and gives the body
+    /// and fixture pools the frame's layout (Check said yes).
+    static void Apply(b2World& world, const Structure& s, const Heads& heads) {
+        // Joints: only new bodies' joint lists hold them, and those bodies go next.
+        b2Joint* joint = world.m_jointList;
+        for (size_t k = 0; k < heads.joints; ++k) {
+            b2Joint* next = joint->m_next;
+            world.ReleaseJointId(joint->m_id);
+            b2Joint::Destroy(joint);
+            joint = next;
+        }
+        world.m_jointList = joint;
+        if (joint != nullptr) joint->m_prev = nullptr;
+        world.m_jointCount -= static_cast<int32>(heads.joints);
+
         b2Body* head = world.m_bodyList;
-        for (size_t k = 0; k < newAtFront; ++k) head = head->m_next;
+        for (size_t k = 0; k < heads.bodies; ++k) head = head->m_next;
         world.m_bodyList = head;
         if (head != nullptr) head->m_prev = nullptr;
         // Check found every slot of the frame live, so no slot is made here (unreachable).
@@ -429,11 +469,11 @@ b2RestoreResult b2World::RestoreFrame(const b2WorldFrame& frame) {
     if (frame.m_serial != m_serial) return {b2SnapshotError::e_foreignFrame, "the frame was saved by another world"};
     if (!m_frameCache) m_frameCache.reset(new FrameCache());
     FrameCache& cache = *m_frameCache;
-    size_t newAtFront = 0;
+    FrameUndo::Heads heads;
     if (frame.m_epoch == m_structureEpoch) {
         ++m_frameRestores.sameStructure;
-    } else if (const size_t kept = FrameUndo::Check(*this, frame, newAtFront); kept != kCannotUndo) {
-        FrameUndo::Apply(*this, *frame.m_structure, newAtFront);
+    } else if (const size_t kept = FrameUndo::Check(*this, frame, heads); kept != kCannotUndo) {
+        FrameUndo::Apply(*this, *frame.m_structure, heads);
         // The fixtures the frame has kept their addresses: a fixture table of the epoch undone
         // still serves (the entries of the destroyed ones are never looked up).
         if (cache.slotsEpoch == m_structureEpoch && cache.slots.size() >= frame.m_structure->fixtureLive.size()) {

@@ -155,8 +155,8 @@ public:
     /// image checks (the frame never left the process). When the structure changed since the
     /// frame (a body, fixture or joint created or destroyed, a fixture or mass setting
     /// changed), one of two things happens first. If every change since the frame concerned
-    /// only bodies created since (a spawn, and the set-up of what it spawned), those bodies
-    /// and their fixtures are destroyed. Otherwise the frame's structure image is restored,
+    /// only bodies and joints created since (a spawn, and the set-up of what it spawned), those
+    /// joints, bodies and fixtures are destroyed. Otherwise the frame's structure image is restored,
     /// through Restore. Refuses an empty frame or another world's (e_foreignFrame) and a call
     /// inside Step (e_locked).
     b2RestoreResult RestoreFrame(const b2WorldFrame& frame);
@@ -177,6 +177,9 @@ public:
     /// Called by those API calls; a frame saved before the body existed undoes such changes
     /// by destroying the body (RestoreFrame).
     void MarkBodyStructureChanged(int32 bodyId) noexcept;
+    /// A joint created or destroyed (with its id and bodies set): confined to the joint and
+    /// its two bodies, undone the same way when all three are newer than the frame.
+    void MarkJointStructureChanged(const b2Joint& joint) noexcept;
     /// The structure epoch: changes with every structural change, never repeats a value this
     /// world gave before (frames compare it).
     uint64 GetStructureEpoch() const noexcept { return m_structureEpoch; }
@@ -267,8 +270,8 @@ public:
     uint64 m_structureEpoch = 0;
     uint64 m_epochSource = 0;
     /// The structural changes since the epoch m_structureLogBase, oldest first, each confined
-    /// to one body: the last one's epoch is m_structureEpoch (the base, when empty). A change
-    /// not confined to a body starts the log again.
+    /// to one body or one joint: the last one's epoch is m_structureEpoch (the base, when
+    /// empty). Any other change starts the log again.
     std::vector<b2StructureChange> m_structureLog;
     uint64 m_structureLogBase = 0;
     b2FrameRestoreCounts m_frameRestores;
@@ -278,6 +281,8 @@ public:
     b2StepObserver* m_stepObserver = nullptr;  ///< step fenceposts (not state)
 
 private:
+    /// Moves the epoch and logs `change` (its epoch filled in) when the world keeps frames.
+    void LogStructureChange(b2StructureChange change) noexcept;
     void Solve(const b2TimeStep& step);
     void SolveTOI(const b2TimeStep& step);
     /// Takes bodies whose centre left the bounds out of the simulation and reports them.

@@ -8,8 +8,8 @@
 /// The mispredict mode first re-simulates the k frames with wrong inputs (random impulses,
 /// bodies created and destroyed, joints created, chosen by a seeded generator), then restores
 /// again and re-simulates with the right ones. Every other branch only spawns (bodies created,
-/// and some of those destroyed again), the case rollback frames undo without their structure
-/// image. State that leaks out of a discarded branch (contact caches, pair buffers, id reuse,
+/// joints among them, some of those bodies destroyed again), the case rollback frames undo
+/// without their structure image. State that leaks out of a discarded branch (contact caches, pair buffers, id reuse,
 /// free-list order) shows up as a mismatch.
 
 #include <span>
@@ -80,9 +80,9 @@ private:
     uint64 SaveFrame(int32 frame);
     bool LoadFrame(int32 frame, SyncTestResult& result);
     bool CheckFrame(int32 frame, SyncTestResult& result);
-    /// Wrong inputs for one frame of a mispredicted branch; `spawnOnly` leaves older bodies'
-    /// set-up and the joints alone (bodies are only created, and destroyed among `spawned`,
-    /// the ids of the branch's own bodies: the game may destroy some of them meanwhile).
+    /// Wrong inputs for one frame of a mispredicted branch; `spawnOnly` leaves older bodies and
+    /// joints alone (bodies are created, joined and destroyed among `spawned`, the ids of the
+    /// branch's own bodies: the game may destroy some of them meanwhile).
     void WrongInputs(int32 frame, bool spawnOnly, std::vector<int32>& spawned);
 
     b2World& m_world;

@@ -68,11 +68,13 @@ struct Settings {
 
 }  // namespace frame_detail
 
-/// A structural change confined to one body (b2World::MarkBodyStructureChanged): the epoch it
-/// made and the body's id.
+/// A structural change confined to one body (b2World::MarkBodyStructureChanged), or to one
+/// joint and its two bodies (MarkJointStructureChanged): the epoch it made and the ids.
 struct b2StructureChange {
     uint64 epoch = 0;
-    int32 body = -1;
+    int32 body = -1;       ///< the body, or the joint's body A
+    int32 otherBody = -1;  ///< the joint's body B (-1 for a body's change)
+    int32 joint = -1;      ///< the joint (-1 for a body's change)
 };
 
 /// How a world's RestoreFrame calls went (b2World::GetFrameRestoreCounts).
@@ -85,10 +87,10 @@ struct b2FrameRestoreCounts {
 namespace frame_detail {
 
 /// The structure one epoch shares among its frames: the portable image (Save's layout without
-/// contacts) and the body and fixture pools' layouts, which undoing creations puts back.
+/// contacts) and the body, fixture and joint layouts, which undoing creations puts back.
 struct Structure {
     std::vector<uint8> image;
-    std::vector<uint8> bodyLive, fixtureLive;  ///< a flag per slot
+    std::vector<uint8> bodyLive, fixtureLive, jointLive;  ///< a flag per slot (joints: per id)
     std::vector<int32> bodyFree, fixtureFree;  ///< free stacks, bottom first
 };
 

@@ -38,7 +38,6 @@ b2Joint* b2World::CreateJoint(const b2JointDef* def) {
     if (CheckLocked("b2World::CreateJoint called inside a Step callback (the world is locked)")) return nullptr;
     b2Joint* j = b2Joint::Create(def);
     if (j == nullptr) return nullptr;
-    MarkStructureChanged();
 
     // The smallest free id: ids are small, stable and independent of addresses. Every id
     // below m_jointIdHint is taken, so the scan starts there.
@@ -48,6 +47,7 @@ b2Joint* b2World::CreateJoint(const b2JointDef* def) {
     m_joints[id] = j;
     j->m_id = static_cast<int32>(id);
     m_jointIdHint = static_cast<int32>(id) + 1;
+    MarkJointStructureChanged(*j);
 
     // Connect to the world list, newest first.
     j->m_prev = nullptr;
@@ -70,7 +70,7 @@ b2Joint* b2World::CreateJoint(const b2JointDef* def) {
 void b2World::DestroyJoint(b2Joint* j) {
     if (CheckLocked("b2World::DestroyJoint called inside a Step callback (the world is locked)")) return;
     if (j == nullptr) return;
-    MarkStructureChanged();
+    MarkJointStructureChanged(*j);
 
     // Gears coupling this joint go first (each is told to the destruction listener: it is an
     // implicit destruction). A gear is never coupled by another gear, so this recursion is
