@@ -18,6 +18,7 @@ namespace {
 using testing_state::AddBox;
 using testing_state::FirstDynamic;
 using testing_state::Future;
+using testing_state::SavedFrame;
 using testing_state::SceneRun;
 
 static_assert(sizeof(frame_detail::BodyMotion) == 64, "a body's motion in a frame is 64 bytes");
@@ -103,17 +104,11 @@ TEST(WorldFrame, RestoreGivesTheSavedStateAndItsFuture) {
     for (const char* name : {"pyramid20", "ragdolls", "car", "pulley_gear", "rain"}) {
         SceneRun run{name};
         run.Advance(40);
-        b2WorldFrame frame;
-        run.world().SaveFrame(frame);
-        const uint64 saved = run.world().Hash();
         const uint32 bodies = static_cast<uint32>(run.world().GetBodyCount());
-        const int savedStep = run.step;
-        const std::vector<uint64> future = Future(run, 20);
-        ASSERT_TRUE(run.world().RestoreFrame(frame).ok()) << name;
-        EXPECT_EQ(run.world().Hash(), saved) << name;
-        run.step = savedStep;
-        EXPECT_EQ(Future(run, 20), future) << name;
-        const b2FrameStats stats = frame.Stats();
+        const SavedFrame saved(run, 20);
+        ASSERT_TRUE(run.world().RestoreFrame(saved.frame).ok()) << name;
+        saved.ExpectBack(run, name);
+        const b2FrameStats stats = saved.frame.Stats();
         EXPECT_EQ(stats.bodyBytes, 64u * bodies) << name;
         EXPECT_GT(stats.structureBytes, 0u) << name;
     }
@@ -123,11 +118,7 @@ TEST(WorldFrame, RestoreUndoesStructuralChanges) {
     SceneRun run{"ragdolls"};
     run.Advance(20);
     b2World& w = run.world();
-    b2WorldFrame frame;
-    w.SaveFrame(frame);
-    const uint64 saved = w.Hash();
-    const int savedStep = run.step;
-    const std::vector<uint64> future = Future(run, 15);
+    const SavedFrame saved(run, 15);
     // A branch that changes every kind of structure, with steps in between.
     for (int i = 0; i < 6; ++i) AddBox(w, b2Vec2(i, 20));
     run.Advance(3);
@@ -144,11 +135,9 @@ TEST(WorldFrame, RestoreUndoesStructuralChanges) {
     w.DestroyBody(body);
     w.DestroyJoint(w.GetJointList());
     run.Advance(3);
-    ASSERT_TRUE(w.RestoreFrame(frame).ok());
-    EXPECT_EQ(w.Hash(), saved);
+    ASSERT_TRUE(w.RestoreFrame(saved.frame).ok());
     EXPECT_TRUE(testing_state::EdgesFollowWorldLists(w));
-    run.step = savedStep;
-    EXPECT_EQ(Future(run, 15), future);
+    saved.ExpectBack(run);
 }
 
 TEST(WorldFrame, FramesOfOtherEpochsAndShrunkPoolsRestore) {

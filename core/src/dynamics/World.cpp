@@ -50,13 +50,12 @@ void b2World::MarkJointStructureChanged(const b2Joint& joint) noexcept {
 }
 
 void b2World::LogStructureChange(b2StructureChange change) noexcept {
-    m_structureEpoch = ++m_epochSource;
     // Only frames read the log: a world that never saved one starts it again each time.
     if (!m_frameCache) {
-        m_structureLogBase = m_structureEpoch;
-        m_structureLog.clear();
+        MarkStructureChanged();
         return;
     }
+    m_structureEpoch = ++m_epochSource;
     // Bounded: when full, the older half goes, and frames from before it restore their
     // structure image instead.
     constexpr size_t kLogCapacity = 4096;

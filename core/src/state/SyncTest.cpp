@@ -124,37 +124,37 @@ void SyncTest::WrongInputs(int32 frame, bool spawnOnly, std::vector<int32>& spaw
         dynamic.push_back(body);
         spawned.push_back(body->GetId());
     }
-    if (spawnOnly) {
-        // Joins two of the branch's own bodies now and then (a spawned ragdoll's joints).
-        if (roll % 3 == 0 && spawned.size() >= 2) {
-            b2Body* a = m_world.GetBody(spawned[spawned.size() - 1]);
-            b2Body* b = m_world.GetBody(spawned[spawned.size() - 2]);
-            if (a != nullptr && b != nullptr) {
-                b2DistanceJointDef jd;
-                jd.Initialize(a, b, a->GetWorldCenter(), b->GetWorldCenter());
-                m_world.CreateJoint(&jd);
+    if (roll % 3 == 0) {
+        // A joint between two bodies: exercises joint ids and edges. A spawn-only branch joins
+        // its own two newest bodies (a spawned ragdoll's joints).
+        b2Body* a = nullptr;
+        b2Body* b = nullptr;
+        if (spawnOnly) {
+            if (spawned.size() >= 2) {
+                a = m_world.GetBody(spawned[spawned.size() - 1]);
+                b = m_world.GetBody(spawned[spawned.size() - 2]);
             }
+        } else if (dynamic.size() >= 2) {
+            a = pick();
+            b = pick();
         }
-        // Destroys one of the branch's own bodies now and then (its slot is reused next). An id
-        // the game freed meanwhile is skipped; one it reused holds a body new to the branch too.
-        if (roll % 5 == 0 && !spawned.empty()) {
-            const size_t at = static_cast<size_t>(NextRandom(rng) % spawned.size());
-            if (b2Body* victim = m_world.GetBody(spawned[at])) m_world.DestroyBody(victim);
-            spawned.erase(spawned.begin() + static_cast<std::ptrdiff_t>(at));
-        }
-        return;
-    }
-    if (roll % 3 == 0 && dynamic.size() >= 2) {
-        // A joint between two bodies: exercises joint ids and edges.
-        b2Body* a = pick();
-        b2Body* b = pick();
-        if (a != b) {
+        if (a != nullptr && b != nullptr && a != b) {
             b2DistanceJointDef jd;
             jd.Initialize(a, b, a->GetWorldCenter(), b->GetWorldCenter());
             m_world.CreateJoint(&jd);
         }
     }
-    if (roll % 5 == 0 && !dynamic.empty()) m_world.DestroyBody(pick());
+    if (roll % 5 == 0) {
+        if (!spawnOnly) {
+            if (!dynamic.empty()) m_world.DestroyBody(pick());
+        } else if (!spawned.empty()) {
+            // One of the branch's own bodies (its slot is reused next). An id the game freed
+            // meanwhile is skipped; one it reused holds a body new to the branch too.
+            const size_t at = static_cast<size_t>(NextRandom(rng) % spawned.size());
+            if (b2Body* victim = m_world.GetBody(spawned[at])) m_world.DestroyBody(victim);
+            spawned.erase(spawned.begin() + static_cast<std::ptrdiff_t>(at));
+        }
+    }
 }
 
 SyncTestResult SyncTest::Run(int32 frames) {

@@ -10,6 +10,7 @@
 // Checked builds prove it on every restore: the world hash after RestoreFrame must equal the
 // hash taken at SaveFrame.
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -72,8 +73,8 @@ b2FrameStats b2WorldFrame::Stats() const noexcept {
                    s.contactBytes + s.jointBytes + s.broadPhaseBytes;
     if (m_structure) {
         const Structure& st = *m_structure;
-        s.structureBytes = bytes(st.image) + bytes(st.bodyLive) + bytes(st.fixtureLive) + bytes(st.bodyFree) +
-                           bytes(st.fixtureFree);
+        s.structureBytes = bytes(st.image) + bytes(st.bodyLive) + bytes(st.fixtureLive) + bytes(st.jointLive) +
+                           bytes(st.bodyFree) + bytes(st.fixtureFree);
     }
     return s;
 }
@@ -344,13 +345,24 @@ bool ConcernsOnlyNew(const Structure& s, const b2StructureChange& change) noexce
     return IsNewSince(s.bodyLive, change.otherBody) && IsNewSince(s.jointLive, change.joint);
 }
 
-/// True when every slot live in `live` is live in `pool`.
-template <class T>
-bool KeepsEverySlot(const b2Pool<T>& pool, const std::vector<uint8>& live) noexcept {
+/// True when every slot live in `live` is still live (isLive(id)).
+template <class IsLive>
+bool KeepsEverySlot(const std::vector<uint8>& live, IsLive isLive) noexcept {
     for (size_t id = 0; id < live.size(); ++id) {
-        if (live[id] != 0 && !pool.IsLive(static_cast<int32>(id))) return false;
+        if (live[id] != 0 && !isLive(id)) return false;
     }
     return true;
+}
+
+/// Takes the first n nodes off a world list (drop(node) for each, before moving on).
+template <class T, class Drop>
+void DropFromHead(T*& head, size_t n, Drop drop) {
+    for (size_t k = 0; k < n; ++k) {
+        T* next = head->m_next;
+        drop(head);
+        head = next;
+    }
+    if (head != nullptr) head->m_prev = nullptr;
 }
 
 constexpr size_t kCannotUndo = static_cast<size_t>(-1);
@@ -392,15 +404,12 @@ struct FrameUndo {
         // The log implies what follows; checking it keeps a wrong log from corrupting the world.
         // Every body, fixture and joint of the frame is still there, and creations prepend, so
         // the new ones are the lists' heads and the rest are the frame's lists.
-        if (!KeepsEverySlot(world.m_bodies, s.bodyLive) || !KeepsEverySlot(world.m_fixtures, s.fixtureLive)) {
-            return kCannotUndo;
-        }
-        size_t frameJoints = 0;
-        for (size_t id = 0; id < s.jointLive.size(); ++id) {
-            if (s.jointLive[id] == 0) continue;
-            if (id >= world.m_joints.size() || world.m_joints[id] == nullptr) return kCannotUndo;
-            ++frameJoints;
-        }
+        const bool kept =
+            KeepsEverySlot(s.bodyLive, [&](size_t id) { return world.m_bodies.IsLive(static_cast<int32>(id)); }) &&
+            KeepsEverySlot(s.fixtureLive, [&](size_t id) { return world.m_fixtures.IsLive(static_cast<int32>(id)); }) &&
+            KeepsEverySlot(s.jointLive, [&](size_t id) { return id < world.m_joints.size() && world.m_joints[id] != nullptr; });
+        if (!kept) return kCannotUndo;
+        const size_t frameJoints = static_cast<size_t>(std::count(s.jointLive.begin(), s.jointLive.end(), uint8{1}));
         heads = Heads{};
         for (const b2Joint* j = world.m_jointList; j != nullptr && IsNewSince(s.jointLive, j->m_id); j = j->m_next) {
             // A new joint holds only new bodies (else its bodies' joint lists would change).
@@ -421,21 +430,13 @@ struct FrameUndo {
     /// and fixture pools the frame's layout (Check said yes).
     static void Apply(b2World& world, const Structure& s, const Heads& heads) {
         // Joints: only new bodies' joint lists hold them, and those bodies go next.
-        b2Joint* joint = world.m_jointList;
-        for (size_t k = 0; k < heads.joints; ++k) {
-            b2Joint* next = joint->m_next;
+        DropFromHead(world.m_jointList, heads.joints, [&](b2Joint* joint) {
             world.ReleaseJointId(joint->m_id);
             b2Joint::Destroy(joint);
-            joint = next;
-        }
-        world.m_jointList = joint;
-        if (joint != nullptr) joint->m_prev = nullptr;
+        });
         world.m_jointCount -= static_cast<int32>(heads.joints);
-
-        b2Body* head = world.m_bodyList;
-        for (size_t k = 0; k < heads.bodies; ++k) head = head->m_next;
-        world.m_bodyList = head;
-        if (head != nullptr) head->m_prev = nullptr;
+        // Bodies: the pools below destroy them and their fixtures.
+        DropFromHead(world.m_bodyList, heads.bodies, [](b2Body*) {});
         // Check found every slot of the frame live, so no slot is made here (unreachable).
         auto none = [](void*, int32) { std::abort(); };
         world.m_fixtures.RestoreLayout(s.fixtureLive, s.fixtureFree, none);
@@ -480,9 +481,6 @@ b2RestoreResult b2World::RestoreFrame(const b2WorldFrame& frame) {
             cache.slotsEpoch = frame.m_epoch;
         }
         m_structureLog.resize(kept);
-        m_structureEpoch = frame.m_epoch;
-        cache.structure = frame.m_structure;
-        cache.structureEpoch = frame.m_epoch;
         ++m_frameRestores.undoneCreations;
     } else {
         // The structure changed otherwise since the frame: its epoch's image first (it only
@@ -490,14 +488,15 @@ b2RestoreResult b2World::RestoreFrame(const b2WorldFrame& frame) {
         // world intact).
         b2RestoreResult result = Restore(frame.m_structure->image);
         if (!result.ok()) return result;
-        m_structureEpoch = frame.m_epoch;
         m_structureLogBase = frame.m_epoch;
         m_structureLog.clear();
-        cache.structure = frame.m_structure;
-        cache.structureEpoch = frame.m_epoch;
         cache.slots.clear();  // fixtures may sit at other addresses than in that epoch
         ++m_frameRestores.restoredStructure;
     }
+    // The world's structure is now the frame's epoch's (unchanged on the first path).
+    m_structureEpoch = frame.m_epoch;
+    cache.structure = frame.m_structure;
+    cache.structureEpoch = frame.m_epoch;
     FrameAccess::Apply(frame, *this, cache);
 #ifdef LOCKBOX_CHECKED
     if (b2WorldHash(*this) != frame.m_checkHash) {
