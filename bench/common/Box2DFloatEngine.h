@@ -8,7 +8,7 @@
 // header parsed after it: the lockbox side (with every joint header it uses) comes first.
 #include "lockbox/scenes/LockboxScenes.h"
 
-#include <box2d/box2d.h>
+#include "Box2DFloat.h"  // float Box2D without its constant macros
 
 #include <algorithm>
 #include <cstdint>

@@ -5,6 +5,8 @@
 // `lockbox::b2_linearSlop` into `lockbox::(0.005f * b2_lengthUnitsPerMeter)`. This header
 // includes Box2D, keeps the float values under other names, and removes the macros.
 // Include it instead of <box2d/box2d.h>, in any order relative to lockbox's headers.
+#include <box2d/b2_distance.h>
+#include <box2d/b2_time_of_impact.h>
 #include <box2d/box2d.h>
 
 namespace box2d_float {

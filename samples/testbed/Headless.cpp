@@ -1,6 +1,6 @@
 // Headless rendering into a framebuffer object, PNG output (stb_image_write) and the blank check.
+#define GLFW_INCLUDE_GLEXT  // GLFW includes GL/glext.h after GL/gl.h, which it needs first
 #include <GLFW/glfw3.h>
-#include <GL/glext.h>
 #include <imgui.h>
 #include <imgui_impl_opengl2.h>
 #include <stb_image.h>

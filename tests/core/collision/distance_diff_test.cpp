@@ -28,9 +28,7 @@ inline constexpr Fixed kPolygonRadius = b2_polygonRadius;
 inline constexpr double kLinearSlopFloat = 0.005;
 }  // namespace lockbox::diff
 
-#include <box2d/box2d.h>
-#include <box2d/b2_distance.h>
-#include <box2d/b2_time_of_impact.h>
+#include "Box2DFloat.h"  // float Box2D without its constant macros
 
 #ifndef LOCKBOX_DISTANCE_DIFF_PAIRS
 #define LOCKBOX_DISTANCE_DIFF_PAIRS 500

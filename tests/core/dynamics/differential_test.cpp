@@ -1,8 +1,8 @@
 // Test 6: differential runs against float Box2D 2.4.1 over the first 60 steps at lockbox's
 // real time step (1092/65536 s): positions within 0.01 m, angles within 0.01 rad.
-#include "DynamicsTestUtil.h"  // lockbox first: float Box2D defines macros with lockbox's names
+#include "DynamicsTestUtil.h"
 
-#include <box2d/box2d.h>
+#include "Box2DFloat.h"  // float Box2D without its constant macros
 #include <gtest/gtest.h>
 
 #include <algorithm>

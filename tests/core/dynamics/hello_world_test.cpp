@@ -1,9 +1,7 @@
 // Test 1: the manual's Hello World against float Box2D 2.4.1 at lockbox's real time step.
-// lockbox first: float Box2D defines macros (b2_pi, b2_linearSlop, ...) that would break
-// lockbox's constants of the same names.
 #include "DynamicsTestUtil.h"
 
-#include <box2d/box2d.h>
+#include "Box2DFloat.h"  // float Box2D without its constant macros
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -7,9 +7,9 @@
 // b2LinearStiffness with the two-body reduced mass, while 2.2.1 uses the effective mass along
 // the axis, including rotation), and its revolute solves the limit separately. The car's
 // bound is wider for that reason.
-#include "JointTestUtil.h"  // lockbox first: float Box2D defines macros with lockbox's names
+#include "JointTestUtil.h"
 
-#include <box2d/box2d.h>
+#include "Box2DFloat.h"  // float Box2D without its constant macros
 #include <gtest/gtest.h>
 
 #include <algorithm>
