@@ -99,9 +99,12 @@ int main(int argc, char** argv) {
     bool quick = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--scene" && i + 1 < argc) scenes = {argv[++i]};
-        else if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--quick") quick = true;
+        if (a == "--scene" && i + 1 < argc)
+            scenes = {argv[++i]};
+        else if (a == "--repeat" && i + 1 < argc)
+            repeat = std::max(1, std::atoi(argv[++i]));
+        else if (a == "--quick")
+            quick = true;
         else {
             std::fprintf(stderr, "usage: lockbox_accuracy [--scene NAME] [--repeat R] [--quick]\n");
             return 2;
@@ -148,23 +151,24 @@ int main(int argc, char** argv) {
                 const auto m = WithDerived(r.metrics);
                 const double p = Find(m, primary);
                 char line[1024];
-                std::snprintf(line, sizeof line,
-                              "%s,%s,%s,%s,%d,%d,%d,%d,%d,%d,%d,%.6f,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,"
-                              "%.9g,%.9g\n",
-                              scene.c_str(), r.engine.c_str(), c.family.c_str(), c.label.c_str(), r.settings.hz,
-                              r.settings.steps, r.settings.velocityIterations, r.settings.positionIterations,
-                              s.warmStarting, s.continuous, s.subStepping, r.msPerStep, primary, p,
-                              k == 0 ? std::fabs(p - flPrimary) : 0.0, Find(m, "max_pen"), Find(m, "top_dx"),
-                              Find(m, "top_sag"), Find(m, "collapsed"), Find(m, "joint_sep"),
-                              Find(m, "all_asleep_step"), Find(m, "energy_drift"), Find(m, "period_err"),
-                              Find(m, "slide_accel_err"), Find(m, "stack_drift"));
+                std::snprintf(
+                    line, sizeof line,
+                    "%s,%s,%s,%s,%d,%d,%d,%d,%d,%d,%d,%.6f,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,"
+                    "%.9g,%.9g\n",
+                    scene.c_str(), r.engine.c_str(), c.family.c_str(), c.label.c_str(), r.settings.hz, r.settings.steps,
+                    r.settings.velocityIterations, r.settings.positionIterations, s.warmStarting, s.continuous,
+                    s.subStepping, r.msPerStep, primary, p, k == 0 ? std::fabs(p - flPrimary) : 0.0, Find(m, "max_pen"),
+                    Find(m, "top_dx"), Find(m, "top_sag"), Find(m, "collapsed"), Find(m, "joint_sep"),
+                    Find(m, "all_asleep_step"), Find(m, "energy_drift"), Find(m, "period_err"),
+                    Find(m, "slide_accel_err"), Find(m, "stack_drift"));
                 csv << line;
                 for (const auto& [stage, v] : r.profile)
                     eff << scene << "," << r.engine << "," << c.label << "," << stage << "," << v << "\n";
                 std::printf("%-15s %-12s %-15s ms/step=%.4f %s=%.6g\n", scene.c_str(), r.engine.c_str(),
                             c.label.c_str(), r.msPerStep, primary, p);
             }
-            if (!lbOk) std::printf("%-15s lockbox      %-15s unavailable (needs joints)\n", scene.c_str(), c.label.c_str());
+            if (!lbOk)
+                std::printf("%-15s lockbox      %-15s unavailable (needs joints)\n", scene.c_str(), c.label.c_str());
             std::fflush(stdout);
             csv.flush();
             eff.flush();

@@ -2,16 +2,16 @@
 // Pairs are generated once as raw Q16.16 values near contact and converted exactly to float, so
 // both engines evaluate the same geometry. Compare the items_per_second of each
 // BM_<Pair>_Lockbox / BM_<Pair>_Box2D pair (the main() is in tree_bench.cpp).
+#include <cstdint>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "Box2DFloat.h"  // float Box2D without its constant macros
 #include "lockbox/collision/CircleShape.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/EdgeShape.h"
 #include "lockbox/collision/PolygonShape.h"
-
-#include <benchmark/benchmark.h>
-#include "Box2DFloat.h"  // float Box2D without its constant macros
-
-#include <cstdint>
-#include <vector>
 
 namespace {
 

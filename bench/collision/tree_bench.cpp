@@ -6,13 +6,13 @@
 // Compare the items_per_second of each pair; the report lists the ratios.
 // lockbox first: float Box2D defines macros (b2_pi, b2_aabbExtension, b2_nullNode...) that
 // would clash with lockbox's constants if its headers came first.
-#include "lockbox/collision/DynamicTree.h"
-
-#include <benchmark/benchmark.h>
-#include "Box2DFloat.h"  // float Box2D without its constant macros
-
 #include <cstdint>
 #include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "Box2DFloat.h"  // float Box2D without its constant macros
+#include "lockbox/collision/DynamicTree.h"
 
 namespace {
 
@@ -111,7 +111,8 @@ void BM_Insert_Lockbox(benchmark::State& state) {
     const Scene& s = GetScene();
     for (auto _ : state) {
         lockbox::b2DynamicTree tree;
-        for (int i = 0; i < kProxies; ++i) tree.CreateProxy(ToLockbox(s.boxes[static_cast<size_t>(i)]), static_cast<uint64_t>(i));
+        for (int i = 0; i < kProxies; ++i)
+            tree.CreateProxy(ToLockbox(s.boxes[static_cast<size_t>(i)]), static_cast<uint64_t>(i));
         benchmark::DoNotOptimize(tree.GetRoot());
     }
     state.SetItemsProcessed(state.iterations() * kProxies);
@@ -154,7 +155,8 @@ void BM_Move_Box2D(benchmark::State& state) {
     const Scene& s = GetScene();
     ::b2DynamicTree tree;
     std::vector<int32_t> ids;
-    for (int i = 0; i < kProxies; ++i) ids.push_back(tree.CreateProxy(ToBox2D(s.boxes[static_cast<size_t>(i)]), nullptr));
+    for (int i = 0; i < kProxies; ++i)
+        ids.push_back(tree.CreateProxy(ToBox2D(s.boxes[static_cast<size_t>(i)]), nullptr));
     int f = 0;
     int64_t reinserted = 0;
     for (auto _ : state) {

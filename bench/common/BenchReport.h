@@ -16,10 +16,11 @@ namespace lockbox::scenes {
 
 /// The contracted one-line summary of a run.
 inline void PrintLine(const RunResult& r) {
-    std::printf("scene=%s engine=%s steps=%d ms_per_step=%.4f p95_ms=%.4f bodies=%d awake=%d "
-                "contacts=%d hash=0x%016" PRIx64 "\n",
-                r.scene.c_str(), r.engine.c_str(), r.settings.steps, r.msPerStep, r.p95Ms, r.bodies,
-                r.awake, r.contacts, r.hash);
+    std::printf(
+        "scene=%s engine=%s steps=%d ms_per_step=%.4f p95_ms=%.4f bodies=%d awake=%d "
+        "contacts=%d hash=0x%016" PRIx64 "\n",
+        r.scene.c_str(), r.engine.c_str(), r.settings.steps, r.msPerStep, r.p95Ms, r.bodies, r.awake, r.contacts,
+        r.hash);
 }
 
 /// The per-stage profile: wall-clock stages (ms per step) then work counters (per step).
@@ -60,9 +61,12 @@ inline std::string MachineName() {
         if (c == '@') break;  // the nominal clock adds nothing
         const bool alnum = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
         const bool upper = c >= 'A' && c <= 'Z';
-        if (alnum) slug += c;
-        else if (upper) slug += static_cast<char>(c - 'A' + 'a');
-        else if (!slug.empty() && slug.back() != '-') slug += '-';
+        if (alnum)
+            slug += c;
+        else if (upper)
+            slug += static_cast<char>(c - 'A' + 'a');
+        else if (!slug.empty() && slug.back() != '-')
+            slug += '-';
     }
     while (!slug.empty() && slug.back() == '-') slug.pop_back();
     const unsigned cores = std::thread::hardware_concurrency();

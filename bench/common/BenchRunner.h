@@ -18,15 +18,15 @@ namespace lockbox::scenes {
 
 /// Figures of one run.
 struct RunResult {
-    std::string scene;                 ///< scene name
-    std::string engine;                ///< "lockbox" or "box2d-float"
-    Resolved settings{0, 0, 0, 0};     ///< steps, iterations, Hz actually used
-    double msPerStep = 0;              ///< mean wall time of one Step, ms
-    double p95Ms = 0;                  ///< 95th percentile of the Step times, ms
-    int bodies = 0, awake = 0, contacts = 0;  ///< world counts after the last step
-    uint64_t hash = 0;                 ///< HashWorld for lockbox, 0 for float
+    std::string scene;                                    ///< scene name
+    std::string engine;                                   ///< "lockbox" or "box2d-float"
+    Resolved settings{0, 0, 0, 0};                        ///< steps, iterations, Hz actually used
+    double msPerStep = 0;                                 ///< mean wall time of one Step, ms
+    double p95Ms = 0;                                     ///< 95th percentile of the Step times, ms
+    int bodies = 0, awake = 0, contacts = 0;              ///< world counts after the last step
+    uint64_t hash = 0;                                    ///< HashWorld for lockbox, 0 for float
     std::vector<std::pair<std::string, double>> profile;  ///< per-step averages (ms or counts)
-    std::vector<Metric> metrics;       ///< scene metrics (when tracked)
+    std::vector<Metric> metrics;                          ///< scene metrics (when tracked)
 };
 
 /// Per-step profile figures of lockbox: wall-clock stages in ms and work counters.

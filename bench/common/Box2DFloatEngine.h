@@ -6,15 +6,14 @@
 
 // Box2D 2.4.1 defines b2_pi, b2_linearSlop, ... as macros, which would break any lockbox
 // header parsed after it: the lockbox side (with every joint header it uses) comes first.
-#include "lockbox/scenes/LockboxScenes.h"
-
-#include "Box2DFloat.h"  // float Box2D without its constant macros
-
 #include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <vector>
+
+#include "Box2DFloat.h"  // float Box2D without its constant macros
+#include "lockbox/scenes/LockboxScenes.h"
 
 namespace lockbox::scenes {
 
@@ -62,8 +61,7 @@ public:
     static Vec V(Num x, Num y) noexcept { return Vec(x, y); }
     /// num/den degrees in radians.
     static Num Deg(int64_t num, int64_t den = 1) noexcept {
-        return static_cast<float>(static_cast<double>(num) / static_cast<double>(den) *
-                                  3.14159265358979323846 / 180.0);
+        return static_cast<float>(static_cast<double>(num) / static_cast<double>(den) * 3.14159265358979323846 / 180.0);
     }
     /// A two-sided edge v1-v2 (2.4.1 `SetTwoSided`).
     static void SetEdge(EdgeShape& edge, const Vec& v1, const Vec& v2) { edge.SetTwoSided(v1, v2); }
@@ -97,9 +95,7 @@ public:
     /// The world.
     World& world() noexcept { return *world_; }
     /// The time step for a frequency: lockbox's Q16.16 step, round(65536 / hz) / 65536 s.
-    static float TimeStep(int hz) noexcept {
-        return static_cast<float>((65536 + hz / 2) / hz) / 65536.0f;
-    }
+    static float TimeStep(int hz) noexcept { return static_cast<float>((65536 + hz / 2) / hz) / 65536.0f; }
     /// One world step at hz steps per second.
     void Step(int hz, int velocityIterations, int positionIterations) {
         world_->Step(TimeStep(hz), velocityIterations, positionIterations);

@@ -85,18 +85,10 @@ inline void OpaquePair(P& p) {
     Opaque(p.a);
     Opaque(p.b);
 }
-inline void Opaque(Pair32& p) {
-    OpaquePair(p);
-}
-inline void Opaque(FPair& p) {
-    OpaquePair(p);
-}
-inline void Opaque(Pair64& p) {
-    OpaquePair(p);
-}
-inline void Opaque(DPair& p) {
-    OpaquePair(p);
-}
+inline void Opaque(Pair32& p) { OpaquePair(p); }
+inline void Opaque(FPair& p) { OpaquePair(p); }
+inline void Opaque(Pair64& p) { OpaquePair(p); }
+inline void Opaque(DPair& p) { OpaquePair(p); }
 
 // ---- error statistics --------------------------------------------------------------------------
 
@@ -106,8 +98,7 @@ struct ErrStats {
     uint64_t count = 0;
     void Add(long double e) {
         e = std::fabs(e);
-        if (e > max)
-            max = e;
+        if (e > max) max = e;
         sum += e;
         ++count;
     }
@@ -136,13 +127,9 @@ struct S128 {
     U128 mag;
 };
 
-uint64_t AbsU64(int64_t v) {
-    return v < 0 ? uint64_t{0} - static_cast<uint64_t>(v) : static_cast<uint64_t>(v);
-}
+uint64_t AbsU64(int64_t v) { return v < 0 ? uint64_t{0} - static_cast<uint64_t>(v) : static_cast<uint64_t>(v); }
 
-S128 MulS64(int64_t a, int64_t b) {
-    return {(a < 0) != (b < 0), MulU64(AbsU64(a), AbsU64(b))};
-}
+S128 MulS64(int64_t a, int64_t b) { return {(a < 0) != (b < 0), MulU64(AbsU64(a), AbsU64(b))}; }
 
 S128 ShiftLeft32(int64_t a) {
     S128 r;
@@ -153,9 +140,7 @@ S128 ShiftLeft32(int64_t a) {
     return r;
 }
 
-bool LessU128(const U128& a, const U128& b) {
-    return a.hi != b.hi ? a.hi < b.hi : a.lo < b.lo;
-}
+bool LessU128(const U128& a, const U128& b) { return a.hi != b.hi ? a.hi < b.hi : a.lo < b.lo; }
 
 U128 SubU128(const U128& a, const U128& b) {  // a >= b
     U128 r;
@@ -173,8 +158,7 @@ long double AbsDiff(const S128& a, const S128& b) {
         m.lo = a.mag.lo + b.mag.lo;
         m.hi = a.mag.hi + b.mag.hi + (m.lo < a.mag.lo ? 1 : 0);
     }
-    return static_cast<long double>(m.hi) * 18446744073709551616.0L +
-           static_cast<long double>(m.lo);
+    return static_cast<long double>(m.hi) * 18446744073709551616.0L + static_cast<long double>(m.lo);
 }
 
 // ---- timing ------------------------------------------------------------------------------------
@@ -190,8 +174,7 @@ double MedianNs(const TimingConfig& cfg, const std::function<void()>& body) {
     std::vector<double> samples;
     for (int r = 0; r < cfg.reps; ++r) {
         const auto t0 = std::chrono::steady_clock::now();
-        for (int i = 0; i < cfg.inner; ++i)
-            body();
+        for (int i = 0; i < cfg.inner; ++i) body();
         const auto t1 = std::chrono::steady_clock::now();
         samples.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() /
                           (static_cast<double>(cfg.inner) * kBatch));
@@ -220,16 +203,12 @@ double TimeLoop(const TimingConfig& cfg, const std::vector<In>& in, F f) {
 int64_t LogUniform(std::mt19937_64& rng, int maxBits, int64_t max, bool allow_negative) {
     const int bits = static_cast<int>(rng() % static_cast<uint64_t>(maxBits));
     int64_t v = static_cast<int64_t>((rng() >> (63 - bits)) | (uint64_t{1} << bits));
-    if (v > max)
-        v = max;
-    if (allow_negative && (rng() & 1))
-        v = -v;
+    if (v > max) v = max;
+    if (allow_negative && (rng() & 1)) v = -v;
     return v;
 }
 
-int32_t LogUniformRaw(std::mt19937_64& rng) {
-    return static_cast<int32_t>(LogUniform(rng, 31, 2147483647, true));
-}
+int32_t LogUniformRaw(std::mt19937_64& rng) { return static_cast<int32_t>(LogUniform(rng, 31, 2147483647, true)); }
 
 // ---- the rows ----------------------------------------------------------------------------------
 
@@ -240,9 +219,7 @@ struct Row {
     double ns_fixed, ns_float;
 };
 
-float ToF(int32_t raw) {
-    return static_cast<float>(raw) / 65536.0f;
-}
+float ToF(int32_t raw) { return static_cast<float>(raw) / 65536.0f; }
 
 Row MulRow(int n, const TimingConfig& cfg) {
     std::mt19937_64 rng(1);
@@ -250,20 +227,16 @@ Row MulRow(int n, const TimingConfig& cfg) {
     std::vector<Pair32> in;
     while (static_cast<int>(st.count) < n) {
         const int32_t a = LogUniformRaw(rng), b = LogUniformRaw(rng);
-        const long double exact =
-            static_cast<long double>(a) * b / kQ16;  // exact in 64-bit mantissa
-        if (std::fabs(exact) >= 2147483647.0L)
-            continue;
+        const long double exact = static_cast<long double>(a) * b / kQ16;  // exact in 64-bit mantissa
+        if (std::fabs(exact) >= 2147483647.0L) continue;
         const Fixed r = Fixed::FromRaw(a) * Fixed::FromRaw(b);
         st.Add(r.Raw() - exact);
-        if (in.size() < kBatch)
-            in.push_back({a, b});
+        if (in.size() < kBatch) in.push_back({a, b});
     }
     std::vector<FPair> fin;
-    for (const Pair32& p : in)
-        fin.push_back({ToF(p.a), ToF(p.b)});
-    const double nf = TimeLoop<int32_t>(
-        cfg, in, [](Pair32 p) { return (Fixed::FromRaw(p.a) * Fixed::FromRaw(p.b)).Raw(); });
+    for (const Pair32& p : in) fin.push_back({ToF(p.a), ToF(p.b)});
+    const double nf =
+        TimeLoop<int32_t>(cfg, in, [](Pair32 p) { return (Fixed::FromRaw(p.a) * Fixed::FromRaw(p.b)).Raw(); });
     const double ff = TimeLoop<float>(cfg, fin, [](FPair p) { return p.a * p.b; });
     return {"mul", st.count, st.max, st.Mean(), nf, ff};
 }
@@ -275,18 +248,15 @@ Row DivRow(int n, const TimingConfig& cfg) {
     while (static_cast<int>(st.count) < n) {
         const int32_t a = LogUniformRaw(rng), b = LogUniformRaw(rng);
         const long double exact = static_cast<long double>(a) * kQ16 / b;
-        if (std::fabs(exact) >= 2147483647.0L)
-            continue;
+        if (std::fabs(exact) >= 2147483647.0L) continue;
         const Fixed r = Fixed::FromRaw(a) / Fixed::FromRaw(b);
         st.Add(r.Raw() - exact);
-        if (in.size() < kBatch)
-            in.push_back({a, b});
+        if (in.size() < kBatch) in.push_back({a, b});
     }
     std::vector<FPair> fin;
-    for (const Pair32& p : in)
-        fin.push_back({ToF(p.a), ToF(p.b)});
-    const double nf = TimeLoop<int32_t>(
-        cfg, in, [](Pair32 p) { return (Fixed::FromRaw(p.a) / Fixed::FromRaw(p.b)).Raw(); });
+    for (const Pair32& p : in) fin.push_back({ToF(p.a), ToF(p.b)});
+    const double nf =
+        TimeLoop<int32_t>(cfg, in, [](Pair32 p) { return (Fixed::FromRaw(p.a) / Fixed::FromRaw(p.b)).Raw(); });
     const double ff = TimeLoop<float>(cfg, fin, [](FPair p) { return p.a / p.b; });
     return {"div", st.count, st.max, st.Mean(), nf, ff};
 }
@@ -297,18 +267,15 @@ Row SqrtRow(int n, const TimingConfig& cfg) {
     std::vector<int32_t> in;
     for (int i = 0; i < n; ++i) {
         // Half uniform raws, half log-uniform (small values matter for lengths).
-        const int32_t x = (i & 1) ? static_cast<int32_t>(rng() >> 33)
-                                  : static_cast<int32_t>(LogUniform(rng, 31, 2147483647, false));
+        const int32_t x =
+            (i & 1) ? static_cast<int32_t>(rng() >> 33) : static_cast<int32_t>(LogUniform(rng, 31, 2147483647, false));
         const int32_t r = lockbox::Sqrt(Fixed::FromRaw(x)).Raw();
         st.Add(r - std::sqrt(static_cast<long double>(x) * kQ16));
-        if (in.size() < kBatch)
-            in.push_back(x);
+        if (in.size() < kBatch) in.push_back(x);
     }
     std::vector<float> fin;
-    for (int32_t x : in)
-        fin.push_back(ToF(x));
-    const double nf = TimeLoop<int32_t>(
-        cfg, in, [](int32_t x) { return lockbox::Sqrt(Fixed::FromRaw(x)).Raw(); });
+    for (int32_t x : in) fin.push_back(ToF(x));
+    const double nf = TimeLoop<int32_t>(cfg, in, [](int32_t x) { return lockbox::Sqrt(Fixed::FromRaw(x)).Raw(); });
     const double ff = TimeLoop<float>(cfg, fin, [](float x) { return std::sqrt(x); });
     return {"sqrt", st.count, st.max, st.Mean(), nf, ff};
 }
@@ -318,9 +285,8 @@ std::vector<int32_t> Angles(int n, uint64_t seed) {
     std::mt19937_64 rng(seed);
     std::vector<int32_t> v(static_cast<size_t>(n));
     for (int i = 0; i < n; ++i) {
-        v[static_cast<size_t>(i)] =
-            (i & 1) ? static_cast<int32_t>(static_cast<uint32_t>(rng()))
-                    : static_cast<int32_t>(static_cast<int64_t>(rng() % 1647101) - 823550);
+        v[static_cast<size_t>(i)] = (i & 1) ? static_cast<int32_t>(static_cast<uint32_t>(rng()))
+                                            : static_cast<int32_t>(static_cast<int64_t>(rng() % 1647101) - 823550);
     }
     return v;
 }
@@ -329,8 +295,7 @@ std::vector<int32_t> TimingAngles() {
     // Timing inputs within +-8 rad, where sinf/cosf take their fast path.
     std::mt19937_64 rng(44);
     std::vector<int32_t> v;
-    for (int i = 0; i < kBatch; ++i)
-        v.push_back(static_cast<int32_t>(static_cast<int64_t>(rng() % 1048577) - 524288));
+    for (int i = 0; i < kBatch; ++i) v.push_back(static_cast<int32_t>(static_cast<int64_t>(rng() % 1048577) - 524288));
     return v;
 }
 
@@ -349,20 +314,16 @@ Row SinCosRows(int n, const TimingConfig& cfg, Row* sin_row, Row* cos_row) {
     }
     const std::vector<int32_t> in = TimingAngles();
     std::vector<float> fin;
-    for (int32_t x : in)
-        fin.push_back(ToF(x));
-    const double n_sin =
-        TimeLoop<int32_t>(cfg, in, [](int32_t x) { return lockbox::Sin(Fixed::FromRaw(x)).Raw(); });
+    for (int32_t x : in) fin.push_back(ToF(x));
+    const double n_sin = TimeLoop<int32_t>(cfg, in, [](int32_t x) { return lockbox::Sin(Fixed::FromRaw(x)).Raw(); });
     const double f_sin = TimeLoop<float>(cfg, fin, [](float x) { return std::sin(x); });
-    const double n_cos =
-        TimeLoop<int32_t>(cfg, in, [](int32_t x) { return lockbox::Cos(Fixed::FromRaw(x)).Raw(); });
+    const double n_cos = TimeLoop<int32_t>(cfg, in, [](int32_t x) { return lockbox::Cos(Fixed::FromRaw(x)).Raw(); });
     const double f_cos = TimeLoop<float>(cfg, fin, [](float x) { return std::cos(x); });
     const double n_sc = TimeLoop<int32_t>(cfg, in, [](int32_t x) {
         const lockbox::SinCosResult r = lockbox::SinCos(Fixed::FromRaw(x));
         return r.sin.Raw() + r.cos.Raw();
     });
-    const double f_sc =
-        TimeLoop<float>(cfg, fin, [](float x) { return std::sin(x) + std::cos(x); });
+    const double f_sc = TimeLoop<float>(cfg, fin, [](float x) { return std::sin(x) + std::cos(x); });
     *sin_row = {"sin", ss.count, ss.max, ss.Mean(), n_sin, f_sin};
     *cos_row = {"cos", cs.count, cs.max, cs.Mean(), n_cos, f_cos};
     return {"sincos", static_cast<uint64_t>(n), both.max, both.Mean(), n_sc, f_sc};
@@ -376,15 +337,12 @@ Row Atan2Row(int n, const TimingConfig& cfg) {
         const int32_t y = LogUniformRaw(rng), x = LogUniformRaw(rng);
         const int32_t r = lockbox::Atan2(Fixed::FromRaw(y), Fixed::FromRaw(x)).Raw();
         st.Add(r - std::atan2(static_cast<long double>(y), static_cast<long double>(x)) * kQ16);
-        if (in.size() < kBatch)
-            in.push_back({y, x});
+        if (in.size() < kBatch) in.push_back({y, x});
     }
     std::vector<FPair> fin;
-    for (const Pair32& p : in)
-        fin.push_back({ToF(p.a), ToF(p.b)});
-    const double nf = TimeLoop<int32_t>(cfg, in, [](Pair32 p) {
-        return lockbox::Atan2(Fixed::FromRaw(p.a), Fixed::FromRaw(p.b)).Raw();
-    });
+    for (const Pair32& p : in) fin.push_back({ToF(p.a), ToF(p.b)});
+    const double nf = TimeLoop<int32_t>(
+        cfg, in, [](Pair32 p) { return lockbox::Atan2(Fixed::FromRaw(p.a), Fixed::FromRaw(p.b)).Raw(); });
     const double ff = TimeLoop<float>(cfg, fin, [](FPair p) { return std::atan2(p.a, p.b); });
     return {"atan2", st.count, st.max, st.Mean(), nf, ff};
 }
@@ -401,8 +359,7 @@ std::vector<Pair32> Vectors(int n, uint64_t seed) {
         const long double th = dir(rng);
         const int32_t x = static_cast<int32_t>(std::llround(len * std::cos(th)));
         const int32_t y = static_cast<int32_t>(std::llround(len * std::sin(th)));
-        if (x == 0 && y == 0)
-            continue;
+        if (x == 0 && y == 0) continue;
         v.push_back({x, y});
     }
     return v;
@@ -413,17 +370,14 @@ Row LengthRow(int n, const TimingConfig& cfg) {
     ErrStats st;
     for (const Pair32& p : vs) {
         const b2Vec2 v(Fixed::FromRaw(p.a), Fixed::FromRaw(p.b));
-        const long double exact =
-            std::sqrt(static_cast<long double>(p.a) * p.a + static_cast<long double>(p.b) * p.b);
+        const long double exact = std::sqrt(static_cast<long double>(p.a) * p.a + static_cast<long double>(p.b) * p.b);
         st.Add(v.Length().Raw() - exact);
     }
     const std::vector<Pair32> in(vs.begin(), vs.begin() + std::min<size_t>(kBatch, vs.size()));
     std::vector<FPair> fin;
-    for (const Pair32& p : in)
-        fin.push_back({ToF(p.a), ToF(p.b)});
-    const double nf = TimeLoop<int32_t>(cfg, in, [](Pair32 p) {
-        return b2Vec2(Fixed::FromRaw(p.a), Fixed::FromRaw(p.b)).Length().Raw();
-    });
+    for (const Pair32& p : in) fin.push_back({ToF(p.a), ToF(p.b)});
+    const double nf = TimeLoop<int32_t>(
+        cfg, in, [](Pair32 p) { return b2Vec2(Fixed::FromRaw(p.a), Fixed::FromRaw(p.b)).Length().Raw(); });
     const double ff = TimeLoop<float>(cfg, fin, [](FPair p) { return std::hypot(p.a, p.b); });
     return {"length", st.count, st.max, st.Mean(), nf, ff};
 }
@@ -434,15 +388,13 @@ Row NormalizeRow(int n, const TimingConfig& cfg) {
     for (const Pair32& p : vs) {
         b2Vec2 v(Fixed::FromRaw(p.a), Fixed::FromRaw(p.b));
         v.Normalize();
-        const long double len =
-            std::sqrt(static_cast<long double>(p.a) * p.a + static_cast<long double>(p.b) * p.b);
+        const long double len = std::sqrt(static_cast<long double>(p.a) * p.a + static_cast<long double>(p.b) * p.b);
         st.Add(v.x.Raw() - p.a / len * kQ16);
         st.Add(v.y.Raw() - p.b / len * kQ16);
     }
     const std::vector<Pair32> in(vs.begin(), vs.begin() + std::min<size_t>(kBatch, vs.size()));
     std::vector<FPair> fin;
-    for (const Pair32& p : in)
-        fin.push_back({ToF(p.a), ToF(p.b)});
+    for (const Pair32& p : in) fin.push_back({ToF(p.a), ToF(p.b)});
     const double nf = TimeLoop<int32_t>(cfg, in, [](Pair32 p) {
         b2Vec2 v(Fixed::FromRaw(p.a), Fixed::FromRaw(p.b));
         const Fixed len = v.Normalize();
@@ -451,8 +403,7 @@ Row NormalizeRow(int n, const TimingConfig& cfg) {
     const double ff = TimeLoop<float>(cfg, fin, [](FPair p) {
         // Box2D 2.2.1 b2Vec2::Normalize in float.
         const float len = std::sqrt(p.a * p.a + p.b * p.b);
-        if (len < 1.1920929e-7f)
-            return 0.0f;
+        if (len < 1.1920929e-7f) return 0.0f;
         const float inv = 1.0f / len;
         return p.a * inv + p.b * inv + len;
     });
@@ -468,20 +419,17 @@ Row WideMulRow(int n, const TimingConfig& cfg) {
         const int64_t a = LogUniform(rng, 62, INT64_MAX, true);
         const int64_t b = LogUniform(rng, 62, INT64_MAX, true);
         const long double approx = static_cast<long double>(a) * static_cast<long double>(b) / kQ32;
-        if (std::fabs(approx) >= 4.0e18L)
-            continue;
+        if (std::fabs(approx) >= 4.0e18L) continue;
         const int64_t r = (Wide::FromRaw(a) * Wide::FromRaw(b)).Raw();
         // Error in Q32.32 ULP: |r * 2^32 - a * b| / 2^32, exactly.
         st.Add(AbsDiff(ShiftLeft32(r), MulS64(a, b)) / kQ32);
-        if (in.size() < kBatch)
-            in.push_back({a, b});
+        if (in.size() < kBatch) in.push_back({a, b});
     }
     std::vector<DPair> din;
     for (const Pair64& p : in)
-        din.push_back(
-            {static_cast<double>(p.a) / 4294967296.0, static_cast<double>(p.b) / 4294967296.0});
-    const double nf = TimeLoop<int64_t>(
-        cfg, in, [](Pair64 p) { return (Wide::FromRaw(p.a) * Wide::FromRaw(p.b)).Raw(); });
+        din.push_back({static_cast<double>(p.a) / 4294967296.0, static_cast<double>(p.b) / 4294967296.0});
+    const double nf =
+        TimeLoop<int64_t>(cfg, in, [](Pair64 p) { return (Wide::FromRaw(p.a) * Wide::FromRaw(p.b)).Raw(); });
     const double ff = TimeLoop<double>(cfg, din, [](DPair p) { return p.a * p.b; });
     return {"wide_mul", st.count, st.max, st.Mean(), nf, ff};
 }
@@ -494,20 +442,17 @@ Row WideDivRow(int n, const TimingConfig& cfg) {
         const int64_t a = LogUniform(rng, 62, INT64_MAX, true);
         const int64_t b = LogUniform(rng, 62, INT64_MAX, true);
         const long double approx = static_cast<long double>(a) * kQ32 / static_cast<long double>(b);
-        if (std::fabs(approx) >= 4.0e18L)
-            continue;
+        if (std::fabs(approx) >= 4.0e18L) continue;
         const int64_t r = (Wide::FromRaw(a) / Wide::FromRaw(b)).Raw();
         // Error in Q32.32 ULP: |r * b - a * 2^32| / |b|, exactly up to the final division.
         st.Add(AbsDiff(MulS64(r, b), ShiftLeft32(a)) / static_cast<long double>(AbsU64(b)));
-        if (in.size() < kBatch)
-            in.push_back({a, b});
+        if (in.size() < kBatch) in.push_back({a, b});
     }
     std::vector<DPair> din;
     for (const Pair64& p : in)
-        din.push_back(
-            {static_cast<double>(p.a) / 4294967296.0, static_cast<double>(p.b) / 4294967296.0});
-    const double nf = TimeLoop<int64_t>(
-        cfg, in, [](Pair64 p) { return (Wide::FromRaw(p.a) / Wide::FromRaw(p.b)).Raw(); });
+        din.push_back({static_cast<double>(p.a) / 4294967296.0, static_cast<double>(p.b) / 4294967296.0});
+    const double nf =
+        TimeLoop<int64_t>(cfg, in, [](Pair64 p) { return (Wide::FromRaw(p.a) / Wide::FromRaw(p.b)).Raw(); });
     const double ff = TimeLoop<double>(cfg, din, [](DPair p) { return p.a / p.b; });
     return {"wide_div", st.count, st.max, st.Mean(), nf, ff};
 }
@@ -553,8 +498,7 @@ int main(int argc, char** argv) {
     for (const Row& r : rows) {
         char line[256];
         std::snprintf(line, sizeof line, "%s,%llu,%.6Lf,%.6Lf,%.3f,%.3f\n", r.function.c_str(),
-                      static_cast<unsigned long long>(r.inputs), r.max_ulp, r.mean_ulp, r.ns_fixed,
-                      r.ns_float);
+                      static_cast<unsigned long long>(r.inputs), r.max_ulp, r.mean_ulp, r.ns_fixed, r.ns_float);
         csv += line;
     }
     std::fputs(csv.c_str(), stdout);

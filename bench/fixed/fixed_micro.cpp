@@ -43,8 +43,7 @@ struct Inputs {
             b.push_back(y);
             fa.push_back(static_cast<float>(x) / 65536.0f);
             fb.push_back(static_cast<float>(y) / 65536.0f);
-            const int32_t ang =
-                static_cast<int32_t>(static_cast<int64_t>(rng() % 1048577) - 524288);
+            const int32_t ang = static_cast<int32_t>(static_cast<int64_t>(rng() % 1048577) - 524288);
             angles.push_back(ang);
             fangles.push_back(static_cast<float>(ang) / 65536.0f);
             const int32_t p = static_cast<int32_t>(rng() >> 33);
@@ -80,15 +79,13 @@ void Run(benchmark::State& state, F f) {
 }
 
 void BM_Mul_Fixed(benchmark::State& s) {
-    Run<int32_t>(
-        s, [](int i) { return (Fixed::FromRaw(In().a[i]) * Fixed::FromRaw(In().b[i])).Raw(); });
+    Run<int32_t>(s, [](int i) { return (Fixed::FromRaw(In().a[i]) * Fixed::FromRaw(In().b[i])).Raw(); });
 }
 void BM_Mul_Float(benchmark::State& s) {
     Run<float>(s, [](int i) { return In().fa[i] * In().fb[i]; });
 }
 void BM_Div_Fixed(benchmark::State& s) {
-    Run<int32_t>(
-        s, [](int i) { return (Fixed::FromRaw(In().a[i]) / Fixed::FromRaw(In().b[i])).Raw(); });
+    Run<int32_t>(s, [](int i) { return (Fixed::FromRaw(In().a[i]) / Fixed::FromRaw(In().b[i])).Raw(); });
 }
 void BM_Div_Float(benchmark::State& s) {
     Run<float>(s, [](int i) { return In().fa[i] / In().fb[i]; });
@@ -121,9 +118,7 @@ void BM_SinCos_Float(benchmark::State& s) {
     Run<float>(s, [](int i) { return std::sin(In().fangles[i]) + std::cos(In().fangles[i]); });
 }
 void BM_Atan2_Fixed(benchmark::State& s) {
-    Run<int32_t>(s, [](int i) {
-        return lockbox::Atan2(Fixed::FromRaw(In().a[i]), Fixed::FromRaw(In().b[i])).Raw();
-    });
+    Run<int32_t>(s, [](int i) { return lockbox::Atan2(Fixed::FromRaw(In().a[i]), Fixed::FromRaw(In().b[i])).Raw(); });
 }
 void BM_Atan2_Float(benchmark::State& s) {
     Run<float>(s, [](int i) { return std::atan2(In().fa[i], In().fb[i]); });
@@ -139,9 +134,7 @@ void BM_WrapAngle_Float(benchmark::State& s) {
     });
 }
 void BM_Length_Fixed(benchmark::State& s) {
-    Run<int32_t>(s, [](int i) {
-        return b2Vec2(Fixed::FromRaw(In().a[i]), Fixed::FromRaw(In().b[i])).Length().Raw();
-    });
+    Run<int32_t>(s, [](int i) { return b2Vec2(Fixed::FromRaw(In().a[i]), Fixed::FromRaw(In().b[i])).Length().Raw(); });
 }
 void BM_Length_Float(benchmark::State& s) {
     Run<float>(s, [](int i) { return std::hypot(In().fa[i], In().fb[i]); });
@@ -157,23 +150,19 @@ void BM_Normalize_Float(benchmark::State& s) {
     Run<float>(s, [](int i) {
         const float x = In().fa[i], y = In().fb[i];
         const float len = std::sqrt(x * x + y * y);
-        if (len < 1.1920929e-7f)
-            return 0.0f;
+        if (len < 1.1920929e-7f) return 0.0f;
         const float inv = 1.0f / len;
         return x * inv + y * inv + len;
     });
 }
 void BM_WideMul_Fixed(benchmark::State& s) {
-    Run<int64_t>(s, [](int i) {
-        return (Wide::FromRaw(In().wa[i]) * Wide::FromRaw(In().wb[i] >> 8)).Raw();
-    });
+    Run<int64_t>(s, [](int i) { return (Wide::FromRaw(In().wa[i]) * Wide::FromRaw(In().wb[i] >> 8)).Raw(); });
 }
 void BM_WideMul_Float(benchmark::State& s) {
     Run<double>(s, [](int i) { return In().da[i] * In().db[i]; });
 }
 void BM_WideDiv_Fixed(benchmark::State& s) {
-    Run<int64_t>(
-        s, [](int i) { return (Wide::FromRaw(In().wa[i]) / Wide::FromRaw(In().wb[i])).Raw(); });
+    Run<int64_t>(s, [](int i) { return (Wide::FromRaw(In().wa[i]) / Wide::FromRaw(In().wb[i])).Raw(); });
 }
 void BM_WideDiv_Float(benchmark::State& s) {
     Run<double>(s, [](int i) { return In().da[i] / In().db[i]; });

@@ -57,9 +57,12 @@ inline std::vector<std::string> SplitCsv(const std::string& line) {
     std::vector<std::string> out(1);
     bool quoted = false;
     for (char c : line) {
-        if (c == '"') quoted = !quoted;
-        else if (c == ',' && !quoted) out.emplace_back();
-        else out.back() += c;
+        if (c == '"')
+            quoted = !quoted;
+        else if (c == ',' && !quoted)
+            out.emplace_back();
+        else
+            out.back() += c;
     }
     return out;
 }
@@ -99,12 +102,14 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}) {
     const std::string machine = MachineName();
     const std::filesystem::path dir = std::filesystem::path(LOCKBOX_BENCH_RESULTS_DIR) / machine;
     std::filesystem::create_directories(dir);
-    const std::vector<CompareRow> previous = only.empty() ? std::vector<CompareRow>{} : ReadCompareCsv(dir / "compare.csv");
+    const std::vector<CompareRow> previous =
+        only.empty() ? std::vector<CompareRow>{} : ReadCompareCsv(dir / "compare.csv");
     std::vector<CompareRow> rows;
     for (auto name : SharedSceneNames()) {
         const std::string key(name);
-        const bool selected = only.empty() || std::find(only.begin(), only.end(), key) != only.end() ||
-                              (key.rfind("bullet_", 0) == 0 && std::find(only.begin(), only.end(), "bullet") != only.end());
+        const bool selected =
+            only.empty() || std::find(only.begin(), only.end(), key) != only.end() ||
+            (key.rfind("bullet_", 0) == 0 && std::find(only.begin(), only.end(), "bullet") != only.end());
         if (!selected) {
             for (const CompareRow& p : previous)
                 if (p.name == key) rows.push_back(p);
@@ -179,11 +184,11 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}) {
             csv << r.name << "," << r.steps << "," << r.vel << "," << r.pos << "," << r.hz << ",";
             if (r.lockboxOk) {
                 csv << r.lbMs << "," << r.lbP95 << "," << r.flMs << "," << r.flP95 << "," << r.lbMs / r.flMs << ","
-                    << r.bodies << "," << r.lbAwake << "," << r.flAwake << "," << r.lbContacts << ","
-                    << r.flContacts << "," << r.hash << ",\"" << r.topCosts << "\"\n";
+                    << r.bodies << "," << r.lbAwake << "," << r.flAwake << "," << r.lbContacts << "," << r.flContacts
+                    << "," << r.hash << ",\"" << r.topCosts << "\"\n";
             } else {
-                csv << ",," << r.flMs << "," << r.flP95 << ",," << r.bodies << ",," << r.flAwake << ",,"
-                    << r.flContacts << ",,unavailable\n";
+                csv << ",," << r.flMs << "," << r.flP95 << ",," << r.bodies << ",," << r.flAwake << ",," << r.flContacts
+                    << ",,unavailable\n";
             }
         }
     }
@@ -202,7 +207,8 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}) {
                           r.name.c_str(), r.steps, r.vel, r.pos, r.lbMs, r.flMs, r.lbMs / r.flMs, r.lbP95, r.flP95,
                           r.bodies, r.lbContacts, r.flContacts, r.topCosts.c_str());
         } else {
-            std::snprintf(buf, sizeof buf, "| %s | %d | %d/%d | n/a | %.4f | n/a | n/a | %.4f | %d | -/%d | "
+            std::snprintf(buf, sizeof buf,
+                          "| %s | %d | %d/%d | n/a | %.4f | n/a | n/a | %.4f | %d | -/%d | "
                           "needs joints |\n",
                           r.name.c_str(), r.steps, r.vel, r.pos, r.flMs, r.flP95, r.bodies, r.flContacts);
         }
@@ -211,7 +217,8 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}) {
     md << "\n";
     if (perScene.count("bullet")) {
         const auto& [lb, fl] = perScene["bullet"];
-        std::snprintf(buf, sizeof buf, "bullet (six variants summed): %.4f / %.4f ms = ratio %.2f.\n\n", lb, fl, lb / fl);
+        std::snprintf(buf, sizeof buf, "bullet (six variants summed): %.4f / %.4f ms = ratio %.2f.\n\n", lb, fl,
+                      lb / fl);
         md << buf;
     }
     std::snprintf(buf, sizeof buf,

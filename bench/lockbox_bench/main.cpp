@@ -47,8 +47,8 @@ bool RunAndPrint(std::string_view name, const RunSettings& s, int repeat, bool p
     for (int i = 0; i < repeat; ++i) {
         RunResult r;
         if (!RunOnce<E>(name, s, r)) {
-            std::fprintf(stderr, "scene %.*s is unknown or not available on %s\n",
-                         static_cast<int>(name.size()), name.data(), E::kName);
+            std::fprintf(stderr, "scene %.*s is unknown or not available on %s\n", static_cast<int>(name.size()),
+                         name.data(), E::kName);
             return false;
         }
         runs.push_back(std::move(r));
@@ -108,19 +108,32 @@ int main(int argc, char** argv) {
             }
             v = std::atoi(argv[++i]);
         };
-        if (a == "--scene" && i + 1 < argc) scene = argv[++i];
-        else if (a == "--engine" && i + 1 < argc) engine = argv[++i];
-        else if (a == "--steps") next(s.steps);
-        else if (a == "--velocity-iterations") next(s.velocityIterations);
-        else if (a == "--position-iterations") next(s.positionIterations);
-        else if (a == "--hz") next(s.hz);
-        else if (a == "--repeat") next(repeat);
-        else if (a == "--metrics") s.trackMetrics = true;
-        else if (a == "--no-profile") profile = false;
-        else if (a == "--headroom") headroom = true;
-        else if (a == "--all") all = true;
-        else if (a == "--compare") compare = true;
-        else if (a == "--list") list = true;
+        if (a == "--scene" && i + 1 < argc)
+            scene = argv[++i];
+        else if (a == "--engine" && i + 1 < argc)
+            engine = argv[++i];
+        else if (a == "--steps")
+            next(s.steps);
+        else if (a == "--velocity-iterations")
+            next(s.velocityIterations);
+        else if (a == "--position-iterations")
+            next(s.positionIterations);
+        else if (a == "--hz")
+            next(s.hz);
+        else if (a == "--repeat")
+            next(repeat);
+        else if (a == "--metrics")
+            s.trackMetrics = true;
+        else if (a == "--no-profile")
+            profile = false;
+        else if (a == "--headroom")
+            headroom = true;
+        else if (a == "--all")
+            all = true;
+        else if (a == "--compare")
+            compare = true;
+        else if (a == "--list")
+            list = true;
         else if (a == "--scenes" && i + 1 < argc) {
             // Comma-separated subset for --all --compare; the other rows are kept.
             std::string all_ = argv[++i];
@@ -130,8 +143,7 @@ int main(int argc, char** argv) {
                 if (q > p) only.push_back(all_.substr(p, q - p));
                 p = q + 1;
             }
-        }
-        else {
+        } else {
             Usage();
             return 2;
         }
@@ -162,7 +174,8 @@ int main(int argc, char** argv) {
         if (engine == "lockbox") {
             ok = RunAndPrint<LockboxEngine>(n, s, repeat, profile) && ok;
             if (headroom) PrintHeadroom(n, s);
-        } else if (engine == "box2d-float") ok = RunAndPrint<Box2DFloatEngine>(n, s, repeat, profile) && ok;
+        } else if (engine == "box2d-float")
+            ok = RunAndPrint<Box2DFloatEngine>(n, s, repeat, profile) && ok;
         else {
             Usage();
             return 2;

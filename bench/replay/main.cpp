@@ -49,10 +49,14 @@ int main(int argc, char** argv) {
     int reps = 5, frames = 600;
     std::string out, only;  // CSV only with --out: the committed tables are not overwritten by accident
     for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) reps = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
-        else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
+        if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
+            reps = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
+            frames = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--out") && i + 1 < argc)
+            out = argv[++i];
+        else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
+            only = argv[++i];
         else {
             std::fprintf(stderr, "usage: lockbox_replay_bench [--reps N] [--frames N] [--out FILE] [--only SCENE]\n");
             return 2;
@@ -130,24 +134,28 @@ int main(int argc, char** argv) {
         row.ratio = row.bareMs > 0 ? row.verifyMs / row.bareMs : 0;
         row.realTime = row.verifyMs > 0 ? seconds * 1e3 / row.verifyMs : 0;
         rows.push_back(row);
-        std::printf("%-14s frames=%d bodies=%d bare=%.1f ms verify=%.1f ms ratio=%.3f speed=%.1fx real time | "
-                    "inputs %.0f B/s raw (%.0f with chunk frames), file %llu B (INPT %llu, HASH %llu, KEYF %llu, SEED %llu)\n",
-                    scene, row.frames, row.bodies, row.bareMs, row.verifyMs, row.ratio, row.realTime,
-                    row.inputPayloadPerS, row.inputFramedPerS, static_cast<unsigned long long>(row.fileBytes),
-                    static_cast<unsigned long long>(row.inptStored), static_cast<unsigned long long>(row.hashStored),
-                    static_cast<unsigned long long>(row.keyfStored), static_cast<unsigned long long>(row.seedStored));
+        std::printf(
+            "%-14s frames=%d bodies=%d bare=%.1f ms verify=%.1f ms ratio=%.3f speed=%.1fx real time | "
+            "inputs %.0f B/s raw (%.0f with chunk frames), file %llu B (INPT %llu, HASH %llu, KEYF %llu, SEED %llu)\n",
+            scene, row.frames, row.bodies, row.bareMs, row.verifyMs, row.ratio, row.realTime, row.inputPayloadPerS,
+            row.inputFramedPerS, static_cast<unsigned long long>(row.fileBytes),
+            static_cast<unsigned long long>(row.inptStored), static_cast<unsigned long long>(row.hashStored),
+            static_cast<unsigned long long>(row.keyfStored), static_cast<unsigned long long>(row.seedStored));
         std::fflush(stdout);
     }
     if (!out.empty() && only.empty()) {
         if (std::FILE* f = std::fopen(out.c_str(), "w")) {
-            std::fprintf(f, "scene,frames,bodies_end,bare_ms,verify_ms,ratio,realtime_x,input_Bps_payload,input_Bps_framed,"
-                            "file_bytes,inpt_bytes,hash_bytes,keyf_bytes,seed_bytes\n");
+            std::fprintf(
+                f,
+                "scene,frames,bodies_end,bare_ms,verify_ms,ratio,realtime_x,input_Bps_payload,input_Bps_framed,"
+                "file_bytes,inpt_bytes,hash_bytes,keyf_bytes,seed_bytes\n");
             for (const Row& r : rows)
-                std::fprintf(f, "%s,%d,%d,%.2f,%.2f,%.4f,%.1f,%.1f,%.1f,%llu,%llu,%llu,%llu,%llu\n", r.scene.c_str(), r.frames,
-                             r.bodies, r.bareMs, r.verifyMs, r.ratio, r.realTime, r.inputPayloadPerS, r.inputFramedPerS,
-                             static_cast<unsigned long long>(r.fileBytes), static_cast<unsigned long long>(r.inptStored),
-                             static_cast<unsigned long long>(r.hashStored), static_cast<unsigned long long>(r.keyfStored),
-                             static_cast<unsigned long long>(r.seedStored));
+                std::fprintf(
+                    f, "%s,%d,%d,%.2f,%.2f,%.4f,%.1f,%.1f,%.1f,%llu,%llu,%llu,%llu,%llu\n", r.scene.c_str(), r.frames,
+                    r.bodies, r.bareMs, r.verifyMs, r.ratio, r.realTime, r.inputPayloadPerS, r.inputFramedPerS,
+                    static_cast<unsigned long long>(r.fileBytes), static_cast<unsigned long long>(r.inptStored),
+                    static_cast<unsigned long long>(r.hashStored), static_cast<unsigned long long>(r.keyfStored),
+                    static_cast<unsigned long long>(r.seedStored));
             std::fclose(f);
             std::printf("wrote %s\n", out.c_str());
         }

@@ -91,10 +91,10 @@ struct Row {
     int bodiesEnd = 0;             ///< after the last rep (rain keeps spawning)
     size_t imageBytes = 0;
     double cpuP50 = 0, cpuP99 = 0, cpuMax = 0, wallP50 = 0, wallP99 = 0;
-    double quietP99 = 0;  ///< p99 over each rep's fastest pass, CPU
+    double quietP99 = 0;                              ///< p99 over each rep's fastest pass, CPU
     double restoreP50 = 0, stepP50 = 0, saveP50 = 0;  ///< per operation, CPU, medians
-    int floatBodies = 0;                      ///< float Box2D's body count at the first rep
-    double floatP50 = 0, floatP99 = 0;        ///< float Box2D: `depth` steps, CPU
+    int floatBodies = 0;                              ///< float Box2D's body count at the first rep
+    double floatP50 = 0, floatP99 = 0;                ///< float Box2D: `depth` steps, CPU
 };
 
 // A case's scene built on engine E and warmed up as the case says (its warm-up frames, then
@@ -244,12 +244,18 @@ int main(int argc, char** argv) {
     std::string only;
     std::string out;  // no CSV unless asked: the committed tables are not overwritten by accident
     for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = std::atoi(argv[++i]);
-        else if (std::strcmp(argv[i], "--depth") == 0 && i + 1 < argc) depth = std::atoi(argv[++i]);
-        else if (std::strcmp(argv[i], "--passes") == 0 && i + 1 < argc) passes = std::atoi(argv[++i]);
-        else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) out = argv[++i];
-        else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
-        else if (std::strcmp(argv[i], "--frames") == 0) frames = true;
+        if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
+            reps = std::atoi(argv[++i]);
+        else if (std::strcmp(argv[i], "--depth") == 0 && i + 1 < argc)
+            depth = std::atoi(argv[++i]);
+        else if (std::strcmp(argv[i], "--passes") == 0 && i + 1 < argc)
+            passes = std::atoi(argv[++i]);
+        else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc)
+            out = argv[++i];
+        else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc)
+            only = argv[++i];
+        else if (std::strcmp(argv[i], "--frames") == 0)
+            frames = true;
         else {
             std::fprintf(stderr,
                          "usage: lockbox_rollback_bench [--reps N] [--depth D] [--passes P] [--frames] [--out FILE] "
@@ -266,10 +272,10 @@ int main(int argc, char** argv) {
     using scenes::LockboxEngine;
     cases.push_back({"pyramid22", std::make_unique<scenes::LargePyramidScene<LockboxEngine>>(22), 0, 60, true,
                      std::make_unique<scenes::LargePyramidScene<Box2DFloatEngine>>(22)});
-    cases.push_back({"many_pyramids_1x5", std::make_unique<scenes::ManyPyramidsScene<LockboxEngine>>(1, 5), 0, 60,
-                     true, std::make_unique<scenes::ManyPyramidsScene<Box2DFloatEngine>>(1, 5)});
-    cases.push_back({"rain256", scenes::MakeLockboxScene("rain"), 256, 0, false,
-                     scenes::MakeScene<Box2DFloatEngine>("rain")});
+    cases.push_back({"many_pyramids_1x5", std::make_unique<scenes::ManyPyramidsScene<LockboxEngine>>(1, 5), 0, 60, true,
+                     std::make_unique<scenes::ManyPyramidsScene<Box2DFloatEngine>>(1, 5)});
+    cases.push_back(
+        {"rain256", scenes::MakeLockboxScene("rain"), 256, 0, false, scenes::MakeScene<Box2DFloatEngine>("rain")});
 
     std::FILE* csv = out.empty() ? nullptr : std::fopen(out.c_str(), "w");
     if (!out.empty() && csv == nullptr) {
@@ -277,16 +283,17 @@ int main(int argc, char** argv) {
         return 1;
     }
     if (csv != nullptr) {
-        std::fprintf(csv,
-                     "scene,bodies,bodies_end,contacts,depth,reps,image_bytes,cpu_p50_ms,cpu_p99_ms,cpu_max_ms,"
-                     "wall_p50_ms,wall_p99_ms,restore_p50_ms,step_p50_ms,save_p50_ms,budget_ms,within_budget,"
-                     "float_bodies,float_steps_p50_ms,float_steps_p99_ms,passes,cpu_quiet_p99_ms,within_budget_quiet\n");
+        std::fprintf(
+            csv,
+            "scene,bodies,bodies_end,contacts,depth,reps,image_bytes,cpu_p50_ms,cpu_p99_ms,cpu_max_ms,"
+            "wall_p50_ms,wall_p99_ms,restore_p50_ms,step_p50_ms,save_p50_ms,budget_ms,within_budget,"
+            "float_bodies,float_steps_p50_ms,float_steps_p99_ms,passes,cpu_quiet_p99_ms,within_budget_quiet\n");
     }
     std::printf("rollback of depth %d = restore + %d steps + %d saves, %d reps, %d passes, %s\n", depth, depth, depth,
                 reps, passes, frames ? "rollback frames" : "portable images");
     std::printf("%-18s %6s %6s %9s %9s %9s %9s %9s %9s %9s %9s %6s %9s %6s %9s %9s\n", "scene", "bodies", "contct",
-                "cpu p50", "cpu p99", "cpu max", "wall p50", "wall p99", "restore", "step", "save", "<=8ms", "quiet p99",
-                "<=8ms", "f32 p50", "f32 p99");
+                "cpu p50", "cpu p99", "cpu max", "wall p50", "wall p99", "restore", "step", "save", "<=8ms",
+                "quiet p99", "<=8ms", "f32 p50", "f32 p99");
     for (Case& c : cases) {
         if (!only.empty() && only != c.name) continue;
         Row r = frames ? Measure<FrameRing>(c, reps, depth, passes) : Measure<ImageRing>(c, reps, depth, passes);
@@ -304,10 +311,11 @@ int main(int argc, char** argv) {
                          r.cpuP99, r.cpuMax, r.wallP50, r.wallP99, r.restoreP50, r.stepP50, r.saveP50, within ? 1 : 0,
                          r.floatBodies, r.floatP50, r.floatP99, passes, r.quietP99, quietWithin ? 1 : 0);
     }
-    std::printf("(ms; cpu = thread CPU time of the first pass; quiet = over each rep's fastest pass;\n"
-                "restore/step/save are per-operation medians; f32 = float Box2D 2.4.1, the same scene, %d plain steps\n"
-                "per rep)\n",
-                depth);
+    std::printf(
+        "(ms; cpu = thread CPU time of the first pass; quiet = over each rep's fastest pass;\n"
+        "restore/step/save are per-operation medians; f32 = float Box2D 2.4.1, the same scene, %d plain steps\n"
+        "per rep)\n",
+        depth);
     if (csv != nullptr) {
         std::fclose(csv);
         std::printf("wrote %s\n", out.c_str());

@@ -9,9 +9,9 @@
 // Usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE] [--profile ROUNDS]
 
 #include <algorithm>
-#include <ctime>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -62,7 +62,7 @@ struct Row {
     // mean save (which carries the structure image of frames after a structural change), all
     // after 8 unmeasured frames.
     double frameSaveMs = 0, frameRestoreMs = 0, frameStepMs = 0, frameSaveMeanMs = 0;
-    int frameBodies = 0;  ///< at the end of the frame pass
+    int frameBodies = 0;     ///< at the end of the frame pass
     double frameBackMs = 0;  ///< median RestoreFrame of a frame 8 frames old
     double imageBackMs = 0;  ///< median Restore of an image 8 frames old
     int backCrossings = 0;   ///< how many of those 8 crossed a structural change
@@ -175,8 +175,10 @@ Row Measure(const Case& c, int reps) {
         b2WorldFrame old;
         for (int r = 0; r < 16; ++r) {
             const bool frames = r % 2 == 0;
-            if (frames) world.SaveFrame(old);
-            else world.Save(image);
+            if (frames)
+                world.SaveFrame(old);
+            else
+                world.Save(image);
             const uint64 epoch = world.GetStructureEpoch();
             const int at = frame;
             for (int k = 0; k < 8; ++k) advance();
@@ -202,17 +204,22 @@ int main(int argc, char** argv) {
     std::string only;
     std::string out;  // no CSV unless asked: the committed tables are not overwritten by accident
     for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = std::atoi(argv[++i]);
-        else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) out = argv[++i];
-        else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
-        else if (std::strcmp(argv[i], "--profile") == 0 && i + 1 < argc) g_profileRounds = std::atoi(argv[++i]);
+        if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
+            reps = std::atoi(argv[++i]);
+        else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc)
+            out = argv[++i];
+        else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc)
+            only = argv[++i];
+        else if (std::strcmp(argv[i], "--profile") == 0 && i + 1 < argc)
+            g_profileRounds = std::atoi(argv[++i]);
         else {
-            std::fprintf(stderr, "usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE] [--profile ROUNDS]\n");
+            std::fprintf(stderr,
+                         "usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE] [--profile ROUNDS]\n");
             return 2;
         }
     }
-    const Case cases[] = {{"pyramid20", 120}, {"ragdolls", 60}, {"rain", 320}, {"tumbler", 60},
-                          {"joint_grid", 10}, {"large_pyramid", 10}};
+    const Case cases[] = {{"pyramid20", 120}, {"ragdolls", 60},   {"rain", 320},
+                          {"tumbler", 60},    {"joint_grid", 10}, {"large_pyramid", 10}};
     std::FILE* csv = nullptr;
     if (!out.empty()) {
         csv = std::fopen(out.c_str(), "w");
@@ -260,8 +267,9 @@ int main(int argc, char** argv) {
                     perJoint);
         const double frameSrPct = 100 * (r.frameSaveMs + r.frameRestoreMs) / r.frameStepMs;
         const double frameBodyBytes =
-            r.frameBodies ? double(r.frameStats.bodyBytes + r.frameStats.forceBytes + r.frameStats.proxyBytes) / r.frameBodies
-                          : 0;
+            r.frameBodies
+                ? double(r.frameStats.bodyBytes + r.frameStats.forceBytes + r.frameStats.proxyBytes) / r.frameBodies
+                : 0;
         frames.push_back({r.scene, r.frameStepMs, r.frameSaveMs, r.frameSaveMeanMs, r.frameRestoreMs, frameSrPct,
                           r.frameStats.frameBytes / 1024.0, r.frameStats.structureBytes / 1024.0, frameBodyBytes,
                           r.frameBackMs, r.backCrossings, r.backUndone, r.imageBackMs});
@@ -289,16 +297,19 @@ int main(int argc, char** argv) {
                     f.stepMs, f.saveMs, f.saveMeanMs, f.restoreMs, f.pct, f.frameKb, f.structureKb, f.bodyBytes,
                     f.backMs, f.crossings, f.undone, f.imageBackMs);
     }
-    std::printf("(B/body: motion, pending forces and proxy boxes; contacts, joints and the tree apart; back8: "
-                "restore of the frame 8 frames old, struct: how many of 8 such restores crossed a structural change, undone: how many of those only destroyed the bodies made since; img back8: the same for images)\n");
+    std::printf(
+        "(B/body: motion, pending forces and proxy boxes; contacts, joints and the tree apart; back8: "
+        "restore of the frame 8 frames old, struct: how many of 8 such restores crossed a structural change, undone: "
+        "how many of those only destroyed the bodies made since; img back8: the same for images)\n");
     std::printf("\nhash floor (shares of the step in the first pass)\n");
     std::printf("%-14s %9s %8s %8s %8s %9s\n", "scene", "step ms", "walk %", "img h %", "floor ms", "floor %");
     for (const FloorLine& f : floors) {
         std::printf("%-14s %9.3f %8.2f %8.2f %8.4f %9.2f\n", f.scene.c_str(), f.stepMs, 100 * f.hashMs / f.stepMs,
                     100 * f.imageHashMs / f.stepMs, f.coldImageHashMs, 100 * f.coldImageHashMs / f.stepMs);
     }
-    std::printf("(walk: b2WorldHash; img h: b2SnapshotHash of the image just saved; floor: the same image's hash "
-                "after a step, the packed state bytes read back from where the step left them)\n");
+    std::printf(
+        "(walk: b2WorldHash; img h: b2SnapshotHash of the image just saved; floor: the same image's hash "
+        "after a step, the packed state bytes read back from where the step left them)\n");
     if (csv != nullptr) {
         std::fclose(csv);
         std::printf("wrote %s\n", out.c_str());

@@ -10,8 +10,7 @@ namespace {
 
 // Used only when kOverflowTraps (checked builds); [[maybe_unused]] keeps clang quiet elsewhere.
 [[maybe_unused]] void DefaultTrap(const char* op, int64_t a, int64_t b) {
-    std::fprintf(stderr, "lockbox: fixed-point overflow in %s (operands raw %" PRId64 ", %" PRId64 ")\n",
-                 op, a, b);
+    std::fprintf(stderr, "lockbox: fixed-point overflow in %s (operands raw %" PRId64 ", %" PRId64 ")\n", op, a, b);
     std::fflush(stderr);
     std::abort();
 }
@@ -21,9 +20,7 @@ thread_local uint64_t t_saturations = 0;
 
 }  // namespace
 
-OverflowTrapHandler SetOverflowTrapHandler(OverflowTrapHandler handler) noexcept {
-    return g_handler.exchange(handler);
-}
+OverflowTrapHandler SetOverflowTrapHandler(OverflowTrapHandler handler) noexcept { return g_handler.exchange(handler); }
 
 uint64_t SaturationCount() noexcept { return t_saturations; }
 

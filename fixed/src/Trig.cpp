@@ -20,13 +20,9 @@ constexpr uint64_t kHalfQ32 = uint64_t{1} << 31;
 
 // Round-to-nearest Q32 x Q32 -> Q32 product of non-negative values below 2^32 (no overflow:
 // (2^32 - 1)^2 + 2^31 < 2^64).
-constexpr uint64_t MulQ32(uint64_t a, uint64_t b) noexcept {
-    return (a * b + kHalfQ32) >> 32;
-}
+constexpr uint64_t MulQ32(uint64_t a, uint64_t b) noexcept { return (a * b + kHalfQ32) >> 32; }
 // Truncating variant for the inner Horner steps, whose error is damped by later factors of z.
-constexpr uint64_t MulQ32Floor(uint64_t a, uint64_t b) noexcept {
-    return (a * b) >> 32;
-}
+constexpr uint64_t MulQ32Floor(uint64_t a, uint64_t b) noexcept { return (a * b) >> 32; }
 
 // ---- sin / cos -------------------------------------------------------------------------------
 //
@@ -358,10 +354,10 @@ void SinCosRaw(int32_t angle, int32_t* s, int32_t* c) noexcept {
     const int64_t d40 = static_cast<int64_t>(ax << 24) - ki * kStepQ40 - ((ki * kStepLoQ72) >> 32);
     const int64_t d = (d40 + 4) >> 3;  // Q37, |d| < 2^30.7
 
-    const int64_t d2 = (d * d) >> 37;                    // d^2 in Q37, < 2^24.3
-    const int64_t d3 = (d * d2) >> 37;                   // d^3 in Q37 (signed)
-    const int64_t d4 = (d2 * d2) >> 37;                  // d^4 in Q37
-    const int64_t sin_d = d - ((d3 * kSixthQ32) >> 32);  // Q37
+    const int64_t d2 = (d * d) >> 37;                                            // d^2 in Q37, < 2^24.3
+    const int64_t d3 = (d * d2) >> 37;                                           // d^3 in Q37 (signed)
+    const int64_t d4 = (d2 * d2) >> 37;                                          // d^4 in Q37
+    const int64_t sin_d = d - ((d3 * kSixthQ32) >> 32);                          // Q37
     const int64_t cos_d_m1 = ((d4 * kTwentyFourthQ32) >> 32) - ((d * d) >> 38);  // Q37, <= 0
 
     const uint32_t j = static_cast<uint32_t>(k) & 255u;
@@ -382,8 +378,7 @@ void SinCosRaw(int32_t angle, int32_t* s, int32_t* c) noexcept {
 int32_t Atan2Raw(int32_t y, int32_t x) noexcept {
     const uint32_t ay = AbsU32(y);
     const uint32_t ax = AbsU32(x);
-    if ((ay | ax) == 0)
-        return 0;
+    if ((ay | ax) == 0) return 0;
 
     // First octant: t = mn / mx in [0, 1]. Scale both so that mx has its top bit set; only the
     // ratio matters, and this keeps the division below exact to 2^-32 for tiny inputs too.
@@ -417,10 +412,8 @@ int32_t Atan2Raw(int32_t y, int32_t x) noexcept {
 
     // Assemble in Q40: theta in [0, pi/4], then the octant, then the half plane.
     int64_t theta = seg.theta_q40 + (u_negative ? -atan_u : atan_u) * 256;
-    if (swapped)
-        theta = kHalfPiQ40 - theta;
-    if (x < 0)
-        theta = kPiQ40 - theta;
+    if (swapped) theta = kHalfPiQ40 - theta;
+    if (x < 0) theta = kPiQ40 - theta;
     const int32_t result = static_cast<int32_t>((theta + (int64_t{1} << 23)) >> 24);
     return y < 0 ? -result : result;
 }

@@ -1,13 +1,13 @@
 // EnetTransport: ENet host, peer table and the throttle configuration that never drops inputs.
 #include "lockbox/net/EnetTransport.h"
 
-#include <enet/enet.h>
-
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
 #include <mutex>
 #include <utility>
+
+#include <enet/enet.h>
 
 namespace lockbox::net {
 
@@ -254,17 +254,16 @@ size_t EnetTransport::Poll(std::vector<Datagram>& out) {
                     disconnected_.push_back(id);
                 }
                 break;
-            case ENET_EVENT_TYPE_NONE:
-                break;
+            case ENET_EVENT_TYPE_NONE: break;
         }
     }
     return count;
 }
 
 uint64_t EnetTransport::NowMicros() const {
-    const auto us = std::chrono::duration_cast<std::chrono::microseconds>(
-                        std::chrono::steady_clock::now().time_since_epoch())
-                        .count();
+    const auto us =
+        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch())
+            .count();
     return us < 0 ? 0 : static_cast<uint64_t>(us);
 }
 

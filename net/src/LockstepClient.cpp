@@ -39,7 +39,8 @@ void LockstepClient::Update() {
 void LockstepClient::Impl::Timeouts(uint64_t now) {
     if (state == ClientState::e_connecting) {
         // Nobody answers the Hellos: give up after several disconnect timeouts.
-        if (now - connectStart >= 5 * config.disconnectMicros) Close(ClientEvent::Kind::e_disconnected, RejectReason::e_timeout);
+        if (now - connectStart >= 5 * config.disconnectMicros)
+            Close(ClientEvent::Kind::e_disconnected, RejectReason::e_timeout);
         return;
     }
     const uint64_t silent = now - lastHeard;
@@ -87,7 +88,8 @@ void LockstepClient::Impl::StartRunning(int32_t firstFrame, bool fillDelay) {
 }
 
 void LockstepClient::Impl::StepFrames() {
-    if (state != ClientState::e_syncing && state != ClientState::e_running && state != ClientState::e_catchingUp) return;
+    if (state != ClientState::e_syncing && state != ClientState::e_running && state != ClientState::e_catchingUp)
+        return;
     for (uint32_t n = 0; n < config.maxCatchUpFrames && !confirmed.empty(); ++n) {
         const std::vector<uint8_t>& row = confirmed.front();
         StepConfirmedFrame(world, game, frame, row, tickRate, config.velocityIterations, config.positionIterations);

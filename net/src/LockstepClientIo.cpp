@@ -10,7 +10,7 @@
 
 namespace lockbox::net {
 namespace {
-constexpr uint64_t kSyncPingMicros = 20'000;     // handshake RTT probes, a few per 100 ms
+constexpr uint64_t kSyncPingMicros = 20'000;  // handshake RTT probes, a few per 100 ms
 constexpr uint64_t kSnapshotResendMicros = 100'000;
 constexpr size_t kSnapshotWindow = 16;
 constexpr size_t kMaxHashesPerDatagram = 4;
@@ -189,8 +189,8 @@ void LockstepClient::Impl::Send(uint64_t now) {
     // One datagram per tick in steady state: a new input (or snapshot acks) goes at once;
     // acks and resends ride on it, or wait two ticks when no input flows (a stall); silence is
     // broken by a keepalive.
-    const bool due = (urgent && since >= tick / 2) || (pending && since >= 2 * tick) || since >= config.keepAliveMicros ||
-                     (syncing && pingDue) || !snapshotAcks.empty();
+    const bool due = (urgent && since >= tick / 2) || (pending && since >= 2 * tick) ||
+                     since >= config.keepAliveMicros || (syncing && pingDue) || !snapshotAcks.empty();
     if (!due) return;
 
     const size_t limit = transport.MaxDatagram();
@@ -210,7 +210,8 @@ void LockstepClient::Impl::Send(uint64_t now) {
         in.slot = static_cast<uint8_t>(slot);
         in.firstFrame = unackedBase + static_cast<int32_t>(from);
         const size_t count = std::min<size_t>(unacked.size() - from, kMaxRunFrames);
-        for (size_t i = from; i < from + count; ++i) in.bytes.insert(in.bytes.end(), unacked[i].begin(), unacked[i].end());
+        for (size_t i = from; i < from + count; ++i)
+            in.bytes.insert(in.bytes.end(), unacked[i].begin(), unacked[i].end());
         // A run too large for one datagram (a long stall): halve it until it fits.
         size_t n = count;
         while (n > 0 && !writer.Add(in, shape, limit)) {

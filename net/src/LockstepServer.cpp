@@ -12,7 +12,7 @@
 
 namespace lockbox::net {
 namespace {
-constexpr int32_t kMaxInputsAhead = 1024;   // inputs accepted beyond the confirmed frame
+constexpr int32_t kMaxInputsAhead = 1024;  // inputs accepted beyond the confirmed frame
 using State = SlotInfo::State;
 }  // namespace
 
@@ -182,7 +182,8 @@ void LockstepServer::Impl::OnInputs(int32_t s, PeerId peer, const Inputs& in) {
 void LockstepServer::Impl::Timeouts(uint64_t now) {
     for (size_t i = 0; i < slots.size(); ++i) {
         Slot& slot = slots[i];
-        if (slot.state != State::e_live && slot.state != State::e_interrupted && slot.state != State::e_joining) continue;
+        if (slot.state != State::e_live && slot.state != State::e_interrupted && slot.state != State::e_joining)
+            continue;
         const uint64_t silent = now - slot.lastHeard;
         if (silent >= config.disconnectMicros) {
             Drop(static_cast<int32_t>(i), RejectReason::e_timeout);

@@ -20,23 +20,23 @@ struct LockstepServer::Impl {
         uint32_t token = 0;
         uint64_t lastHeard = 0, lastSent = 0;
         uint16_t sequence = 0;
-        Welcome welcome;           ///< resent when a Hello is repeated
+        Welcome welcome;  ///< resent when a Hello is repeated
         // Inputs of frames [inputBase, inputBase + inputs.size()), an empty entry where a frame
         // is missing; every frame before nextInput is present. Required from requiredFrom on.
         int32_t requiredFrom = 0;
         int32_t inputBase = 0, nextInput = 0;
         std::deque<std::vector<uint8_t>> inputs;
         bool ackDirty = false;
-        int32_t acked = 0;         ///< the client holds every confirmed frame before this
+        int32_t acked = 0;  ///< the client holds every confirmed frame before this
         int32_t sentConfirmedEnd = 0;
-        int32_t hashNext = 0;      ///< InputAck.hashFrame
+        int32_t hashNext = 0;  ///< InputAck.hashFrame
         bool pongPending = false;
         uint64_t pongEcho = 0, pongAt = 0;
         // Late join.
         bool receivesConfirmed = false;  ///< false while a joiner waits for its snapshot
         SnapshotSender snapshot;
-        bool loaded = false;       ///< joiner acked the whole snapshot
-        int32_t admitFrame = -1;   ///< Admit sent until inputs of this frame arrive
+        bool loaded = false;      ///< joiner acked the whole snapshot
+        int32_t admitFrame = -1;  ///< Admit sent until inputs of this frame arrive
         uint32_t desyncNotices = 0;
         bool admitted() const noexcept {
             return state == SlotInfo::State::e_live || state == SlotInfo::State::e_interrupted;
@@ -66,7 +66,7 @@ struct LockstepServer::Impl {
         return history.data() + static_cast<size_t>(f - historyBase) * RowBytes();
     }
     int32_t confirmedNext = 0;
-    int32_t simulated = 0;         ///< authoritative mode: next frame to step
+    int32_t simulated = 0;  ///< authoritative mode: next frame to step
 
     std::map<int32_t, HashRecord> hashes;
     bool desyncRaised = false;

@@ -8,10 +8,10 @@
 
 namespace lockbox::net {
 namespace {
-constexpr int32_t kHashWindow = 1200;        // frames of hash reports kept for comparison
+constexpr int32_t kHashWindow = 1200;  // frames of hash reports kept for comparison
 constexpr uint64_t kPullRetryMicros = 200'000;
-constexpr uint32_t kDesyncNotices = 5;       // datagrams that carry the DesyncNotice
-constexpr int64_t kTrimBlock = 1024;         // confirmed rows dropped at a time
+constexpr uint32_t kDesyncNotices = 5;  // datagrams that carry the DesyncNotice
+constexpr int64_t kTrimBlock = 1024;    // confirmed rows dropped at a time
 using State = SlotInfo::State;
 }  // namespace
 
@@ -101,7 +101,8 @@ void LockstepServer::Impl::Snapshots(uint64_t now) {
             continue;
         }
         // Relay mode: a recent snapshot from a live client (10 s of fast-forward at most).
-        if (cache != nullptr && static_cast<int64_t>(cacheFrame) + 10 * static_cast<int64_t>(config.tickRate) >= confirmedNext) {
+        if (cache != nullptr &&
+            static_cast<int64_t>(cacheFrame) + 10 * static_cast<int64_t>(config.tickRate) >= confirmedNext) {
             slot.snapshot.Start(cacheFrame, cache);
             continue;
         }

@@ -39,7 +39,8 @@ bool Enc(Writer& w, const Hello& m, const SessionShape&) {
 }
 bool Enc(Writer& w, const Welcome& m, const SessionShape&) {
     if (m.playerCount < 1 || m.playerCount > kMaxPlayers || m.slot >= m.playerCount) return false;
-    if (m.inputBytes < 1 || m.inputBytes > kMaxInputBytes || m.tickRate < 1 || m.hashInterval < 1 || !FrameOk(m.startFrame) || m.token == 0)
+    if (m.inputBytes < 1 || m.inputBytes > kMaxInputBytes || m.tickRate < 1 || m.hashInterval < 1 ||
+        !FrameOk(m.startFrame) || m.token == 0)
         return false;
     w.U8(m.slot);
     w.U8(m.playerCount);
@@ -170,8 +171,8 @@ void Dec(Reader& r, Welcome& m, const SessionShape&) {
     m.holdMicros = r.Var();
     if (!r.ok()) return;
     if (m.playerCount < 1 || m.playerCount > kMaxPlayers || m.slot >= m.playerCount || m.inputBytes < 1 ||
-        m.inputBytes > kMaxInputBytes ||
-        m.tickRate < 1 || interval < 1 || interval > 0xFFFFFFFFull || m.token == 0 || flags > 1) {
+        m.inputBytes > kMaxInputBytes || m.tickRate < 1 || interval < 1 || interval > 0xFFFFFFFFull || m.token == 0 ||
+        flags > 1) {
         r.Fail(DecodeError::e_badValue);
         return;
     }

@@ -40,8 +40,7 @@ std::optional<RelayFrame> ParseRelayFrame(std::span<const uint8_t> bytes) noexce
             f.kind = static_cast<RelayKind>(bytes[3]);
             f.payload = bytes.subspan(kRelayHeaderBytes);
             return f;
-        default:
-            return std::nullopt;
+        default: return std::nullopt;
     }
 }
 
@@ -55,7 +54,8 @@ void WriteRelayFrame(std::vector<uint8_t>& out, RelayKind kind, uint32_t matchId
     WriteLe(out, matchId, 4);
     out.push_back(slot);
     if (kind == RelayKind::e_join) WriteLe(out, token, 8);
-    if (kind == RelayKind::e_toSlot || kind == RelayKind::e_fromSlot) out.insert(out.end(), payload.begin(), payload.end());
+    if (kind == RelayKind::e_toSlot || kind == RelayKind::e_fromSlot)
+        out.insert(out.end(), payload.begin(), payload.end());
 }
 
 }  // namespace lockbox::net

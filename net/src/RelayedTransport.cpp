@@ -5,8 +5,7 @@
 
 namespace lockbox::net {
 
-RelayedTransport::RelayedTransport(Transport& inner, RelayedTransportConfig config)
-    : inner_(inner), config_(config) {
+RelayedTransport::RelayedTransport(Transport& inner, RelayedTransportConfig config) : inner_(inner), config_(config) {
     if (config_.slots < 2 || config_.slots > kRelayMaxSlots)
         throw std::invalid_argument("RelayedTransport: slots must be in 2 .. 32");
     if (config_.slot >= config_.slots) throw std::invalid_argument("RelayedTransport: slot must be < slots");

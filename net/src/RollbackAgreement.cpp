@@ -28,7 +28,8 @@ void RollbackPeer::DropRemote(Remote& r, bool tell) {
         writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
         for (uint32_t p : r.players)
             if (session_.FrozenFrame(p) >= 0)
-                writer_.Add(RbFrozen{static_cast<uint8_t>(p), session_.FrozenFrame(p)}, shape_, transport_.MaxDatagram());
+                writer_.Add(RbFrozen{static_cast<uint8_t>(p), session_.FrozenFrame(p)}, shape_,
+                            transport_.MaxDatagram());
         for (int copy = 0; copy < 3 && writer_.MessageCount() > 0; ++copy)
             if (transport_.Send(r.peer, writer_.Bytes())) ++stats_.datagramsSent;
     }
@@ -60,7 +61,7 @@ void RollbackPeer::OnFrozen(Remote& r, const RbFrozen& f) {
         return;
     }
     if (std::find(r.players.begin(), r.players.end(), p) != r.players.end()) return;  // about itself
-    if (session_.CutFrame(p) >= 0) return;  // settled here already
+    if (session_.CutFrame(p) >= 0) return;                                            // settled here already
     // Gossip: one live peer calling p gone is enough, even while p is still heard here (a
     // half-broken link); p's owner then stops counting as live for this peer too.
     for (Remote& owner : remotes_)

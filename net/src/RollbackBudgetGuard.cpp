@@ -76,8 +76,8 @@ bool RollbackBudgetGuard::Record(uint32_t depth, uint32_t micros) {
         }
         if (!costSeen_) frameMicros_ = uint64_t{micros} / (uint64_t{depth} + 1);
         costSeen_ = true;
-        if (sinceChange_ >= config_.settleTicks && kept_.size() >= config_.minRollbacks &&
-            delay_ < config_.maxDelay && PredictedPercentile(0) > config_.budgetMicros) {
+        if (sinceChange_ >= config_.settleTicks && kept_.size() >= config_.minRollbacks && delay_ < config_.maxDelay &&
+            PredictedPercentile(0) > config_.budgetMicros) {
             // The smallest raise the model says fits; the largest allowed if none does.
             uint32_t k = 1;
             while (delay_ + k < config_.maxDelay && PredictedPercentile(static_cast<int32_t>(k)) > config_.budgetMicros)

@@ -21,9 +21,7 @@ constexpr size_t kAdvantageSamples = 16;
 // are lost 0.8 % of the time, which only skips that comparison, and no acks are needed.
 constexpr uint8_t kHashCopies = 3;
 
-int32_t ClampMilli(int64_t v) noexcept {
-    return static_cast<int32_t>(std::clamp<int64_t>(v, -1000000000, 1000000000));
-}
+int32_t ClampMilli(int64_t v) noexcept { return static_cast<int32_t>(std::clamp<int64_t>(v, -1000000000, 1000000000)); }
 
 int32_t Average(const std::deque<int32_t>& v) noexcept {
     if (v.empty()) return 0;
@@ -170,8 +168,8 @@ bool RollbackPeer::RemovedFromMatch() const noexcept {
 }
 
 size_t RollbackPeer::IncompatibleSpectators() const noexcept {
-    return static_cast<size_t>(std::count_if(spectators_.begin(), spectators_.end(),
-                                             [](const Spectator& s) { return s.incompatible; }));
+    return static_cast<size_t>(
+        std::count_if(spectators_.begin(), spectators_.end(), [](const Spectator& s) { return s.incompatible; }));
 }
 
 bool RollbackPeer::RemoteInterrupted(size_t index) const noexcept {
@@ -239,8 +237,10 @@ void RollbackPeer::Flush() {
         if (r.alive) SendTo(r, now);
     for (Spectator& s : spectators_) {
         if (s.incompatible) continue;
-        if (s.lateJoin && (s.wantsSnapshot || (s.sender.Active() && !s.sender.Done()))) SendSnapshot(s, now);
-        else SendSpectator(s);
+        if (s.lateJoin && (s.wantsSnapshot || (s.sender.Active() && !s.sender.Done())))
+            SendSnapshot(s, now);
+        else
+            SendSpectator(s);
     }
 }
 
@@ -339,8 +339,6 @@ uint32_t RollbackPeer::RemoteDelayWish() const noexcept {
 uint64_t RollbackPeer::RttMicros(size_t index) const noexcept {
     return index < remotes_.size() ? remotes_[index].rtt.Srtt() : 0;
 }
-bool RollbackPeer::RemoteAlive(size_t index) const noexcept {
-    return index < remotes_.size() && remotes_[index].alive;
-}
+bool RollbackPeer::RemoteAlive(size_t index) const noexcept { return index < remotes_.size() && remotes_[index].alive; }
 
 }  // namespace lockbox::net

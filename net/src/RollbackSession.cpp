@@ -324,9 +324,7 @@ std::span<const uint8_t> RollbackSession::ConfirmedInput(uint32_t player, int32_
     return {p.ring.data() + static_cast<size_t>(Slot(frame, kInputRing)) * m.Bytes(), m.Bytes()};
 }
 
-const std::deque<std::pair<int32_t, uint64_t>>& RollbackSession::FinalHashes() const noexcept {
-    return impl_->offered;
-}
+const std::deque<std::pair<int32_t, uint64_t>>& RollbackSession::FinalHashes() const noexcept { return impl_->offered; }
 bool RollbackSession::IsLocal(uint32_t player) const noexcept {
     return player < impl_->config.players && impl_->players[player].local;
 }

@@ -44,13 +44,13 @@ struct RollbackSession::Impl {
         int32_t frozenFrame = -1;
         // Smallest frozen value known for this player (ours and every peer's report).
         int32_t pendingCut = INT32_MAX;
-        bool disconnected = false;     // the cut is set: zeros from disconnectFrame on
-        int32_t received = 0;          // frames before this are known
+        bool disconnected = false;  // the cut is set: zeros from disconnectFrame on
+        int32_t received = 0;       // frames before this are known
         int32_t disconnectFrame = INT32_MAX;
         // Frames a lowered input delay still owes: the local queue runs this much deeper than
         // the delay until as many repeated inputs have been absorbed (SetInputDelay).
         int32_t surplus = 0;
-        std::vector<uint8_t> ring;     // kInputRing * inputBytes
+        std::vector<uint8_t> ring;  // kInputRing * inputBytes
         std::vector<int32_t> ringFrame;
     };
     struct SaveSlot {

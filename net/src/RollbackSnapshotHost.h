@@ -18,7 +18,7 @@ struct RollbackPeer::Spectator {
     uint32_t attempt = 0;        // the last join attempt served
     uint64_t checksum = 0;       // XXH3-64 of the snapshot being sent
     SnapshotSender sender;
-    bool incompatible = false;   // its hello named another version or shape: not served
+    bool incompatible = false;  // its hello named another version or shape: not served
 };
 
 }  // namespace lockbox::net

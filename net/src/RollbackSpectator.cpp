@@ -47,7 +47,8 @@ void RollbackSpectator::TakeChunk(const RbSnapshotChunk& c) {
     if (!r.Complete()) return;
     const std::span<const uint8_t> blob = r.Blob();
     if (r.Failed() || XXH3_64bits(blob.data(), blob.size()) != asmChecksum_) {
-        // Corrupt (or not a zstd frame of at most maxSnapshotBytes): never handed out; ask for a fresh snapshot with a new attempt number.
+        // Corrupt (or not a zstd frame of at most maxSnapshotBytes): never handed out; ask for a fresh snapshot with a
+        // new attempt number.
         ++snapshotsRefused_;
         hasBad_ = true;
         badFrame_ = r.Frame();
@@ -152,8 +153,10 @@ void RollbackSpectator::Flush() {
             ++incompatibleNotices_;
         return;
     }
-    if (state_ == SpectatorState::e_joining) writer_.Add(RbJoinRequest{attempt_}, shape_, limit);
-    else writer_.Add(RbConfirmedAck{received_}, shape_, limit);
+    if (state_ == SpectatorState::e_joining)
+        writer_.Add(RbJoinRequest{attempt_}, shape_, limit);
+    else
+        writer_.Add(RbConfirmedAck{received_}, shape_, limit);
     // Every chunk that arrived since the last Flush is acked, in as many datagrams as needed.
     size_t at = 0;
     while (at < pendingAcks_.size()) {

@@ -264,8 +264,7 @@ void Dec(Reader& r, RbDelayWish& m, const RollbackShape&) {
 // Input-carrying messages need a valid shape to be sized at all.
 template <class M>
 constexpr bool kNeedsShape = std::is_same_v<M, RbInputs> || std::is_same_v<M, RbInputAck> ||
-                             std::is_same_v<M, RbConfirmed> || std::is_same_v<M, RbView> ||
-                             std::is_same_v<M, RbFrozen>;
+                             std::is_same_v<M, RbConfirmed> || std::is_same_v<M, RbView> || std::is_same_v<M, RbFrozen>;
 
 template <size_t I = 0>
 bool DecodeIndexed(Reader& r, size_t index, const RollbackShape& s, RollbackMessage& out) {
@@ -315,7 +314,8 @@ DecodeError DecodeRollbackDatagram(std::span<const uint8_t> datagram, const Roll
         }
         // A sender of another shape: what follows cannot be sized; the hello says why.
         if (const auto* hello = std::get_if<RbHello>(&m);
-            hello != nullptr && ShapeOk(shape) && (hello->players != shape.players || hello->inputBytes != shape.inputBytes)) {
+            hello != nullptr && ShapeOk(shape) &&
+            (hello->players != shape.players || hello->inputBytes != shape.inputBytes)) {
             out.clear();
             out.push_back(std::move(m));
             return DecodeError::e_incompatible;

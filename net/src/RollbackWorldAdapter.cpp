@@ -8,8 +8,8 @@
 
 #include "SessionCommon.h"
 #include "lockbox/lockbox.h"
-#include "lockbox/state/WorldHash.h"
 #include "lockbox/replay/Game.h"
+#include "lockbox/state/WorldHash.h"
 
 namespace lockbox::net {
 
@@ -63,8 +63,8 @@ bool WorldGameAdapter::Execute(RollbackSession& session, std::span<const Rollbac
             game_.LoadUserState(s.user);
             rollingBack = true;
         } else if (const auto* adv = std::get_if<AdvanceRequest>(&r)) {
-            StepConfirmedFrame(world_, game_, adv->frame, adv->inputs, settings_.tickRate,
-                               settings_.velocityIterations, settings_.positionIterations);
+            StepConfirmedFrame(world_, game_, adv->frame, adv->inputs, settings_.tickRate, settings_.velocityIterations,
+                               settings_.positionIterations);
             lastAdvanced_ = adv->frame;
             if (rollingBack) ++resimulated_;
         }

@@ -17,9 +17,7 @@ void StepConfirmedFrame(b2World& world, replay::Game& game, int32_t frame, std::
                static_cast<int32>(positionIterations));
 }
 
-uint64_t FoldedStateHash(const b2World& world, const replay::Game& game) {
-    return FoldUserState(world.Hash(), game);
-}
+uint64_t FoldedStateHash(const b2World& world, const replay::Game& game) { return FoldUserState(world.Hash(), game); }
 
 uint64_t FoldUserState(uint64_t worldHash, const replay::Game& game) {
     std::vector<uint8> user;

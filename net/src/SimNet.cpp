@@ -83,9 +83,7 @@ struct Packet {
 
 // Heap order: the earliest (due, seq) on top. seq is unique per net, so the order is total.
 struct Later {
-    bool operator()(const Packet& a, const Packet& b) const {
-        return a.due != b.due ? a.due > b.due : a.seq > b.seq;
-    }
+    bool operator()(const Packet& a, const Packet& b) const { return a.due != b.due ? a.due > b.due : a.seq > b.seq; }
 };
 
 }  // namespace

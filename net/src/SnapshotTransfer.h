@@ -46,7 +46,8 @@ public:
     void OnAck(const SnapshotAck& ack, uint64_t now) noexcept;
     /// Calls `send` for each chunk that is due: never sent, or unacked for ResendMicros; at
     /// most `window` chunks per call. Returns how many were sent.
-    size_t Pump(uint64_t now, uint64_t resendMicros, size_t window, const std::function<void(const SnapshotChunk&)>& send);
+    size_t Pump(uint64_t now, uint64_t resendMicros, size_t window,
+                const std::function<void(const SnapshotChunk&)>& send);
     /// The resend timer: `floor` until an ack gave a round trip, then the smoothed round trip
     /// plus four deviations (RFC 6298's timeout), never below `floor` nor above one second.
     uint64_t ResendMicros(uint64_t floor) const noexcept;

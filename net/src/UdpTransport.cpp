@@ -1,17 +1,18 @@
 // UdpTransport: one non-blocking POSIX UDP socket and a fixed peer table.
 #include "lockbox/net/UdpTransport.h"
 
-#include <arpa/inet.h>
 #include <fcntl.h>
 #include <netdb.h>
-#include <netinet/in.h>
 #include <poll.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 
 namespace lockbox::net {
 
@@ -34,8 +35,8 @@ void SetError(std::string* error, std::string message) {
 std::string Errno(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
 
 // Parses a numeric address with getaddrinfo. `family` AF_UNSPEC accepts either.
-bool Resolve(const std::string& host, uint16_t port, int family, bool passive, sockaddr_storage& out,
-             socklen_t& len, std::string* error) {
+bool Resolve(const std::string& host, uint16_t port, int family, bool passive, sockaddr_storage& out, socklen_t& len,
+             std::string* error) {
     addrinfo hints{};
     hints.ai_family = family;
     hints.ai_socktype = SOCK_DGRAM;
@@ -267,9 +268,9 @@ size_t UdpTransport::Poll(std::vector<Datagram>& out) {
 }
 
 uint64_t UdpTransport::NowMicros() const {
-    const auto us = std::chrono::duration_cast<std::chrono::microseconds>(
-                        std::chrono::steady_clock::now().time_since_epoch())
-                        .count();
+    const auto us =
+        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch())
+            .count();
     return us < 0 ? 0 : static_cast<uint64_t>(us);
 }
 

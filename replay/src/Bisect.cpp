@@ -121,8 +121,9 @@ std::string BisectResult::Describe() const {
     std::string s;
     if (!diverged) {
         s = "NO DIVERGENCE: re-simulation matches the recording at every keyframe probed and every stored hash after "
-            "frame " + std::to_string(lowKeyframe) + "\n  " + std::to_string(probes) + " probes, " +
-            std::to_string(restores) + " restores, " + std::to_string(framesPlayed) + " frames simulated\n";
+            "frame " +
+            std::to_string(lowKeyframe) + "\n  " + std::to_string(probes) + " probes, " + std::to_string(restores) +
+            " restores, " + std::to_string(framesPlayed) + " frames simulated\n";
         return s;
     } else {
         s = "DIVERGED at frame " + std::to_string(frame) + (frameExact ? "" : " (or earlier in its hash interval)");
@@ -137,9 +138,9 @@ std::string BisectResult::Describe() const {
         }
         s += "\n  recorded " + Hex(expected) + "  re-simulated " + Hex(actual);
     }
-    s += "\n  keyframes: good at frame " + std::to_string(lowKeyframe) + ", bad by frame " + std::to_string(highKeyframe) +
-         "; " + std::to_string(probes) + " probes, " + std::to_string(restores) + " restores, " +
-         std::to_string(framesPlayed) + " frames simulated\n";
+    s += "\n  keyframes: good at frame " + std::to_string(lowKeyframe) + ", bad by frame " +
+         std::to_string(highKeyframe) + "; " + std::to_string(probes) + " probes, " + std::to_string(restores) +
+         " restores, " + std::to_string(framesPlayed) + " frames simulated\n";
     return s;
 }
 

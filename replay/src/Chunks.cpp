@@ -105,11 +105,11 @@ Error DecodeHeader(std::span<const uint8> bytes, Header& h) {
     if (sum != XXH3_64bits(bytes.data(), kHeaderCovered))
         return Fail(ErrorCode::e_badChecksum, 52, -1, 0, "header checksum does not match");
     if (h.playerCount < 1 || h.playerCount > kMaxPlayers)
-        return Fail(ErrorCode::e_badChunk, 26, -1, 0, "player count " + std::to_string(h.playerCount) + " outside 1..64");
+        return Fail(ErrorCode::e_badChunk, 26, -1, 0,
+                    "player count " + std::to_string(h.playerCount) + " outside 1..64");
     if (h.inputBytes > kMaxInputBytes)
         return Fail(ErrorCode::e_badChunk, 36, -1, 0, "input size " + std::to_string(h.inputBytes) + " above 1024");
-    if (h.hashInterval < 1)
-        return Fail(ErrorCode::e_badChunk, 40, -1, 0, "hash interval 0");
+    if (h.hashInterval < 1) return Fail(ErrorCode::e_badChunk, 40, -1, 0, "hash interval 0");
     if (h.timeStepRaw < 0) return Fail(ErrorCode::e_badChunk, 28, -1, 0, "negative time step");
     if (h.tickRate < 1) return Fail(ErrorCode::e_badChunk, 20, -1, 0, "tick rate 0");
     return {};
@@ -142,7 +142,8 @@ void EncodeChunk(uint32 type, std::span<const uint8> raw, int level, std::vector
     w.Bytes(stored);
 }
 
-Error ReadChunk(std::span<const uint8> file, uint64& offset, int32 index, RawChunk& chunk, std::vector<uint8>& payload) {
+Error ReadChunk(std::span<const uint8> file, uint64& offset, int32 index, RawChunk& chunk,
+                std::vector<uint8>& payload) {
     chunk = RawChunk{};
     chunk.offset = offset;
     if (file.size() - offset < kChunkHeaderBytes)
@@ -181,7 +182,8 @@ Error ReadChunk(std::span<const uint8> file, uint64& offset, int32 index, RawChu
 #endif
     } else {
         if (chunk.rawBytes != chunk.storedBytes)
-            return Fail(ErrorCode::e_badChunk, offset, index, chunk.type, "uncompressed chunk with raw size != stored size");
+            return Fail(ErrorCode::e_badChunk, offset, index, chunk.type,
+                        "uncompressed chunk with raw size != stored size");
         payload.assign(stored.begin(), stored.end());
     }
     offset = payloadStart + chunk.storedBytes;

@@ -28,7 +28,6 @@ struct RawChunk {
 
 /// Reads the chunk frame at `offset`, checks its checksum and decompresses the payload into
 /// `payload`. On success `offset` moves past the chunk.
-Error ReadChunk(std::span<const uint8> file, uint64& offset, int32 index, RawChunk& chunk,
-                std::vector<uint8>& payload);
+Error ReadChunk(std::span<const uint8> file, uint64& offset, int32 index, RawChunk& chunk, std::vector<uint8>& payload);
 
 }  // namespace lockbox::replay::detail

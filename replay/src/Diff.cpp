@@ -90,7 +90,8 @@ std::vector<FieldDifference> CompareBodies(const b2Body& a, const b2Body& b) {
     in("fixtureCount", a.m_fixtureCount, b.m_fixtureCount);
     in("userData", static_cast<int64_t>(a.m_userData), static_cast<int64_t>(b.m_userData));
     if (out.empty() && b2BodyStateHash(a) != b2BodyStateHash(b))
-        out.push_back({"fixtures", "(sub-hash " + Hex(b2BodyStateHash(a)) + ")", "(sub-hash " + Hex(b2BodyStateHash(b)) + ")"});
+        out.push_back(
+            {"fixtures", "(sub-hash " + Hex(b2BodyStateHash(a)) + ")", "(sub-hash " + Hex(b2BodyStateHash(b)) + ")"});
     return out;
 }
 
@@ -114,7 +115,8 @@ DiffResult DiffWorlds(const b2World& a, const b2World& b) {
     }
     if (r.where.category != b2HashCategory::e_bodies && r.where.category != b2HashCategory::e_fixtures) {
         if (a.GetContactCount() != b.GetContactCount())
-            r.fields.push_back({"world.contactCount", std::to_string(a.GetContactCount()), std::to_string(b.GetContactCount())});
+            r.fields.push_back(
+                {"world.contactCount", std::to_string(a.GetContactCount()), std::to_string(b.GetContactCount())});
         if (a.GetBodyCount() != b.GetBodyCount())
             r.fields.push_back({"world.bodyCount", std::to_string(a.GetBodyCount()), std::to_string(b.GetBodyCount())});
     }

@@ -26,8 +26,8 @@ Error Player::Restore(const Keyframe& keyframe) {
         Error e;
         e.code = ErrorCode::e_badSnapshot;
         e.frame = keyframe.frame;
-        e.message = std::string(keyframe.frame == 0 ? "seed" : "keyframe") + " snapshot refused: " +
-                    b2SnapshotErrorName(r.error) + ": " + r.message;
+        e.message = std::string(keyframe.frame == 0 ? "seed" : "keyframe") +
+                    " snapshot refused: " + b2SnapshotErrorName(r.error) + ": " + r.message;
         return e;
     }
     game_.LoadUserState(keyframe.user);

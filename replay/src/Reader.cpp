@@ -70,7 +70,8 @@ struct Parser {
         const uint32 per = r.U32();
         if (r.failed() || per != expectPer || static_cast<uint64>(count) * per * 8 != r.Remaining())
             return Fail(ErrorCode::e_badChunk, -1, std::string(name) + " chunk sizes do not add up");
-        if (first != static_cast<uint32>(framesSoFar) || static_cast<uint64>(first) + count > static_cast<uint64>(inputFrames))
+        if (first != static_cast<uint32>(framesSoFar) ||
+            static_cast<uint64>(first) + count > static_cast<uint64>(inputFrames))
             return Fail(ErrorCode::e_badChunk, static_cast<int32>(std::min<uint32>(first, INT32_MAX)),
                         std::string(name) + " hashes out of sequence");
         for (uint64 i = 0; i < static_cast<uint64>(count) * per; ++i) into.push_back(r.U64());
@@ -83,7 +84,8 @@ struct Parser {
         k.hash = r.U64();
         const auto world = r.Blob();
         const auto user = r.Blob();
-        if (r.failed() || r.Remaining() != 0) return Fail(ErrorCode::e_badChunk, -1, "snapshot chunk sizes do not add up");
+        if (r.failed() || r.Remaining() != 0)
+            return Fail(ErrorCode::e_badChunk, -1, "snapshot chunk sizes do not add up");
         k.world.assign(world.begin(), world.end());
         k.user.assign(user.begin(), user.end());
         return {};
@@ -92,14 +94,16 @@ struct Parser {
     Error Chunk(std::span<const uint8> payload) {
         detail::ByteReader r(payload);
         const size_t frameBytes = out.FrameInputBytes();
-        if (!haveMeta && chunk.type != e_chunkMeta) return Fail(ErrorCode::e_missing, -1, "the first chunk must be META");
+        if (!haveMeta && chunk.type != e_chunkMeta)
+            return Fail(ErrorCode::e_missing, -1, "the first chunk must be META");
         if (haveEnd) return Fail(ErrorCode::e_badChunk, -1, "chunk after the END record");
         switch (chunk.type) {
             case e_chunkMeta: {
                 if (haveMeta) return Fail(ErrorCode::e_badChunk, -1, "second META chunk");
                 const auto name = r.Bytes(r.U16());
                 const auto params = r.Blob();
-                if (r.failed() || r.Remaining() != 0) return Fail(ErrorCode::e_badChunk, -1, "META sizes do not add up");
+                if (r.failed() || r.Remaining() != 0)
+                    return Fail(ErrorCode::e_badChunk, -1, "META sizes do not add up");
                 out.gameName.assign(name.begin(), name.end());
                 out.gameParams.assign(params.begin(), params.end());
                 haveMeta = true;
@@ -116,7 +120,8 @@ struct Parser {
                 if (!haveSeed) return Fail(ErrorCode::e_missing, inputFrames, "inputs before the SEED chunk");
                 const uint32 first = r.U32();
                 const uint32 count = r.U32();
-                if (r.failed()) return Fail(ErrorCode::e_badChunk, inputFrames, "INPT chunk shorter than its 8-byte prefix");
+                if (r.failed())
+                    return Fail(ErrorCode::e_badChunk, inputFrames, "INPT chunk shorter than its 8-byte prefix");
                 if (first != static_cast<uint32>(inputFrames))
                     return Fail(ErrorCode::e_badChunk, static_cast<int32>(first),
                                 "input block starts at frame " + std::to_string(first) + ", expected " +
@@ -153,10 +158,8 @@ struct Parser {
                 }
                 return {};
             }
-            case e_chunkStages:
-                return FrameHashes(r, "STAG", kStagesPerFrame, stageFrames, out.stageHashes);
-            case e_chunkSolve:
-                return FrameHashes(r, "SOLV", kSolvePhasesPerFrame, solveFrames, out.solveHashes);
+            case e_chunkStages: return FrameHashes(r, "STAG", kStagesPerFrame, stageFrames, out.stageHashes);
+            case e_chunkSolve: return FrameHashes(r, "SOLV", kSolvePhasesPerFrame, solveFrames, out.solveHashes);
             case e_chunkKeyframe: {
                 Keyframe k;
                 if (Error e = Snapshot(r, k)) return e;
@@ -207,15 +210,19 @@ Error ParseReplay(std::span<const uint8> bytes, ReplayFile& out) {
         Error e;
         e.code = ErrorCode::e_badEngine;
         e.offset = 14;
-        e.message = "recorded with determinism version 0x" + [&] {
-            char buf[16];
-            std::snprintf(buf, sizeof buf, "%08x", h.determinismVersion);
-            return std::string(buf);
-        }() + " and snapshot format " + std::to_string(h.snapshotFormatVersion) + "; this engine has 0x" + [] {
-            char buf[16];
-            std::snprintf(buf, sizeof buf, "%08x", b2_determinismVersion);
-            return std::string(buf);
-        }() + " and reads snapshot formats " + std::to_string(b2_snapshotOldestReadable) + " to " +
+        e.message = "recorded with determinism version 0x" +
+                    [&] {
+                        char buf[16];
+                        std::snprintf(buf, sizeof buf, "%08x", h.determinismVersion);
+                        return std::string(buf);
+                    }() +
+                    " and snapshot format " + std::to_string(h.snapshotFormatVersion) + "; this engine has 0x" +
+                    [] {
+                        char buf[16];
+                        std::snprintf(buf, sizeof buf, "%08x", b2_determinismVersion);
+                        return std::string(buf);
+                    }() +
+                    " and reads snapshot formats " + std::to_string(b2_snapshotOldestReadable) + " to " +
                     std::to_string(b2_snapshotFormatVersion);
         return e;
     }

@@ -93,7 +93,8 @@ Error Recorder::Begin() {
     detail::ByteWriter meta(scratch_);
     const std::string& name = config_.gameName;
     meta.U16(static_cast<uint16>(std::min<size_t>(name.size(), 0xFFFF)));
-    meta.Bytes(std::span<const uint8>(reinterpret_cast<const uint8*>(name.data()), std::min<size_t>(name.size(), 0xFFFF)));
+    meta.Bytes(
+        std::span<const uint8>(reinterpret_cast<const uint8*>(name.data()), std::min<size_t>(name.size(), 0xFFFF)));
     meta.Blob(config_.gameParams);
     Emit(e_chunkMeta, scratch_);
 
@@ -113,7 +114,8 @@ std::span<const uint8> Recorder::PushInputs(std::span<const uint8> inputs) {
     const size_t frameBytes = static_cast<size_t>(config_.playerCount) * config_.inputBytes;
     const size_t at = inputBlock_.size();
     inputBlock_.resize(at + frameBytes, 0);
-    std::copy_n(inputs.begin(), std::min(inputs.size(), frameBytes), inputBlock_.begin() + static_cast<std::ptrdiff_t>(at));
+    std::copy_n(inputs.begin(), std::min(inputs.size(), frameBytes),
+                inputBlock_.begin() + static_cast<std::ptrdiff_t>(at));
     return std::span<const uint8>(inputBlock_.data() + at, frameBytes);
 }
 

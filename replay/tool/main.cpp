@@ -22,14 +22,15 @@ using namespace lockbox::replay;
 namespace {
 
 int Usage() {
-    std::fprintf(stderr,
-                 "usage:\n"
-                 "  lockbox_replay record --scene NAME --out FILE [--frames N] [--players P] [--seed S]\n"
-                 "                        [--keyframe-interval K] [--hash-interval H] [--stage-hashes] [--level L]\n"
-                 "  lockbox_replay info FILE\n"
-                 "  lockbox_replay verify FILE\n"
-                 "  lockbox_replay diff A B\n"
-                 "  lockbox_replay bisect FILE [--inject FRAME:STAGE]   (STAGE 0..4: inputs collide solve broadphase toi)\n");
+    std::fprintf(
+        stderr,
+        "usage:\n"
+        "  lockbox_replay record --scene NAME --out FILE [--frames N] [--players P] [--seed S]\n"
+        "                        [--keyframe-interval K] [--hash-interval H] [--stage-hashes] [--level L]\n"
+        "  lockbox_replay info FILE\n"
+        "  lockbox_replay verify FILE\n"
+        "  lockbox_replay diff A B\n"
+        "  lockbox_replay bisect FILE [--inject FRAME:STAGE]   (STAGE 0..4: inputs collide solve broadphase toi)\n");
     return 2;
 }
 
@@ -62,16 +63,26 @@ int Record(int argc, char** argv) {
     for (int i = 0; i < argc; ++i) {
         const std::string a = argv[i];
         const bool more = i + 1 < argc;
-        if (a == "--scene" && more) scene = argv[++i];
-        else if (a == "--out" && more) out = argv[++i];
-        else if (a == "--frames" && more) frames = std::strtol(argv[++i], nullptr, 10);
-        else if (a == "--players" && more) players = std::strtol(argv[++i], nullptr, 10);
-        else if (a == "--seed" && more) seed = std::strtoull(argv[++i], nullptr, 0);
-        else if (a == "--keyframe-interval" && more) keyframe = std::strtol(argv[++i], nullptr, 10);
-        else if (a == "--hash-interval" && more) hashInterval = std::strtol(argv[++i], nullptr, 10);
-        else if (a == "--level" && more) level = std::strtol(argv[++i], nullptr, 10);
-        else if (a == "--stage-hashes") stageHashes = true;
-        else return Usage();
+        if (a == "--scene" && more)
+            scene = argv[++i];
+        else if (a == "--out" && more)
+            out = argv[++i];
+        else if (a == "--frames" && more)
+            frames = std::strtol(argv[++i], nullptr, 10);
+        else if (a == "--players" && more)
+            players = std::strtol(argv[++i], nullptr, 10);
+        else if (a == "--seed" && more)
+            seed = std::strtoull(argv[++i], nullptr, 0);
+        else if (a == "--keyframe-interval" && more)
+            keyframe = std::strtol(argv[++i], nullptr, 10);
+        else if (a == "--hash-interval" && more)
+            hashInterval = std::strtol(argv[++i], nullptr, 10);
+        else if (a == "--level" && more)
+            level = std::strtol(argv[++i], nullptr, 10);
+        else if (a == "--stage-hashes")
+            stageHashes = true;
+        else
+            return Usage();
     }
     if (scene.empty() || out.empty() || frames < 0 || players < 1 || players > 64 || keyframe < 0 || hashInterval < 1)
         return Usage();
@@ -124,7 +135,8 @@ int Info(const char* path) {
                 h.velocityIterations, h.positionIterations, h.worldFlags);
     std::printf("players        %u x %u input bytes\n", h.playerCount, h.inputBytes);
     std::printf("frames         %d (%.2f s)\n", f.frameCount, static_cast<double>(f.frameCount) / h.tickRate);
-    std::printf("hashes         every %u frame(s)%s\n", h.hashInterval, f.stageHashes.empty() ? "" : ", with fencepost hashes");
+    std::printf("hashes         every %u frame(s)%s\n", h.hashInterval,
+                f.stageHashes.empty() ? "" : ", with fencepost hashes");
     std::printf("keyframes      %zu (interval %u)\n", f.keyframes.size(), h.keyframeInterval);
     std::printf("seed hash      %s\nfinal hash     %s\n", Hex(f.seed.hash).c_str(), Hex(f.finalHash).c_str());
     std::printf("chunks         type  count      stored         raw\n");

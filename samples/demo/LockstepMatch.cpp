@@ -178,8 +178,9 @@ void PrintStatus(const std::vector<std::unique_ptr<ClientBoard>>& boards, double
         const int32_t f = b.frames.load(std::memory_order_acquire);
         std::printf("    client %zu (slot %d)  frame %4d  rtt %6.2f ms  delay %u", i, b.slot.load(), f,
                     static_cast<double>(b.rttMicros.load()) / 1000.0, b.inputDelay.load());
-        if (common > 0) std::printf("  hash@%d 0x%016llx", common - 1,
-                                    static_cast<unsigned long long>(b.hashes[static_cast<size_t>(common - 1)]));
+        if (common > 0)
+            std::printf("  hash@%d 0x%016llx", common - 1,
+                        static_cast<unsigned long long>(b.hashes[static_cast<size_t>(common - 1)]));
         std::printf("\n");
     }
     std::fflush(stdout);
@@ -245,9 +246,8 @@ int RunLockstepMatch(const MatchOptions& o) {
         boards.push_back(std::make_unique<ClientBoard>());
         boards.back()->hashes.assign(static_cast<size_t>(o.frames), 0);
     }
-    const std::string replayPath = o.replayPath.empty()
-                                       ? (std::filesystem::temp_directory_path() / "lockbox_demo.lbr").string()
-                                       : o.replayPath;
+    const std::string replayPath =
+        o.replayPath.empty() ? (std::filesystem::temp_directory_path() / "lockbox_demo.lbr").string() : o.replayPath;
     replay::FileSink sink(replayPath);
     if (!sink.ok()) {
         std::fprintf(stderr, "lockbox_demo: cannot write %s\n", replayPath.c_str());
@@ -315,9 +315,10 @@ int RunLockstepMatch(const MatchOptions& o) {
     const bool failed = std::any_of(boards.begin(), boards.end(), [](const auto& b) { return b->failed.load(); });
     const uint64_t finalHash = complete ? boards[0]->hashes[static_cast<size_t>(o.frames - 1)] : 0;
     if (complete && agree) {
-        std::printf("\nAll %d clients agree on the final hash 0x%016llx after %d frames (%.1f s).\n"
-                    "The same options give this hash on every run, machine, compiler and architecture.\n",
-                    o.clients, static_cast<unsigned long long>(finalHash), o.frames, Seconds(start));
+        std::printf(
+            "\nAll %d clients agree on the final hash 0x%016llx after %d frames (%.1f s).\n"
+            "The same options give this hash on every run, machine, compiler and architecture.\n",
+            o.clients, static_cast<unsigned long long>(finalHash), o.frames, Seconds(start));
     } else if (!agree) {
         std::printf("\nClients DISAGREE from frame %d.\n", firstDiff);
     } else {

@@ -1,10 +1,11 @@
 // The demo's offline mode (`lockbox_demo --offline`): the manual's Hello World, then one scene
 // from the library run to its default length in one world, printing the state hash every 60
 // steps. The hash is the same on every machine, compiler and architecture.
+#include "OfflineRun.h"
+
 #include <cstdio>
 #include <string>
 
-#include "OfflineRun.h"
 #include "lockbox/lockbox.h"
 #include "lockbox/scenes/LockboxScenes.h"
 
@@ -66,8 +67,8 @@ int RunSceneOffline(const std::string& name, int steps) {
         engine.Step(r.hz, r.velocityIterations, r.positionIterations);
         scene->AfterStep(engine, i);
         if ((i + 1) % 60 == 0 || i + 1 == steps) {
-            std::printf("step %4d  bodies %4d  contacts %5d  hash 0x%016llx\n", i + 1,
-                        engine.world().GetBodyCount(), engine.world().GetContactCount(),
+            std::printf("step %4d  bodies %4d  contacts %5d  hash 0x%016llx\n", i + 1, engine.world().GetBodyCount(),
+                        engine.world().GetContactCount(),
                         static_cast<unsigned long long>(scenes::HashWorld(engine.world())));
         }
     }

@@ -75,8 +75,8 @@ struct Board {
     std::map<int32_t, uint64_t> finals;  // frame -> final hash (under lock)
 };
 
-void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net::PeerId other,
-                  const RollbackOptions o, Board& board, Clock::time_point deadline) {
+void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net::PeerId other, const RollbackOptions o,
+                  Board& board, Clock::time_point deadline) {
     replay::SceneGame game(o.scene);
     auto session = net::RollbackSessionBuilder()
                        .Players(2)
@@ -87,10 +87,10 @@ void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net:
                        .DesyncInterval(30)
                        .Build();
     const auto& info = game.info();
-    net::WorldGameAdapter adapter(game.world(), game,
-                                  net::WorldStepSettings{static_cast<uint32_t>(info.hz),
-                                                         static_cast<uint32_t>(info.velocityIterations),
-                                                         static_cast<uint32_t>(info.positionIterations)});
+    net::WorldGameAdapter adapter(
+        game.world(), game,
+        net::WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
+                               static_cast<uint32_t>(info.positionIterations)});
     net::RollbackPeerConfig cfg;
     cfg.matchId = 0x524F4C4Cu;
     cfg.remotes.push_back(net::RollbackRemote{other, {1 - me}});
@@ -121,13 +121,15 @@ void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net:
             });
             const auto t0 = Clock::now();
             if (!adapter.Execute(*session, reqs)) board.failed = true;
-            const auto nanos = static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count());
+            const auto nanos =
+                static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count());
             if (rollback) {
                 // Every Advance of a rollback batch (the re-simulated frames and the new one)
                 // with its save: the cost per frame of catching up.
-                board.rollbackSteps += static_cast<uint64_t>(std::count_if(
-                    reqs.begin(), reqs.end(),
-                    [](const net::RollbackRequest& r) { return std::holds_alternative<net::AdvanceRequest>(r); }));
+                board.rollbackSteps +=
+                    static_cast<uint64_t>(std::count_if(reqs.begin(), reqs.end(), [](const net::RollbackRequest& r) {
+                        return std::holds_alternative<net::AdvanceRequest>(r);
+                    }));
                 board.resimNanos += nanos;
             }
             if (budget) {
@@ -168,9 +170,10 @@ void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net:
 }  // namespace
 
 int RunRollbackMatch(const RollbackOptions& o) {
-    if (o.frames < 1 || o.frames > 1000000 || o.inputDelay < 0 || o.inputDelay > 16 || o.window < 1 ||
-        o.window > 64 || o.latencyMs < 0 || o.latencyMs > 1000 || o.budgetMs < 0 || o.budgetMs > 1000) {
-        std::fprintf(stderr, "rollback: frames 1..1000000, delay 0..16, window 1..64, latency 0..1000 ms, budget 0..1000 ms\n");
+    if (o.frames < 1 || o.frames > 1000000 || o.inputDelay < 0 || o.inputDelay > 16 || o.window < 1 || o.window > 64 ||
+        o.latencyMs < 0 || o.latencyMs > 1000 || o.budgetMs < 0 || o.budgetMs > 1000) {
+        std::fprintf(stderr,
+                     "rollback: frames 1..1000000, delay 0..16, window 1..64, latency 0..1000 ms, budget 0..1000 ms\n");
         return 2;
     }
     if (!replay::SceneGame(o.scene).ok()) {
@@ -213,10 +216,11 @@ int RunRollbackMatch(const RollbackOptions& o) {
             const Board& bd = boards[i];
             const uint64_t rb = bd.rollbacks;
             const uint64_t resim = bd.rollbackSteps;
-            std::printf("  player %d: frame %5d confirmed %5d  rollbacks/s %3llu  deepest %u  resim %.3f ms/frame  delay %u\n", i,
-                        bd.frame.load(), bd.confirmed.load(), static_cast<unsigned long long>(rb - lastRollbacks[i]),
-                        bd.deepest.load(), resim ? static_cast<double>(bd.resimNanos) / 1e6 / static_cast<double>(resim) : 0.0,
-                        bd.inputDelay.load());
+            std::printf(
+                "  player %d: frame %5d confirmed %5d  rollbacks/s %3llu  deepest %u  resim %.3f ms/frame  delay %u\n",
+                i, bd.frame.load(), bd.confirmed.load(), static_cast<unsigned long long>(rb - lastRollbacks[i]),
+                bd.deepest.load(), resim ? static_cast<double>(bd.resimNanos) / 1e6 / static_cast<double>(resim) : 0.0,
+                bd.inputDelay.load());
             lastRollbacks[i] = rb;
         }
         std::fflush(stdout);
@@ -240,13 +244,14 @@ int RunRollbackMatch(const RollbackOptions& o) {
     for (int i = 0; i < 2; ++i) {
         const Board& bd = boards[i];
         const uint64_t resim = bd.rollbackSteps;
-        std::printf("player %d: %d frames in %.1f s, %llu rollbacks (%.1f/s), deepest %u, %llu frames resimulated, "
-                    "resim %.3f ms/frame, input delay %u at the end%s%s\n",
-                    i, bd.frame.load(), seconds, static_cast<unsigned long long>(bd.rollbacks.load()),
-                    static_cast<double>(bd.rollbacks) / seconds, bd.deepest.load(),
-                    static_cast<unsigned long long>(bd.resimulated.load()),
-                    resim ? static_cast<double>(bd.resimNanos) / 1e6 / static_cast<double>(resim) : 0.0,
-                    bd.inputDelay.load(), bd.failed ? ", RESTORE FAILED" : "", bd.desync ? ", DESYNC" : "");
+        std::printf(
+            "player %d: %d frames in %.1f s, %llu rollbacks (%.1f/s), deepest %u, %llu frames resimulated, "
+            "resim %.3f ms/frame, input delay %u at the end%s%s\n",
+            i, bd.frame.load(), seconds, static_cast<unsigned long long>(bd.rollbacks.load()),
+            static_cast<double>(bd.rollbacks) / seconds, bd.deepest.load(),
+            static_cast<unsigned long long>(bd.resimulated.load()),
+            resim ? static_cast<double>(bd.resimNanos) / 1e6 / static_cast<double>(resim) : 0.0, bd.inputDelay.load(),
+            bd.failed ? ", RESTORE FAILED" : "", bd.desync ? ", DESYNC" : "");
         ok = ok && !bd.failed && !bd.desync && bd.confirmed >= o.frames;
     }
     if (ok)

@@ -16,8 +16,8 @@
 #include <string>
 
 #include "LockstepMatch.h"
-#include "RollbackMatch.h"
 #include "OfflineRun.h"
+#include "RollbackMatch.h"
 
 namespace {
 
@@ -56,8 +56,8 @@ int main(int argc, char** argv) {
         long v = 0;
         if (a == "--offline") {
             offline = true;
-        } else if (a == "--mode" && hasValue && (std::strcmp(argv[i + 1], "rollback") == 0 ||
-                                                 std::strcmp(argv[i + 1], "lockstep") == 0)) {
+        } else if (a == "--mode" && hasValue &&
+                   (std::strcmp(argv[i + 1], "rollback") == 0 || std::strcmp(argv[i + 1], "lockstep") == 0)) {
             rollback = std::strcmp(argv[++i], "rollback") == 0;
         } else if (a == "--window" && hasValue && ParseInt(argv[i + 1], 1, 64, v)) {
             window = v;

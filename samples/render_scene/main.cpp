@@ -27,9 +27,7 @@ class SvgDraw : public b2Draw {
 public:
     void DrawPolygon(const b2Vec2* v, int32 n, const b2Color& c) override { Poly(v, n, c, false); }
     void DrawSolidPolygon(const b2Vec2* v, int32 n, const b2Color& c) override { Poly(v, n, c, true); }
-    void DrawCircle(const b2Vec2& center, Fixed radius, const b2Color& c) override {
-        Circle(center, radius, c, false);
-    }
+    void DrawCircle(const b2Vec2& center, Fixed radius, const b2Color& c) override { Circle(center, radius, c, false); }
     void DrawSolidCircle(const b2Vec2& center, Fixed radius, const b2Vec2& axis, const b2Color& c) override {
         Circle(center, radius, c, true);
         const double x = center.x.ToDouble(), y = center.y.ToDouble(), r = radius.ToDouble();
@@ -93,8 +91,8 @@ private:
         Grow(x + r, y + r);
     }
     void Line(double xa, double ya, double xb, double yb, const b2Color& c) {
-        body_ << "<line x1=\"" << xa << "\" y1=\"" << -ya << "\" x2=\"" << xb << "\" y2=\"" << -yb
-              << "\" stroke=\"" << Rgb(c) << "\"/>\n";
+        body_ << "<line x1=\"" << xa << "\" y1=\"" << -ya << "\" x2=\"" << xb << "\" y2=\"" << -yb << "\" stroke=\""
+              << Rgb(c) << "\"/>\n";
     }
 
     std::ostringstream body_;
@@ -109,13 +107,20 @@ int main(int argc, char** argv) {
     RunSettings s;
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string a = argv[i];
-        if (a == "--scene") name = argv[i + 1];
-        else if (a == "--step") steps = std::atoi(argv[i + 1]);
-        else if (a == "--out") out = argv[i + 1];
-        else if (a == "--width") width = std::atoi(argv[i + 1]);
-        else if (a == "--velocity-iterations") s.velocityIterations = std::atoi(argv[i + 1]);
-        else if (a == "--position-iterations") s.positionIterations = std::atoi(argv[i + 1]);
-        else name.clear(), i = argc;
+        if (a == "--scene")
+            name = argv[i + 1];
+        else if (a == "--step")
+            steps = std::atoi(argv[i + 1]);
+        else if (a == "--out")
+            out = argv[i + 1];
+        else if (a == "--width")
+            width = std::atoi(argv[i + 1]);
+        else if (a == "--velocity-iterations")
+            s.velocityIterations = std::atoi(argv[i + 1]);
+        else if (a == "--position-iterations")
+            s.positionIterations = std::atoi(argv[i + 1]);
+        else
+            name.clear(), i = argc;
     }
     auto scene = name.empty() ? nullptr : MakeLockboxScene(name);
     if (!scene) {

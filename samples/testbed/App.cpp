@@ -1,12 +1,13 @@
 // The interactive loop: GLFW events, ImGui frame, testbed input/step/panels, GL drawing.
 #include "App.h"
 
-#include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl2.h>
 
 #include <cstdio>
+
+#include <GLFW/glfw3.h>
 
 #include "Headless.h"
 #include "Testbed.h"

@@ -1,11 +1,11 @@
 // The camera's screen/world mapping (display only) and the one documented rounding helper.
 #include "Camera.h"
 
-#include <GL/gl.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include <GL/gl.h>
 
 namespace lockbox::testbed {
 

@@ -1,10 +1,10 @@
 // GlDraw: b2Draw into two vertex batches drawn with client-side arrays (OpenGL 1.1).
 #include "GlDraw.h"
 
-#include <GL/gl.h>
-
 #include <cmath>
 #include <cstddef>
+
+#include <GL/gl.h>
 
 namespace lockbox::testbed {
 

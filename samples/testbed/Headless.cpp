@@ -1,6 +1,7 @@
 // Headless rendering into a framebuffer object, PNG output (stb_image_write) and the blank check.
 #define GLFW_INCLUDE_GLEXT  // GLFW includes GL/glext.h after GL/gl.h, which it needs first
-#include <GLFW/glfw3.h>
+#include "Headless.h"
+
 #include <imgui.h>
 #include <imgui_impl_opengl2.h>
 #include <stb_image.h>
@@ -11,7 +12,8 @@
 #include <unordered_set>
 #include <vector>
 
-#include "Headless.h"
+#include <GLFW/glfw3.h>
+
 #include "SceneCatalog.h"
 #include "Testbed.h"
 
@@ -41,8 +43,7 @@ struct FramebufferApi {
         bindRenderbuffer = reinterpret_cast<PFNGLBINDRENDERBUFFERPROC>(get("glBindRenderbuffer"));
         deleteRenderbuffers = reinterpret_cast<PFNGLDELETERENDERBUFFERSPROC>(get("glDeleteRenderbuffers"));
         renderbufferStorage = reinterpret_cast<PFNGLRENDERBUFFERSTORAGEPROC>(get("glRenderbufferStorage"));
-        framebufferRenderbuffer =
-            reinterpret_cast<PFNGLFRAMEBUFFERRENDERBUFFERPROC>(get("glFramebufferRenderbuffer"));
+        framebufferRenderbuffer = reinterpret_cast<PFNGLFRAMEBUFFERRENDERBUFFERPROC>(get("glFramebufferRenderbuffer"));
         checkFramebufferStatus = reinterpret_cast<PFNGLCHECKFRAMEBUFFERSTATUSPROC>(get("glCheckFramebufferStatus"));
         return genFramebuffers && bindFramebuffer && deleteFramebuffers && genRenderbuffers && bindRenderbuffer &&
                deleteRenderbuffers && renderbufferStorage && framebufferRenderbuffer && checkFramebufferStatus;

@@ -9,20 +9,20 @@ namespace lockbox::testbed {
 
 /// What the headless run renders.
 struct HeadlessOptions {
-    std::string scene;       ///< catalog name
-    int steps = 0;           ///< steps before the frame
-    std::string output;      ///< PNG path
-    int width = 1280;        ///< image size, px
+    std::string scene;   ///< catalog name
+    int steps = 0;       ///< steps before the frame
+    std::string output;  ///< PNG path
+    int width = 1280;    ///< image size, px
     int height = 720;
-    bool panel = true;       ///< draw the side panel as in the window
-    bool sideBySide = false; ///< two views at accuracy A and B
-    std::string record;      ///< when set, the steps are recorded to this replay file
-    std::string replay;      ///< when set, the frame shows this replay instead of the scene
-    int replayFrame = -1;    ///< frame of the replay to show (-1: the seed)
-    int injectFrame = -1;    ///< fault injection at this frame (-1: none) ...
-    int injectStage = 2;     ///< ... and this stage
-    bool verify = false;     ///< verify the replay (verdict printed and shown)
-    bool bisect = false;     ///< show the state before the replay's first divergent frame
+    bool panel = true;        ///< draw the side panel as in the window
+    bool sideBySide = false;  ///< two views at accuracy A and B
+    std::string record;       ///< when set, the steps are recorded to this replay file
+    std::string replay;       ///< when set, the frame shows this replay instead of the scene
+    int replayFrame = -1;     ///< frame of the replay to show (-1: the seed)
+    int injectFrame = -1;     ///< fault injection at this frame (-1: none) ...
+    int injectStage = 2;      ///< ... and this stage
+    bool verify = false;      ///< verify the replay (verdict printed and shown)
+    bool bisect = false;      ///< show the state before the replay's first divergent frame
 };
 
 /// Renders the frame and writes the PNG (needs an X display for GLFW's hidden window; Xvfb

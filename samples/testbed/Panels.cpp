@@ -25,7 +25,8 @@ void Testbed::DrawPanels() {
     if (!showPanel_) return;
     ImGui::SetNextWindowPos(ImVec2(static_cast<float>(windowWidth_) - kPanelWidth, 0.0f));
     ImGui::SetNextWindowSize(ImVec2(kPanelWidth, static_cast<float>(windowHeight_)));
-    ImGui::Begin("lockbox testbed", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::Begin("lockbox testbed", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     // Sliders and fields take 55 % of the width, leaving room for their labels.
     ImGui::PushItemWidth(ImGui::GetContentRegionAvail().x * 0.55f);
     ScenePanel();

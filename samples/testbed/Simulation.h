@@ -14,22 +14,22 @@
 #include <vector>
 
 #include "TestbedGame.h"
-#include "lockbox/lockbox.h"
 #include "lockbox/dynamics/joints/MouseJoint.h"
+#include "lockbox/lockbox.h"
 #include "lockbox/replay/Recorder.h"
 
 namespace lockbox::testbed {
 
 /// Step settings and world switches, as the panel edits them.
 struct StepSettings {
-    int hz = 60;                  ///< steps per simulated second (dt = round(65536 / hz) raw)
-    int velocityIterations = 8;   ///< velocity iterations per step
-    int positionIterations = 3;   ///< position iterations per step
-    bool sleep = true;            ///< b2World::SetAllowSleeping
-    bool warmStarting = true;     ///< b2World::SetWarmStarting
-    bool continuous = true;       ///< b2World::SetContinuousPhysics
-    bool subStepping = false;     ///< b2World::SetSubStepping
-    bool headroom = true;         ///< headroom telemetry after each step (a walk of the world)
+    int hz = 60;                 ///< steps per simulated second (dt = round(65536 / hz) raw)
+    int velocityIterations = 8;  ///< velocity iterations per step
+    int positionIterations = 3;  ///< position iterations per step
+    bool sleep = true;           ///< b2World::SetAllowSleeping
+    bool warmStarting = true;    ///< b2World::SetWarmStarting
+    bool continuous = true;      ///< b2World::SetContinuousPhysics
+    bool subStepping = false;    ///< b2World::SetSubStepping
+    bool headroom = true;        ///< headroom telemetry after each step (a walk of the world)
 };
 
 /// A scene, its world and its controls.

@@ -1,12 +1,13 @@
 // The testbed's behaviour: scenes, stepping, input and the world views.
 #include "Testbed.h"
 
-#include <GL/gl.h>
-#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include <algorithm>
 #include <cstdio>
+
+#include <GL/gl.h>
+#include <GLFW/glfw3.h>
 
 #include "SceneCatalog.h"
 
@@ -112,8 +113,7 @@ void Testbed::HandleInput() {
         if (under < views.size()) {
             const Viewport& vp = views[under];
             if (io.MouseWheel != 0.0f) camera_.ZoomAt(vp, mx, my, io.MouseWheel > 0 ? 1 / kWheelZoom : kWheelZoom);
-            if (ImGui::IsMouseDown(ImGuiMouseButton_Right))
-                camera_.PanPixels(vp, io.MouseDelta.x, io.MouseDelta.y);
+            if (ImGui::IsMouseDown(ImGuiMouseButton_Right)) camera_.PanPixels(vp, io.MouseDelta.x, io.MouseDelta.y);
             if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
                 if (Simulation* sim = ViewSimulation(under)) {
                     // Display to simulation: the documented rounding helper, nothing else.
@@ -145,8 +145,10 @@ void Testbed::HandleInput() {
     if (ImGui::IsKeyDown(GLFW_KEY_X)) camera_.ZoomAt(vp, cx, cy, kKeyZoom);
     if (ImGui::IsKeyPressed(GLFW_KEY_HOME, false)) FitView();
     if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) {
-        if (mode_ == ViewMode::replay) replayPlaying_ = !replayPlaying_;
-        else paused_ = !paused_;
+        if (mode_ == ViewMode::replay)
+            replayPlaying_ = !replayPlaying_;
+        else
+            paused_ = !paused_;
     }
     if (ImGui::IsKeyPressed(GLFW_KEY_O, true)) {
         paused_ = true;
@@ -223,8 +225,10 @@ void Testbed::JumpToDivergence() {
 void Testbed::DrawView(size_t i, const Viewport& vp) {
     camera_.Apply(vp, windowHeight_, scale_);
     // The second view is a shade bluer, so the two accuracy settings are told apart at once.
-    if (i == 0) glClearColor(0.11f, 0.11f, 0.13f, 1.0f);
-    else glClearColor(0.10f, 0.12f, 0.17f, 1.0f);
+    if (i == 0)
+        glClearColor(0.11f, 0.11f, 0.13f, 1.0f);
+    else
+        glClearColor(0.10f, 0.12f, 0.17f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     b2World* world = ViewWorld(i);
     if (!world) return;
@@ -275,8 +279,9 @@ void Testbed::DrawLabels() {
         char text[256];
         if (mode_ == ViewMode::replay) {
             if (!viewer_.IsOpen()) continue;
-            std::snprintf(text, sizeof text, "replay %s  frame %d / %d\nhash %016llx %s", viewer_.File().gameName.c_str(),
-                          viewer_.Frame(), viewer_.FrameCount(), static_cast<unsigned long long>(viewer_.Hash()),
+            std::snprintf(text, sizeof text, "replay %s  frame %d / %d\nhash %016llx %s",
+                          viewer_.File().gameName.c_str(), viewer_.Frame(), viewer_.FrameCount(),
+                          static_cast<unsigned long long>(viewer_.Hash()),
                           viewer_.MatchesRecording() ? "(matches the recording)" : "(DIFFERS from the recording)");
         } else {
             Simulation* sim = ViewSimulation(i);

@@ -138,8 +138,8 @@ private:
     bool dragging_ = false;
     size_t dragView_ = 0;
     char replayPath_[512] = "testbed.lbr";
-    std::string status_;      ///< last message (recording, opening, errors)
-    std::string checkText_;   ///< last Verify / Bisect result
+    std::string status_;     ///< last message (recording, opening, errors)
+    std::string checkText_;  ///< last Verify / Bisect result
 };
 
 }  // namespace lockbox::testbed

@@ -10,8 +10,7 @@ namespace {
 constexpr std::string_view kTestbedPrefix = "testbed:";
 }
 
-TestbedGame::TestbedGame(std::string_view name, const scenes::RunSettings& settings)
-    : scene_(MakeCatalogScene(name)) {
+TestbedGame::TestbedGame(std::string_view name, const scenes::RunSettings& settings) : scene_(MakeCatalogScene(name)) {
     if (!scene_) return;
     engine_ = std::make_unique<scenes::LockboxEngine>();
     // The same order as scenes::RunScene: switches, resolved settings, then the bodies.

@@ -47,10 +47,8 @@ inline constexpr int64_t kInt32Max = 2147483647;
 
 inline uint64_t HashSqrtRaw() {
     Fnv1a h;
-    for (int64_t x = -1000; x <= kInt32Max; x += 4093)
-        h.AddI32(lockbox::detail::SqrtRaw(static_cast<int32_t>(x)));
-    for (int32_t x = 0; x < 65536; ++x)
-        h.AddI32(lockbox::detail::SqrtRaw(x));
+    for (int64_t x = -1000; x <= kInt32Max; x += 4093) h.AddI32(lockbox::detail::SqrtRaw(static_cast<int32_t>(x)));
+    for (int32_t x = 0; x < 65536; ++x) h.AddI32(lockbox::detail::SqrtRaw(x));
     return h.Value();
 }
 
@@ -115,7 +113,6 @@ inline constexpr uint64_t kGoldenSinCos = 0xd7f9c2ce862fcbccull;
 inline constexpr uint64_t kGoldenAtan2 = 0xbaed0245ec00de4cull;
 inline constexpr uint64_t kGoldenWrapAngle = 0x797a7f9de96a50a3ull;
 
-
 /// One kernel's hash function with its name and golden value.
 struct Kernel {
     const char* name;
@@ -125,8 +122,8 @@ struct Kernel {
 
 /// Every kernel, in a fixed order.
 inline constexpr Kernel kKernels[] = {
-    {"SqrtRaw", &HashSqrtRaw, kGoldenSqrtRaw},       {"Isqrt64", &HashIsqrt64, kGoldenIsqrt64},
-    {"SinCosRaw", &HashSinCos, kGoldenSinCos},       {"Atan2Raw", &HashAtan2, kGoldenAtan2},
+    {"SqrtRaw", &HashSqrtRaw, kGoldenSqrtRaw},          {"Isqrt64", &HashIsqrt64, kGoldenIsqrt64},
+    {"SinCosRaw", &HashSinCos, kGoldenSinCos},          {"Atan2Raw", &HashAtan2, kGoldenAtan2},
     {"WrapAngleRaw", &HashWrapAngle, kGoldenWrapAngle},
 };
 

@@ -38,8 +38,7 @@ inline std::vector<ScenePlan> GoldenPlan() {
     for (std::string_view name : scenes::AllSceneNames()) {
         if (!scenes::MakeLockboxScene(name)) continue;
         const bool heavy = IsHeavyScene(name);
-        plan.push_back({std::string(name), heavy ? std::vector<int>{1, 60, 120} : std::vector<int>{1, 60, 600},
-                        heavy});
+        plan.push_back({std::string(name), heavy ? std::vector<int>{1, 60, 120} : std::vector<int>{1, 60, 600}, heavy});
     }
     return plan;
 }

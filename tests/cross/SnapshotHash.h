@@ -12,14 +12,14 @@
 #if defined(LOCKBOX_CROSS_SNAPSHOT) && __has_include("lockbox/state/Snapshot.h")
 #define LOCKBOX_CROSS_HAS_SNAPSHOT 1
 
+#include <xxhash.h>
+
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <xxhash.h>
 
 #include "lockbox/dynamics/World.h"
 #include "lockbox/scenes/LockboxScenes.h"
@@ -56,8 +56,7 @@ inline std::string SnapshotLine(std::string_view scene, int steps) {
     const uint64_t h = XXH3_64bits(image.data(), image.size());
     char buf[96];
     std::snprintf(buf, sizeof buf, " step%d format=%u bytes=%zu xxh3=0x%016llx", steps,
-                  static_cast<unsigned>(b2_snapshotFormatVersion), image.size(),
-                  static_cast<unsigned long long>(h));
+                  static_cast<unsigned>(b2_snapshotFormatVersion), image.size(), static_cast<unsigned long long>(h));
     return "snapshot " + std::string(scene) + buf;
 }
 

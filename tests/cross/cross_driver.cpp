@@ -89,8 +89,7 @@ int main(int argc, char** argv) {
         const uint64_t got = k.hash();
         const bool ok = got == k.golden;
         mismatches += ok ? 0 : 1;
-        std::printf("%s function %s=0x%016llx\n", ok ? "ok  " : "FAIL", k.name,
-                    static_cast<unsigned long long>(got));
+        std::printf("%s function %s=0x%016llx\n", ok ? "ok  " : "FAIL", k.name, static_cast<unsigned long long>(got));
     }
     std::fflush(stdout);
     std::fprintf(stderr, "time functions %.2f s\n", Since(t0));
@@ -108,7 +107,8 @@ int main(int argc, char** argv) {
         t0 = std::chrono::steady_clock::now();
         const auto it = golden.find(p.name);
         std::string line;
-        const bool ok = lockbox::golden::MatchesGolden(p, limit, it == golden.end() ? std::string() : it->second, &line);
+        const bool ok =
+            lockbox::golden::MatchesGolden(p, limit, it == golden.end() ? std::string() : it->second, &line);
         mismatches += ok ? 0 : 1;
         std::printf("%s %s\n", ok ? "ok  " : "FAIL", line.c_str());
         std::fflush(stdout);

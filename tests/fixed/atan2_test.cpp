@@ -23,9 +23,7 @@ constexpr int32_t kMax = std::numeric_limits<int32_t>::max();
 
 long double ErrUlp(int32_t y, int32_t x) {
     const long double ref =
-        (y == 0 && x == 0)
-            ? 0.0L
-            : std::atan2(static_cast<long double>(y), static_cast<long double>(x)) * 65536.0L;
+        (y == 0 && x == 0) ? 0.0L : std::atan2(static_cast<long double>(y), static_cast<long double>(x)) * 65536.0L;
     return std::fabs(static_cast<long double>(Atan2Raw(y, x)) - ref);
 }
 
@@ -33,8 +31,7 @@ long double ErrUlp(int32_t y, int32_t x) {
 int32_t LogUniformRaw(std::mt19937_64& rng) {
     const int bits = static_cast<int>(rng() % 32);  // 0..31
     int64_t v = static_cast<int64_t>((rng() >> (64 - bits - 1)) | (uint64_t{1} << bits));
-    if (v > kMax)
-        v = kMax;
+    if (v > kMax) v = kMax;
     return (rng() & 1) ? static_cast<int32_t>(-v) : static_cast<int32_t>(v);
 }
 
@@ -87,10 +84,8 @@ TEST(Atan2, RandomLogUniformPairs) {
         const int32_t y = LogUniformRaw(rng);
         const int32_t x = LogUniformRaw(rng);
         const long double e = ErrUlp(y, x);
-        if (e > max_err)
-            max_err = e;
-        if (e > 0.5L)
-            ++not_cr;
+        if (e > max_err) max_err = e;
+        if (e > 0.5L) ++not_cr;
     }
     EXPECT_LE(max_err, 1.0L);
     EXPECT_LE(not_cr, 10);  // measured: ~1 in 200k pairs is a near-tie off by 1e-5 ULP
@@ -105,8 +100,7 @@ TEST(Atan2, CirclesAtSeveralRadii) {
             const int32_t y = static_cast<int32_t>(std::llround(radius * std::sin(th) * 65536.0L));
             const int32_t x = static_cast<int32_t>(std::llround(radius * std::cos(th) * 65536.0L));
             const long double e = ErrUlp(y, x);
-            if (e > max_err)
-                max_err = e;
+            if (e > max_err) max_err = e;
         }
     }
     EXPECT_LE(max_err, 1.0L);
@@ -117,8 +111,7 @@ TEST(Atan2, OddSymmetryAndRange) {
     for (int i = 0; i < 200000; ++i) {
         int32_t y = static_cast<int32_t>(rng());
         const int32_t x = static_cast<int32_t>(rng());
-        if (y == kMin || y == 0)
-            y = 1;
+        if (y == kMin || y == 0) y = 1;
         const int32_t r = Atan2Raw(y, x);
         ASSERT_EQ(Atan2Raw(-y, x), -r);
         ASSERT_GE(r, -205887);

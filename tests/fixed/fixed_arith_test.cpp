@@ -1,8 +1,8 @@
 // Q16.16 arithmetic: the rounding rule, exact add/sub, correctly rounded mul/div, saturation.
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/fixed/Fixed.h"
@@ -57,7 +57,7 @@ TEST(FixedArith, MulTiesRoundAwayAndAreSymmetric) {
     const Fixed half = Fixed::FromRaw(32768);
     EXPECT_EQ((Fixed::FromRaw(1) * half).Raw(), 1);
     EXPECT_EQ((Fixed::FromRaw(-1) * half).Raw(), -1);
-    EXPECT_EQ((Fixed::FromRaw(3) * half).Raw(), 2);   // 1.5 -> 2
+    EXPECT_EQ((Fixed::FromRaw(3) * half).Raw(), 2);    // 1.5 -> 2
     EXPECT_EQ((Fixed::FromRaw(-3) * half).Raw(), -2);  // -1.5 -> -2
     // Just below a tie rounds toward zero on both sides.
     const Fixed belowHalf = Fixed::FromRaw(32767);

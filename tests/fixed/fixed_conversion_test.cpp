@@ -1,11 +1,11 @@
 // Conversions: integers (exact), compile-time literals (correctly rounded), decimal text (exact),
 // ratios, and the named display / tool conversions.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/fixed/Fixed.h"
@@ -41,7 +41,7 @@ TEST(FixedConversion, DecimalLiteralsAreExact) {
     static_assert((1e-3_fx).Raw() == 66);   // 65.536 -> 66
     static_assert((0.1_fx).Raw() == 6554);  // 6553.6 -> 6554
     static_assert((32767.99998_fx).Raw() == INT32_MAX);
-    static_assert((0.0000076293945_fx).Raw() == 0);  // just below 0.5 ULP (7.62939453125e-6)
+    static_assert((0.0000076293945_fx).Raw() == 0);      // just below 0.5 ULP (7.62939453125e-6)
     static_assert((0.00000762939453125_fx).Raw() == 1);  // exactly 0.5 ULP: tie rounds away
     SUCCEED();
 }
@@ -52,11 +52,24 @@ TEST(FixedConversion, ParseMatchesExactReference) {
         int32_t raw;
     };
     const Case cases[] = {
-        {"0", 0},           {"-0", 0},           {"1", 65536},         {"-12.375", -811008},
-        {"+2.5", 163840},   {"0.5", 32768},      {".5", 32768},        {"5.", 327680},
-        {"1e3", 65536000},  {"1.5E-1", 9830},    {"-1e-5", -1},        {"007.25", 475136},
-        {"0.000", 0},       {"32767", 2147418112}, {"1.5f", 98304},    {"0.00000762939453125", 1},
-        {"-0.00000762939453125", -1},            {"0.0000076293945312", 0},
+        {"0", 0},
+        {"-0", 0},
+        {"1", 65536},
+        {"-12.375", -811008},
+        {"+2.5", 163840},
+        {"0.5", 32768},
+        {".5", 32768},
+        {"5.", 327680},
+        {"1e3", 65536000},
+        {"1.5E-1", 9830},
+        {"-1e-5", -1},
+        {"007.25", 475136},
+        {"0.000", 0},
+        {"32767", 2147418112},
+        {"1.5f", 98304},
+        {"0.00000762939453125", 1},
+        {"-0.00000762939453125", -1},
+        {"0.0000076293945312", 0},
         {"0.1000000000000000000000000000000000000000000000000000000000000000000000001", 6554},
     };
     for (const Case& c : cases) {
@@ -67,8 +80,7 @@ TEST(FixedConversion, ParseMatchesExactReference) {
 }
 
 TEST(FixedConversion, ParseRejectsBadText) {
-    const char* bad[] = {"", "-", ".", "1.2.3", "abc", "1e", "1e+", "1x", "40000", "-32768.5",
-                         "1e20", "--1", " 1"};
+    const char* bad[] = {"", "-", ".", "1.2.3", "abc", "1e", "1e+", "1x", "40000", "-32768.5", "1e20", "--1", " 1"};
     for (const char* text : bad) {
         Fixed f = Fixed(7);
         const char* error = nullptr;
@@ -111,7 +123,7 @@ TEST(FixedConversion, DisplayAndToolConversions) {
 
 TEST(WideConversion, WidenAndNarrow) {
     EXPECT_EQ(Wide(Fixed(1.5)).Raw(), int64_t{3} << 31);
-    EXPECT_EQ(Wide::FromRaw(int64_t{1} << 15).ToFixed().Raw(), 1);    // tie away from zero
+    EXPECT_EQ(Wide::FromRaw(int64_t{1} << 15).ToFixed().Raw(), 1);  // tie away from zero
     EXPECT_EQ(Wide::FromRaw(-(int64_t{1} << 15)).ToFixed().Raw(), -1);
     EXPECT_EQ(Wide::FromRaw((int64_t{1} << 15) - 1).ToFixed().Raw(), 0);
     EXPECT_EQ(Wide::FromRaw(-((int64_t{1} << 15) - 1)).ToFixed().Raw(), 0);

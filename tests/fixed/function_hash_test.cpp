@@ -15,8 +15,7 @@ namespace {
 using namespace lockbox::function_hash;
 
 ::testing::AssertionResult HashIs(const char* name, uint64_t got, uint64_t want) {
-    if (got == want)
-        return ::testing::AssertionSuccess();
+    if (got == want) return ::testing::AssertionSuccess();
     char buf[160];
     std::snprintf(buf, sizeof buf, "%s: hash 0x%016llxull, golden 0x%016llxull", name,
                   static_cast<unsigned long long>(got), static_cast<unsigned long long>(want));
@@ -25,18 +24,8 @@ using namespace lockbox::function_hash;
 
 }  // namespace
 
-TEST(FunctionHash, SqrtRaw) {
-    EXPECT_TRUE(HashIs("SqrtRaw", HashSqrtRaw(), kGoldenSqrtRaw));
-}
-TEST(FunctionHash, Isqrt64) {
-    EXPECT_TRUE(HashIs("Isqrt64", HashIsqrt64(), kGoldenIsqrt64));
-}
-TEST(FunctionHash, SinCosRaw) {
-    EXPECT_TRUE(HashIs("SinCosRaw", HashSinCos(), kGoldenSinCos));
-}
-TEST(FunctionHash, Atan2Raw) {
-    EXPECT_TRUE(HashIs("Atan2Raw", HashAtan2(), kGoldenAtan2));
-}
-TEST(FunctionHash, WrapAngleRaw) {
-    EXPECT_TRUE(HashIs("WrapAngleRaw", HashWrapAngle(), kGoldenWrapAngle));
-}
+TEST(FunctionHash, SqrtRaw) { EXPECT_TRUE(HashIs("SqrtRaw", HashSqrtRaw(), kGoldenSqrtRaw)); }
+TEST(FunctionHash, Isqrt64) { EXPECT_TRUE(HashIs("Isqrt64", HashIsqrt64(), kGoldenIsqrt64)); }
+TEST(FunctionHash, SinCosRaw) { EXPECT_TRUE(HashIs("SinCosRaw", HashSinCos(), kGoldenSinCos)); }
+TEST(FunctionHash, Atan2Raw) { EXPECT_TRUE(HashIs("Atan2Raw", HashAtan2(), kGoldenAtan2)); }
+TEST(FunctionHash, WrapAngleRaw) { EXPECT_TRUE(HashIs("WrapAngleRaw", HashWrapAngle(), kGoldenWrapAngle)); }

@@ -1,9 +1,9 @@
 // b2Mat22/b2Mat33 solves and inverses against long double references over the magnitudes the
 // joints meet (NUMERICS Table 1), and the portable 128-bit helpers against native __int128.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/fixed/Mat22.h"
@@ -70,9 +70,11 @@ TEST(Mat33, Solve33AndSymInverseMatchReference) {
     int checked = 0;
     for (int i = 0; i < 20000; ++i) {
         // Symmetric positive-definite-ish matrices like the joints' K (diagonal dominant).
-        const Fixed d1 = Abs(RandomFixed(rng, 1e-2, 1e3)) + Fixed(0.01), d2 = Abs(RandomFixed(rng, 1e-2, 1e3)) + Fixed(0.01),
+        const Fixed d1 = Abs(RandomFixed(rng, 1e-2, 1e3)) + Fixed(0.01),
+                    d2 = Abs(RandomFixed(rng, 1e-2, 1e3)) + Fixed(0.01),
                     d3 = Abs(RandomFixed(rng, 1e-2, 1e3)) + Fixed(0.01);
-        const Fixed o12 = RandomFixed(rng, 1e-3, 1.0) * Min(d1, d2), o13 = RandomFixed(rng, 1e-3, 1.0) * Min(d1, d3) * Fixed(0.5),
+        const Fixed o12 = RandomFixed(rng, 1e-3, 1.0) * Min(d1, d2),
+                    o13 = RandomFixed(rng, 1e-3, 1.0) * Min(d1, d3) * Fixed(0.5),
                     o23 = RandomFixed(rng, 1e-3, 1.0) * Min(d2, d3) * Fixed(0.5);
         b2Mat33 K(b2Vec3(d1, o12, o13), b2Vec3(o12, d2, o23), b2Vec3(o13, o23, d3));
         const b2Vec3 b(RandomFixed(rng, 1e-3, 10), RandomFixed(rng, 1e-3, 10), RandomFixed(rng, 1e-3, 10));
@@ -83,7 +85,8 @@ TEST(Mat33, Solve33AndSymInverseMatchReference) {
         if (det == 0) continue;
         const long double bx = D(b.x), by = D(b.y), bz = D(b.z);
         const long double x = (bx * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (by * m[2][2] - m[1][2] * bz) +
-                               m[0][2] * (by * m[2][1] - m[1][1] * bz)) / det;
+                               m[0][2] * (by * m[2][1] - m[1][1] * bz)) /
+                              det;
         if (std::fabs(x) > 30000) continue;
         ++checked;
         const b2Vec3 s = K.Solve33(b);
@@ -102,7 +105,8 @@ TEST(Mat33, Solve33AndSymInverseMatchReference) {
 }
 
 TEST(Mat33, Solve22AndInverse22) {
-    b2Mat33 K(b2Vec3(Fixed(2), Fixed(0), Fixed(9)), b2Vec3(Fixed(0), Fixed(8), Fixed(9)), b2Vec3(Fixed(9), Fixed(9), Fixed(9)));
+    b2Mat33 K(b2Vec3(Fixed(2), Fixed(0), Fixed(9)), b2Vec3(Fixed(0), Fixed(8), Fixed(9)),
+              b2Vec3(Fixed(9), Fixed(9), Fixed(9)));
     EXPECT_EQ(K.Solve22(b2Vec2(Fixed(1), Fixed(1))), b2Vec2(Fixed(0.5), Fixed(0.125)));
     b2Mat33 inv;
     K.GetInverse22(&inv);

@@ -21,8 +21,7 @@ namespace {
 
 // Integer-exact: r = floor(sqrt(n)) iff r^2 <= n and n - r^2 <= 2r ((r+1)^2 > n).
 bool FloorIsExact(uint64_t n, uint64_t r) {
-    if (r > 0xFFFFFFFFu)
-        return false;
+    if (r > 0xFFFFFFFFu) return false;
     const uint64_t sq = r * r;
     return sq <= n && n - sq <= 2 * r;
 }
@@ -32,11 +31,9 @@ bool FloorIsExact(uint64_t n, uint64_t r) {
 // checked directly as (2q - 1)^2 <= 4n < (2q + 1)^2.
 bool RoundIsExact(uint64_t n, uint64_t q) {
     const uint64_t r = IsqrtFloor64(n);
-    if (!FloorIsExact(n, r))
-        return false;
+    if (!FloorIsExact(n, r)) return false;
     const uint64_t want = r + ((n - r * r > r) ? 1 : 0);
-    if (q != want)
-        return false;
+    if (q != want) return false;
     if (n < (uint64_t{1} << 61)) {
         const uint64_t lo = q == 0 ? 0 : (2 * q - 1) * (2 * q - 1);
         const uint64_t hi = (2 * q + 1) * (2 * q + 1);
@@ -54,8 +51,7 @@ void CheckOne(uint64_t n) {
 
 // Q16.16: r = round(sqrt(v)), v = x * 2^16 < 2^47, iff (2r - 1)^2 <= 4v < (2r + 1)^2.
 bool SqrtRawIsExact(int32_t x, int32_t r) {
-    if (x <= 0)
-        return r == 0;
+    if (x <= 0) return r == 0;
     const uint64_t v4 = static_cast<uint64_t>(x) << 18;
     const uint64_t rr = static_cast<uint64_t>(r);
     const uint64_t lo = rr == 0 ? 0 : (2 * rr - 1) * (2 * rr - 1);
@@ -67,15 +63,13 @@ bool SqrtRawIsExact(int32_t x, int32_t r) {
 static_assert(IsqrtFloor64(0) == 0 && IsqrtFloor64(1) == 1 && IsqrtFloor64(3) == 1);
 static_assert(IsqrtFloor64(4) == 2 && IsqrtFloor64(99) == 9 && IsqrtFloor64(100) == 10);
 static_assert(IsqrtFloor64(~uint64_t{0}) == 0xFFFFFFFFu);
-static_assert(IsqrtRound64(2) == 1 && IsqrtRound64(3) == 2 && IsqrtRound64(6) == 2 &&
-              IsqrtRound64(7) == 3);
+static_assert(IsqrtRound64(2) == 1 && IsqrtRound64(3) == 2 && IsqrtRound64(6) == 2 && IsqrtRound64(7) == 3);
 static_assert(IsqrtRound64(~uint64_t{0}) == (uint64_t{1} << 32));
 static_assert(SqrtRaw(0) == 0 && SqrtRaw(65536) == 65536 && SqrtRaw(4 * 65536) == 2 * 65536);
 static_assert(SqrtRaw(-1) == 0 && SqrtRaw(std::numeric_limits<int32_t>::min()) == 0);
 
 TEST(Isqrt64, SmallValuesExhaustive) {
-    for (uint64_t n = 0; n < (uint64_t{1} << 20); ++n)
-        CheckOne(n);
+    for (uint64_t n = 0; n < (uint64_t{1} << 20); ++n) CheckOne(n);
 }
 
 TEST(Isqrt64, AroundEverySquareBoundary) {
@@ -113,8 +107,7 @@ TEST(Isqrt64, RandomOverWholeRange) {
 }
 
 TEST(Isqrt64, TopOfRangeAndPowersOfTwo) {
-    for (uint64_t j = 0; j < 20000; ++j)
-        CheckOne(~uint64_t{0} - j);
+    for (uint64_t j = 0; j < 20000; ++j) CheckOne(~uint64_t{0} - j);
     for (int b = 0; b < 64; ++b) {
         const uint64_t p = uint64_t{1} << b;
         CheckOne(p);

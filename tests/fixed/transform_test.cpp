@@ -1,11 +1,10 @@
 // b2Rot, b2Transform and b2Sweep: identities, inverse round trips, interpolation end points,
 // and that normalising a sweep keeps the relative angle exactly.
-#include <gtest/gtest.h>
-
-#include <limits>
-
 #include <cmath>
+#include <limits>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/fixed/Math.h"

@@ -27,11 +27,9 @@ struct ErrStats {
     long long not_cr = 0;
     void Add(long double err) {
         err = std::fabs(err);
-        if (err > max_ulp)
-            max_ulp = err;
+        if (err > max_ulp) max_ulp = err;
         ++count;
-        if (err > 0.5L)
-            ++not_cr;
+        if (err > 0.5L) ++not_cr;
     }
 };
 
@@ -80,8 +78,7 @@ TEST(SinCos, ExactOddEvenSymmetry) {
     std::mt19937 rng(3);
     for (int i = 0; i < 200000; ++i) {
         int32_t x = static_cast<int32_t>(rng());
-        if (x == std::numeric_limits<int32_t>::min())
-            x = 0;
+        if (x == std::numeric_limits<int32_t>::min()) x = 0;
         int32_t s1 = 0, c1 = 0, s2 = 0, c2 = 0;
         SinCosRaw(x, &s1, &c1);
         SinCosRaw(-x, &s2, &c2);
@@ -93,8 +90,7 @@ TEST(SinCos, ExactOddEvenSymmetry) {
 TEST(SinCos, DenseSweepWithinTwoPi) {
     // Every 3rd raw value in [-2pi, 2pi] (~275k angles).
     ErrStats s_stats, c_stats;
-    for (int32_t x = -411775; x <= 411775; x += 3)
-        Measure(x, s_stats, c_stats);
+    for (int32_t x = -411775; x <= 411775; x += 3) Measure(x, s_stats, c_stats);
     EXPECT_LE(s_stats.max_ulp, 0.5001L);
     EXPECT_LE(c_stats.max_ulp, 0.5001L);
     EXPECT_EQ(s_stats.not_cr, 0);
@@ -104,8 +100,7 @@ TEST(SinCos, DenseSweepWithinTwoPi) {
 TEST(SinCos, StridedFullInt32Range) {
     // ~1M angles over the whole int32 range (|x| up to 32768 rad), stride 4093 (prime).
     ErrStats s_stats, c_stats;
-    for (int64_t x = std::numeric_limits<int32_t>::min(); x <= std::numeric_limits<int32_t>::max();
-         x += 4093) {
+    for (int64_t x = std::numeric_limits<int32_t>::min(); x <= std::numeric_limits<int32_t>::max(); x += 4093) {
         Measure(static_cast<int32_t>(x), s_stats, c_stats);
     }
     Measure(std::numeric_limits<int32_t>::max(), s_stats, c_stats);

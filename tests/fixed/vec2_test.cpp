@@ -1,12 +1,13 @@
 // b2Vec2: exact dot/cross, correctly rounded Length, precise Normalize over 0.001 m .. 30,000 m
 // (NUMERICS Table 9).
-#include <gtest/gtest.h>
+#include "lockbox/fixed/Vec2.h"
 
 #include <cmath>
 #include <random>
 
+#include <gtest/gtest.h>
+
 #include "FixedPrint.h"
-#include "lockbox/fixed/Vec2.h"
 
 using lockbox::b2Vec2;
 using lockbox::Fixed;
@@ -21,8 +22,10 @@ long double ExactLength(const b2Vec2& v) {
 TEST(Vec2, DotAndCrossAreExactThenRoundedOnce) {
     std::mt19937 rng(11);
     for (int i = 0; i < 100000; ++i) {
-        const b2Vec2 a(Fixed::FromRaw(static_cast<int32_t>(rng()) / 4), Fixed::FromRaw(static_cast<int32_t>(rng()) / 4));
-        const b2Vec2 b(Fixed::FromRaw(static_cast<int32_t>(rng()) / 4), Fixed::FromRaw(static_cast<int32_t>(rng()) / 4));
+        const b2Vec2 a(Fixed::FromRaw(static_cast<int32_t>(rng()) / 4),
+                       Fixed::FromRaw(static_cast<int32_t>(rng()) / 4));
+        const b2Vec2 b(Fixed::FromRaw(static_cast<int32_t>(rng()) / 4),
+                       Fixed::FromRaw(static_cast<int32_t>(rng()) / 4));
         const int64_t dot = int64_t{a.x.Raw()} * b.x.Raw() + int64_t{a.y.Raw()} * b.y.Raw();
         const int64_t cross = int64_t{a.x.Raw()} * b.y.Raw() - int64_t{a.y.Raw()} * b.x.Raw();
         ASSERT_EQ(lockbox::b2DotWide(a, b).Raw(), dot);
@@ -72,7 +75,8 @@ TEST(Vec2, NormalizeKeepsDirectionFromAMillimetreTo30km) {
             const long double nx = ex / el * 65536.0L, ny = ey / el * 65536.0L;
             worstAngle = std::max(worstAngle, std::max(std::fabs(n.x.Raw() - nx), std::fabs(n.y.Raw() - ny)));
             const long double unit = std::sqrt(static_cast<long double>(n.x.Raw()) * n.x.Raw() +
-                                               static_cast<long double>(n.y.Raw()) * n.y.Raw()) / 65536.0L;
+                                               static_cast<long double>(n.y.Raw()) * n.y.Raw()) /
+                                     65536.0L;
             worstUnit = std::max(worstUnit, std::fabs(unit - 1.0L));
         }
         EXPECT_LE(worstAngle, 0.51L) << "L = " << L;

@@ -2,12 +2,12 @@
 // give the same bits and the same overflow reports as the 128-bit computation they shortcut.
 // The references below are the pre-fast-path formulas, written on the portable S128 helpers;
 // they are compared on edge values and on random operands spread over every magnitude.
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <limits>
 #include <random>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/fixed/Wide.h"
 
@@ -104,9 +104,7 @@ int64_t RandomMagnitude(std::mt19937_64& rng) {
 
 class WideFastPath : public ::testing::Test {
 protected:
-    void SetUp() override {
-        previous_ = lockbox::SetOverflowTrapHandler(&ReturningHandler);
-    }
+    void SetUp() override { previous_ = lockbox::SetOverflowTrapHandler(&ReturningHandler); }
     void TearDown() override { lockbox::SetOverflowTrapHandler(previous_); }
 
 private:

@@ -29,15 +29,12 @@ constexpr long double kPiL = 3.14159265358979323846264338327950288L;
     const long double v = static_cast<long double>(a) - turns * (2 * kPiL * 65536.0L);
     const long double pi_raw = kPiL * 65536.0L;
     if (!(v >= -pi_raw && v < pi_raw)) {
-        return ::testing::AssertionFailure()
-               << "a=" << a << " turns=" << turns << " exact rest out of range";
+        return ::testing::AssertionFailure() << "a=" << a << " turns=" << turns << " exact rest out of range";
     }
     if (w != static_cast<int32_t>(std::llround(v))) {
-        return ::testing::AssertionFailure()
-               << "a=" << a << " w=" << w << " want " << std::llround(v);
+        return ::testing::AssertionFailure() << "a=" << a << " w=" << w << " want " << std::llround(v);
     }
-    if (WrapAngleRaw(a) != w)
-        return ::testing::AssertionFailure() << "a=" << a << " WrapAngleRaw differs";
+    if (WrapAngleRaw(a) != w) return ::testing::AssertionFailure() << "a=" << a << " WrapAngleRaw differs";
     return ::testing::AssertionSuccess();
 }
 
@@ -92,8 +89,7 @@ TEST(WrapAngle, StridedFullRangeMatchesExactSemantics) {
             const long long base = std::llround(center + off);
             for (long long d = -2; d <= 2; ++d) {
                 const long long a = base + d;
-                if (a < kMin || a > kMax)
-                    continue;
+                if (a < kMin || a > kMax) continue;
                 ASSERT_TRUE(MatchesExactSemantics(static_cast<int32_t>(a)));
             }
         }

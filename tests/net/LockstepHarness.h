@@ -3,18 +3,18 @@
 // endpoints, each client with its own replay::SceneGame world and seeded scripted inputs. The
 // virtual clock moves 1 ms per step; every run is bounded in virtual time.
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "NudgeGame.h"
 #include "lockbox/net/LockstepClient.h"
 #include "lockbox/net/LockstepServer.h"
 #include "lockbox/net/SimNet.h"
-#include "NudgeGame.h"
 #include "lockbox/replay/SceneGame.h"
 
 namespace lockbox::net::testing {
@@ -25,15 +25,15 @@ using NudgeGame = lockbox::net::test_games::NudgeGame;
 struct MatchSpec {
     uint64_t seed = 1;
     uint32_t clients = 2;
-    uint32_t rttMs = 0;         ///< round trip: each direction gets rttMs / 2 of fixed latency
-    uint32_t lossPpm = 0;       ///< Bernoulli loss per direction
-    bool bursts = false;        ///< Gilbert-Elliott bursts (enter 2 %, leave 25 %, 75 % loss inside)
-    uint32_t jitterMs = 0;      ///< extra one-way delay, uniform in [0, jitterMs]
-    int32_t frames = 300;       ///< frames every client must reach
+    uint32_t rttMs = 0;     ///< round trip: each direction gets rttMs / 2 of fixed latency
+    uint32_t lossPpm = 0;   ///< Bernoulli loss per direction
+    bool bursts = false;    ///< Gilbert-Elliott bursts (enter 2 %, leave 25 %, 75 % loss inside)
+    uint32_t jitterMs = 0;  ///< extra one-way delay, uniform in [0, jitterMs]
+    int32_t frames = 300;   ///< frames every client must reach
     uint32_t hashInterval = 30;
-    uint32_t serverDelay = 0;   ///< 0: automatic delay on every client
+    uint32_t serverDelay = 0;  ///< 0: automatic delay on every client
     bool authoritative = false;
-    uint32_t extraSlots = 0;    ///< slots beyond `clients`, for late joiners (the match starts without them)
+    uint32_t extraSlots = 0;  ///< slots beyond `clients`, for late joiners (the match starts without them)
     std::string scene = "vertical_stack";
 
     std::string Describe() const {
@@ -132,11 +132,14 @@ public:
     }
     /// Steps until every running client has stepped `frame` frames.
     bool RunToFrame(int32_t frame, uint64_t maxMillis) {
-        return RunUntil([&] {
-            for (auto& p : players_)
-                if (!p->paused && p->client->State() != ClientState::e_closed && p->client->Frame() < frame) return false;
-            return true;
-        }, maxMillis);
+        return RunUntil(
+            [&] {
+                for (auto& p : players_)
+                    if (!p->paused && p->client->State() != ClientState::e_closed && p->client->Frame() < frame)
+                        return false;
+                return true;
+            },
+            maxMillis);
     }
 
     SimNet& net() { return net_; }

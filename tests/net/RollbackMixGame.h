@@ -4,12 +4,12 @@
 // (save, load, advance in order), keeps every saved state and the inputs of each frame's
 // latest Advance (a rollback's re-simulation replaces them), and can inject a fault.
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <map>
 #include <variant>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/net/RollbackSession.h"
 

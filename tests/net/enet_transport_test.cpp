@@ -1,9 +1,4 @@
 // EnetTransport on 127.0.0.1: connections, both channels, disconnects, an unthrottled burst.
-#include "lockbox/net/EnetTransport.h"
-#include "lockbox/net/UdpTransport.h"
-
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -11,6 +6,11 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <gtest/gtest.h>
+
+#include "lockbox/net/EnetTransport.h"
+#include "lockbox/net/UdpTransport.h"
 
 namespace lockbox::net {
 namespace {
@@ -144,10 +144,13 @@ TEST(EnetTransportTest, DisconnectIsSeenBothWays) {
     m.c1->Disconnect(m.c1ToServer);
     EXPECT_FALSE(m.c1->IsConnected(m.c1ToServer));
     EXPECT_FALSE(m.c1->Send(m.c1ToServer, Bytes("after")));
-    ASSERT_TRUE(Pump({m.server.get(), m.c1.get(), m.c2.get()}, in, [&] {
-        for (PeerId p : m.server->TakeDisconnected()) gone.push_back(p);
-        return !gone.empty();
-    }, 2));
+    ASSERT_TRUE(Pump(
+        {m.server.get(), m.c1.get(), m.c2.get()}, in,
+        [&] {
+            for (PeerId p : m.server->TakeDisconnected()) gone.push_back(p);
+            return !gone.empty();
+        },
+        2));
     EXPECT_EQ(gone, std::vector<PeerId>{m.serverPeers[0]});
     EXPECT_FALSE(m.server->IsConnected(m.serverPeers[0]));
     EXPECT_TRUE(m.server->IsConnected(m.serverPeers[1]));
@@ -155,10 +158,13 @@ TEST(EnetTransportTest, DisconnectIsSeenBothWays) {
     // The server drops client 2: the client sees it.
     m.server->Disconnect(m.serverPeers[1]);
     std::vector<PeerId> clientGone;
-    ASSERT_TRUE(Pump({m.server.get(), m.c2.get()}, in, [&] {
-        for (PeerId p : m.c2->TakeDisconnected()) clientGone.push_back(p);
-        return !clientGone.empty();
-    }, 2));
+    ASSERT_TRUE(Pump(
+        {m.server.get(), m.c2.get()}, in,
+        [&] {
+            for (PeerId p : m.c2->TakeDisconnected()) clientGone.push_back(p);
+            return !clientGone.empty();
+        },
+        2));
     EXPECT_EQ(clientGone, std::vector<PeerId>{m.c2ToServer});
     EXPECT_FALSE(m.c2->IsConnected(m.c2ToServer));
 }
@@ -169,10 +175,13 @@ TEST(EnetTransportTest, DestroyedClientIsSeenAsDisconnect) {
     m.c1.reset();  // the destructor tells the server at once
     std::vector<std::vector<Datagram>> in;
     std::vector<PeerId> gone;
-    ASSERT_TRUE(Pump({m.server.get()}, in, [&] {
-        for (PeerId p : m.server->TakeDisconnected()) gone.push_back(p);
-        return !gone.empty();
-    }, 2));
+    ASSERT_TRUE(Pump(
+        {m.server.get()}, in,
+        [&] {
+            for (PeerId p : m.server->TakeDisconnected()) gone.push_back(p);
+            return !gone.empty();
+        },
+        2));
     EXPECT_EQ(gone, std::vector<PeerId>{m.serverPeers[0]});
 }
 
@@ -264,17 +273,20 @@ TEST(EnetTransportTest, LoopbackRttFigure) {
         const uint64_t t0 = m.c1->NowMicros();
         ASSERT_TRUE(m.c1->Send(m.c1ToServer, ping));
         for (auto& inbox : in) inbox.clear();
-        ASSERT_TRUE(Pump({m.server.get()}, in, [&] { return !in[0].empty(); }, 2));
+        ASSERT_TRUE(Pump(
+            {m.server.get()}, in, [&] { return !in[0].empty(); }, 2));
         ASSERT_TRUE(m.server->Send(toClient, ping));
         for (auto& inbox : in) inbox.clear();
-        ASSERT_TRUE(Pump({m.c1.get()}, in, [&] { return !in[0].empty(); }, 2));
+        ASSERT_TRUE(Pump(
+            {m.c1.get()}, in, [&] { return !in[0].empty(); }, 2));
         rtts.push_back(m.c1->NowMicros() - t0);
     }
     std::sort(rtts.begin(), rtts.end());
-    std::printf("[ figure ] ENet loopback RTT median %llu us (min %llu, max %llu) over 100 pings; ENet's own "
-                "estimate %u ms\n",
-                static_cast<unsigned long long>(rtts[50]), static_cast<unsigned long long>(rtts.front()),
-                static_cast<unsigned long long>(rtts.back()), m.c1->RoundTripMillis(m.c1ToServer));
+    std::printf(
+        "[ figure ] ENet loopback RTT median %llu us (min %llu, max %llu) over 100 pings; ENet's own "
+        "estimate %u ms\n",
+        static_cast<unsigned long long>(rtts[50]), static_cast<unsigned long long>(rtts.front()),
+        static_cast<unsigned long long>(rtts.back()), m.c1->RoundTripMillis(m.c1ToServer));
 }
 
 }  // namespace

@@ -2,13 +2,13 @@
 // LockstepClients in one thread, over UdpTransport (127.0.0.1 and ::1) and EnetTransport
 // (127.0.0.1). Bounded by frames and wall seconds; the run stops by itself.
 
-#include <gtest/gtest.h>
-
 #include <chrono>
 #include <memory>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/net/EnetTransport.h"
 #include "lockbox/net/LockstepClient.h"
@@ -66,8 +66,8 @@ void Play(Transport& serverTransport, std::vector<Side>& sides) {
     }
     for (const ServerEvent& e : server.TakeEvents()) EXPECT_NE(e.kind, ServerEvent::Kind::e_desync);
     for (size_t i = 0; i < sides.size(); ++i) {
-        EXPECT_GE(sides[i].client->Frame(), kFrames) << "client " << i << " state "
-                                                     << static_cast<int>(sides[i].client->State());
+        EXPECT_GE(sides[i].client->Frame(), kFrames)
+            << "client " << i << " state " << static_cast<int>(sides[i].client->State());
         EXPECT_NE(sides[i].hashAtEnd, 0u);
         EXPECT_EQ(sides[i].hashAtEnd, sides[0].hashAtEnd) << "client " << i;
     }

@@ -79,10 +79,11 @@ TEST(LockstepMatch, ConfirmedFramesRecordAVerifiableReplay) {
     rc.keyframeInterval = 120;
     replay::Recorder recorder(p.game.world(), p.game, sink, rc);
     ASSERT_TRUE(recorder.Begin().ok());
-    p.client->SetConfirmedFrameHook([&](int32_t f, std::span<const uint8_t> inputs, uint64_t worldHash, const b2World& world) {
-        EXPECT_EQ(f, recorder.Frames());
-        recorder.AppendConfirmed(inputs, worldHash, &world);
-    });
+    p.client->SetConfirmedFrameHook(
+        [&](int32_t f, std::span<const uint8_t> inputs, uint64_t worldHash, const b2World& world) {
+            EXPECT_EQ(f, recorder.Frames());
+            recorder.AppendConfirmed(inputs, worldHash, &world);
+        });
     ASSERT_TRUE(m.RunToFrame(s.frames, 60'000));
     ASSERT_TRUE(recorder.Finish().ok());
     replay::ReplayFile file;

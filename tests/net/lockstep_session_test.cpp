@@ -3,9 +3,9 @@
 // server running, a silent client is reported within the timeouts, and late joiners and
 // reconnecting players reach hash agreement.
 
-#include <gtest/gtest.h>
-
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "LockstepHarness.h"
 
@@ -116,39 +116,47 @@ TEST(LockstepSession, FuzzedPacketStreamLeavesTheServerRunning) {
     std::mt19937_64 rng(s.seed);
     const SessionShape shape{2, 8};
     uint64_t sent = 0;
-    const bool done = m.RunUntil([&] {
-        // Every millisecond: random bytes, a truncated or mutated valid datagram, or a valid
-        // datagram with a guessed token, from a peer that owns no slot.
-        std::vector<uint8_t> d;
-        switch (rng() % 4) {
-            case 0:
-                d.resize(1 + rng() % 80);
-                for (auto& b : d) b = static_cast<uint8_t>(rng());
-                break;
-            case 1: {
-                Inputs in{static_cast<uint8_t>(rng() % 2), static_cast<int32_t>(rng() % 400), std::vector<uint8_t>(8 * (1 + rng() % 4))};
-                for (auto& b : in.bytes) b = static_cast<uint8_t>(rng());
-                d = Datagram(Header{kProtocolVersion, static_cast<uint32_t>(rng()), 0}, {in, HashReport{static_cast<int32_t>(rng() % 300), rng()}}, shape);
-                d.resize(kHeaderBytes + rng() % (d.size() - kHeaderBytes + 1));
-                break;
+    const bool done = m.RunUntil(
+        [&] {
+            // Every millisecond: random bytes, a truncated or mutated valid datagram, or a valid
+            // datagram with a guessed token, from a peer that owns no slot.
+            std::vector<uint8_t> d;
+            switch (rng() % 4) {
+                case 0:
+                    d.resize(1 + rng() % 80);
+                    for (auto& b : d) b = static_cast<uint8_t>(rng());
+                    break;
+                case 1: {
+                    Inputs in{static_cast<uint8_t>(rng() % 2), static_cast<int32_t>(rng() % 400),
+                              std::vector<uint8_t>(8 * (1 + rng() % 4))};
+                    for (auto& b : in.bytes) b = static_cast<uint8_t>(rng());
+                    d = Datagram(Header{kProtocolVersion, static_cast<uint32_t>(rng()), 0},
+                                 {in, HashReport{static_cast<int32_t>(rng() % 300), rng()}}, shape);
+                    d.resize(kHeaderBytes + rng() % (d.size() - kHeaderBytes + 1));
+                    break;
+                }
+                case 2: {
+                    d = Datagram(Header{kProtocolVersion, static_cast<uint32_t>(rng()), 0},
+                                 {ConfirmedAck{static_cast<int32_t>(rng() % 1000)}, Ping{rng()},
+                                  Disconnect{RejectReason::e_left}},
+                                 shape);
+                    d[kHeaderBytes + rng() % (d.size() - kHeaderBytes)] ^= static_cast<uint8_t>(1u << (rng() % 8));
+                    break;
+                }
+                default:
+                    d = Datagram(Header{static_cast<uint8_t>(rng() % 3), static_cast<uint32_t>(rng()), 0},
+                                 {Hello{static_cast<uint32_t>(rng()), static_cast<uint32_t>(rng()),
+                                        static_cast<uint8_t>(rng()), 0}},
+                                 shape);
+                    break;
             }
-            case 2: {
-                d = Datagram(Header{kProtocolVersion, static_cast<uint32_t>(rng()), 0},
-                             {ConfirmedAck{static_cast<int32_t>(rng() % 1000)}, Ping{rng()}, Disconnect{RejectReason::e_left}}, shape);
-                d[kHeaderBytes + rng() % (d.size() - kHeaderBytes)] ^= static_cast<uint8_t>(1u << (rng() % 8));
-                break;
-            }
-            default:
-                d = Datagram(Header{static_cast<uint8_t>(rng() % 3), static_cast<uint32_t>(rng()), 0},
-                             {Hello{static_cast<uint32_t>(rng()), static_cast<uint32_t>(rng()), static_cast<uint8_t>(rng()), 0}}, shape);
-                break;
-        }
-        attacker.Send(0, d);
-        ++sent;
-        for (size_t i = 0; i < m.players(); ++i)
-            if (m.player(i).client->Frame() < s.frames) return false;
-        return true;
-    }, 60'000);
+            attacker.Send(0, d);
+            ++sent;
+            for (size_t i = 0; i < m.players(); ++i)
+                if (m.player(i).client->Frame() < s.frames) return false;
+            return true;
+        },
+        60'000);
     ASSERT_TRUE(done);
     const ServerStats& st = m.server().Stats();
     EXPECT_GT(st.MalformedTotal() + st.unknownPeer + st.rejected + st.badToken, sent / 2);
@@ -169,14 +177,18 @@ TEST(LockstepSession, SilentClientIsInterruptedThenDisconnectedAndTheMatchGoesOn
     gone.endpoint.SetDown(true);
     const uint64_t downAt = m.net().NowMicros();
     uint64_t interruptedAt = 0, disconnectedAt = 0;
-    m.RunUntil([&] {
-        for (const ServerEvent& e : m.serverEvents()) {
-            if (e.slot != slot) continue;
-            if (e.kind == ServerEvent::Kind::e_interrupted && interruptedAt == 0) interruptedAt = m.net().NowMicros();
-            if (e.kind == ServerEvent::Kind::e_disconnected && disconnectedAt == 0) disconnectedAt = m.net().NowMicros();
-        }
-        return disconnectedAt != 0;
-    }, 5'000);
+    m.RunUntil(
+        [&] {
+            for (const ServerEvent& e : m.serverEvents()) {
+                if (e.slot != slot) continue;
+                if (e.kind == ServerEvent::Kind::e_interrupted && interruptedAt == 0)
+                    interruptedAt = m.net().NowMicros();
+                if (e.kind == ServerEvent::Kind::e_disconnected && disconnectedAt == 0)
+                    disconnectedAt = m.net().NowMicros();
+            }
+            return disconnectedAt != 0;
+        },
+        5'000);
     ASSERT_NE(interruptedAt, 0u);
     ASSERT_NE(disconnectedAt, 0u);
     // Silence counts from the last datagram heard, which was still in flight when the client
@@ -205,7 +217,8 @@ TEST(LockstepSession, ClientSeesTheServerGoSilent) {
     bool interrupted = false, disconnected = false;
     for (const ClientEvent& e : p.events) {
         interrupted = interrupted || e.kind == ClientEvent::Kind::e_interrupted;
-        disconnected = disconnected || (e.kind == ClientEvent::Kind::e_disconnected && e.reason == RejectReason::e_timeout);
+        disconnected =
+            disconnected || (e.kind == ClientEvent::Kind::e_disconnected && e.reason == RejectReason::e_timeout);
     }
     EXPECT_TRUE(interrupted);
     EXPECT_TRUE(disconnected);
@@ -264,7 +277,8 @@ TEST(LockstepSession, ReconnectTakesTheSlotBack) {
     EXPECT_EQ(back.client->Slot(), slot);
     EXPECT_EQ(back.client->Token(), token);
     old.stopFrame = -1;  // the frozen one never gets there
-    ASSERT_TRUE(m.RunUntil([&] { return m.player(0).client->Frame() >= s.frames && back.client->Frame() >= s.frames; }, 60'000));
+    ASSERT_TRUE(m.RunUntil([&] { return m.player(0).client->Frame() >= s.frames && back.client->Frame() >= s.frames; },
+                           60'000));
     EXPECT_EQ(back.hashAtStop, m.player(0).hashAtStop);
 }
 
@@ -290,10 +304,12 @@ TEST(LockstepSession, OtherProtocolVersionIsTold) {
     h.version = kProtocolVersion + 1;
     old.Send(0, Datagram(h, {KeepAlive{}}, SessionShape{}));
     std::vector<lockbox::net::Datagram> got;
-    m.RunUntil([&] {
-        old.Poll(got);
-        return !got.empty();
-    }, 1'000);
+    m.RunUntil(
+        [&] {
+            old.Poll(got);
+            return !got.empty();
+        },
+        1'000);
     ASSERT_EQ(got.size(), 1u);
     Header back;
     std::vector<Message> msgs;

@@ -2,13 +2,13 @@
 // truncated, random or mutated datagrams are refused (or decode to something that encodes
 // back to the same bytes) without reading past the buffer.
 
-#include <gtest/gtest.h>
+#include "lockbox/net/Protocol.h"
 
 #include <cstdint>
 #include <random>
 #include <vector>
 
-#include "lockbox/net/Protocol.h"
+#include <gtest/gtest.h>
 
 namespace lockbox::net {
 namespace {
@@ -31,15 +31,15 @@ std::vector<Message> AllMessages() {
     in.slot = 1;
     in.firstFrame = 70000;
     in.bytes = Bytes(8 * 5, 1);
-    std::fill(in.bytes.begin() + 16, in.bytes.begin() + 24, uint8_t{0});  // a zero entry
+    std::fill(in.bytes.begin() + 16, in.bytes.begin() + 24, uint8_t{0});             // a zero entry
     std::copy(in.bytes.begin() + 24, in.bytes.begin() + 32, in.bytes.begin() + 32);  // a repeat
     m.push_back(in);
     m.push_back(InputAck{65536, 300});
     Confirmed c;
     c.firstFrame = 0x7FFFFFF0;
     c.bytes.assign(3 * 8 * 4, 0);
-    c.bytes[5] = 9;   // frame 0 slot 0
-    c.bytes[24 + 5] = 9;  // frame 1 slot 0 repeats
+    c.bytes[5] = 9;        // frame 0 slot 0
+    c.bytes[24 + 5] = 9;   // frame 1 slot 0 repeats
     c.bytes[48 + 17] = 4;  // frame 2 slot 2
     m.push_back(c);
     m.push_back(ConfirmedAck{127});
@@ -100,16 +100,16 @@ TEST(Protocol, IdleInputsCostOnlyTheBitmap) {
 TEST(Protocol, OutOfRangeMessagesAreNotEncoded) {
     DatagramWriter w;
     w.Begin(Header{});
-    EXPECT_FALSE(w.Add(Inputs{3, 0, Bytes(8, 0)}, kShape));          // slot >= players
-    EXPECT_FALSE(w.Add(Inputs{0, 0, Bytes(7, 0)}, kShape));          // not a whole input
-    EXPECT_FALSE(w.Add(Inputs{0, -1, Bytes(8, 0)}, kShape));         // negative frame
-    EXPECT_FALSE(w.Add(Confirmed{0, Bytes(8, 0)}, kShape));          // not a whole row
+    EXPECT_FALSE(w.Add(Inputs{3, 0, Bytes(8, 0)}, kShape));                      // slot >= players
+    EXPECT_FALSE(w.Add(Inputs{0, 0, Bytes(7, 0)}, kShape));                      // not a whole input
+    EXPECT_FALSE(w.Add(Inputs{0, -1, Bytes(8, 0)}, kShape));                     // negative frame
+    EXPECT_FALSE(w.Add(Confirmed{0, Bytes(8, 0)}, kShape));                      // not a whole row
     EXPECT_FALSE(w.Add(Welcome{3, 3, 8, 60, 0, 1, 0, 1, false, 0, 0}, kShape));  // slot >= players
     EXPECT_FALSE(w.Add(Welcome{0, 3, 8, 60, 0, 1, 0, 0, false, 0, 0}, kShape));  // token 0
-    EXPECT_FALSE(w.Add(SnapshotChunk{0, 2000, 0, Bytes(999, 0)}, kShape));      // wrong length
-    EXPECT_FALSE(w.Add(SnapshotChunk{0, 2000, 2, {}}, kShape));                 // past the end
+    EXPECT_FALSE(w.Add(SnapshotChunk{0, 2000, 0, Bytes(999, 0)}, kShape));       // wrong length
+    EXPECT_FALSE(w.Add(SnapshotChunk{0, 2000, 2, {}}, kShape));                  // past the end
     EXPECT_FALSE(w.Add(Reject{RejectReason::e_count}, kShape));
-    EXPECT_FALSE(w.Add(HashReport{0, 0}, kShape, kHeaderBytes + 5));            // over the limit
+    EXPECT_FALSE(w.Add(HashReport{0, 0}, kShape, kHeaderBytes + 5));  // over the limit
     EXPECT_EQ(w.MessageCount(), 0u);
     EXPECT_EQ(w.Size(), kHeaderBytes);
 }
@@ -231,7 +231,9 @@ TEST(Protocol, MutatedValidDatagrams) {
             switch (rng() % 3) {
                 case 0: bytes[at] = static_cast<uint8_t>(bytes[at] ^ (1u << (rng() % 8))); break;
                 case 1: bytes.erase(bytes.begin() + static_cast<std::ptrdiff_t>(at)); break;
-                default: bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at), static_cast<uint8_t>(rng())); break;
+                default:
+                    bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at), static_cast<uint8_t>(rng()));
+                    break;
             }
             if (bytes.size() <= kHeaderBytes) break;
         }

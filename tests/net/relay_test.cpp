@@ -1,10 +1,10 @@
 // The relay (RelayWire.h, RelayServer.h, RelayedTransport.h): header codec, slot binding by
 // token, forwarding and every refusal, on a SimNet.
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/net/RelayServer.h"
 #include "lockbox/net/RelayWire.h"

@@ -2,11 +2,11 @@
 // The budget guard in a SimNet match over a slow link (rollback_budget_test.cpp, and more
 // seeds and peers in heavy/rollback_budget_matrix_test.cpp).
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+
+#include <gtest/gtest.h>
 
 #include "rollback_harness.h"
 
@@ -29,7 +29,8 @@ inline void ExpectGuardKeepsBudget(uint64_t seed, uint32_t peers) {
     auto overBudget = [&](const RbResult& run, const RbPeer& p) {
         const int64_t ticks = std::max<int64_t>(run.ticks - 600, 1);
         int64_t over = 0;
-        for (const auto& [tick, micros] : p.rollbackCosts) over += tick >= 600 && micros > guarded.guardBudgetMicros ? 1 : 0;
+        for (const auto& [tick, micros] : p.rollbackCosts)
+            over += tick >= 600 && micros > guarded.guardBudgetMicros ? 1 : 0;
         return over * 1000 / ticks;
     };
     int64_t plainWorst = 0;
@@ -41,13 +42,14 @@ inline void ExpectGuardKeepsBudget(uint64_t seed, uint32_t peers) {
         EXPECT_GE(p.session->InputDelay(), 2u);
         // The 99th percentile tick stays inside the budget.
         EXPECT_LE(overBudget(r, p), 10);
-        std::printf("budget guard seed %llu peer %zu/%u: delay %u (max %u), wish %u, raises %u, lowerings %u, "
-                    "over budget %lld/1000 ticks (%lld without the guard), repeated %llu absorbed %llu\n",
-                    static_cast<unsigned long long>(seed), i, peers, p.session->InputDelay(), p.maxDelay,
-                    p.guard->Delay(), p.guard->Raises(), p.guard->Lowerings(), static_cast<long long>(overBudget(r, p)),
-                    static_cast<long long>(overBudget(plain, plain.peers[i])),
-                    static_cast<unsigned long long>(p.session->Stats().inputsRepeated),
-                    static_cast<unsigned long long>(p.session->Stats().inputsAbsorbed));
+        std::printf(
+            "budget guard seed %llu peer %zu/%u: delay %u (max %u), wish %u, raises %u, lowerings %u, "
+            "over budget %lld/1000 ticks (%lld without the guard), repeated %llu absorbed %llu\n",
+            static_cast<unsigned long long>(seed), i, peers, p.session->InputDelay(), p.maxDelay, p.guard->Delay(),
+            p.guard->Raises(), p.guard->Lowerings(), static_cast<long long>(overBudget(r, p)),
+            static_cast<long long>(overBudget(plain, plain.peers[i])),
+            static_cast<unsigned long long>(p.session->Stats().inputsRepeated),
+            static_cast<unsigned long long>(p.session->Stats().inputsAbsorbed));
         ExpectNoInputLost(p);
     }
 }

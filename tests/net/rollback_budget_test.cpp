@@ -2,13 +2,13 @@
 // repeats, no input lost) and RollbackBudgetGuard's policy, alone on scripted costs and in a
 // SimNet match over a slow link where it must bring the re-simulation cost under budget.
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string_view>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "RollbackMixGame.h"
 #include "lockbox/net/RollbackBudgetGuard.h"
@@ -22,7 +22,13 @@ namespace {
 std::vector<uint8_t> In(uint8_t v) { return std::vector<uint8_t>(2, v); }
 
 std::unique_ptr<RollbackSession> Solo(uint32_t delay) {
-    return RollbackSessionBuilder().Players(2).InputBytes(2).LocalPlayer(0).InputDelay(delay).PredictionWindow(kRollbackMaxWindow).Build();
+    return RollbackSessionBuilder()
+        .Players(2)
+        .InputBytes(2)
+        .LocalPlayer(0)
+        .InputDelay(delay)
+        .PredictionWindow(kRollbackMaxWindow)
+        .Build();
 }
 
 // The local player's inputs as the frames got them, frame 0 on (first byte of each).
@@ -84,8 +90,14 @@ TEST(RollbackInputDelay, LoweringAbsorbsOnlyRepeatsSoNoPressIsLost) {
 // Analog input: byte 0 is the buttons, byte 1 a stick that moves every tick, so no two
 // inputs are equal.
 std::vector<uint32_t> AnalogLowering(InputRepeatTest test, uint64_t* absorbed) {
-    auto s = RollbackSessionBuilder().Players(2).InputBytes(2).LocalPlayer(0).InputDelay(4)
-                 .PredictionWindow(kRollbackMaxWindow).RepeatTest(std::move(test)).Build();
+    auto s = RollbackSessionBuilder()
+                 .Players(2)
+                 .InputBytes(2)
+                 .LocalPlayer(0)
+                 .InputDelay(4)
+                 .PredictionWindow(kRollbackMaxWindow)
+                 .RepeatTest(std::move(test))
+                 .Build();
     const std::vector<uint8_t> buttons = {0, 0, 0, 1, 1, 0, 0, 0, 2, 2, 2, 0};
     std::vector<uint32_t> lead;
     for (size_t t = 0; t < buttons.size(); ++t) {
@@ -175,7 +187,11 @@ TEST(RollbackBudgetGuard, ChecksItsSettings) {
         {[](RollbackBudgetConfig& c) { c.budgetMicros = 0; }, "budget"},
         {[](RollbackBudgetConfig& c) { c.percentile = 101; }, "percentile"},
         {[](RollbackBudgetConfig& c) { c.maxDelay = kRollbackMaxInputDelay + 1; }, "max delay"},
-        {[](RollbackBudgetConfig& c) { c.minDelay = 5; c.maxDelay = 4; }, "min delay"},
+        {[](RollbackBudgetConfig& c) {
+             c.minDelay = 5;
+             c.maxDelay = 4;
+         },
+         "min delay"},
         {[](RollbackBudgetConfig& c) { c.rollbacksKept = 9; }, "rollbacks kept"},
         {[](RollbackBudgetConfig& c) { c.minRollbacks = c.rollbacksKept + 1; }, "min rollbacks"},
         {[](RollbackBudgetConfig& c) { c.sampleTicks = 0; }, "sample ticks"},

@@ -3,13 +3,13 @@
 // every final hash agrees before and after the cut. Session-level cases first (no network),
 // then SimNet matches through rollback_harness.h.
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <map>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "RollbackMixGame.h"
 #include "rollback_leave.h"
@@ -22,7 +22,13 @@ namespace {
 std::vector<uint8_t> Byte(uint8_t v) { return std::vector<uint8_t>(2, v); }
 
 std::unique_ptr<RollbackSession> Three(uint32_t local) {
-    return RollbackSessionBuilder().Players(3).InputBytes(2).LocalPlayer(local).PredictionWindow(8).DesyncInterval(1).Build();
+    return RollbackSessionBuilder()
+        .Players(3)
+        .InputBytes(2)
+        .LocalPlayer(local)
+        .PredictionWindow(8)
+        .DesyncInterval(1)
+        .Build();
 }
 
 // Player f's input at frame f: varies, so predictions miss and cuts matter.
@@ -159,8 +165,7 @@ TEST_P(RollbackLeave, SurvivorsAgreeOnTheCut) {
 // {3, 4} peers x {down, RbDisconnect} x RTT {0, 50} x loss {0, 5} matrix is in
 // heavy/rollback_disconnect_matrix_test.cpp.
 std::vector<Leave> LeaveCells() {
-    return {Leave{3, 50, 5, 30, false}, Leave{3, 0, 0, 30, true}, Leave{4, 0, 5, 30, false},
-            Leave{4, 50, 5, 30, true}};
+    return {Leave{3, 50, 5, 30, false}, Leave{3, 0, 0, 30, true}, Leave{4, 0, 5, 30, false}, Leave{4, 50, 5, 30, true}};
 }
 
 INSTANTIATE_TEST_SUITE_P(Subset, RollbackLeave, ::testing::ValuesIn(LeaveCells()));

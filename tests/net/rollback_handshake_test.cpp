@@ -3,11 +3,11 @@
 // shape is named once with the reason, instead of playing on to a desync or a silent timeout.
 // Two integer-state sessions (RollbackMixGame.h) on a zero-latency SimNet.
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <memory>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "ForwardingTransport.h"
 #include "RollbackMixGame.h"
@@ -69,7 +69,13 @@ struct Match {
         for (uint32_t i = 0; i < 2; ++i) {
             Side& s = sides[i];
             const uint32_t bytes = i == 0 ? kInputBytes : inputBytesB;
-            s.session = RollbackSessionBuilder().Players(2).InputBytes(bytes).LocalPlayer(i).PredictionWindow(8).DesyncInterval(1).Build();
+            s.session = RollbackSessionBuilder()
+                            .Players(2)
+                            .InputBytes(bytes)
+                            .LocalPlayer(i)
+                            .PredictionWindow(8)
+                            .DesyncInterval(1)
+                            .Build();
             s.link = std::make_unique<HelloCounter>(*ends[i]);
             RollbackPeerConfig c = i == 0 ? RollbackPeerConfig{} : configB;
             c.remotes = {RollbackRemote{ends[1 - i]->Index(), {1 - i}}};
@@ -248,7 +254,8 @@ TEST(RollbackHandshakeWire, HelloRoundTripsAndStopsAtAnotherShape) {
     ASSERT_EQ(out.size(), 1u);
     EXPECT_EQ(std::get<RbHello>(out[0]), other);
     EXPECT_EQ(FindIncompatibility(DecodeError::e_incompatible, h, out, 1, 7), RollbackIncompatibility::e_sessionShape);
-    EXPECT_EQ(FindIncompatibility(DecodeError::e_incompatible, h, out, 1, 8), RollbackIncompatibility::e_determinismVersion);
+    EXPECT_EQ(FindIncompatibility(DecodeError::e_incompatible, h, out, 1, 8),
+              RollbackIncompatibility::e_determinismVersion);
     EXPECT_EQ(FindIncompatibility(DecodeError::e_incompatible, h, out, 2, 7), RollbackIncompatibility::e_matchId);
     EXPECT_EQ(FindIncompatibility(DecodeError::e_truncated, h, out, 1, 7), RollbackIncompatibility::e_none);
     EXPECT_EQ(FindIncompatibility(DecodeError::e_badVersion, h, out, 1, 7), RollbackIncompatibility::e_protocolVersion);
@@ -263,8 +270,20 @@ TEST(RollbackHandshakeWire, HelloOutOfRangeIsRefused) {
     EXPECT_FALSE(w.Add(RbHello{1, 2, 0}, shape));
     EXPECT_FALSE(w.Add(RbHello{1, 2, kRollbackMaxInputBytes + 1}, shape));
     // Hand-made: players 0.
-    std::vector<uint8_t> bad{0x52, 0x42, kRollbackProtocolVersion, 1, 0, 0, 0,
-                             static_cast<uint8_t>(RollbackMessageType::e_hello), 1, 0, 0, 0, 0, 2};
+    std::vector<uint8_t> bad{0x52,
+                             0x42,
+                             kRollbackProtocolVersion,
+                             1,
+                             0,
+                             0,
+                             0,
+                             static_cast<uint8_t>(RollbackMessageType::e_hello),
+                             1,
+                             0,
+                             0,
+                             0,
+                             0,
+                             2};
     RollbackHeader h;
     std::vector<RollbackMessage> out;
     EXPECT_EQ(DecodeRollbackDatagram(bad, shape, h, out), DecodeError::e_badValue);

@@ -4,29 +4,29 @@
 // player each with seeded scripted inputs. The virtual clock moves one 60 Hz tick (16,666 us)
 // per loop; every run is bounded in ticks.
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <climits>
-#include <cstdio>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "ForwardingTransport.h"
+#include "NudgeGame.h"
 #include "lockbox/net/RelayServer.h"
-#include "lockbox/net/RollbackBudgetGuard.h"
 #include "lockbox/net/RelayedTransport.h"
+#include "lockbox/net/RollbackBudgetGuard.h"
 #include "lockbox/net/RollbackPeer.h"
 #include "lockbox/net/RollbackSession.h"
 #include "lockbox/net/RollbackSpectator.h"
 #include "lockbox/net/RollbackWorldAdapter.h"
 #include "lockbox/net/SimNet.h"
-#include "ForwardingTransport.h"
-#include "NudgeGame.h"
 #include "lockbox/replay/SceneGame.h"
 
 namespace lockbox::net::rbtest {
@@ -65,25 +65,25 @@ public:
 struct RbSpec {
     uint64_t seed = 1;
     uint32_t peers = 2;
-    uint32_t rttMs = 0;        ///< each direction gets rttMs / 2 of fixed latency
-    uint32_t lossPct = 0;      ///< Bernoulli loss per direction
-    uint32_t jitterMs = 0;     ///< extra one-way delay, uniform in [0, jitterMs]
-    int32_t frames = 600;      ///< frames every peer must reach and confirm
+    uint32_t rttMs = 0;     ///< each direction gets rttMs / 2 of fixed latency
+    uint32_t lossPct = 0;   ///< Bernoulli loss per direction
+    uint32_t jitterMs = 0;  ///< extra one-way delay, uniform in [0, jitterMs]
+    int32_t frames = 600;   ///< frames every peer must reach and confirm
     uint32_t inputDelay = 1;
     uint32_t window = 8;
     uint32_t desyncInterval = 10;
-    uint32_t startSkewTicks = 2;  ///< peer i starts i * skew ticks late
-    int32_t steadyFromTick = 240; ///< frame-advantage samples from this tick on
-    int32_t nudgePeer = -1;       ///< forced divergence: this peer's state moves at nudgeFrame
+    uint32_t startSkewTicks = 2;   ///< peer i starts i * skew ticks late
+    int32_t steadyFromTick = 240;  ///< frame-advantage samples from this tick on
+    int32_t nudgePeer = -1;        ///< forced divergence: this peer's state moves at nudgeFrame
     int32_t nudgeFrame = -1;
     uint32_t fastPeerExtraEvery = 0;  ///< > 0: peer 0's clock is fast by one tick in this many
     bool spectator = false;           ///< a spectator endpoint watches through peer 0
     bool timeSync = true;             ///< false: WaitThisTick is ignored
-    bool relayed = false;         ///< peers (and the spectator) reach each other through a RelayServer
-    int32_t downPeer = -1;        ///< this peer's machine goes down at downAtTick
+    bool relayed = false;             ///< peers (and the spectator) reach each other through a RelayServer
+    int32_t downPeer = -1;            ///< this peer's machine goes down at downAtTick
     int64_t downAtTick = -1;
-    std::vector<RbExit> exits;          ///< peers leaving during the match
-    std::vector<RbLinkCut> linkCuts;    ///< one-way link cuts
+    std::vector<RbExit> exits;        ///< peers leaving during the match
+    std::vector<RbLinkCut> linkCuts;  ///< one-way link cuts
     std::string scene = "vertical_stack";
     /// > 0: every peer runs a RollbackBudgetGuard with this budget (settle and lowering
     /// periods from guardConfig), fed a synthetic cost of guardFrameMicros per frame a tick
@@ -107,7 +107,8 @@ struct RbSpec {
         s << "seed=" << seed << " peers=" << peers << " rtt=" << rttMs << "ms loss=" << lossPct
           << "% jitter=" << jitterMs << "ms frames=" << frames << " delay=" << inputDelay
           << (relayed ? " relayed" : "");
-        for (const RbExit& e : exits) s << " exit(" << e.peer << "@" << e.tick << (e.graceful ? ",leave" : ",down") << ")";
+        for (const RbExit& e : exits)
+            s << " exit(" << e.peer << "@" << e.tick << (e.graceful ? ",leave" : ",down") << ")";
         for (const RbLinkCut& c : linkCuts) s << " cut(" << c.from << "->" << c.to << "@" << c.tick << ")";
         return s.str();
     }
@@ -144,27 +145,27 @@ struct RbPeer {
     std::map<int32_t, uint64_t> finals;  // frame -> final hash
     std::vector<RollbackEvent> events;
     bool executeFailed = false;
-    bool finalChanged = false;  // a frame's final hash changed after it was final
+    bool finalChanged = false;               // a frame's final hash changed after it was final
     std::map<uint32_t, int64_t> frozenTick;  // player -> tick this peer froze it
     std::map<uint32_t, int64_t> cutTick;     // player -> tick this peer cut it
     std::vector<uint8_t> pending;            // the drawn local input not taken yet
     bool hasPending = false;
-    std::vector<uint8_t> accepted;           // local inputs the session took, in order
-    std::vector<uint8_t> confirmedLocal;     // the local player's confirmed inputs, frame 0 on
+    std::vector<uint8_t> accepted;        // local inputs the session took, in order
+    std::vector<uint8_t> confirmedLocal;  // the local player's confirmed inputs, frame 0 on
     std::unique_ptr<RollbackBudgetGuard> guard;
     std::vector<std::pair<int64_t, uint32_t>> rollbackCosts;  // (tick, guardFrameMicros per frame stepped)
-    uint32_t maxDelay = 0;                   // guard runs: the largest delay applied
+    uint32_t maxDelay = 0;                                    // guard runs: the largest delay applied
 };
 
 struct RbResult {
     std::vector<RbPeer> peers;
     int64_t ticks = 0;
-    bool finished = false;                 ///< every peer reached and confirmed `frames`
-    std::vector<int32_t> spread;           ///< per steady tick: max - min current frame
+    bool finished = false;                        ///< every peer reached and confirmed `frames`
+    std::vector<int32_t> spread;                  ///< per steady tick: max - min current frame
     std::map<int32_t, uint64_t> spectatorHashes;  ///< frame -> the spectator's state hash
     int32_t spectatorFrames = 0;
-    std::vector<uint64_t> wireBytesSent;          ///< per peer, IPv4 + UDP headers included
-    uint64_t relayForwarded = 0;                  ///< datagrams the relay forwarded (relayed only)
+    std::vector<uint64_t> wireBytesSent;  ///< per peer, IPv4 + UDP headers included
+    uint64_t relayForwarded = 0;          ///< datagrams the relay forwarded (relayed only)
     int32_t SpreadP95() const {
         if (spread.empty()) return 0;
         std::vector<int32_t> s = spread;
@@ -307,7 +308,8 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
                     }
                     const InputResult added = s.AddLocalInput(i, p.pending);
                     if (added != InputResult::e_alreadyAdded) {
-                        if (added == InputResult::e_ok) p.accepted.insert(p.accepted.end(), p.pending.begin(), p.pending.end());
+                        if (added == InputResult::e_ok)
+                            p.accepted.insert(p.accepted.end(), p.pending.begin(), p.pending.end());
                         p.hasPending = false;
                     }
                     const uint64_t resimBefore = s.Stats().framesResimulated;
@@ -334,7 +336,8 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
             }
             for (const RollbackEvent& e : s.TakeEvents()) p.events.push_back(e);
             const int32_t confirmedEnd = std::min(s.ConfirmedFrame(), s.ReceivedFrame(i));
-            for (auto f = static_cast<int32_t>(p.confirmedLocal.size() / replay::SceneInput::kBytes); f < confirmedEnd; ++f) {
+            for (auto f = static_cast<int32_t>(p.confirmedLocal.size() / replay::SceneInput::kBytes); f < confirmedEnd;
+                 ++f) {
                 const auto in = s.ConfirmedInput(i, f);
                 if (in.empty()) break;
                 p.confirmedLocal.insert(p.confirmedLocal.end(), in.begin(), in.end());

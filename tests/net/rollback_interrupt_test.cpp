@@ -3,10 +3,10 @@
 // host cut or its host leaving (interrupted, lost, resumed). Every SimNet run is bounded in
 // ticks and prints its seed on failure.
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "rollback_join_harness.h"
 

@@ -4,8 +4,6 @@
 // cuts between the players or from the host to the spectator, and the host leaving.
 // Shared by rollback_spectator_test.cpp and rollback_interrupt_test.cpp.
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -13,6 +11,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/lockbox.h"
 #include "rollback_harness.h"
@@ -32,7 +32,7 @@ struct JoinSpec {
     uint64_t cutToMicros = 0;
     uint64_t hostCutFromMicros = 0;  ///< the host -> spectator direction drops in [from, to)
     uint64_t hostCutToMicros = 0;
-    int64_t hostLeaveTick = -1;      ///< the host (player 0) calls Leave then and stops
+    int64_t hostLeaveTick = -1;  ///< the host (player 0) calls Leave then and stops
 
     std::string Describe() const {
         std::ostringstream s;
@@ -48,14 +48,14 @@ struct JoinResult {
     int64_t ticks = 0;
     int32_t snapshotFrame = -1;
     uint64_t snapshotBytes = 0;
-    uint64_t chunkDatagrams = 0;       ///< host chunk datagrams, resends included
-    uint64_t joinMicros = 0;           ///< first join request to the checked snapshot
+    uint64_t chunkDatagrams = 0;  ///< host chunk datagrams, resends included
+    uint64_t joinMicros = 0;      ///< first join request to the checked snapshot
     /// First join request to the moment the spectator has stepped every frame the host had
     /// confirmed when the snapshot was handed out (the backlog of the transfer).
     uint64_t catchUpMicros = 0;
     bool restoreFailed = false;
     std::map<int32_t, uint64_t> spectatorHashes;  ///< every frame the spectator reached
-    int32_t firstSpectatorFrame = -1;  ///< the first frame the spectator stepped
+    int32_t firstSpectatorFrame = -1;             ///< the first frame the spectator stepped
     uint64_t refusedSnapshots = 0;
     std::vector<std::pair<int64_t, SpectatorEvent>> spectatorEvents;  ///< (tick, event)
     bool hostAliveAtEnd = false;
@@ -98,8 +98,10 @@ inline JoinResult RunJoin(const JoinSpec& spec) {
         cfg.matchId = 9;
         cfg.remotes.push_back(RollbackRemote{ends[1 - i]->Index(), {1 - i}});
         if (i == 0 && spec.joinTick >= 0) {
-            if (spec.listed) cfg.spectators.push_back(specEnd.Index());
-            else cfg.maxLateSpectators = 1;
+            if (spec.listed)
+                cfg.spectators.push_back(specEnd.Index());
+            else
+                cfg.maxLateSpectators = 1;
         }
         p.net = std::make_unique<RollbackPeer>(*p.session, *ends[i], cfg);
         p.inputs = std::make_unique<replay::ScriptedInputs>(spec.seed * 1000 + i, 1);

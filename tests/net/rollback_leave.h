@@ -3,12 +3,12 @@
 // matrix): a peer leaves after its link to peer 0 died, and every survivor must cut it at the
 // same frame with identical final hashes. Built on rollback_harness.h.
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <map>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "rollback_harness.h"
 
@@ -77,11 +77,13 @@ inline std::map<uint32_t, int32_t> ExpectAgreement(const RbSpec& spec, const RbR
         int64_t firstFreeze = INT64_MAX, lastCut = -1;
         for (uint32_t i : survivors) {
             const RbPeer& p = r.peers[i];
-            if (auto it = p.frozenTick.find(l); it != p.frozenTick.end()) firstFreeze = std::min(firstFreeze, it->second);
+            if (auto it = p.frozenTick.find(l); it != p.frozenTick.end())
+                firstFreeze = std::min(firstFreeze, it->second);
             if (auto it = p.cutTick.find(l); it != p.cutTick.end()) lastCut = std::max(lastCut, it->second);
         }
-        std::printf("RBLEAVE %s | leaver %u frozen %d..%d cut %d, freeze->agreed %lld ticks\n", spec.Describe().c_str(), l,
-                    minFrozen, maxFrozen, cuts.count(l) ? cuts[l] : -1, static_cast<long long>(lastCut - firstFreeze));
+        std::printf("RBLEAVE %s | leaver %u frozen %d..%d cut %d, freeze->agreed %lld ticks\n", spec.Describe().c_str(),
+                    l, minFrozen, maxFrozen, cuts.count(l) ? cuts[l] : -1,
+                    static_cast<long long>(lastCut - firstFreeze));
     }
     int32_t lastCut = 0;
     for (const auto& [l, c] : cuts) lastCut = std::max(lastCut, c);

@@ -3,12 +3,12 @@
 // every peer, rollbacks happen when latency exceeds the input delay, no false desync, frame
 // advantage stays within one frame, a forced divergence is reported once at the right frame.
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <array>
 #include <cstdio>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "rollback_harness.h"
 
@@ -37,8 +37,7 @@ TEST_P(RollbackMatchFast, PeersAgree) {
     // SimNet counts are exact.
     const uint64_t limit = c.loss == 0 ? 4000u : 8000u;
     for (size_t i = 0; i < r.peers.size(); ++i) {
-        const uint64_t perRemotePerSecond =
-            r.wireBytesSent[i] * 60 / static_cast<uint64_t>(r.ticks) / (c.peers - 1);
+        const uint64_t perRemotePerSecond = r.wireBytesSent[i] * 60 / static_cast<uint64_t>(r.ticks) / (c.peers - 1);
         EXPECT_LE(perRemotePerSecond, limit) << spec.Describe() << " peer " << i;
     }
 }

@@ -1,13 +1,13 @@
 // RollbackSession core: the request stream, prediction, the window edge, input delay,
 // disconnects, and final-hash desync detection, on a tiny integer game with no network.
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <deque>
 #include <map>
 #include <variant>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "RollbackMixGame.h"
 #include "lockbox/net/RollbackSession.h"

@@ -2,19 +2,19 @@
 // chunk streams (issue 11, docs/rollback.md "Spectators"). Every SimNet run is bounded in
 // ticks and prints its seed on failure.
 
-#include <gtest/gtest.h>
-
-#include <cstdint>
-#include <algorithm>
-#include <cstdio>
-#include <string>
-#include <sstream>
-#include <map>
-#include <memory>
-#include <vector>
-
 #include <xxhash.h>
 #include <zstd.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/lockbox.h"
 #include "rollback_join_harness.h"
@@ -39,11 +39,12 @@ TEST_P(RollbackSpectatorSeeds, JoinsLateFromASnapshotOnALossyNet) {
     EXPECT_EQ(r.firstSpectatorFrame, r.snapshotFrame);
     const size_t common = ExpectSpectatorAgrees(r);
     EXPECT_GE(common, static_cast<size_t>(spec.frames - r.snapshotFrame));
-    std::printf("[ figures ] late join %s: snapshot frame %d, %llu bytes, %llu chunk datagrams, %llu ms to the "
-                "snapshot, %llu ms to catch up, %zu hashes compared\n",
-                spec.Describe().c_str(), r.snapshotFrame, static_cast<unsigned long long>(r.snapshotBytes),
-                static_cast<unsigned long long>(r.chunkDatagrams), static_cast<unsigned long long>(r.joinMicros / 1000),
-                static_cast<unsigned long long>(r.catchUpMicros / 1000), common);
+    std::printf(
+        "[ figures ] late join %s: snapshot frame %d, %llu bytes, %llu chunk datagrams, %llu ms to the "
+        "snapshot, %llu ms to catch up, %zu hashes compared\n",
+        spec.Describe().c_str(), r.snapshotFrame, static_cast<unsigned long long>(r.snapshotBytes),
+        static_cast<unsigned long long>(r.chunkDatagrams), static_cast<unsigned long long>(r.joinMicros / 1000),
+        static_cast<unsigned long long>(r.catchUpMicros / 1000), common);
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, RollbackSpectatorSeeds, ::testing::Values(2024u, 11u, 12u));
@@ -66,11 +67,12 @@ TEST(RollbackSpectator, UnlistedSpectatorJoinsThroughTheLateLimit) {
     EXPECT_GE(r.snapshotFrame, 150);
     EXPECT_EQ(r.peers[0].net->SpectatorCount(), 1u);
     EXPECT_GE(ExpectSpectatorAgrees(r), static_cast<size_t>(spec.frames - r.snapshotFrame));
-    std::printf("[ figures ] late join %s: snapshot frame %d, %llu bytes, %llu chunk datagrams, %llu ms to the "
-                "snapshot, %llu ms to catch up\n",
-                spec.Describe().c_str(), r.snapshotFrame, static_cast<unsigned long long>(r.snapshotBytes),
-                static_cast<unsigned long long>(r.chunkDatagrams), static_cast<unsigned long long>(r.joinMicros / 1000),
-                static_cast<unsigned long long>(r.catchUpMicros / 1000));
+    std::printf(
+        "[ figures ] late join %s: snapshot frame %d, %llu bytes, %llu chunk datagrams, %llu ms to the "
+        "snapshot, %llu ms to catch up\n",
+        spec.Describe().c_str(), r.snapshotFrame, static_cast<unsigned long long>(r.snapshotBytes),
+        static_cast<unsigned long long>(r.chunkDatagrams), static_cast<unsigned long long>(r.joinMicros / 1000),
+        static_cast<unsigned long long>(r.catchUpMicros / 1000));
 }
 
 TEST(RollbackSpectator, SpectatorFromFrameZeroStillWorks) {

@@ -1,12 +1,12 @@
 // Two rollback peers over real UDP sockets on 127.0.0.1 (bounded: 4,000 loop turns and 20 wall
 // seconds): the same session code as on SimNet reaches the same confirmed states.
 
-#include <gtest/gtest.h>
-
 #include <chrono>
 #include <map>
 #include <memory>
 #include <thread>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/net/RollbackPeer.h"
 #include "lockbox/net/RollbackSession.h"
@@ -43,7 +43,8 @@ TEST(RollbackUdp, TwoPeersOnLoopbackAgree) {
     for (uint32_t i = 0; i < 2; ++i) {
         Side& s = sides[i];
         s.game = std::make_unique<replay::SceneGame>("vertical_stack");
-        s.session = RollbackSessionBuilder().Players(2).InputBytes(8).LocalPlayer(i).InputDelay(1).DesyncInterval(5).Build();
+        s.session =
+            RollbackSessionBuilder().Players(2).InputBytes(8).LocalPlayer(i).InputDelay(1).DesyncInterval(5).Build();
         const auto& info = s.game->info();
         s.adapter = std::make_unique<WorldGameAdapter>(
             s.game->world(), *s.game,

@@ -1,10 +1,10 @@
 // The rollback codec (RollbackProtocol.h): round trips, canonical encoding, and refusal of
 // every truncation and malformed field.
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/net/RollbackProtocol.h"
 #include "lockbox/net/Transport.h"
@@ -127,11 +127,11 @@ TEST(RollbackWire, MalformedFieldsAreRefused) {
 TEST(RollbackWire, ViewAndFrozenAreStrict) {
     RollbackDatagramWriter w;
     w.Begin(RollbackHeader{});
-    EXPECT_FALSE(w.Add(RbView{{1, 2}}, kShape));           // two entries for three players
-    EXPECT_FALSE(w.Add(RbView{{1, 2, 3, 4}}, kShape));     // four
-    EXPECT_FALSE(w.Add(RbView{{1, -1, 3}}, kShape));       // negative
+    EXPECT_FALSE(w.Add(RbView{{1, 2}}, kShape));              // two entries for three players
+    EXPECT_FALSE(w.Add(RbView{{1, 2, 3, 4}}, kShape));        // four
+    EXPECT_FALSE(w.Add(RbView{{1, -1, 3}}, kShape));          // negative
     EXPECT_FALSE(w.Add(RbView{{1, 2, 3}}, RollbackShape{}));  // no shape
-    EXPECT_FALSE(w.Add(RbFrozen{3, 1}, kShape));            // no such player
+    EXPECT_FALSE(w.Add(RbFrozen{3, 1}, kShape));              // no such player
     EXPECT_FALSE(w.Add(RbFrozen{0, -1}, kShape));
     EXPECT_FALSE(w.Add(RbDelayWish{kRollbackMaxInputDelay + 1}, kShape));
     EXPECT_EQ(w.MessageCount(), 0u);
@@ -194,10 +194,10 @@ TEST(RollbackWire, SnapshotMessagesAreBoundsChecked) {
     const std::vector<uint8_t> full(kRbSnapshotChunkBytes, 1);
     EXPECT_TRUE(w.Add(RbSnapshotChunk{0, 5000, 0, 0, full}, kShape));
     w.Begin(RollbackHeader{});
-    EXPECT_FALSE(w.Add(RbSnapshotChunk{0, 5000, 0, 0, {1, 2}}, kShape));      // payload too short
-    EXPECT_FALSE(w.Add(RbSnapshotChunk{0, 5000, 0, 5, {1, 2}}, kShape));      // index past the end
-    EXPECT_FALSE(w.Add(RbSnapshotChunk{0, 0, 0, 0, {}}, kShape));             // empty snapshot
-    EXPECT_FALSE(w.Add(RbSnapshotChunk{-1, 2, 0, 0, {1, 2}}, kShape));        // negative frame
+    EXPECT_FALSE(w.Add(RbSnapshotChunk{0, 5000, 0, 0, {1, 2}}, kShape));  // payload too short
+    EXPECT_FALSE(w.Add(RbSnapshotChunk{0, 5000, 0, 5, {1, 2}}, kShape));  // index past the end
+    EXPECT_FALSE(w.Add(RbSnapshotChunk{0, 0, 0, 0, {}}, kShape));         // empty snapshot
+    EXPECT_FALSE(w.Add(RbSnapshotChunk{-1, 2, 0, 0, {1, 2}}, kShape));    // negative frame
     EXPECT_FALSE(w.Add(RbSnapshotChunk{0, kRbMaxSnapshotBytes + 1, 0, 0, full}, kShape));
     EXPECT_FALSE(w.Add(RbSnapshotAck{0, kRbMaxSnapshotBytes / kRbSnapshotChunkBytes}, kShape));
     EXPECT_FALSE(w.Add(RbJoinRequest{0}, kShape));

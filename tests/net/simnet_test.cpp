@@ -1,14 +1,14 @@
 // SimNet: every impairment of the in-memory network, and determinism by seed.
 #include "lockbox/net/SimNet.h"
 
-#include <gtest/gtest.h>
-
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 namespace lockbox::net {
 namespace {
@@ -441,7 +441,8 @@ TEST(SimNetTest, ThroughputFigure) {
             b.Poll(got);
         }
     }
-    const auto us = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - t0).count();
+    const auto us =
+        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - t0).count();
     std::printf("[ figure ] SimNet: %u datagrams in %lld us = %lld datagrams/s\n", n, static_cast<long long>(us),
                 static_cast<long long>(us > 0 ? uint64_t{n} * 1000000 / static_cast<uint64_t>(us) : 0));
     EXPECT_GT(b.Stats().datagramsReceived, 0u);

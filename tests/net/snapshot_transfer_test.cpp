@@ -4,13 +4,13 @@
 // configured timer no longer gets most chunks twice. Blobs travel zstd-compressed; the timer
 // tests use random bytes, which do not compress, so their chunk counts are the blob's.
 
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <cstdio>
 #include <deque>
 #include <span>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "SnapshotTransfer.h"
 #include "lockbox/lockbox.h"
@@ -90,10 +90,11 @@ TEST(SnapshotTransfer, ResendFollowsTheRoundTrip) {
     const TransferRun adaptive = Transfer(200, 75000, 0, true);
     ASSERT_TRUE(fixed.complete && fixed.intact);
     ASSERT_TRUE(adaptive.complete && adaptive.intact);
-    std::printf("[ figures ] 200 chunks, 150 ms RTT, no loss: %llu sent with the 100 ms timer (%llu ms), %llu following "
-                "the round trip (%llu ms)\n",
-                static_cast<unsigned long long>(fixed.chunksSent), static_cast<unsigned long long>(fixed.micros / 1000),
-                static_cast<unsigned long long>(adaptive.chunksSent), static_cast<unsigned long long>(adaptive.micros / 1000));
+    std::printf(
+        "[ figures ] 200 chunks, 150 ms RTT, no loss: %llu sent with the 100 ms timer (%llu ms), %llu following "
+        "the round trip (%llu ms)\n",
+        static_cast<unsigned long long>(fixed.chunksSent), static_cast<unsigned long long>(fixed.micros / 1000),
+        static_cast<unsigned long long>(adaptive.chunksSent), static_cast<unsigned long long>(adaptive.micros / 1000));
     // The fixed timer resends most chunks before their acks can come back.
     EXPECT_GE(fixed.chunksSent, 300u);
     // Only the chunks sent before the first ack returned go twice.
@@ -119,11 +120,12 @@ TEST(SnapshotTransfer, LossyFarLinkStillCompletes) {
         // Waiting for the round trip costs little time against resending at once.
         EXPECT_LE(adaptive.micros, fixed.micros + 600000);
         if (seed == 1)
-            std::printf("[ figures ] 200 chunks, 150 ms RTT, 20 %% loss each way: %llu sent in %llu ms with the 100 ms "
-                        "timer, %llu in %llu ms following the round trip\n",
-                        static_cast<unsigned long long>(fixed.chunksSent), static_cast<unsigned long long>(fixed.micros / 1000),
-                        static_cast<unsigned long long>(adaptive.chunksSent),
-                        static_cast<unsigned long long>(adaptive.micros / 1000));
+            std::printf(
+                "[ figures ] 200 chunks, 150 ms RTT, 20 %% loss each way: %llu sent in %llu ms with the 100 ms "
+                "timer, %llu in %llu ms following the round trip\n",
+                static_cast<unsigned long long>(fixed.chunksSent), static_cast<unsigned long long>(fixed.micros / 1000),
+                static_cast<unsigned long long>(adaptive.chunksSent),
+                static_cast<unsigned long long>(adaptive.micros / 1000));
     }
 }
 
@@ -135,7 +137,7 @@ TEST(SnapshotTransfer, ResendTimerHasFloorAndCeiling) {
     s.Pump(10, 1, 16, [](const SnapshotChunk&) {});
     s.OnAck(SnapshotAck{1, 0}, 10 + 5'000'000);  // a 5 s round trip
     EXPECT_EQ(s.ResendMicros(100000), 1'000'000u);
-    s.OnAck(SnapshotAck{1, 1}, 0);  // no clock: no sample, still acked
+    s.OnAck(SnapshotAck{1, 1}, 0);   // no clock: no sample, still acked
     s.OnAck(SnapshotAck{2, 2}, 20);  // another frame: ignored
     EXPECT_FALSE(s.Done());
     s.OnAck(SnapshotAck{1, 2}, 30);
@@ -250,7 +252,8 @@ TEST(SnapshotTransfer, EmptyOrOversizedBlobIsNotSent) {
 TEST(SnapshotTransfer, SharedCompressionSendsTheSameChunks) {
     const std::vector<uint8_t> plain = RandomBytes(2 * kSnapshotChunkBytes, 11);
     std::vector<uint8_t> compressible(5 * kSnapshotChunkBytes);
-    for (size_t i = 0; i < compressible.size(); ++i) compressible[i] = static_cast<uint8_t>(i % 7 == 0 ? plain[i % plain.size()] : 0);
+    for (size_t i = 0; i < compressible.size(); ++i)
+        compressible[i] = static_cast<uint8_t>(i % 7 == 0 ? plain[i % plain.size()] : 0);
     const CompressedSnapshot shared = SnapshotSender::Compress(compressible);
     ASSERT_NE(shared, nullptr);
     SnapshotSender own, a, b;

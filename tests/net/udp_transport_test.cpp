@@ -1,11 +1,4 @@
 // UdpTransport on loopback (127.0.0.1 and ::1 only): round trips, admission, limits, errors.
-#include "lockbox/net/UdpTransport.h"
-
-#include <gtest/gtest.h>
-
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,6 +6,13 @@
 #include <cstdio>
 #include <string>
 #include <vector>
+
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+
+#include "lockbox/net/UdpTransport.h"
 
 namespace lockbox::net {
 namespace {

@@ -2,12 +2,12 @@
 // Helpers for the replay tests: record a library scene with scripted inputs into memory, parse
 // it, and play it back on a freshly built copy of the scene.
 
-#include <gtest/gtest.h>
-
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/replay/Player.h"
 #include "lockbox/replay/Recorder.h"

@@ -2,9 +2,9 @@
 // tampered input or stored hash gives the first divergent frame.
 #include <string>
 
-#include "ReplayTestUtil.h"
 #include "../../replay/src/Bytes.h"
 #include "../../replay/src/Chunks.h"
+#include "ReplayTestUtil.h"
 
 namespace lockbox::replay::testing {
 namespace {
@@ -24,7 +24,8 @@ TEST(ReplayReject, EveryTruncationIsRefused) {
         ASSERT_FALSE(e.ok()) << "prefix of " << n << " bytes accepted";
         EXPECT_FALSE(e.message.empty());
         if (n >= kHeaderBytes) {
-            EXPECT_TRUE(e.code == ErrorCode::e_truncated || e.code == ErrorCode::e_missing) << n << ": " << e.Describe();
+            EXPECT_TRUE(e.code == ErrorCode::e_truncated || e.code == ErrorCode::e_missing)
+                << n << ": " << e.Describe();
         }
     }
     EXPECT_TRUE(ParseReplay(bytes, file).ok());

@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <string>
 
-#include "ReplayTestUtil.h"
 #include "../../replay/src/Bytes.h"
 #include "../../replay/src/Chunks.h"
+#include "ReplayTestUtil.h"
 
 namespace lockbox::replay::testing {
 namespace {
@@ -21,7 +21,8 @@ TEST_P(RecordVerify, VerifiesAndMatchesRecordedHashes) {
     ASSERT_TRUE(p.error.ok()) << p.error.Describe();
     EXPECT_EQ(p.file.frameCount, o.frames);
     EXPECT_EQ(p.file.keyframes.size(), 3u);  // frames 30, 60, 90
-    for (int32 f = 0; f < o.frames; ++f) EXPECT_EQ(p.file.hashes[static_cast<size_t>(f)], hashes[static_cast<size_t>(f)]);
+    for (int32 f = 0; f < o.frames; ++f)
+        EXPECT_EQ(p.file.hashes[static_cast<size_t>(f)], hashes[static_cast<size_t>(f)]);
     const VerifyResult r = p.player->Verify();
     EXPECT_TRUE(r.ok) << r.message;
     EXPECT_EQ(r.frames, o.frames);

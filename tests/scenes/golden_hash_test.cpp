@@ -2,11 +2,11 @@
 // the b2WorldHash values recorded in tests/golden/hashes.txt (the four heavy scenes are checked
 // by heavy/golden_hash_heavy_test.cpp). LOCKBOX_REGENERATE_GOLDEN=1 rewrites the whole file
 // instead (after a deliberate change of results or of the hash definition).
-#include <gtest/gtest.h>
-
 #include <cstdlib>
 #include <fstream>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "../cross/GoldenScenes.h"
 
@@ -44,7 +44,8 @@ TEST(GoldenHash, EverySceneMatchesTheGoldenFile) {
             continue;
         }
         std::string line;
-        EXPECT_TRUE(MatchesGolden(p, kMaxStep, it->second, &line)) << "computed: " << line << "\ngolden:   " << it->second;
+        EXPECT_TRUE(MatchesGolden(p, kMaxStep, it->second, &line))
+            << "computed: " << line << "\ngolden:   " << it->second;
     }
     // Every golden line names a scene that still exists.
     for (const auto& [name, line] : golden) {

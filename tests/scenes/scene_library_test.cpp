@@ -1,9 +1,9 @@
 // Scene library: every scene builds and runs 60 steps on lockbox without an assert, builds the
 // same bits twice, and the SCENES.md scenes also build and run through the float adapter.
-#include <gtest/gtest.h>
-
 #include <string>
 #include <string_view>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/scenes/LockboxScenes.h"
 // After the lockbox headers: float Box2D's macros would break them (see the adapter).
@@ -112,8 +112,8 @@ TEST(SceneLibrary, BodyCountsMatchScenesMd) {
         const char* name;
         int dynamicBodies;
     };
-    for (const Case& c : {Case{"hello", 1}, Case{"vertical_stack", 20}, Case{"pyramid20", 210},
-                          Case{"bullet_stack_bullet", 11}}) {
+    for (const Case& c :
+         {Case{"hello", 1}, Case{"vertical_stack", 20}, Case{"pyramid20", 210}, Case{"bullet_stack_bullet", 11}}) {
         LockboxEngine e;
         auto scene = MakeLockboxScene(c.name);
         scene->Build(e);
@@ -150,10 +150,14 @@ TEST(FloatAdapter, SharedScenesBuildAndRun) {
     for (auto name : SharedSceneNames()) {
         Box2DFloatEngine e;
         std::unique_ptr<Scene<Box2DFloatEngine>> scene;
-        if (name == "large_pyramid") scene = std::make_unique<LargePyramidScene<Box2DFloatEngine>>(20);
-        else if (name == "many_pyramids") scene = std::make_unique<ManyPyramidsScene<Box2DFloatEngine>>(2, 3);
-        else if (name == "joint_grid") scene = std::make_unique<JointGridScene<Box2DFloatEngine>>(12);
-        else scene = MakeScene<Box2DFloatEngine>(name);
+        if (name == "large_pyramid")
+            scene = std::make_unique<LargePyramidScene<Box2DFloatEngine>>(20);
+        else if (name == "many_pyramids")
+            scene = std::make_unique<ManyPyramidsScene<Box2DFloatEngine>>(2, 3);
+        else if (name == "joint_grid")
+            scene = std::make_unique<JointGridScene<Box2DFloatEngine>>(12);
+        else
+            scene = MakeScene<Box2DFloatEngine>(name);
         ASSERT_NE(scene, nullptr) << name;
         RunSettings s;
         s.steps = 60;

@@ -1,10 +1,11 @@
 // Headroom telemetry (lockbox/state/Headroom.h): the walk, its limits, the profile switch and
 // the saturation count.
 
+#include "lockbox/state/Headroom.h"
+
 #include <gtest/gtest.h>
 
 #include "lockbox/lockbox.h"
-#include "lockbox/state/Headroom.h"
 
 namespace {
 
@@ -30,8 +31,7 @@ TEST(Headroom, LimitsAreTheFormats) {
     EXPECT_EQ(h[C::e_invInertia].limit, static_cast<uint64>(Wide::kMaxRaw));
     EXPECT_EQ(h[C::e_treeCost].limit, static_cast<uint64>(Wide::kMaxRaw));
     EXPECT_EQ(h.saturations, 0);
-    for (int i = 0; i < static_cast<int>(C::e_count); ++i)
-        EXPECT_STRNE(b2HeadroomClassName(static_cast<C>(i)), "none");
+    for (int i = 0; i < static_cast<int>(C::e_count); ++i) EXPECT_STRNE(b2HeadroomClassName(static_cast<C>(i)), "none");
 }
 
 TEST(Headroom, WalkRecordsExactMagnitudes) {

@@ -1,10 +1,10 @@
 // The stability suite's fast budget (issue 8): every case, with the limits written in
 // samples/stability/src (the same functions the `stability` program prints).
 
-#include <gtest/gtest.h>
-
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/stability/Cases.h"
 

@@ -2,13 +2,13 @@
 // Helpers shared by the world-state tests: build a library scene, step it, and compare two
 // worlds field by field through their hash reports.
 
-#include <gtest/gtest.h>
-
 #include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/lockbox.h"
 #include "lockbox/scenes/LockboxScenes.h"
@@ -47,7 +47,8 @@ struct SceneRun {
 /// (tag and length, little-endian) after the 33-byte header; {0, 0} when it is absent.
 inline std::pair<size_t, size_t> SectionBytes(const std::vector<uint8>& image, uint32 tag) {
     auto le32 = [&](size_t at) {
-        return uint32{image[at]} | uint32{image[at + 1]} << 8 | uint32{image[at + 2]} << 16 | uint32{image[at + 3]} << 24;
+        return uint32{image[at]} | uint32{image[at + 1]} << 8 | uint32{image[at + 2]} << 16 |
+               uint32{image[at + 3]} << 24;
     };
     size_t at = 33;
     while (at + 8 <= image.size()) {

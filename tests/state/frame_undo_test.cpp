@@ -3,12 +3,12 @@
 // destroys them instead of restoring the frame's structure image; any other change takes the
 // image. Either way the state, its future and the ids handed out next are the saved ones.
 
-#include <gtest/gtest.h>
-
 #include <functional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "FrameTestUtil.h"
 
@@ -125,10 +125,11 @@ TEST(FrameUndo, SpawnedRagdollsWithTheirJointsAreUndone) {
 
 TEST(FrameUndo, OtherChangesRestoreTheStructureImage) {
     // Changes that touch what the frame had, or are not confined to one body.
-    using Change = std::function<void(b2World&, b2Body* older)>;
+    using Change = std::function<void(b2World&, b2Body * older)>;
     const std::vector<std::pair<const char*, Change>> changes = {
         {"damping of an older body", [](b2World&, b2Body* older) { older->SetLinearDamping(Fixed(1) / 10); }},
-        {"fixture on an older body", [](b2World&, b2Body* older) {
+        {"fixture on an older body",
+         [](b2World&, b2Body* older) {
              b2CircleShape c;
              c.m_radius = Fixed(1) / 8;
              older->CreateFixture(&c, 1);
@@ -136,14 +137,16 @@ TEST(FrameUndo, OtherChangesRestoreTheStructureImage) {
         {"older body destroyed", [](b2World& w, b2Body* older) { w.DestroyBody(older); }},
         {"older body made inactive", [](b2World&, b2Body* older) { older->SetActive(false); }},
         {"older fixture's shape", [](b2World&, b2Body* older) { (void)older->GetFixtureList()->GetShape(); }},
-        {"joint between a new and an older body", [](b2World& w, b2Body* older) {
+        {"joint between a new and an older body",
+         [](b2World& w, b2Body* older) {
              b2Body* a = AddBox(w, b2Vec2(0, 20));
              b2DistanceJointDef jd;
              jd.Initialize(a, older, a->GetPosition(), older->GetPosition());
              w.CreateJoint(&jd);
          }},
         {"older joint destroyed", [](b2World& w, b2Body*) { w.DestroyJoint(w.GetJointList()); }},
-        {"MarkStructureChanged", [](b2World& w, b2Body*) {
+        {"MarkStructureChanged",
+         [](b2World& w, b2Body*) {
              AddBox(w, b2Vec2(0, 20));
              w.MarkStructureChanged();
          }},

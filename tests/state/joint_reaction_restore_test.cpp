@@ -6,9 +6,9 @@
 // values it would have seen without the rollback, on every peer: in place after a discarded
 // branch, and in a fresh world after a late join.
 
-#include <gtest/gtest.h>
-
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "StateTestUtil.h"
 #include "lockbox/dynamics/joints/Joints.h"
@@ -134,8 +134,8 @@ std::vector<Reaction> Reactions(b2World& world) {
         if (e.type != a.type || e.force != a.force || e.torque != a.torque) {
             return ::testing::AssertionFailure()
                    << "joint " << i << " (type " << e.type << "): force (" << e.force.x.Raw() << ", " << e.force.y.Raw()
-                   << ") torque " << e.torque.Raw() << " expected, got (" << a.force.x.Raw() << ", "
-                   << a.force.y.Raw() << ") torque " << a.torque.Raw();
+                   << ") torque " << e.torque.Raw() << " expected, got (" << a.force.x.Raw() << ", " << a.force.y.Raw()
+                   << ") torque " << a.torque.Raw();
         }
     }
     return ::testing::AssertionSuccess();
@@ -191,7 +191,7 @@ std::vector<uint8> AsFormat1(std::vector<uint8> image) {
     const auto [begin, end] = testing_state::SectionBytes(image, 7);
     EXPECT_EQ(end, image.size()) << "the joint-reaction section is not the last";
     image.resize(begin - 8);  // its tag and length go too
-    image[5] = 1;  // format version (u16 at offset 5)
+    image[5] = 1;             // format version (u16 at offset 5)
     image[6] = 0;
     const uint64 payload = image.size() - 33;
     for (int i = 0; i < 8; ++i) image[17 + static_cast<size_t>(i)] = static_cast<uint8>(payload >> (8 * i));

@@ -2,9 +2,9 @@
 // the world still has is refilled where it is; any other is made afresh, and gear joints
 // point at the final objects either way.
 
-#include <gtest/gtest.h>
-
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "StateTestUtil.h"
 

@@ -2,9 +2,9 @@
 // inconsistent images are refused with an error that names the problem, and the world they
 // were offered to keeps its exact state (hash) and stays usable.
 
-#include <gtest/gtest.h>
-
 #include <cstring>
+
+#include <gtest/gtest.h>
 
 #include "StateTestUtil.h"
 

@@ -71,7 +71,6 @@ TEST_P(SnapshotRoundTrip, InPlaceRollbackKeepsAddressesAndBits) {
     EXPECT_EQ(run.world().Hash(), endHash);
 }
 
-
 INSTANTIATE_TEST_SUITE_P(Scenes, SnapshotRoundTrip, ::testing::ValuesIn(testing_state::SceneNames(/*large=*/false)),
                          [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 

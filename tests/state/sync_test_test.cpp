@@ -10,7 +10,6 @@ namespace {
 
 using testing_state::RunSceneSyncTest;
 
-
 class SceneSync : public ::testing::TestWithParam<std::string_view> {};
 
 #ifdef NDEBUG

@@ -3,12 +3,12 @@
 // changes, pool shrinking and full restores in between, and bad frames are refused with the
 // world untouched.
 
-#include <gtest/gtest.h>
-
 #include <functional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "FrameTestUtil.h"
 
@@ -32,14 +32,16 @@ TEST(WorldFrame, EveryStructuralCallMovesTheEpoch) {
     b2Fixture* fixture = body->GetFixtureList();
     const std::vector<std::pair<const char*, std::function<void()>>> structural = {
         {"CreateBody", [&] { AddBox(w, b2Vec2(3, 30)); }},
-        {"CreateFixture", [&] {
+        {"CreateFixture",
+         [&] {
              b2CircleShape c;
              c.m_radius = Fixed(1) / 8;
              body->CreateFixture(&c, 1);
          }},
         {"DestroyFixture", [&] { body->DestroyFixture(body->GetFixtureList()); }},
         {"ResetMassData", [&] { body->ResetMassData(); }},
-        {"SetMassData", [&] {
+        {"SetMassData",
+         [&] {
              b2MassData md;
              body->GetMassData(&md);
              body->SetMassData(&md);
@@ -58,7 +60,8 @@ TEST(WorldFrame, EveryStructuralCallMovesTheEpoch) {
         {"SetFriction", [&] { fixture->SetFriction(Fixed(1) / 2); }},
         {"SetRestitution", [&] { fixture->SetRestitution(Fixed(1) / 2); }},
         {"GetShape (mutable)", [&] { (void)fixture->GetShape(); }},
-        {"CreateJoint", [&] {
+        {"CreateJoint",
+         [&] {
              b2DistanceJointDef jd;
              b2Body* other = AddBox(w, b2Vec2(-3, 30));
              jd.Initialize(other, FirstDynamic(w), other->GetPosition(), FirstDynamic(w)->GetPosition());

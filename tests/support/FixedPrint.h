@@ -15,8 +15,7 @@ inline void PrintTo(Fixed v, std::ostream* os) {
 }
 inline void PrintTo(Wide v, std::ostream* os) {
     char buf[80];
-    std::snprintf(buf, sizeof buf, "%.12g (raw 0x%016llx)", v.ToDouble(),
-                  static_cast<unsigned long long>(v.Raw()));
+    std::snprintf(buf, sizeof buf, "%.12g (raw 0x%016llx)", v.ToDouble(), static_cast<unsigned long long>(v.Raw()));
     *os << buf;
 }
 }  // namespace lockbox

@@ -2,9 +2,6 @@
 /// lockbox umbrella header (Box2D's Box2D.h): everything a user of the manual's API needs.
 /// `using namespace lockbox;` then makes the manual's code read as written.
 
-#include "lockbox/common/Settings.h"
-#include "lockbox/fixed/Math.h"
-
 #include "lockbox/collision/BroadPhase.h"
 #include "lockbox/collision/ChainShape.h"
 #include "lockbox/collision/CircleShape.h"
@@ -15,7 +12,7 @@
 #include "lockbox/collision/PolygonShape.h"
 #include "lockbox/collision/Shape.h"
 #include "lockbox/collision/TimeOfImpact.h"
-
+#include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/ContactManager.h"
 #include "lockbox/dynamics/Draw.h"
@@ -26,3 +23,4 @@
 #include "lockbox/dynamics/contacts/Contact.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/dynamics/joints/Joints.h"
+#include "lockbox/fixed/Math.h"

@@ -22,8 +22,8 @@ b2Vec2 Midpoint(const b2Vec2& a, const b2Vec2& b) {
 }
 
 /// A single-point manifold carrying the circle centre, with the all-zero contact id.
-void SetCirclePoint(b2Manifold* manifold, b2Manifold::Type type, const b2Vec2& localNormal,
-                    const b2Vec2& localPoint, const b2Vec2& circleCenter) {
+void SetCirclePoint(b2Manifold* manifold, b2Manifold::Type type, const b2Vec2& localNormal, const b2Vec2& localPoint,
+                    const b2Vec2& circleCenter) {
     manifold->pointCount = 1;
     manifold->type = type;
     manifold->localNormal = localNormal;

@@ -156,8 +156,8 @@ struct b2ReferenceFace {
 /// 8. clip.
 class b2EPCollider {
 public:
-    void Collide(b2Manifold* manifold, const b2EdgeShape* edgeA, const b2Transform& xfA,
-                 const b2PolygonShape* polygonB, const b2Transform& xfB);
+    void Collide(b2Manifold* manifold, const b2EdgeShape* edgeA, const b2Transform& xfA, const b2PolygonShape* polygonB,
+                 const b2Transform& xfB);
 
 private:
     b2EPAxis ComputeEdgeSeparation() const;
@@ -229,45 +229,63 @@ void b2EPCollider::Collide(b2Manifold* manifold, const b2EdgeShape* edgeA, const
     if (hasVertex0 && hasVertex3) {
         if (convex1 && convex2) {
             m_front = front0 || front1 || front2;
-            if (m_front) SetLimits(n1, n0, n2);
-            else SetLimits(-n1, -n1, -n1);
+            if (m_front)
+                SetLimits(n1, n0, n2);
+            else
+                SetLimits(-n1, -n1, -n1);
         } else if (convex1) {
             m_front = front0 || (front1 && front2);
-            if (m_front) SetLimits(n1, n0, n1);
-            else SetLimits(-n1, -n2, -n1);
+            if (m_front)
+                SetLimits(n1, n0, n1);
+            else
+                SetLimits(-n1, -n2, -n1);
         } else if (convex2) {
             m_front = front2 || (front0 && front1);
-            if (m_front) SetLimits(n1, n1, n2);
-            else SetLimits(-n1, -n1, -n0);
+            if (m_front)
+                SetLimits(n1, n1, n2);
+            else
+                SetLimits(-n1, -n1, -n0);
         } else {
             m_front = front0 && front1 && front2;
-            if (m_front) SetLimits(n1, n1, n1);
-            else SetLimits(-n1, -n2, -n0);
+            if (m_front)
+                SetLimits(n1, n1, n1);
+            else
+                SetLimits(-n1, -n2, -n0);
         }
     } else if (hasVertex0) {
         if (convex1) {
             m_front = front0 || front1;
-            if (m_front) SetLimits(n1, n0, -n1);
-            else SetLimits(-n1, n1, -n1);
+            if (m_front)
+                SetLimits(n1, n0, -n1);
+            else
+                SetLimits(-n1, n1, -n1);
         } else {
             m_front = front0 && front1;
-            if (m_front) SetLimits(n1, n1, -n1);
-            else SetLimits(-n1, n1, -n0);
+            if (m_front)
+                SetLimits(n1, n1, -n1);
+            else
+                SetLimits(-n1, n1, -n0);
         }
     } else if (hasVertex3) {
         if (convex2) {
             m_front = front1 || front2;
-            if (m_front) SetLimits(n1, -n1, n2);
-            else SetLimits(-n1, -n1, n1);
+            if (m_front)
+                SetLimits(n1, -n1, n2);
+            else
+                SetLimits(-n1, -n1, n1);
         } else {
             m_front = front1 && front2;
-            if (m_front) SetLimits(n1, -n1, n1);
-            else SetLimits(-n1, -n2, n1);
+            if (m_front)
+                SetLimits(n1, -n1, n1);
+            else
+                SetLimits(-n1, -n2, n1);
         }
     } else {
         m_front = front1;
-        if (m_front) SetLimits(n1, -n1, -n1);
-        else SetLimits(-n1, n1, n1);
+        if (m_front)
+            SetLimits(n1, -n1, -n1);
+        else
+            SetLimits(-n1, n1, n1);
     }
 
     // Get polygonB in frameA.

@@ -1,6 +1,6 @@
 // Polygon-polygon manifold (Box2D 2.2.1's b2CollidePolygon.cpp): separating-axis search over
-// the edge normals of both polygons (full scan, as 2.3+; see b2FindMaxSeparation), reference/incident face selection with hysteresis, and
-// clipping of the incident edge against the reference face's side planes.
+// the edge normals of both polygons (full scan, as 2.3+; see b2FindMaxSeparation), reference/incident face selection
+// with hysteresis, and clipping of the incident edge against the reference face's side planes.
 //
 // Frames: 2.2.1 clips in world coordinates. lockbox runs the same steps in the frame of the
 // reference polygon (poly1), reaching poly2 through the relative transform b2MulT(xf1, xf2).

@@ -51,8 +51,8 @@ void b2DistanceProxy::Set(const b2Shape* shape, int32 index) {
             const auto* chain = static_cast<const b2ChainShape*>(shape);
             m_buffer[0] = chain->m_vertices[static_cast<size_t>(index)];
             // 2.2.1 wraps the last index to vertex 0 (a loop's closing edge).
-            m_buffer[1] = index + 1 < chain->m_count ? chain->m_vertices[static_cast<size_t>(index + 1)]
-                                                     : chain->m_vertices[0];
+            m_buffer[1] =
+                index + 1 < chain->m_count ? chain->m_vertices[static_cast<size_t>(index + 1)] : chain->m_vertices[0];
             m_vertices = m_buffer;
             m_count = 2;
             m_radius = chain->m_radius;
@@ -99,11 +99,11 @@ namespace {
 using detail::gjk::TransformPoint;
 
 struct SimplexVertex {
-    b2Vec2 wA;          // support point of A (world)
-    b2Vec2 wB;          // support point of B (world)
-    b2Vec2 w;           // wB - wA
-    int32 indexA = 0;   // index of wA on A
-    int32 indexB = 0;   // index of wB on B
+    b2Vec2 wA;         // support point of A (world)
+    b2Vec2 wB;         // support point of B (world)
+    b2Vec2 w;          // wB - wA
+    int32 indexA = 0;  // index of wA on A
+    int32 indexB = 0;  // index of wB on B
 };
 
 // 2 * a < b, exactly (the doubled value may not fit int64).
@@ -277,11 +277,11 @@ void Simplex::Solve3() {
     const int s123_2 = Sign64(n123) * Sign64(c2);
     const int s123_3 = Sign64(n123) * Sign64(c3);
 
-    if (d12_2 <= 0 && d13_2 <= 0) return KeepOnly(0);                     // w1 region
+    if (d12_2 <= 0 && d13_2 <= 0) return KeepOnly(0);                                // w1 region
     if (d12_1 > 0 && d12_2 > 0 && s123_3 <= 0) return KeepEdge(0, 1, d12_1, d12_2);  // e12
     if (d13_1 > 0 && d13_2 > 0 && s123_2 <= 0) return KeepEdge(0, 2, d13_1, d13_2);  // e13
-    if (d12_1 <= 0 && d23_2 <= 0) return KeepOnly(1);                      // w2 region
-    if (d13_1 <= 0 && d23_1 <= 0) return KeepOnly(2);                      // w3 region
+    if (d12_1 <= 0 && d23_2 <= 0) return KeepOnly(1);                                // w2 region
+    if (d13_1 <= 0 && d23_1 <= 0) return KeepOnly(2);                                // w3 region
     // e23, stored as (w3, w2) like 2.2.1 (m_v1 = m_v3).
     if (d23_1 > 0 && d23_2 > 0 && s123_1 <= 0) return KeepEdge(2, 1, d23_2, d23_1);
     // Inside the triangle. In exact arithmetic the regions above cover every degenerate

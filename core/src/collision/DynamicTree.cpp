@@ -115,10 +115,14 @@ bool b2DynamicTree::MoveProxy(int32 proxyId, const b2AABB& aabb, const b2Vec2& d
     // stretches the upper side by zero, as 2.2.1's `d < 0 ? lower : upper`).
     const int64_t dx = PredictRaw(displacement.x);
     const int64_t dy = PredictRaw(displacement.y);
-    if (dx < 0) b.lowerBound.x = AddClamped(b.lowerBound.x, dx);
-    else b.upperBound.x = AddClamped(b.upperBound.x, dx);
-    if (dy < 0) b.lowerBound.y = AddClamped(b.lowerBound.y, dy);
-    else b.upperBound.y = AddClamped(b.upperBound.y, dy);
+    if (dx < 0)
+        b.lowerBound.x = AddClamped(b.lowerBound.x, dx);
+    else
+        b.upperBound.x = AddClamped(b.upperBound.x, dx);
+    if (dy < 0)
+        b.lowerBound.y = AddClamped(b.lowerBound.y, dy);
+    else
+        b.upperBound.y = AddClamped(b.upperBound.y, dy);
     m_nodes[static_cast<size_t>(proxyId)].aabb = b;
 
     InsertLeaf(proxyId);
@@ -183,8 +187,10 @@ void b2DynamicTree::InsertLeaf(int32 leaf) {
     }
     if (oldParent != b2_nullNode) {
         b2TreeNode& op = m_nodes[static_cast<size_t>(oldParent)];
-        if (op.child1 == sibling) op.child1 = newParent;
-        else op.child2 = newParent;
+        if (op.child1 == sibling)
+            op.child1 = newParent;
+        else
+            op.child2 = newParent;
     } else {
         m_root = newParent;
     }
@@ -208,8 +214,10 @@ void b2DynamicTree::RemoveLeaf(int32 leaf) {
     if (grandParent != b2_nullNode) {
         // Destroy the parent and connect the sibling to the grandparent.
         b2TreeNode& g = m_nodes[static_cast<size_t>(grandParent)];
-        if (g.child1 == parent) g.child1 = sibling;
-        else g.child2 = sibling;
+        if (g.child1 == parent)
+            g.child1 = sibling;
+        else
+            g.child2 = sibling;
         m_nodes[static_cast<size_t>(sibling)].parent = grandParent;
         FreeNode(parent);
         Refit(grandParent);
@@ -263,8 +271,10 @@ int32 b2DynamicTree::Balance(int32 iA) {
         // A's old parent points to C.
         if (C->parent != b2_nullNode) {
             b2TreeNode* P = nodes + C->parent;
-            if (P->child1 == iA) P->child1 = iC;
-            else P->child2 = iC;
+            if (P->child1 == iA)
+                P->child1 = iC;
+            else
+                P->child2 = iC;
         } else {
             m_root = iC;
         }
@@ -305,8 +315,10 @@ int32 b2DynamicTree::Balance(int32 iA) {
         // A's old parent points to B.
         if (B->parent != b2_nullNode) {
             b2TreeNode* P = nodes + B->parent;
-            if (P->child1 == iA) P->child1 = iB;
-            else P->child2 = iB;
+            if (P->child1 == iA)
+                P->child1 = iB;
+            else
+                P->child2 = iB;
         } else {
             m_root = iB;
         }
@@ -362,8 +374,9 @@ Wide b2DynamicTree::GetAreaRatio() const {
         totalArea = detail::AddU128(totalArea, static_cast<uint64_t>(node.aabb.GetPerimeterWide().Raw()));
     }
     // Q32.32 quotient total / root, truncated (a diagnostic; the ratio is below 2^31).
-    const detail::U128 q =
-        detail::DivModU128(detail::ShlU128(totalArea, Wide::kFractionBits), detail::U128{0, static_cast<uint64_t>(rootArea)}).quot;
+    const detail::U128 q = detail::DivModU128(detail::ShlU128(totalArea, Wide::kFractionBits),
+                                              detail::U128{0, static_cast<uint64_t>(rootArea)})
+                               .quot;
     if (q.hi != 0 || q.lo > static_cast<uint64_t>(Wide::kMaxRaw)) return Wide::FromRaw(Wide::kMaxRaw);
     return Wide::FromRaw(static_cast<int64_t>(q.lo));
 }
@@ -472,8 +485,10 @@ bool b2DynamicTree::Validate() const {
 
 void detail::b2TreeStack::PushSpill(int32 v) {
     const size_t slot = static_cast<size_t>(m_count - kInline);
-    if (m_spill.size() <= slot) m_spill.push_back(v);
-    else m_spill[slot] = v;
+    if (m_spill.size() <= slot)
+        m_spill.push_back(v);
+    else
+        m_spill[slot] = v;
     ++m_count;
 }
 
@@ -482,9 +497,7 @@ void detail::b2TreeStack::PushSpill(int32 v) {
 namespace detail {
 
 b2TreeRay::b2TreeRay(const b2Vec2& p1, const b2Vec2& p2, Fixed maxFraction) noexcept
-    : m_p1(p1),
-      m_dx(int64_t{p2.x.Raw()} - p1.x.Raw()),
-      m_dy(int64_t{p2.y.Raw()} - p1.y.Raw()) {
+    : m_p1(p1), m_dx(int64_t{p2.x.Raw()} - p1.x.Raw()), m_dy(int64_t{p2.y.Raw()} - p1.y.Raw()) {
     Clip(maxFraction);
 }
 
@@ -533,8 +546,8 @@ bool b2TreeRay::LineMisses(const b2AABB& box) const noexcept {
     constexpr int64_t kSmall = int64_t{1} << 31;
     const int64_t awx = wx < 0 ? -wx : wx;
     const int64_t awy = wy < 0 ? -wy : wy;
-    if (adx < kSmall && ady < kSmall && awx < kSmall && awy < kSmall &&
-        0 <= hx && hx < kSmall && 0 <= hy && hy < kSmall) {
+    if (adx < kSmall && ady < kSmall && awx < kSmall && awy < kSmall && 0 <= hx && hx < kSmall && 0 <= hy &&
+        hy < kSmall) {
         const int64_t sep = m_dx * wy - m_dy * wx;
         const int64_t reach = ady * hx + adx * hy;
         return (sep < 0 ? -sep : sep) > reach;

@@ -13,8 +13,8 @@ namespace {
 constexpr int32 kOverlapDistanceRaw = 1;
 }  // namespace
 
-bool b2TestOverlap(const b2Shape* shapeA, int32 indexA, const b2Shape* shapeB, int32 indexB,
-                   const b2Transform& xfA, const b2Transform& xfB) {
+bool b2TestOverlap(const b2Shape* shapeA, int32 indexA, const b2Shape* shapeB, int32 indexB, const b2Transform& xfA,
+                   const b2Transform& xfB) {
     b2DistanceInput input;
     input.proxyA.Set(shapeA, indexA);
     input.proxyB.Set(shapeB, indexB);

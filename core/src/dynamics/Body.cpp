@@ -54,9 +54,7 @@ void b2Body::DestroyFixture(b2Fixture* fixture) {
     m_world->DestroyFixtureSlot(fixture);
 }
 
-Wide b2Body::GetInertia() const noexcept {
-    return m_I + m_mass * b2DotWide(m_sweep.localCenter, m_sweep.localCenter);
-}
+Wide b2Body::GetInertia() const noexcept { return m_I + m_mass * b2DotWide(m_sweep.localCenter, m_sweep.localCenter); }
 
 void b2Body::GetMassData(b2MassData* data) const {
     data->mass = m_mass;
@@ -257,7 +255,10 @@ void b2Body::SetUserData(uint64 data) noexcept {
 }
 
 void b2Body::SetBullet(bool flag) noexcept {
-    if (flag) m_flags |= e_bulletFlag; else m_flags &= ~e_bulletFlag;
+    if (flag)
+        m_flags |= e_bulletFlag;
+    else
+        m_flags &= ~e_bulletFlag;
 }
 
 void b2Body::SetSleepingAllowed(bool flag) {
@@ -311,7 +312,10 @@ void b2Body::SetActive(bool flag) {
 }
 
 void b2Body::SetFixedRotation(bool flag) {
-    if (flag) m_flags |= e_fixedRotationFlag; else m_flags &= ~e_fixedRotationFlag;
+    if (flag)
+        m_flags |= e_fixedRotationFlag;
+    else
+        m_flags &= ~e_fixedRotationFlag;
     ResetMassData();
 }
 

@@ -32,9 +32,7 @@ Fixed MaxExtent(const b2Shape* shape, const b2Vec2& center) {
     Fixed maxDist;
     auto visit = [&](const b2Vec2& v) { maxDist = Max(maxDist, b2Distance(v, center)); };
     switch (shape->GetType()) {
-        case b2Shape::e_circle:
-            visit(static_cast<const b2CircleShape*>(shape)->m_p);
-            break;
+        case b2Shape::e_circle: visit(static_cast<const b2CircleShape*>(shape)->m_p); break;
         case b2Shape::e_polygon: {
             const auto* poly = static_cast<const b2PolygonShape*>(shape);
             for (int32 i = 0; i < poly->m_vertexCount; ++i) visit(poly->m_vertices[i]);
@@ -51,8 +49,7 @@ Fixed MaxExtent(const b2Shape* shape, const b2Vec2& center) {
             for (int32 i = 0; i < chain->m_count; ++i) visit(chain->m_vertices[static_cast<size_t>(i)]);
             break;
         }
-        default:
-            break;
+        default: break;
     }
     return maxDist + shape->m_radius;
 }

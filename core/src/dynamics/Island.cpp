@@ -47,7 +47,8 @@ void b2Island::Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapac
         m_velocities.resize(static_cast<size_t>(bodyCapacity));
         m_rotations.resize(static_cast<size_t>(bodyCapacity));
     }
-    if (m_contacts.size() < static_cast<size_t>(contactCapacity)) m_contacts.resize(static_cast<size_t>(contactCapacity));
+    if (m_contacts.size() < static_cast<size_t>(contactCapacity))
+        m_contacts.resize(static_cast<size_t>(contactCapacity));
     if (m_joints.size() < static_cast<size_t>(jointCapacity)) m_joints.resize(static_cast<size_t>(jointCapacity));
     Clear();
 }
@@ -78,8 +79,8 @@ void b2Island::Add(b2Body* body) {
 void b2Island::Observe(b2IslandPhase phase) {
     if (m_observer == nullptr) return;
     const size_t n = static_cast<size_t>(m_bodyCount);
-    m_observer->OnIsland(phase, std::span<b2Body* const>(m_bodies.data(), n), std::span<b2Position>(m_positions.data(), n),
-                         std::span<b2Velocity>(m_velocities.data(), n));
+    m_observer->OnIsland(phase, std::span<b2Body* const>(m_bodies.data(), n),
+                         std::span<b2Position>(m_positions.data(), n), std::span<b2Velocity>(m_velocities.data(), n));
 }
 
 void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep) {

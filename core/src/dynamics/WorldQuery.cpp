@@ -91,8 +91,7 @@ void b2World::DrawShape(b2Fixture* fixture, const b2Transform& xf, const b2Color
             m_debugDraw->DrawSolidPolygon(vertices, poly->m_vertexCount, color);
             break;
         }
-        default:
-            break;
+        default: break;
     }
 }
 

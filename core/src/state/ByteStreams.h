@@ -12,9 +12,9 @@
 #include <streambuf>
 #include <vector>
 
+#include "ByteCursor.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Math.h"
-#include "ByteCursor.h"
 
 namespace lockbox::state_detail {
 
@@ -50,22 +50,39 @@ public:
 
     /// A cursor with room for `maxBytes` (any size); hand it back to End.
     ByteCursor Begin(size_t maxBytes) {
-        if (maxBytes > out_.size() - used_) [[unlikely]] Grow(maxBytes);
+        if (maxBytes > out_.size() - used_) [[unlikely]]
+            Grow(maxBytes);
         return ByteCursor(out_.data() + used_);
     }
     /// Takes the bytes a cursor from Begin wrote.
     void End(const ByteCursor& c) noexcept { used_ = static_cast<size_t>(c.Position() - out_.data()); }
 
-    void U8(uint32 v) { One([&](ByteCursor& c) { c.U8(v); }); }
-    void U16(uint32 v) { One([&](ByteCursor& c) { c.U16(v); }); }
-    void U32(uint32 v) { One([&](ByteCursor& c) { c.U32(v); }); }
-    void U64(uint64 v) { One([&](ByteCursor& c) { c.U64(v); }); }
-    void I32(int32 v) { One([&](ByteCursor& c) { c.I32(v); }); }
-    void I64(int64_t v) { One([&](ByteCursor& c) { c.I64(v); }); }
-    void Bool(bool v) { One([&](ByteCursor& c) { c.Bool(v); }); }
+    void U8(uint32 v) {
+        One([&](ByteCursor& c) { c.U8(v); });
+    }
+    void U16(uint32 v) {
+        One([&](ByteCursor& c) { c.U16(v); });
+    }
+    void U32(uint32 v) {
+        One([&](ByteCursor& c) { c.U32(v); });
+    }
+    void U64(uint64 v) {
+        One([&](ByteCursor& c) { c.U64(v); });
+    }
+    void I32(int32 v) {
+        One([&](ByteCursor& c) { c.I32(v); });
+    }
+    void I64(int64_t v) {
+        One([&](ByteCursor& c) { c.I64(v); });
+    }
+    void Bool(bool v) {
+        One([&](ByteCursor& c) { c.Bool(v); });
+    }
     void F(Fixed v) { I32(v.Raw()); }
     void W(Wide v) { I64(v.Raw()); }
-    void V(const b2Vec2& v) { One([&](ByteCursor& c) { c.V(v); }); }
+    void V(const b2Vec2& v) {
+        One([&](ByteCursor& c) { c.V(v); });
+    }
 
     size_t Position() const noexcept { return used_; }
     /// Overwrites a 4-byte field written earlier (section lengths).

@@ -36,17 +36,33 @@ public:
     /// Takes the bytes a cursor from Begin wrote.
     void End(const ByteCursor& c) noexcept { used_ = static_cast<size_t>(c.Position() - buffer_); }
 
-    void U8(uint32_t v) noexcept { One([&](ByteCursor& c) { c.U8(v); }); }
-    void U16(uint32_t v) noexcept { One([&](ByteCursor& c) { c.U16(v); }); }
-    void U32(uint32_t v) noexcept { One([&](ByteCursor& c) { c.U32(v); }); }
-    void U64(uint64_t v) noexcept { One([&](ByteCursor& c) { c.U64(v); }); }
+    void U8(uint32_t v) noexcept {
+        One([&](ByteCursor& c) { c.U8(v); });
+    }
+    void U16(uint32_t v) noexcept {
+        One([&](ByteCursor& c) { c.U16(v); });
+    }
+    void U32(uint32_t v) noexcept {
+        One([&](ByteCursor& c) { c.U32(v); });
+    }
+    void U64(uint64_t v) noexcept {
+        One([&](ByteCursor& c) { c.U64(v); });
+    }
     /// Two's complement, so negative ids and raws have one encoding everywhere.
-    void I32(int32_t v) noexcept { One([&](ByteCursor& c) { c.I32(v); }); }
-    void I64(int64_t v) noexcept { One([&](ByteCursor& c) { c.I64(v); }); }
-    void Bool(bool v) noexcept { One([&](ByteCursor& c) { c.Bool(v); }); }
+    void I32(int32_t v) noexcept {
+        One([&](ByteCursor& c) { c.I32(v); });
+    }
+    void I64(int64_t v) noexcept {
+        One([&](ByteCursor& c) { c.I64(v); });
+    }
+    void Bool(bool v) noexcept {
+        One([&](ByteCursor& c) { c.Bool(v); });
+    }
     void F(Fixed v) noexcept { I32(v.Raw()); }
     void W(Wide v) noexcept { I64(v.Raw()); }
-    void V(const b2Vec2& v) noexcept { One([&](ByteCursor& c) { c.V(v); }); }
+    void V(const b2Vec2& v) noexcept {
+        One([&](ByteCursor& c) { c.V(v); });
+    }
 
     /// Raw bytes, already encoded (an image section).
     void Bytes(const void* data, size_t size) noexcept {

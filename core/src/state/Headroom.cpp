@@ -13,9 +13,7 @@ namespace {
 using C = b2HeadroomClass;
 
 // |v| as an unsigned value; the unsigned negation is defined for every input, INT64_MIN included.
-constexpr uint64 Mag(int64_t v) noexcept {
-    return v < 0 ? uint64{0} - static_cast<uint64>(v) : static_cast<uint64>(v);
-}
+constexpr uint64 Mag(int64_t v) noexcept { return v < 0 ? uint64{0} - static_cast<uint64>(v) : static_cast<uint64>(v); }
 
 constexpr uint64 kFixedLimit = static_cast<uint64>(Fixed::kMaxRaw);
 constexpr uint64 kWideLimit = static_cast<uint64>(Wide::kMaxRaw);
@@ -38,9 +36,7 @@ public:
         See(c, v.x.Raw());
         See(c, v.y.Raw());
     }
-    void SeeJointImpulse(int32 raw) noexcept {
-        See(C::e_impulse, static_cast<int64_t>(Mag(raw) << kJointToWideShift));
-    }
+    void SeeJointImpulse(int32 raw) noexcept { See(C::e_impulse, static_cast<int64_t>(Mag(raw) << kJointToWideShift)); }
 
 private:
     b2Headroom& h_;
@@ -79,9 +75,9 @@ int64_t b2HeadroomEntry::PartsPerMillion() const noexcept {
 b2Headroom::b2Headroom() noexcept {
     // The format of each class, in b2HeadroomClass order (Q16.16 state, Q32.32 mass
     // properties, impulses and costs).
-    const uint64 limits[static_cast<int32>(C::e_count)] = {
-        kFixedLimit, kFixedLimit, kFixedLimit, kFixedLimit, kWideLimit, kWideLimit,
-        kWideLimit,  kWideLimit,  kWideLimit,  kFixedLimit, kWideLimit};
+    const uint64 limits[static_cast<int32>(C::e_count)] = {kFixedLimit, kFixedLimit, kFixedLimit, kFixedLimit,
+                                                           kWideLimit,  kWideLimit,  kWideLimit,  kWideLimit,
+                                                           kWideLimit,  kFixedLimit, kWideLimit};
     for (int32 i = 0; i < static_cast<int32>(C::e_count); ++i) entries[i].limit = limits[i];
 }
 

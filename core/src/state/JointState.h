@@ -8,8 +8,8 @@
 
 #include <array>
 #include <bit>
-#include <cstdlib>
 #include <cstdint>
+#include <cstdlib>
 #include <vector>
 
 #include "ByteCursor.h"

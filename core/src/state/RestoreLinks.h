@@ -31,8 +31,10 @@ template <class T>
 void AppendToWorldList(T* node, T*& head, T*& tail) {
     node->m_prev = tail;
     node->m_next = nullptr;
-    if (tail != nullptr) tail->m_next = node;
-    else head = node;
+    if (tail != nullptr)
+        tail->m_next = node;
+    else
+        head = node;
     tail = node;
 }
 
@@ -42,8 +44,10 @@ template <class Edge>
 void AppendEdge(Edge* e, Edge*& head, Edge*& tail) {
     e->prev = tail;
     e->next = nullptr;
-    if (tail != nullptr) tail->next = e;
-    else head = e;
+    if (tail != nullptr)
+        tail->next = e;
+    else
+        head = e;
     tail = e;
 }
 

@@ -4,9 +4,9 @@
 // header through Cereal's portable binary archive.
 // docs/determinism.md ("Snapshot format") is the layout's reference.
 
-#include <cereal/archives/portable_binary.hpp>
-
 #include <ostream>
+
+#include <cereal/archives/portable_binary.hpp>
 
 #include "ByteStreams.h"
 #include "FastXxh3.h"
@@ -72,8 +72,10 @@ void state_detail::SaveImage(const b2World& world, std::vector<uint8>& out, bool
     WriteSection(w, e_sectionBodies, [&] { WriteBodies(w, world); });
     WriteSection(w, e_sectionFixtures, [&] { WriteFixtures(w, world); });
     WriteSection(w, e_sectionContacts, [&] {
-        if (withContacts) WriteContacts(w, world);
-        else WriteNoContacts(w);
+        if (withContacts)
+            WriteContacts(w, world);
+        else
+            WriteNoContacts(w);
     });
     WriteSection(w, e_sectionJoints, [&] { WriteJoints(w, world); });
     WriteSection(w, e_sectionBroadPhase, [&] { WriteBroadPhase(w, world); });
@@ -85,7 +87,8 @@ void state_detail::SaveImage(const b2World& world, std::vector<uint8>& out, bool
         // the fields little-endian; the checksum is patched in last.
         HeaderSink sink(out.data(), kHeaderBytes);
         std::ostream stream(&sink);
-        cereal::PortableBinaryOutputArchive archive(stream, cereal::PortableBinaryOutputArchive::Options::LittleEndian());
+        cereal::PortableBinaryOutputArchive archive(stream,
+                                                    cereal::PortableBinaryOutputArchive::Options::LittleEndian());
         archive(b2_snapshotMagic, b2_snapshotFormatVersion, lockbox_versionMajor, lockbox_versionMinor,
                 lockbox_versionPatch, b2_determinismVersion, payload, uint64{0});
     }
@@ -104,14 +107,15 @@ b2SnapshotStats b2World::SaveStats() const {
     b2SnapshotStats stats;
     stats.headerBytes = static_cast<uint32>(kHeaderBytes);
     stats.totalBytes = static_cast<uint32>(image.size());
-    uint32* bySection[kSectionCount] = {&stats.settingsBytes, &stats.bodyBytes,       &stats.fixtureBytes,
-                                        &stats.contactBytes,  &stats.jointBytes,      &stats.broadPhaseBytes,
+    uint32* bySection[kSectionCount] = {&stats.settingsBytes,     &stats.bodyBytes,  &stats.fixtureBytes,
+                                        &stats.contactBytes,      &stats.jointBytes, &stats.broadPhaseBytes,
                                         &stats.jointReactionBytes};
     // Walk the section headers: tag, length (little-endian), contents. The 8 header bytes
     // count toward their section.
     size_t at = kHeaderBytes;
     auto le32 = [&](size_t i) {
-        return uint32{image[i]} | (uint32{image[i + 1]} << 8) | (uint32{image[i + 2]} << 16) | (uint32{image[i + 3]} << 24);
+        return uint32{image[i]} | (uint32{image[i + 1]} << 8) | (uint32{image[i + 2]} << 16) |
+               (uint32{image[i + 3]} << 24);
     };
     for (uint32 s = 0; s < kSectionCount && at + 8 <= image.size(); ++s) {
         const uint32 length = le32(at + 4);

@@ -90,9 +90,7 @@ void ApplyShape(const Image& img, const ShapeImage& si, std::unique_ptr<b2Shape>
     }
     current->m_radius = si.radius;
     switch (type) {
-        case b2Shape::e_circle:
-            static_cast<b2CircleShape&>(*current).m_p = si.p;
-            break;
+        case b2Shape::e_circle: static_cast<b2CircleShape&>(*current).m_p = si.p; break;
         case b2Shape::e_edge: {
             auto& e = static_cast<b2EdgeShape&>(*current);
             e.m_vertex0 = si.v0;
@@ -173,8 +171,10 @@ void ApplyFixtures(Image& img, b2World& world) {
             }
             f->m_proxyCount = fi.proxyCount;
             f->m_next = nullptr;
-            if (previous != nullptr) previous->m_next = f;
-            else body->m_fixtureList = f;
+            if (previous != nullptr)
+                previous->m_next = f;
+            else
+                body->m_fixtureList = f;
             previous = f;
         }
     }
@@ -225,7 +225,8 @@ void ApplyContacts(Image& img, b2World& world) {
     for (size_t i = 0; i < count; ++i) {
         const ContactImage& ci = img.contacts[i];
         // The whole contact, graph edges included: the walks skip them, this pass writes them.
-        if (i + kApplyPrefetch < count) PrefetchBytes(cm.GetContact(img.contacts[i + kApplyPrefetch].id), sizeof(b2Contact));
+        if (i + kApplyPrefetch < count)
+            PrefetchBytes(cm.GetContact(img.contacts[i + kApplyPrefetch].id), sizeof(b2Contact));
         b2Contact* c = cm.GetContact(ci.id);
         ApplyContactState(img.bytes + ci.stateAt, *c);
         LinkRestoredContact(c, ci.fixtureA, ci.indexA, ci.fixtureB, ci.indexB,

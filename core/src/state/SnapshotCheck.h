@@ -31,7 +31,8 @@ struct SnapshotFailure {
 /// Fails with e_corrupt "what: problem (value V)" unless ok. Inlined: a restore runs about
 /// 30,000 of these for 1,000 bodies, and a call each cost as much as the reads they guard.
 [[gnu::always_inline]] inline void Check(bool ok, const char* what, const char* problem, int64_t value) {
-    if (!ok) [[unlikely]] FailCheck(what, problem, value);
+    if (!ok) [[unlikely]]
+        FailCheck(what, problem, value);
 }
 
 /// A boolean field: 0 or 1, anything else is corrupt.

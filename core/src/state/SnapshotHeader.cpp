@@ -3,10 +3,10 @@
 // Restore (SnapshotParse.cpp) and the image hash (SnapshotHash.cpp) share them, so an image
 // one accepts the other frames the same way.
 
-#include <cereal/archives/portable_binary.hpp>
-
 #include <istream>
 #include <string>
+
+#include <cereal/archives/portable_binary.hpp>
 
 #include "ByteStreams.h"
 #include "SnapshotCheck.h"
@@ -58,7 +58,7 @@ HeaderFields ReadHeader(std::span<const uint8> bytes) {
 }
 
 SectionSpans FrameSections(std::span<const uint8> bytes, uint16 format) {
-    static constexpr const char* kNames[kSectionCount] = {"settings", "bodies",     "fixtures",       "contacts",
+    static constexpr const char* kNames[kSectionCount] = {"settings", "bodies",     "fixtures",      "contacts",
                                                           "joints",   "broadphase", "jointReactions"};
     const uint32 count = format >= 2 ? kSectionCount : kSectionCountV1;
     SectionSpans sections;
@@ -68,14 +68,16 @@ SectionSpans FrameSections(std::span<const uint8> bytes, uint16 format) {
                (uint32{bytes[i + 3]} << 24);
     };
     for (uint32 s = 0; s < count; ++s) {
-        if (bytes.size() - at < 8) Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section header missing");
+        if (bytes.size() - at < 8)
+            Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section header missing");
         const uint32 tag = le32(at);
         Check(tag == s + 1, kNames[s], "section tag is wrong", tag);
         const uint32 length = le32(at + 4);
         at += 8;
         if (length > bytes.size() - at) {
-            Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section announces " + std::to_string(length) +
-                                                   " bytes, " + std::to_string(bytes.size() - at) + " are left");
+            Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section announces " +
+                                                   std::to_string(length) + " bytes, " +
+                                                   std::to_string(bytes.size() - at) + " are left");
         }
         sections[s] = bytes.subspan(at, length);
         at += length;

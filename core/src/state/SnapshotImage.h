@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "RestoreLinks.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/DynamicTree.h"
 #include "lockbox/dynamics/Body.h"
@@ -13,7 +14,6 @@
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/state/Snapshot.h"
-#include "RestoreLinks.h"
 
 namespace lockbox::state_detail {
 
@@ -47,8 +47,8 @@ inline constexpr uint32 kSectionCountV1 = 6;
 struct PoolImage {
     int32 capacity = 0;
     int32 count = 0;
-    std::vector<int32> free;   ///< free-slot stack, bottom first
-    std::vector<uint8> live;   ///< derived: 1 for every id not on the free stack
+    std::vector<int32> free;  ///< free-slot stack, bottom first
+    std::vector<uint8> live;  ///< derived: 1 for every id not on the free stack
 };
 
 struct SettingsImage {
@@ -92,14 +92,14 @@ struct BodyImage {
 struct ShapeImage {
     uint8 type = 0;
     Fixed radius;
-    b2Vec2 p;                 ///< circle centre or polygon centroid
-    b2Vec2 v0, v1, v2, v3;    ///< edge
+    b2Vec2 p;               ///< circle centre or polygon centroid
+    b2Vec2 v0, v1, v2, v3;  ///< edge
     bool has0 = false, has3 = false;
-    int32 count = 0;          ///< polygon or chain vertex count
+    int32 count = 0;  ///< polygon or chain vertex count
     b2Vec2 vertices[b2_maxPolygonVertices];
     b2Vec2 normals[b2_maxPolygonVertices];
-    int32 chainBegin = 0;     ///< range start in Image::chainVertices (count entries)
-    b2Vec2 prev, next;        ///< chain ghosts
+    int32 chainBegin = 0;  ///< range start in Image::chainVertices (count entries)
+    b2Vec2 prev, next;     ///< chain ghosts
     bool hasPrev = false, hasNext = false;
 };
 
@@ -116,9 +116,9 @@ struct FixtureImage {
     b2Filter filter;
     uint64 userData = 0;
     ShapeImage shape;
-    int32 childCount = 0;     ///< derived from the shape
+    int32 childCount = 0;  ///< derived from the shape
     int32 proxyCount = 0;
-    int32 proxyBegin = 0;     ///< range in Image::proxies
+    int32 proxyBegin = 0;  ///< range in Image::proxies
 };
 
 /// A contact's references; the rest of its record (flags through manifold points) is checked
@@ -139,8 +139,8 @@ struct JointImage {
     int32 bodyA = -1, bodyB = -1;
     bool collideConnected = false;
     uint64 userData = 0;
-    uint32 stateAt = 0;  ///< offset in Image::bytes of the record's first VisitState field
-    uint32 reactionAt = 0;  ///< offset of its VisitReactionState fields; 0: none in the image
+    uint32 stateAt = 0;                ///< offset in Image::bytes of the record's first VisitState field
+    uint32 reactionAt = 0;             ///< offset of its VisitReactionState fields; 0: none in the image
     int32 refBegin = 0, refCount = 0;  ///< body/joint references in Image::refs
 };
 
@@ -163,7 +163,7 @@ struct Image {
     const uint8* bytes = nullptr;
     SettingsImage settings;
     PoolImage bodyPool, fixturePool, contactPool;
-    std::vector<BodyImage> bodies;  ///< body-list order
+    std::vector<BodyImage> bodies;       ///< body-list order
     std::vector<FixtureImage> fixtures;  ///< grouped by body, body-list order
     std::vector<b2Vec2> chainVertices;
     std::vector<ProxyImage> proxies;

@@ -6,14 +6,14 @@
 #include <string>
 
 #include "ByteStreams.h"
+#include "JointState.h"
 #include "SnapshotCheck.h"
 #include "SnapshotImage.h"
+#include "StateWalk.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 #include "lockbox/state/WorldHash.h"
-#include "JointState.h"
-#include "StateWalk.h"
 
 namespace lockbox::state_detail {
 namespace {
@@ -23,7 +23,8 @@ int32 CheckCount(const FieldReader& r, int32 n, size_t minBytes, const char* wha
     Check(n >= 0, what, "is negative", n);
     if (static_cast<uint64>(n) * minBytes > r.Remaining()) [[unlikely]] {
         Fail(b2SnapshotError::e_truncated, std::string(what) + " announces " + std::to_string(n) +
-                                               " records but only " + std::to_string(r.Remaining()) + " bytes are left");
+                                               " records but only " + std::to_string(r.Remaining()) +
+                                               " bytes are left");
     }
     return n;
 }
@@ -35,7 +36,8 @@ int32 ReadCount(FieldReader& r, size_t minBytes, const char* what) {
     Check(n >= 0, what, "is negative", n);
     if (static_cast<uint64>(n) * minBytes > r.Remaining()) {
         Fail(b2SnapshotError::e_truncated, std::string(what) + " announces " + std::to_string(n) +
-                                               " records but only " + std::to_string(r.Remaining()) + " bytes are left");
+                                               " records but only " + std::to_string(r.Remaining()) +
+                                               " bytes are left");
     }
     return n;
 }
@@ -138,7 +140,8 @@ void ReadShape(FieldReader& r, Image& img, ShapeImage& s) {
             s.p = c.V();
             s.count = c.I32();
             r.End(c);
-            Check(s.count >= 3 && s.count <= b2_maxPolygonVertices, "polygon.vertexCount", "is outside [3, 8]", s.count);
+            Check(s.count >= 3 && s.count <= b2_maxPolygonVertices, "polygon.vertexCount", "is outside [3, 8]",
+                  s.count);
             ReadCursor v = r.Begin(16 * static_cast<size_t>(s.count));
             for (int32 i = 0; i < s.count; ++i) {
                 s.vertices[i] = v.V();
@@ -272,7 +275,8 @@ void ReadJoint(R& r, JointImage& j, Image& img, size_t recordAt) {
 void ReadJoints(FieldReader& r, Image& img) {
     const int32 n = img.settings.jointCount;
     if (static_cast<uint64>(n) * kMinJoint > r.Remaining()) {
-        Fail(b2SnapshotError::e_truncated, "joints: settings.jointCount " + std::to_string(n) + " exceeds the bytes left");
+        Fail(b2SnapshotError::e_truncated,
+             "joints: settings.jointCount " + std::to_string(n) + " exceeds the bytes left");
     }
     img.joints.resize(static_cast<size_t>(n));
     // A record of any type fits in this many bytes: when that many are left, the record is

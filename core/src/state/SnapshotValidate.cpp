@@ -24,7 +24,8 @@ void IndexByIds(std::vector<int32>& index, const PoolImage& pool, size_t records
     index.assign(static_cast<size_t>(pool.capacity), -1);
     for (size_t i = 0; i < records; ++i) {
         const int32 id = idOf(img, i);
-        Check(id >= 0 && id < pool.capacity && pool.live[static_cast<size_t>(id)] == 1, what, "id is not live in its pool", id);
+        Check(id >= 0 && id < pool.capacity && pool.live[static_cast<size_t>(id)] == 1, what,
+              "id is not live in its pool", id);
         Check(index[static_cast<size_t>(id)] < 0, what, "id is listed twice", id);
         index[static_cast<size_t>(id)] = static_cast<int32>(i);
     }
@@ -73,7 +74,8 @@ void ValidateJoints(Image& img, const std::vector<int32>& bodyIndex) {
     for (const JointImage& j : img.joints) {
         Check(j.id >= 0 && j.id < kMaxJointId, "joint.id", "is out of range", j.id);
         if (j.id > maxId) maxId = j.id;
-        Check(liveBody(j.bodyA) && liveBody(j.bodyB), "joint.body", "is not a live body", liveBody(j.bodyA) ? j.bodyB : j.bodyA);
+        Check(liveBody(j.bodyA) && liveBody(j.bodyB), "joint.body", "is not a live body",
+              liveBody(j.bodyA) ? j.bodyB : j.bodyA);
         Check(j.bodyA != j.bodyB || j.type == e_gearJoint, "joint", "joins a body to itself", j.bodyA);
     }
     std::vector<int32>& jointIndex = img.jointIndex;
@@ -94,13 +96,15 @@ void ValidateJoints(Image& img, const std::vector<int32>& bodyIndex) {
         const RefImage* refs = &img.refs[static_cast<size_t>(j.refBegin)];
         for (int32 s = 0; s < 2; ++s) {
             const int32 id = refs[s].id;
-            Check(id >= 0 && id <= maxId && jointIndex[static_cast<size_t>(id)] >= 0, "gear.joint", "is not a live joint", id);
+            Check(id >= 0 && id <= maxId && jointIndex[static_cast<size_t>(id)] >= 0, "gear.joint",
+                  "is not a live joint", id);
             const JointImage& geared = img.joints[static_cast<size_t>(jointIndex[static_cast<size_t>(id)])];
             Check(geared.type == e_revoluteJoint || geared.type == e_prismaticJoint, "gear.joint",
                   "is not revolute or prismatic", id);
             const RefImage& body = refs[2 + 2 * s];
             const RefImage& ground = refs[3 + 2 * s];
-            Check(body.id == geared.bodyB && ground.id == geared.bodyA, "gear.side", "bodies differ from its joint's", id);
+            Check(body.id == geared.bodyB && ground.id == geared.bodyA, "gear.side", "bodies differ from its joint's",
+                  id);
             Check((s == 0 ? j.bodyA : j.bodyB) == body.id, "gear.body", "differs from its side's body", body.id);
         }
     }
@@ -123,14 +127,16 @@ void ValidateTree(const Image& img, const std::vector<int32>& fixtureIndex) {
             // The leaf is exactly the proxy its key names.
             const int32 fid = b2FixtureProxy::KeyFixture(n.userData);
             const int32 child = b2FixtureProxy::KeyChild(n.userData);
-            Check(fid >= 0 && fid < static_cast<int32>(fixtureIndex.size()) && fixtureIndex[static_cast<size_t>(fid)] >= 0,
+            Check(fid >= 0 && fid < static_cast<int32>(fixtureIndex.size()) &&
+                      fixtureIndex[static_cast<size_t>(fid)] >= 0,
                   "tree.leaf", "names no live fixture", i);
             const FixtureImage& f = img.fixtures[static_cast<size_t>(fixtureIndex[static_cast<size_t>(fid)])];
             Check(child >= 0 && child < f.proxyCount &&
                       img.proxies[static_cast<size_t>(f.proxyBegin + child)].proxyId == i,
                   "tree.leaf", "is not its fixture's proxy", i);
         } else {
-            Check(inRange(n.child1) && inRange(n.child2) && n.child1 != n.child2, "tree.node", "has invalid children", i);
+            Check(inRange(n.child1) && inRange(n.child2) && n.child1 != n.child2, "tree.node", "has invalid children",
+                  i);
             const b2TreeNode& c1 = node(n.child1);
             const b2TreeNode& c2 = node(n.child2);
             Check(c1.height >= 0 && c2.height >= 0 && c1.parent == i && c2.parent == i, "tree.node",
@@ -173,12 +179,15 @@ void ValidateTree(const Image& img, const std::vector<int32>& fixtureIndex) {
 }  // namespace
 
 void ValidateImage(Image& img) {
-    IndexByIds(img.bodyIndex, img.bodyPool, img.bodies.size(), [](const Image& m, size_t i) { return m.bodies[i].id; },
-               img, "body.id");
-    IndexByIds(img.fixtureIndex, img.fixturePool, img.fixtures.size(),
-               [](const Image& m, size_t i) { return m.fixtures[i].id; }, img, "fixture.id");
-    IndexByIds(img.contactIndex, img.contactPool, img.contacts.size(),
-               [](const Image& m, size_t i) { return m.contacts[i].id; }, img, "contact.id");
+    IndexByIds(
+        img.bodyIndex, img.bodyPool, img.bodies.size(), [](const Image& m, size_t i) { return m.bodies[i].id; }, img,
+        "body.id");
+    IndexByIds(
+        img.fixtureIndex, img.fixturePool, img.fixtures.size(),
+        [](const Image& m, size_t i) { return m.fixtures[i].id; }, img, "fixture.id");
+    IndexByIds(
+        img.contactIndex, img.contactPool, img.contacts.size(),
+        [](const Image& m, size_t i) { return m.contacts[i].id; }, img, "contact.id");
     ValidateContacts(img, img.fixtureIndex);
     ValidateJoints(img, img.bodyIndex);
     ValidateTree(img, img.fixtureIndex);

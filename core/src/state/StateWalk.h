@@ -54,7 +54,7 @@ template <class V>
 void VisitJointReaction(b2Joint& j, V& v) {
     WithJointClass(j.GetType(), [&](auto cls) {
         using T = typename decltype(cls)::type;
-        if constexpr (requires(T& t) { t.VisitReactionState(v); }) static_cast<T&>(j).VisitReactionState(v);
+        if constexpr (requires(T & t) { t.VisitReactionState(v); }) static_cast<T&>(j).VisitReactionState(v);
     });
 }
 
@@ -69,8 +69,15 @@ struct JointFieldWriter {
     void Put(Fixed x) { w.F(x); }
     void Put(Wide x) { w.W(x); }
     void Put(const b2Vec2& x) { w.V(x); }
-    void Put(const b2WideVec2& x) { w.W(x.x); w.W(x.y); }
-    void Put(const b2WideVec3& x) { w.W(x.x); w.W(x.y); w.W(x.z); }
+    void Put(const b2WideVec2& x) {
+        w.W(x.x);
+        w.W(x.y);
+    }
+    void Put(const b2WideVec3& x) {
+        w.W(x.x);
+        w.W(x.y);
+        w.W(x.z);
+    }
     void Put(bool x) { w.Bool(x); }
     void Put(b2LimitState x) { w.U8(static_cast<uint32>(x)); }
     void Put(b2JointType x) { w.U8(static_cast<uint32>(x)); }
@@ -188,9 +195,7 @@ void WriteShapeFixed(C& c, const b2Shape& shape) {
     c.U8(static_cast<uint32>(shape.GetType()));
     c.F(shape.m_radius);
     switch (shape.GetType()) {
-        case b2Shape::e_circle:
-            c.V(static_cast<const b2CircleShape&>(shape).m_p);
-            break;
+        case b2Shape::e_circle: c.V(static_cast<const b2CircleShape&>(shape).m_p); break;
         case b2Shape::e_edge: {
             const auto& e = static_cast<const b2EdgeShape&>(shape);
             c.V(e.m_vertex0);
@@ -212,8 +217,7 @@ void WriteShapeFixed(C& c, const b2Shape& shape) {
             }
             break;
         }
-        default:
-            break;
+        default: break;
     }
 }
 
@@ -376,7 +380,8 @@ void WriteBroadPhase(W& w, const b2World& world) {
 template <class W>
 void WriteBodies(W& w, const b2World& world) {
     WritePool(w, world.m_bodies);
-    WalkList(world.GetBodyList(), [&](const b2Body& b) { WriteBody(w, b); }, [](const b2Body*) {});
+    WalkList(
+        world.GetBodyList(), [&](const b2Body& b) { WriteBody(w, b); }, [](const b2Body*) {});
 }
 
 /// The fixture section: pool, then each body's fixtures (body-list order, fixture-list order).
@@ -403,7 +408,8 @@ template <class W>
 void WriteContacts(W& w, const b2World& world) {
     WritePool(w, world.GetContactManager().GetPool());
     // The record's fixture ids are cached in the contact: no fixture is visited.
-    WalkList(world.GetContactList(), [&](const b2Contact& c) { WriteContact(w, c); }, [](const b2Contact*) {});
+    WalkList(
+        world.GetContactList(), [&](const b2Contact& c) { WriteContact(w, c); }, [](const b2Contact*) {});
 }
 
 /// An empty contact section (an empty pool): a valid image of the world without its contacts.

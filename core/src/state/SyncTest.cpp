@@ -4,7 +4,6 @@
 #include "lockbox/state/SyncTest.h"
 
 #include "FastXxh3.h"
-
 #include "lockbox/collision/PolygonShape.h"
 #include "lockbox/dynamics/joints/DistanceJoint.h"
 
@@ -91,8 +90,8 @@ bool SyncTest::CheckFrame(int32 frame, SyncTestResult& result) {
     }
     const bool worldDiffers = result.where.category != b2HashCategory::e_count;
     result.message = "state after frame " + std::to_string(frame) + " differs on re-simulation: " +
-                     (worldDiffers ? "category " + std::string(b2HashCategoryName(result.where.category)) +
-                                         ", body " + std::to_string(result.where.bodyId)
+                     (worldDiffers ? "category " + std::string(b2HashCategoryName(result.where.category)) + ", body " +
+                                         std::to_string(result.where.bodyId)
                                    : std::string("user state"));
     return false;
 }

@@ -10,6 +10,8 @@
 // Checked builds prove it on every restore: the world hash after RestoreFrame must equal the
 // hash taken at SaveFrame.
 
+#include "lockbox/state/WorldFrame.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -17,11 +19,10 @@
 
 #include "ByteCursor.h"
 #include "ByteStreams.h"
-#include "RestoreLinks.h"
 #include "JointState.h"
 #include "ListWalk.h"
+#include "RestoreLinks.h"
 #include "StateWalk.h"
-#include "lockbox/state/WorldFrame.h"
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox {
@@ -45,7 +46,7 @@ struct FrameCache {
     /// By fixture id, for the contacts: valid for `slotsEpoch` only.
     std::vector<FixtureSlot> slots;  ///< empty: to be built
     uint64 slotsEpoch = 0;
-    std::vector<b2ContactEdge*> edgeTails;   ///< last contact edge of each body (by id)
+    std::vector<b2ContactEdge*> edgeTails;  ///< last contact edge of each body (by id)
 };
 
 void FrameCacheDeleter::operator()(FrameCache* cache) const noexcept { delete cache; }
@@ -141,7 +142,8 @@ struct FrameAccess {
                 f.m_forces.push_back({static_cast<int32>(i), b->m_force, b->m_torque});
             }
             for (const b2Fixture* fx = b->m_fixtureList; fx != nullptr; fx = fx->m_next) {
-                for (int32 k = 0; k < fx->m_proxyCount; ++k) f.m_proxies.push_back(fx->m_proxies[static_cast<size_t>(k)].aabb);
+                for (int32 k = 0; k < fx->m_proxyCount; ++k)
+                    f.m_proxies.push_back(fx->m_proxies[static_cast<size_t>(k)].aabb);
             }
             if (b->m_next != nullptr && b->m_next->m_fixtureList != nullptr) PrefetchObject(b->m_next->m_fixtureList);
         }
@@ -235,7 +237,8 @@ struct FrameAccess {
                 b->m_torque = Fixed();
             }
             for (b2Fixture* fx = b->m_fixtureList; fx != nullptr; fx = fx->m_next) {
-                for (int32 k = 0; k < fx->m_proxyCount; ++k) fx->m_proxies[static_cast<size_t>(k)].aabb = f.m_proxies[proxy++];
+                for (int32 k = 0; k < fx->m_proxyCount; ++k)
+                    fx->m_proxies[static_cast<size_t>(k)].aabb = f.m_proxies[proxy++];
             }
             if (b->m_next != nullptr && b->m_next->m_fixtureList != nullptr) PrefetchObject(b->m_next->m_fixtureList);
         }
@@ -297,7 +300,8 @@ struct FrameAccess {
         }
 
         b2BroadPhase& bp = cm.m_broadPhase;
-        bp.GetTreeForRestore().RestoreState(f.m_nodes, f.m_treeRoot, f.m_treeFree, f.m_treeNodeCount, f.m_treeInsertions);
+        bp.GetTreeForRestore().RestoreState(f.m_nodes, f.m_treeRoot, f.m_treeFree, f.m_treeNodeCount,
+                                            f.m_treeInsertions);
         bp.RestoreState(f.m_proxyCount, f.m_moveBuffer);
     }
 };
@@ -407,7 +411,8 @@ struct FrameUndo {
         const bool kept =
             KeepsEverySlot(s.bodyLive, [&](size_t id) { return world.m_bodies.IsLive(static_cast<int32>(id)); }) &&
             KeepsEverySlot(s.fixtureLive, [&](size_t id) { return world.m_fixtures.IsLive(static_cast<int32>(id)); }) &&
-            KeepsEverySlot(s.jointLive, [&](size_t id) { return id < world.m_joints.size() && world.m_joints[id] != nullptr; });
+            KeepsEverySlot(s.jointLive,
+                           [&](size_t id) { return id < world.m_joints.size() && world.m_joints[id] != nullptr; });
         if (!kept) return kCannotUndo;
         const size_t frameJoints = static_cast<size_t>(std::count(s.jointLive.begin(), s.jointLive.end(), uint8{1}));
         heads = Heads{};

@@ -25,9 +25,7 @@ template class OneSidedPlatformScene<LockboxEngine>;
 template class PendulumScene<LockboxEngine>;
 template class SlopeScene<LockboxEngine>;
 
-std::unique_ptr<LockboxScene> MakeLockboxScene(std::string_view name) {
-    return MakeScene<LockboxEngine>(name);
-}
+std::unique_ptr<LockboxScene> MakeLockboxScene(std::string_view name) { return MakeScene<LockboxEngine>(name); }
 
 uint64_t HashWorld(const b2World& world) {
     std::vector<uint8_t> bytes;

@@ -43,8 +43,8 @@ void DegenerateInput(CaseReport& r, Budget) {
         // A 1 m x 5 mm sliver (one linear slop thick).
         {Raw(0, 0), Raw(kOne, 0), Raw(kOne, 328), Raw(0, 328)},
         // Eight points on a near-circle with two almost coincident.
-        {Raw(kOne, 0), Raw(46341, 46341), Raw(0, kOne), Raw(-46341, 46341), Raw(-kOne, 0),
-         Raw(-46341, -46341), Raw(0, -kOne), Raw(1, -kOne)},
+        {Raw(kOne, 0), Raw(46341, 46341), Raw(0, kOne), Raw(-46341, 46341), Raw(-kOne, 0), Raw(-46341, -46341),
+         Raw(0, -kOne), Raw(1, -kOne)},
     };
     int tried = 0, rejected = 0, simulated = 0;
     double maxSpeed = 0, maxPos = 0;
@@ -191,7 +191,8 @@ void SoftJoints(CaseReport& r, Budget) {
             b2BodyDef gd;
             b2Body* ground = sim.world().CreateBody(&gd);
             // 0.1 m box at density 1 is 0.01 kg; a 10 m box at density 10 is 1000 kg.
-            b2Body* body = m == 0 ? sim.Box(b2Vec2(0, 8), Fixed(0.05), Fixed(0.05), 1) : sim.Box(b2Vec2(0, 8), 5, 5, 10);
+            b2Body* body =
+                m == 0 ? sim.Box(b2Vec2(0, 8), Fixed(0.05), Fixed(0.05), 1) : sim.Box(b2Vec2(0, 8), 5, 5, 10);
             b2DistanceJointDef dj;
             dj.Initialize(ground, body, b2Vec2(0, 10), b2Vec2(0, 8));
             dj.frequencyHz = freqs[f];

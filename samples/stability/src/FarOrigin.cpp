@@ -90,16 +90,15 @@ int64_t MaxRelativeDiff(b2World& ref, const b2Vec2& refOff, b2World& moved, cons
 
 /// Outcome of stepping one scene at several placements side by side.
 struct Comparison {
-    bool ran = false;       ///< false when the scene is unavailable or skipped by the budget
-    int firstMismatch = 0;  ///< first step whose relative state differs; 0 when none did
+    bool ran = false;          ///< false when the scene is unavailable or skipped by the budget
+    int firstMismatch = 0;     ///< first step whose relative state differs; 0 when none did
     int64_t firstDiffRaw = 0;  ///< largest raw difference at that step
 };
 
 /// Builds `name` at offsets[0] (the reference) and at each further offset, steps them side by
 /// side for up to maxSteps (at most the scene's default), and compares the relative states
 /// after every step.
-Comparison ComparePlacements(CaseReport& r, std::string_view name, const std::vector<b2Vec2>& offsets,
-                             int maxSteps) {
+Comparison ComparePlacements(CaseReport& r, std::string_view name, const std::vector<b2Vec2>& offsets, int maxSteps) {
     Comparison out;
     std::vector<std::unique_ptr<Copy>> copies;
     int steps = 0;
@@ -131,8 +130,8 @@ Comparison ComparePlacements(CaseReport& r, std::string_view name, const std::ve
             ++r.steps;
         }
         for (size_t k = 1; k < copies.size(); ++k) {
-            const int64_t d = MaxRelativeDiff(copies[0]->engine.world(), copies[0]->offset,
-                                              copies[k]->engine.world(), copies[k]->offset);
+            const int64_t d = MaxRelativeDiff(copies[0]->engine.world(), copies[0]->offset, copies[k]->engine.world(),
+                                              copies[k]->offset);
             if (d != 0 && out.firstMismatch == 0) {
                 out.firstMismatch = i + 1;
                 out.firstDiffRaw = d;
@@ -204,7 +203,8 @@ void FarFromOrigin(CaseReport& r, Budget budget) {
         for (size_t qi = 0; qi < (expensive ? 1 : quadrants.size()); ++qi) {
             const Quadrant& q = quadrants[qi];
             std::vector<b2Vec2> offsets = {q.reference};
-            offsets.insert(offsets.end(), q.far.begin(), q.far.begin() + (expensive ? 1 : static_cast<long>(q.far.size())));
+            offsets.insert(offsets.end(), q.far.begin(),
+                           q.far.begin() + (expensive ? 1 : static_cast<long>(q.far.size())));
             const Comparison c = ComparePlacements(r, name, offsets, maxSteps);
             if (c.firstMismatch != 0 && firstMismatch == 0) firstMismatch = c.firstMismatch;
         }

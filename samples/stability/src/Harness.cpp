@@ -145,14 +145,11 @@ const std::vector<Entry>& Entries() {
         {{8, "overlap_recovery", "50 boxes spawned overlapping separate calmly", false}, OverlapRecovery},
         {{9, "far_from_origin", "library scenes moved by whole metres: bit-exact relative motion", true},
          FarFromOrigin},
-        {{10, "long_runs", "30 min spin, +-10 turn limit, 10 min creep, free fall out of bounds", true},
-         LongRuns},
+        {{10, "long_runs", "30 min spin, +-10 turn limit, 10 min creep, free fall out of bounds", true}, LongRuns},
         {{11, "restitution_pile", "100 circles with restitution 1: energy bound", false}, RestitutionPile},
-        {{12, "degenerate_input", "degenerate polygons are rejected or simulate stably", false},
-         DegenerateInput},
+        {{12, "degenerate_input", "degenerate polygons are rejected or simulate stably", false}, DegenerateInput},
         {{13, "pulley_gear", "the pulley's singular case and a gear chain stay bounded", false}, PulleyGear},
-        {{14, "soft_joints", "0.1 and 29 Hz springs on 0.01 and 1000 kg; mouse at 1000 m", false},
-         SoftJoints},
+        {{14, "soft_joints", "0.1 and 29 Hz springs on 0.01 and 1000 kg; mouse at 1000 m", false}, SoftJoints},
         {{15, "sleep_threshold", "0.0099 m/s sleeps, 0.0101 m/s stays awake", false}, SleepThreshold},
     };
     return entries;
@@ -197,9 +194,8 @@ std::vector<CaseReport> RunAllCases(Budget budget) {
 
 std::string FormatLine(const CaseResult& r) {
     char buf[512];
-    std::snprintf(buf, sizeof buf, "case=%s metric=%s value=%.6g limit=%.6g %s%s", r.name.c_str(),
-                  r.metric.c_str(), r.value, r.limit, r.pass ? "PASS" : "FAIL",
-                  r.limitation ? " (limitation)" : "");
+    std::snprintf(buf, sizeof buf, "case=%s metric=%s value=%.6g limit=%.6g %s%s", r.name.c_str(), r.metric.c_str(),
+                  r.value, r.limit, r.pass ? "PASS" : "FAIL", r.limitation ? " (limitation)" : "");
     return buf;
 }
 

@@ -143,7 +143,8 @@ void Bullets(CaseReport& r, Budget) {
             Sim sim(r);
             b2Body* ground = sim.GroundBox(30, Fixed(0.5), b2Vec2(0, Fixed(-0.5)));
             for (int i = 0; i < 5; ++i) sim.Box(b2Vec2(10, Fixed::FromRatio(1 + 2 * i, 2)), Fixed(0.5), Fixed(0.5), 1);
-            b2Body* b = MakeBullet(sim, b2Vec2(Fixed(-10) + phase, Fixed::FromRatio(1 + 2 * (k % 5), 2)), b2Vec2(kMaxSpeed, 0));
+            b2Body* b =
+                MakeBullet(sim, b2Vec2(Fixed(-10) + phase, Fixed::FromRatio(1 + 2 * (k % 5), 2)), b2Vec2(kMaxSpeed, 0));
             HitListener hits(b, ground);
             sim.world().SetContactListener(&hits);
             bool tunnel = false;
@@ -202,7 +203,8 @@ void OverlapRecovery(CaseReport& r, Budget) {
     sim.GroundBox(Fixed(0.5), 10, b2Vec2(Fixed(7.5), 10));
     for (int row = 0; row < 5; ++row)
         for (int c = 0; c < 10; ++c)
-            sim.Box(b2Vec2(Fixed::FromRatio(-27 + 6 * c, 10), Fixed::FromRatio(5 + 6 * row, 10)), Fixed(0.5), Fixed(0.5), 1);
+            sim.Box(b2Vec2(Fixed::FromRatio(-27 + 6 * c, 10), Fixed::FromRatio(5 + 6 * row, 10)), Fixed(0.5),
+                    Fixed(0.5), 1);
     int separatedStep = -1;
     double maxSpeed = 0;
     for (int i = 0; i < kSteps; ++i) {
@@ -232,8 +234,9 @@ void RestitutionPile(CaseReport& r, Budget) {
     sim.GroundBox(Fixed(0.5), 6, b2Vec2(Fixed(5.5), 5));
     for (int row = 0; row < 10; ++row)
         for (int c = 0; c < 10; ++c)
-            sim.Ball(b2Vec2(Fixed::FromRatio(-405 + 90 * c + 5 * (row % 2), 100), Fixed::FromRatio(100 + 85 * row, 100)),
-                     Fixed(0.25), 1, Fixed(), 1);
+            sim.Ball(
+                b2Vec2(Fixed::FromRatio(-405 + 90 * c + 5 * (row % 2), 100), Fixed::FromRatio(100 + 85 * row, 100)),
+                Fixed(0.25), 1, Fixed(), 1);
     const double e0 = Energy(sim.world(), kGravity);
     double worst = 0;
     for (int i = 0; i < 900; ++i) {

@@ -15,11 +15,11 @@ namespace {
 
 /// Observations of a settling run.
 struct Settle {
-    int sleepStep = -1;     ///< first step count after which every dynamic body sleeps (-1: never)
-    double maxPen = 0;      ///< largest penetration from settleFrom on, m
-    double maxDrift = 0;    ///< largest |x - x0| of the tracked body, m
-    double maxSpeed = 0;    ///< largest body speed over the run, m/s
-    double finalSag = 0;    ///< restY - final y of the tracked body, m
+    int sleepStep = -1;   ///< first step count after which every dynamic body sleeps (-1: never)
+    double maxPen = 0;    ///< largest penetration from settleFrom on, m
+    double maxDrift = 0;  ///< largest |x - x0| of the tracked body, m
+    double maxSpeed = 0;  ///< largest body speed over the run, m/s
+    double finalSag = 0;  ///< restY - final y of the tracked body, m
 };
 
 /// Steps until everything sleeps (or maxSteps), tracking `top` against (x0, restY).
@@ -79,8 +79,9 @@ b2Body* BuildPyramid(Sim& sim, int base) {
     b2Body* apex = nullptr;
     for (int i = 0; i < base; ++i)
         for (int j = i; j < base; ++j)
-            apex = sim.Box(b2Vec2(Fixed::FromRatio(-9 * base + 9 * i + 18 * (j - i), 16), Fixed::FromRatio(12 + 20 * i, 16)),
-                           Fixed(0.5), Fixed(0.5), 5, Fixed(0.2));
+            apex = sim.Box(
+                b2Vec2(Fixed::FromRatio(-9 * base + 9 * i + 18 * (j - i), 16), Fixed::FromRatio(12 + 20 * i, 16)),
+                Fixed(0.5), Fixed(0.5), 5, Fixed(0.2));
     return apex;
 }
 }  // namespace
@@ -154,8 +155,9 @@ void TinyBodies(CaseReport& r, Budget) {
         for (int row = 0; row < 5; ++row)
             for (int col = 0; col < 4; ++col) {
                 // Staggered by 0.02 m per row so the pile does not stand in perfect columns.
-                b2Body* c = sim.Ball(b2Vec2(Fixed::FromRatio(-30 + 20 * col + 2 * row, 100), Fixed::FromRatio(10 + 15 * row, 100)),
-                                     Fixed(0.05), Fixed(0.1));
+                b2Body* c = sim.Ball(
+                    b2Vec2(Fixed::FromRatio(-30 + 20 * col + 2 * row, 100), Fixed::FromRatio(10 + 15 * row, 100)),
+                    Fixed(0.05), Fixed(0.1));
                 if (!first) first = c;
             }
         const Settle s = RunSettle(sim, first, 0, kMaxSteps, 120);
@@ -204,9 +206,9 @@ void MassRatios(CaseReport& r, Budget) {
         bool limitation;
     };
     const Limits limits[6] = {
-        {10, false, kTwoSlop, 600, 2, false},     {10, true, kTwoSlop, 600, 2, false},
-        {100, false, 0.025, 300, 1.5, true},      {100, true, 0.17, 1200, 11, true},
-        {1000, false, 1.1, 1801, 120.1, true},    {1000, true, 0.01, 300, 7, true},
+        {10, false, kTwoSlop, 600, 2, false},  {10, true, kTwoSlop, 600, 2, false},
+        {100, false, 0.025, 300, 1.5, true},   {100, true, 0.17, 1200, 11, true},
+        {1000, false, 1.1, 1801, 120.1, true}, {1000, true, 0.01, 300, 7, true},
     };
     for (const Limits& l : limits) {
         Sim sim(r);

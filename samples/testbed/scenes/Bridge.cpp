@@ -1,7 +1,6 @@
 // bridge (testbed-only, after the v2.2.1 testbed Bridge): thirty planks on revolute joints
 // between two ground pivots, with boxes and balls dropped on them.
 #include "SceneCatalog.h"
-
 #include "lockbox/dynamics/joints/Joints.h"
 
 namespace lockbox::testbed {
@@ -17,8 +16,8 @@ using E = scenes::LockboxEngine;
 /// 600 steps, 8/3, 60 Hz.
 class BridgeScene : public scenes::LockboxScene {
 public:
-    static constexpr scenes::SceneInfo kInfo{"bridge", 600, 8, 3, 60, true, false, false,
-                                             "testbed Bridge: 30 planks on revolute joints, loaded"};
+    static constexpr scenes::SceneInfo kInfo{
+        "bridge", 600, 8, 3, 60, true, false, false, "testbed Bridge: 30 planks on revolute joints, loaded"};
     static constexpr int kPlanks = 30;
     const scenes::SceneInfo& Info() const override { return kInfo; }
 

@@ -15,8 +15,8 @@ using E = scenes::LockboxEngine;
 /// (density 2, friction 0.6) released at the top of the ramp. 600 steps, 8/3, 60 Hz.
 class DominoesScene : public scenes::LockboxScene {
 public:
-    static constexpr scenes::SceneInfo kInfo{"dominoes", 600, 8, 3, 60, true, false, false,
-                                             "a ball rolls down a ramp into twenty dominoes"};
+    static constexpr scenes::SceneInfo kInfo{
+        "dominoes", 600, 8, 3, 60, true, false, false, "a ball rolls down a ramp into twenty dominoes"};
     const scenes::SceneInfo& Info() const override { return kInfo; }
 
     void Build(E& e) override {

@@ -2,14 +2,14 @@
 // the moved proxies' fat-AABB overlaps; the sequence is identical across runs, invariant under
 // whole-metre shifts up to +-15,000 m, and pinned by a golden FNV-1a hash that every compiler
 // and architecture must reproduce.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <map>
 #include <utility>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/BroadPhase.h"
@@ -30,7 +30,9 @@ public:
         z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
         return z ^ (z >> 31);
     }
-    int64_t Range(int64_t lo, int64_t hi) { return lo + static_cast<int64_t>(Next() % static_cast<uint64_t>(hi - lo + 1)); }
+    int64_t Range(int64_t lo, int64_t hi) {
+        return lo + static_cast<int64_t>(Next() % static_cast<uint64_t>(hi - lo + 1));
+    }
     Fixed Raw(int32_t lo, int32_t hi) { return Fixed::FromRaw(static_cast<int32_t>(Range(lo, hi))); }
 
 private:
@@ -187,8 +189,7 @@ TEST(BroadPhasePairs, SortedUniqueAndNoSelfPairs) {
     Recorder rec;
     bp.UpdatePairs(&rec);
     // Boxes i and j overlap (touching counts) when |i - j| <= 2.
-    const PairList expected = {{100, 101}, {100, 102}, {101, 102}, {101, 103}, {102, 103},
-                               {102, 104}, {103, 104}};
+    const PairList expected = {{100, 101}, {100, 102}, {101, 102}, {101, 103}, {102, 103}, {102, 104}, {103, 104}};
     EXPECT_EQ(rec.pairs, expected);
     // Nothing moved: nothing to report.
     Recorder again;
@@ -223,7 +224,9 @@ TEST(BroadPhasePairs, NoAllocationOnceWarm) {
     // The buffers keep their capacity: a second identical step reports the same pairs.
     b2BroadPhase bp;
     std::vector<int32> ids;
-    for (int i = 0; i < 64; ++i) ids.push_back(bp.CreateProxy(b2AABB{b2Vec2(i % 8, i / 8), b2Vec2(i % 8 + 1, i / 8 + 1)}, static_cast<uint64>(i)));
+    for (int i = 0; i < 64; ++i)
+        ids.push_back(
+            bp.CreateProxy(b2AABB{b2Vec2(i % 8, i / 8), b2Vec2(i % 8 + 1, i / 8 + 1)}, static_cast<uint64>(i)));
     Recorder r1;
     bp.UpdatePairs(&r1);
     for (const int32 id : ids) bp.TouchProxy(id);

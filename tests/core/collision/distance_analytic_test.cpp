@@ -1,10 +1,10 @@
 // b2Distance against closed-form distances: circles, boxes at known offsets and rotations,
 // point and segment against a polygon, touching and overlapping shapes, warm starts.
 
-#include <gtest/gtest.h>
-
 #include <array>
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/Distance.h"
@@ -15,7 +15,9 @@ namespace {
 using namespace lockbox::literals;
 
 // Four counter-clockwise corners of a box with half extents hx, hy (local frame).
-std::array<b2Vec2, 4> Box(Fixed hx, Fixed hy) { return {b2Vec2(-hx, -hy), b2Vec2(hx, -hy), b2Vec2(hx, hy), b2Vec2(-hx, hy)}; }
+std::array<b2Vec2, 4> Box(Fixed hx, Fixed hy) {
+    return {b2Vec2(-hx, -hy), b2Vec2(hx, -hy), b2Vec2(hx, hy), b2Vec2(-hx, hy)};
+}
 
 b2Transform At(Fixed x, Fixed y, Fixed angle = Fixed()) {
     b2Transform xf;
@@ -160,8 +162,9 @@ TEST(DistanceAnalytic, WarmStartGivesSameResultWithFewerIterations) {
     std::array<b2Vec2, 6> hexagon;
     for (int i = 0; i < 6; ++i) {
         const double t = i * 1.0471975511965976;
-        hexagon[static_cast<size_t>(i)] = b2Vec2(Fixed::FromRaw(static_cast<int32_t>(std::lround(std::cos(t) * 65536))),
-                                                 Fixed::FromRaw(static_cast<int32_t>(std::lround(std::sin(t) * 65536))));
+        hexagon[static_cast<size_t>(i)] =
+            b2Vec2(Fixed::FromRaw(static_cast<int32_t>(std::lround(std::cos(t) * 65536))),
+                   Fixed::FromRaw(static_cast<int32_t>(std::lround(std::sin(t) * 65536))));
     }
     const auto box = Box(0.7_fx, 0.2_fx);
     b2DistanceProxy a, b;
@@ -171,7 +174,8 @@ TEST(DistanceAnalytic, WarmStartGivesSameResultWithFewerIterations) {
     b2SimplexCache cache;
     for (int step = 0; step < 40; ++step) {
         const b2Transform xfA = At(0, 0, Fixed::FromRaw(step * 900));
-        const b2Transform xfB = At(Fixed(3) - Fixed::FromRaw(step * 1500), Fixed::FromRaw(step * 700), Fixed::FromRaw(-step * 1300));
+        const b2Transform xfB =
+            At(Fixed(3) - Fixed::FromRaw(step * 1500), Fixed::FromRaw(step * 700), Fixed::FromRaw(-step * 1300));
         const b2DistanceOutput cold = Gjk(a, xfA, b, xfB, true);
         const b2DistanceOutput warm = Gjk(a, xfA, b, xfB, true, &cache);
         EXPECT_EQ(cold.distance, warm.distance) << step;

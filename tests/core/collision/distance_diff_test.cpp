@@ -8,14 +8,14 @@
 // This file is also the body of heavy/distance_diff_heavy_test.cpp, which includes it with
 // LOCKBOX_DISTANCE_DIFF_PAIRS set to 10000.
 
-#include <gtest/gtest.h>
-
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <random>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/Distance.h"
@@ -285,11 +285,12 @@ TEST(DistanceDiff, AgainstFloatBox2D) {
                 if (cls.empty()) continue;
                 tally.Add(cls, true);
                 if (printed++ < 8) {
-                    std::printf("  %s #%d mode=%d %s: lockbox d=%.6f pA=(%.5f,%.5f) pB=(%.5f,%.5f) it=%d | "
-                                "float d=%.6f pA=(%.5f,%.5f) pB=(%.5f,%.5f) it=%d\n",
-                                pt.name, pair, mode, cls.c_str(), out.distance.ToDouble(), out.pointA.x.ToDouble(),
-                                out.pointA.y.ToDouble(), out.pointB.x.ToDouble(), out.pointB.y.ToDouble(), out.iterations,
-                                fout.distance, fout.pointA.x, fout.pointA.y, fout.pointB.x, fout.pointB.y, fout.iterations);
+                    std::printf(
+                        "  %s #%d mode=%d %s: lockbox d=%.6f pA=(%.5f,%.5f) pB=(%.5f,%.5f) it=%d | "
+                        "float d=%.6f pA=(%.5f,%.5f) pB=(%.5f,%.5f) it=%d\n",
+                        pt.name, pair, mode, cls.c_str(), out.distance.ToDouble(), out.pointA.x.ToDouble(),
+                        out.pointA.y.ToDouble(), out.pointB.x.ToDouble(), out.pointB.y.ToDouble(), out.iterations,
+                        fout.distance, fout.pointA.x, fout.pointA.y, fout.pointB.x, fout.pointB.y, fout.iterations);
                 }
             }
         }
@@ -385,8 +386,8 @@ TEST(ToiDiff, AgainstFloatBox2D) {
                 fa.Normalize();
                 fb.Normalize();
                 const double dAt = FloatDistanceAt(fin.proxyA, fa, fin.proxyB, fb, tl);
-                bool valid = out.state == b2TOIOutput::e_touching && dAt > target - tol - slack &&
-                             dAt < target + tol + slack;
+                bool valid =
+                    out.state == b2TOIOutput::e_touching && dAt > target - tol - slack && dAt < target + tol + slack;
                 for (int k = 0; valid && k < 64; ++k) {
                     valid = FloatDistanceAt(fin.proxyA, fa, fin.proxyB, fb, tl * k / 64.0) > target - tol - slack;
                 }
@@ -401,9 +402,10 @@ TEST(ToiDiff, AgainstFloatBox2D) {
             }
         }
         PrintTally("toi", pt.name, tally);
-        std::printf("      states failed %d overlapped %d touching %d separated %d; max |t - t_float| %.3g, "
-                    "max iterations %d, max root iterations per call %d\n",
-                    states[1], states[2], states[3], states[4], maxDt, maxIter, maxRoot);
+        std::printf(
+            "      states failed %d overlapped %d touching %d separated %d; max |t - t_float| %.3g, "
+            "max iterations %d, max root iterations per call %d\n",
+            states[1], states[2], states[3], states[4], maxDt, maxIter, maxRoot);
         EXPECT_LE(tally.disagreements * 1000, tally.checks) << pt.name;
     }
 }

@@ -5,10 +5,10 @@
 // translation), every later quantity is a difference of two world points, and the witness
 // points are the first simplex vertex plus a rounded offset. Whole metres are exact in Q16.16.
 
-#include <gtest/gtest.h>
-
 #include <array>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/TimeOfImpact.h"

@@ -2,9 +2,9 @@
 // (touching, separated by 1 raw, deep overlap, coincident centres, rotated frames, every
 // Voronoi region of the polygon).
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/CircleShape.h"
@@ -49,11 +49,30 @@ TEST(ManifoldCircles, Table) {
         {"deep overlap", {0, 0}, 2, At(1, 1), {0, 0}, 1, At(1.5_fx, 1), 1},
         {"coincident centres", {0, 0}, 1, At(4, 4), {0, 0}, 1, At(4, 4), 1},
         {"offset centres, rotated", {1, 0}, 1, At(0, 0, 1.5707963_fx), {0, -1}, 1.25_fx, At(0, 2, 3.14159_fx), 1},
-        {"offset centres, rotated, apart", {1, 0}, 0.5_fx, At(0, 0, 1.5707963_fx), {0, -1}, 0.5_fx, At(0, 2, 3.14159_fx), 0},
-        {"contact-scale radii touching", {0, 0}, b2_linearSlop, At(0, 0), {0, 0}, b2_linearSlop,
-         At(b2_linearSlop + b2_linearSlop, 0), 1},
-        {"contact-scale radii 1 raw apart", {0, 0}, b2_linearSlop, At(0, 0), {0, 0}, b2_linearSlop,
-         At(b2_linearSlop + b2_linearSlop + oneRaw, 0), 0},
+        {"offset centres, rotated, apart",
+         {1, 0},
+         0.5_fx,
+         At(0, 0, 1.5707963_fx),
+         {0, -1},
+         0.5_fx,
+         At(0, 2, 3.14159_fx),
+         0},
+        {"contact-scale radii touching",
+         {0, 0},
+         b2_linearSlop,
+         At(0, 0),
+         {0, 0},
+         b2_linearSlop,
+         At(b2_linearSlop + b2_linearSlop, 0),
+         1},
+        {"contact-scale radii 1 raw apart",
+         {0, 0},
+         b2_linearSlop,
+         At(0, 0),
+         {0, 0},
+         b2_linearSlop,
+         At(b2_linearSlop + b2_linearSlop + oneRaw, 0),
+         0},
     };
     for (const CircleCase& c : cases) {
         SCOPED_TRACE(c.name);
@@ -114,7 +133,12 @@ TEST(ManifoldPolygonCircle, RegionsOfAUnitBox) {
         {"right face", {1.25_fx, -0.5_fx}, r, 1, {1, 0}, {1, 0}},
         {"vertex region", {1.25_fx, 1.25_fx}, r, 1, {invSqrt2, invSqrt2}, {1, 1}},
         {"vertex region, separated", {1.375_fx, 1.375_fx}, r, 0, {}, {}},
-        {"vertex region v1 of face 0", {-1.25_fx, -1.125_fx}, r, 1, {Fixed::FromRaw(-58617), Fixed::FromRaw(-29309)}, {-1, -1}},
+        {"vertex region v1 of face 0",
+         {-1.25_fx, -1.125_fx},
+         r,
+         1,
+         {Fixed::FromRaw(-58617), Fixed::FromRaw(-29309)},
+         {-1, -1}},
         {"centre inside, nearest the right face", {0.25_fx, 0.125_fx}, r, 1, {1, 0}, {1, 0}},
         {"centre exactly on the top face", {0.5_fx, 1}, r, 1, {0, 1}, {0, 1}},
         {"centre at the origin: first face wins ties", {0, 0}, r, 1, {0, -1}, {0, -1}},

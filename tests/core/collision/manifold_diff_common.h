@@ -28,7 +28,15 @@ namespace manifold_diff {
 namespace lb = lockbox;
 
 /// The pair types under test.
-enum class Pair { circleCircle, polygonCircle, polygonPolygon, edgeCircle, edgePolygon, edgeCircleGhost, edgePolygonGhost };
+enum class Pair {
+    circleCircle,
+    polygonCircle,
+    polygonPolygon,
+    edgeCircle,
+    edgePolygon,
+    edgeCircleGhost,
+    edgePolygonGhost
+};
 
 inline const char* PairName(Pair p) {
     switch (p) {
@@ -54,15 +62,20 @@ struct Rng {
         return z ^ (z >> 31);
     }
     /// Uniform integer in [lo, hi].
-    int64_t Int(int64_t lo, int64_t hi) { return lo + static_cast<int64_t>(Next() % static_cast<uint64_t>(hi - lo + 1)); }
+    int64_t Int(int64_t lo, int64_t hi) {
+        return lo + static_cast<int64_t>(Next() % static_cast<uint64_t>(hi - lo + 1));
+    }
     /// A Fixed uniformly spaced in [lo, hi] metres (raw granularity).
     lb::Fixed Fx(double lo, double hi) {
-        return lb::Fixed::FromRaw(static_cast<int32_t>(Int(static_cast<int64_t>(lo * 65536), static_cast<int64_t>(hi * 65536))));
+        return lb::Fixed::FromRaw(
+            static_cast<int32_t>(Int(static_cast<int64_t>(lo * 65536), static_cast<int64_t>(hi * 65536))));
     }
     double Unit() { return static_cast<double>(Next() >> 11) * (1.0 / 9007199254740992.0); }
 };
 
-inline ::b2Vec2 F(const lb::b2Vec2& v) { return ::b2Vec2(static_cast<float>(v.x.ToDouble()), static_cast<float>(v.y.ToDouble())); }
+inline ::b2Vec2 F(const lb::b2Vec2& v) {
+    return ::b2Vec2(static_cast<float>(v.x.ToDouble()), static_cast<float>(v.y.ToDouble()));
+}
 
 inline ::b2Transform F(const lb::b2Transform& xf) {
     ::b2Transform t;
@@ -159,7 +172,8 @@ inline Outcome FromLockbox(const lb::b2Manifold& m, const lb::b2Transform& xfA, 
     return o;
 }
 
-inline Outcome FromFloat(const ::b2Manifold& m, const ::b2Transform& xfA, float rA, const ::b2Transform& xfB, float rB) {
+inline Outcome FromFloat(const ::b2Manifold& m, const ::b2Transform& xfA, float rA, const ::b2Transform& xfB,
+                         float rB) {
     Outcome o;
     o.count = m.pointCount;
     if (m.pointCount == 0) return o;  // 2.4.1 leaves the type unset then
@@ -207,7 +221,7 @@ struct Disagreement {
 /// Result of a run over one pair type.
 struct RunResult {
     int pairs = 0;
-    int touching = 0;        ///< pairs where lockbox found at least one point
+    int touching = 0;  ///< pairs where lockbox found at least one point
     int disagreements = 0;
     int versionRule = 0;      ///< pairs where 2.2.1 and 2.4.1 differ by design (not compared)
     double maxDeviation = 0;  ///< over the agreeing pairs with points
@@ -218,7 +232,8 @@ struct RunResult {
 inline std::string Describe(const Outcome& o) {
     char buf[256];
     if (o.count == 0) return "none";
-    std::snprintf(buf, sizeof buf, "type %d n=(%.6f,%.6f) p0=(%.6f,%.6f) s0=%.6f", o.type, o.nx, o.ny, o.px[0], o.py[0], o.sep[0]);
+    std::snprintf(buf, sizeof buf, "type %d n=(%.6f,%.6f) p0=(%.6f,%.6f) s0=%.6f", o.type, o.nx, o.ny, o.px[0], o.py[0],
+                  o.sep[0]);
     std::string s = buf;
     if (o.count == 2) {
         std::snprintf(buf, sizeof buf, " p1=(%.6f,%.6f) s1=%.6f", o.px[1], o.py[1], o.sep[1]);
@@ -268,7 +283,6 @@ inline lb::b2Transform PlaceNear(Rng& rng, const lb::b2Transform& xfA, double re
     xfB.p = xfA.p + lb::b2Vec2(rng.Fx(-reach, reach), rng.Fx(-reach, reach));
     return xfB;
 }
-
 
 /// World vertices and outward normals of a polygon, in double.
 struct PolyD {
@@ -500,7 +514,8 @@ inline RunResult Run(Pair type, int pairs, uint64_t seed) {
                 for (;;) {
                     RandomEdge(rng, &a, ghosts);
                     RandomPolygon(rng, &b);
-                    const double l = std::hypot((a.m_vertex2 - a.m_vertex1).x.ToDouble(), (a.m_vertex2 - a.m_vertex1).y.ToDouble());
+                    const double l =
+                        std::hypot((a.m_vertex2 - a.m_vertex1).x.ToDouble(), (a.m_vertex2 - a.m_vertex1).y.ToDouble());
                     span = (Extent(b) + 0.1) / l;
                     if (!ghosts || span < 0.45) break;
                 }
@@ -561,7 +576,8 @@ inline RunResult Run(Pair type, int pairs, uint64_t seed) {
         ++result.pairs;
         if (mLb.pointCount > 0) ++result.touching;
         const Outcome oL = FromLockbox(mLb, xfA, rA, xfB, rB);
-        const Outcome oF = FromFloat(mF, F(xfA), static_cast<float>(rA.ToDouble()), F(xfB), static_cast<float>(rB.ToDouble()));
+        const Outcome oF =
+            FromFloat(mF, F(xfA), static_cast<float>(rA.ToDouble()), F(xfB), static_cast<float>(rB.ToDouble()));
         const double dev = Deviation(oL, oF);
         if (dev > 1e-3 && versionClass != nullptr && follows221) {
             // Not a lockbox error: the float reference follows a later rule here.

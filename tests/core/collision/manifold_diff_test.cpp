@@ -2,10 +2,10 @@
 // The full run (>= 10,000 per type) is heavy/manifold_diff_heavy_test.cpp. See
 // manifold_diff_common.h for the harness and the comparison rules.
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "manifold_diff_common.h"
 
@@ -19,10 +19,11 @@ TEST_P(ManifoldDiff, AgreesWithFloatBox2D) {
     const Pair type = GetParam();
     constexpr int kPairs = 500;
     const manifold_diff::RunResult r = manifold_diff::Run(type, kPairs, 0x5EED0000u + static_cast<unsigned>(type));
-    std::printf("%s: %d pairs, %d touching, %d disagreements, %d excluded by version rule, max deviation of "
-                "agreeing pairs %.3g\n%s%s",
-                manifold_diff::PairName(type), r.pairs, r.touching, r.disagreements, r.versionRule, r.maxDeviation,
-                r.report.c_str(), r.versionReport.c_str());
+    std::printf(
+        "%s: %d pairs, %d touching, %d disagreements, %d excluded by version rule, max deviation of "
+        "agreeing pairs %.3g\n%s%s",
+        manifold_diff::PairName(type), r.pairs, r.touching, r.disagreements, r.versionRule, r.maxDeviation,
+        r.report.c_str(), r.versionReport.c_str());
     // At most 0.1 % of the pairs may disagree: none out of 500.
     EXPECT_LE(r.disagreements * 1000, r.pairs) << r.report;
     // The by-design exclusions stay a small minority (they are printed above).
@@ -34,14 +35,15 @@ TEST_P(ManifoldDiff, AgreesWithFloatBox2D) {
 }
 
 std::string PairTestName(const ::testing::TestParamInfo<Pair>& info) {
-    static const char* const kNames[] = {"CircleCircle", "PolygonCircle",   "PolygonPolygon", "EdgeCircle",
+    static const char* const kNames[] = {"CircleCircle", "PolygonCircle",   "PolygonPolygon",  "EdgeCircle",
                                          "EdgePolygon",  "EdgeCircleGhost", "EdgePolygonGhost"};
     return kNames[static_cast<int>(info.param)];
 }
 
 INSTANTIATE_TEST_SUITE_P(AllPairs, ManifoldDiff,
-                         ::testing::Values(Pair::circleCircle, Pair::polygonCircle, Pair::polygonPolygon, Pair::edgeCircle,
-                                           Pair::edgePolygon, Pair::edgeCircleGhost, Pair::edgePolygonGhost),
+                         ::testing::Values(Pair::circleCircle, Pair::polygonCircle, Pair::polygonPolygon,
+                                           Pair::edgeCircle, Pair::edgePolygon, Pair::edgeCircleGhost,
+                                           Pair::edgePolygonGhost),
                          PairTestName);
 
 }  // namespace

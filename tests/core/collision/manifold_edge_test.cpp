@@ -2,9 +2,9 @@
 // with and without ghost vertices, convex and concave corners, and the chain seam (a box
 // across the joint of two chain edges must get the seam-free normal, never an internal one).
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/ChainShape.h"
@@ -74,12 +74,44 @@ TEST(ManifoldEdgeCircle, Regions) {
         {"vertex A region", plain, {-1.25_fx, 0.25_fx}, 1, b2Manifold::e_circles, {}, {-1, 0}, 0, kVertex},
         {"vertex B region", plain, {1.25_fx, -0.25_fx}, 1, b2Manifold::e_circles, {}, {1, 0}, 1, kVertex},
         {"vertex B region, separated", plain, {1.375_fx, 0.375_fx}, 0, {}, {}, {}, 0, 0},
-        {"exactly above the end point: vertex region", plain, {1, 0.25_fx}, 1, b2Manifold::e_circles, {}, {1, 0}, 1, kVertex},
+        {"exactly above the end point: vertex region",
+         plain,
+         {1, 0.25_fx},
+         1,
+         b2Manifold::e_circles,
+         {},
+         {1, 0},
+         1,
+         kVertex},
         {"ghost after B: next edge owns the contact", ghosts, {1.25_fx, 0.25_fx}, 0, {}, {}, {}, 0, 0},
         {"ghost before A: previous edge owns it", ghosts, {-1.25_fx, 0.25_fx}, 0, {}, {}, {}, 0, 0},
-        {"ghosts do not change the face region", ghosts, {0, 0.375_fx}, 1, b2Manifold::e_faceA, {0, 1}, {-1, 0}, 0, kFace},
-        {"convex corner: vertex region kept", convexGhosts, {1.25_fx, 0.25_fx}, 1, b2Manifold::e_circles, {}, {1, 0}, 1, kVertex},
-        {"diagonal face", Edge({0, 0}, {2, 2}), {0.75_fx, 1.25_fx}, 1, b2Manifold::e_faceA, {-r2, r2}, {0, 0}, 0, kFace},
+        {"ghosts do not change the face region",
+         ghosts,
+         {0, 0.375_fx},
+         1,
+         b2Manifold::e_faceA,
+         {0, 1},
+         {-1, 0},
+         0,
+         kFace},
+        {"convex corner: vertex region kept",
+         convexGhosts,
+         {1.25_fx, 0.25_fx},
+         1,
+         b2Manifold::e_circles,
+         {},
+         {1, 0},
+         1,
+         kVertex},
+        {"diagonal face",
+         Edge({0, 0}, {2, 2}),
+         {0.75_fx, 1.25_fx},
+         1,
+         b2Manifold::e_faceA,
+         {-r2, r2},
+         {0, 0},
+         0,
+         kFace},
     };
     const b2CircleShape circle = Circle(0.5_fx);
     for (const EdgeCircleCase& c : cases) {
@@ -193,8 +225,8 @@ TEST(ManifoldEdgePolygon, DiamondOnEdgeOnePointFaceB) {
     // contact at the corner with the edge normal within the box's cone.
     const b2EdgeShape e = Edge({2, 0}, {-2, 0});
     const b2PolygonShape box = Box(0.5_fx, 0.5_fx);
-    const b2Transform xfB = At(0.3_fx, Fixed::FromDoubleNondeterministic(0.5 * std::sqrt(2.0)) - b2_linearSlop,
-                               0.7853982_fx);
+    const b2Transform xfB =
+        At(0.3_fx, Fixed::FromDoubleNondeterministic(0.5 * std::sqrt(2.0)) - b2_linearSlop, 0.7853982_fx);
     b2Manifold m;
     b2CollideEdgeAndPolygon(&m, &e, b2Transform(), &box, xfB);
     ASSERT_EQ(m.pointCount, 1);

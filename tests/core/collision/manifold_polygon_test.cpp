@@ -2,9 +2,9 @@
 // on B (feature swap), vertex-face contact, deep overlap and rotated frames; feature ids as
 // Box2D 2.2.1 builds them.
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/Collision.h"
@@ -178,7 +178,8 @@ TEST(ManifoldPolygons, RotatedPairMatchesUnrotated) {
     EXPECT_NEAR(wm.normal.x.ToDouble(), -std::sin(0.3), 3e-5);
     EXPECT_NEAR(wm.normal.y.ToDouble(), std::cos(0.3), 3e-5);
     for (int i = 0; i < 2; ++i) {
-        EXPECT_NEAR(wm.separations[i].ToDouble(), -(b2_linearSlop + b2_polygonRadius + b2_polygonRadius).ToDouble(), 5e-5);
+        EXPECT_NEAR(wm.separations[i].ToDouble(), -(b2_linearSlop + b2_polygonRadius + b2_polygonRadius).ToDouble(),
+                    5e-5);
     }
 }
 

@@ -4,9 +4,9 @@
 // of shape A through b2MulT(xfA, xfB), which only sees the exact difference of the positions,
 // and b2WorldManifold rounds only rotations (never a sum with the position).
 
-#include <gtest/gtest.h>
-
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "manifold_diff_common.h"

@@ -88,7 +88,7 @@ TEST(ManifoldWorld, FaceBRotatedPointsFromAToB) {
     b2Manifold m;
     m.type = b2Manifold::e_faceB;
     m.pointCount = 2;
-    m.localNormal = b2Vec2(1, 0);     // world (0, 1) after the quarter turn
+    m.localNormal = b2Vec2(1, 0);      // world (0, 1) after the quarter turn
     m.localPoint = b2Vec2(0.5_fx, 0);  // world (0, 1.5)
     m.points[0].localPoint = b2Vec2(0.25_fx, 1.25_fx);
     m.points[1].localPoint = b2Vec2(-0.75_fx, 1.75_fx);

@@ -1,10 +1,10 @@
 // b2AABB::RayCast (slab method with exact ratios): hit, miss, parallel, starting inside,
 // maxFraction clipping, and agreement with a double reference on random rays.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/Collision.h"

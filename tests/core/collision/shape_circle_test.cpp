@@ -1,9 +1,9 @@
 // b2CircleShape: validation (shape unchanged on error), TestPoint, the exact ray cast against a
 // long double reference and float Box2D 2.4.1, ComputeAABB with rotated transforms.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/CircleShape.h"
@@ -124,9 +124,9 @@ TEST(ShapeCircle, RayCastMatchesReferenceAcrossScales) {
         const b2Transform xf(V(50 * u(rng), 50 * u(rng)), b2Rot(F(3 * u(rng))));
         const double reach = 4 * r;
         const b2Vec2 centre = xf.p + b2Mul(xf.q, c.m_p);
-        const b2RayCastInput in{
-            b2Vec2(centre.x + F(reach * u(rng)), centre.y + F(reach * u(rng))),
-            b2Vec2(centre.x + F(reach * u(rng)), centre.y + F(reach * u(rng))), F(0.5 + u(rng) / 2)};
+        const b2RayCastInput in{b2Vec2(centre.x + F(reach * u(rng)), centre.y + F(reach * u(rng))),
+                                b2Vec2(centre.x + F(reach * u(rng)), centre.y + F(reach * u(rng))),
+                                F(0.5 + u(rng) / 2)};
         b2RayCastOutput out;
         const bool hit = c.RayCast(&out, in, xf, 0);
         // long double reference with the same centre and radius.
@@ -142,14 +142,16 @@ TEST(ShapeCircle, RayCastMatchesReferenceAcrossScales) {
             frac = a / rr;
             refHit = a >= 0 && frac <= in.maxFraction.ToDouble();
         }
-        const long double margin = std::min(std::fabs(frac - in.maxFraction.ToDouble()), std::fabs(sigma) / (rr * R * R));
+        const long double margin =
+            std::min(std::fabs(frac - in.maxFraction.ToDouble()), std::fabs(sigma) / (rr * R * R));
         if (hit != refHit && (margin < 1e-6 || std::fabs(b) / (R * R) < 1e-6)) continue;
         ASSERT_EQ(hit, refHit) << t;
         if (!hit) continue;
         ++hits;
         maxFracErr = std::max(maxFracErr, std::fabs(out.fraction.ToDouble() - frac));
         const long double nx = sx + frac * rx, ny = sy + frac * ry, nl = std::hypot(nx, ny);
-        maxNormalErr = std::max(maxNormalErr, std::hypot(out.normal.x.ToDouble() - nx / nl, out.normal.y.ToDouble() - ny / nl));
+        maxNormalErr =
+            std::max(maxNormalErr, std::hypot(out.normal.x.ToDouble() - nx / nl, out.normal.y.ToDouble() - ny / nl));
         EXPECT_LE(UnitError(out.normal), 2.0 / 65536);
 
         // Float Box2D on the same world data.
@@ -170,9 +172,10 @@ TEST(ShapeCircle, RayCastMatchesReferenceAcrossScales) {
             box2dAgree += std::fabs(fout.fraction - out.fraction.ToDouble()) < 1e-3;
         }
     }
-    std::printf("[circle ray] 20000 rays, %d hits, max |fraction err| %.3Le, max normal err %.3Le; "
-                "float Box2D agrees (1e-3) on %d of %d\n",
-                hits, maxFracErr, maxNormalErr, box2dAgree, box2dCompared);
+    std::printf(
+        "[circle ray] 20000 rays, %d hits, max |fraction err| %.3Le, max normal err %.3Le; "
+        "float Box2D agrees (1e-3) on %d of %d\n",
+        hits, maxFracErr, maxNormalErr, box2dAgree, box2dCompared);
     EXPECT_GT(hits, 3000);
     EXPECT_LE(maxFracErr, 1e-4L);
     EXPECT_LE(maxNormalErr, 1e-3L);

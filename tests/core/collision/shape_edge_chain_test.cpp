@@ -1,10 +1,10 @@
 // b2EdgeShape and b2ChainShape: validation (unchanged on error), ghost vertices of chain
 // children (open chains, loops, SetPrevVertex/SetNextVertex), two-sided ray casts, AABBs with
 // the skin radius, no interior and no mass.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/ChainShape.h"
@@ -97,7 +97,7 @@ TEST(ShapeEdge, RayCastIsTwoSided) {
     EXPECT_FALSE(e.RayCast(&out, in, id, 0));
     // Rotated and translated: the edge from (5, 5) along the rotated x axis.
     const b2Transform xf(V(5, 5), b2Rot(F(0.5235987755982988)));  // 30 degrees
-    in = {V(5 - 1, 5 + 1.7320508), V(5 + 1, 5 - 1.7320508), 1};  // along the rotated -y axis
+    in = {V(5 - 1, 5 + 1.7320508), V(5 + 1, 5 - 1.7320508), 1};   // along the rotated -y axis
     ASSERT_TRUE(e.RayCast(&out, in, xf, 0));
     EXPECT_NEAR(out.fraction.ToDouble(), 0.5, 3e-5);
     EXPECT_NEAR(out.normal.x.ToDouble(), -0.5, 3e-5);  // world normal: rotated (0, 1)

@@ -7,11 +7,11 @@
 // stability test 2). A correctly rounded Q32.32 result can be off by half a Q32.32 ULP
 // (2^-33 kg m^2), which exceeds 1e-4 relative below I = 1.16e-6; there the assertion is the
 // achieved bound 0.5 ULP + 1e-9 relative, and the report lists which cases needed it.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/CircleShape.h"
@@ -86,10 +86,11 @@ struct Stats {
         maxIdealIRel = std::fmax(maxIdealIRel, std::fabs(L(md.I) - ideal.I) / ideal.I);
     }
     void Print() const {
-        std::printf("[mass] %-10s cases %3d  max rel m %.3Le  I %.3Le  centre abs %.3Le m (%.2Lf ULP)"
-                    "  | vs ideal geometry: m %.3Le  I %.3Le  | cases held to 0.5 ULP: %d (worst %.3Le)\n",
-                    name, cases, maxMassRel, maxIRel, maxCenterAbs, maxCenterAbs * 65536.0L, maxIdealMassRel,
-                    maxIdealIRel, ulpBoundCases, worstIWithinUlp);
+        std::printf(
+            "[mass] %-10s cases %3d  max rel m %.3Le  I %.3Le  centre abs %.3Le m (%.2Lf ULP)"
+            "  | vs ideal geometry: m %.3Le  I %.3Le  | cases held to 0.5 ULP: %d (worst %.3Le)\n",
+            name, cases, maxMassRel, maxIRel, maxCenterAbs, maxCenterAbs * 65536.0L, maxIdealMassRel, maxIdealIRel,
+            ulpBoundCases, worstIWithinUlp);
     }
 };
 
@@ -116,8 +117,8 @@ TEST(ShapeMass, BoxesOverTheEnvelope) {
                 ASSERT_EQ(box.SetAsBox(ToFixed(w / 2), ToFixed(h / 2), c, Fixed(0.7)), b2ShapeError::ok);
                 box.ComputeMass(&md, density);
                 const ld d2 = L(c.x) * L(c.x) + L(c.y) * L(c.y);
-                rotated.Check(md, PolygonExact(box, L(density)),
-                              {m, L(c.x), L(c.y), m * ((w * w + h * h) / 12 + d2)}, w);
+                rotated.Check(md, PolygonExact(box, L(density)), {m, L(c.x), L(c.y), m * ((w * w + h * h) / 12 + d2)},
+                              w);
             }
         }
     }

@@ -1,12 +1,12 @@
 // b2PolygonShape: every rejection of Set/SetAsBox (shape unchanged afterwards), SetFromHull on
 // random clouds, normals, TestPoint, RayCast and ComputeAABB under rotated transforms.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/PolygonShape.h"
@@ -127,7 +127,7 @@ TEST(ShapePolygon, SetAsBoxRejectsAndLeavesShapeUnchanged) {
     EXPECT_EQ(box.SetAsBox(1, 1, V(4096, 0), 0), b2ShapeError::outOfRange);
     EXPECT_EQ(box.SetAsBox(1, 1, V(5000, 0), 0), b2ShapeError::outOfRange);
     EXPECT_EQ(box.SetAsBox(0.01_fx, 0.01_fx), b2ShapeError::areaTooSmall);
-    EXPECT_EQ(box.SetAsBox(10, 0.001_fx), b2ShapeError::duplicateVertices);  // 2 mm thick
+    EXPECT_EQ(box.SetAsBox(10, 0.001_fx), b2ShapeError::duplicateVertices);               // 2 mm thick
     EXPECT_EQ(box.SetAsBox(10, 0.0012_fx, V(1, 1), 1), b2ShapeError::duplicateVertices);  // 2.4 mm, rotated
     ExpectSamePolygon(box, copy);
     // 3 mm thick is above the weld distance (2.5 mm): accepted.
@@ -209,8 +209,8 @@ TEST(ShapePolygon, SetFromHullOnRandomCloudsIsConvexAndContainsAllPoints) {
 
 TEST(ShapePolygon, SetFromHullHandlesInteriorAndCollinearPoints) {
     // A square's corners plus its centre, edge midpoints and duplicates: the hull is the square.
-    const std::vector<b2Vec2> pts = {V(0, 0), V(1, 1), V(-1, -1), V(1, -1), V(0, -1), V(1, 1),
-                                     V(-1, 1), V(1, 0), V(-1, 0.5), V(0.5, 0.5)};
+    const std::vector<b2Vec2> pts = {V(0, 0), V(1, 1),  V(-1, -1), V(1, -1),   V(0, -1),
+                                     V(1, 1), V(-1, 1), V(1, 0),   V(-1, 0.5), V(0.5, 0.5)};
     b2PolygonShape p;
     ASSERT_EQ(p.SetFromHull(pts.data(), static_cast<int32>(pts.size())), b2ShapeError::ok);
     ASSERT_EQ(p.m_vertexCount, 4);

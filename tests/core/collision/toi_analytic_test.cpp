@@ -1,10 +1,10 @@
 // b2TimeOfImpact against closed-form impact times, a fast bullet against a thin wall,
 // separated and overlapping cases, rotating sweeps and the iteration caps.
 
-#include <gtest/gtest.h>
-
 #include <array>
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/TimeOfImpact.h"
@@ -41,7 +41,8 @@ b2TOIOutput Toi(const b2DistanceProxy& a, const b2Sweep& sa, const b2DistancePro
 }
 
 // Core distance of the two shapes at time t of their sweeps.
-Fixed CoreDistanceAt(const b2DistanceProxy& a, const b2Sweep& sa, const b2DistanceProxy& b, const b2Sweep& sb, Fixed t) {
+Fixed CoreDistanceAt(const b2DistanceProxy& a, const b2Sweep& sa, const b2DistanceProxy& b, const b2Sweep& sb,
+                     Fixed t) {
     b2DistanceInput in;
     in.proxyA = a;
     in.proxyB = b;
@@ -171,8 +172,8 @@ TEST(ToiAnalytic, RotatingRodHitsCircle) {
     const b2TOIOutput both = Toi(a, Linear({0, 0}, {0, 0.5_fx}, Fixed(), halfPi), b, Linear({0, 1.5_fx}, {0, 1.5_fx}));
     ASSERT_EQ(both.state, b2TOIOutput::e_touching);
     EXPECT_LT(both.t, out.t);
-    const Fixed d = CoreDistanceAt(a, Linear({0, 0}, {0, 0.5_fx}, Fixed(), halfPi), b,
-                                   Linear({0, 1.5_fx}, {0, 1.5_fx}), both.t);
+    const Fixed d =
+        CoreDistanceAt(a, Linear({0, 0}, {0, 0.5_fx}, Fixed(), halfPi), b, Linear({0, 1.5_fx}, {0, 1.5_fx}), both.t);
     EXPECT_NEAR(d.ToDouble(), target, kTolerance + 1e-5);
 }
 
@@ -183,9 +184,10 @@ TEST(ToiAnalytic, LargeAnglesAreNormalised) {
     b.Set(box.data(), 4, b2_polygonRadius);
     // The same motion with the angles shifted by 100 turns of the Q16.16 2*pi.
     const Fixed turns = Fixed::FromRaw(100 * 411775);
-    const b2TOIOutput base = Toi(a, Linear({0, 0}, {0, 0}, 0.2_fx, 1.2_fx), b, Linear({4, 0.1_fx}, {-2, 0}, -0.3_fx, 0.4_fx));
-    const b2TOIOutput shifted =
-        Toi(a, Linear({0, 0}, {0, 0}, 0.2_fx + turns, 1.2_fx + turns), b, Linear({4, 0.1_fx}, {-2, 0}, -0.3_fx - turns, 0.4_fx - turns));
+    const b2TOIOutput base =
+        Toi(a, Linear({0, 0}, {0, 0}, 0.2_fx, 1.2_fx), b, Linear({4, 0.1_fx}, {-2, 0}, -0.3_fx, 0.4_fx));
+    const b2TOIOutput shifted = Toi(a, Linear({0, 0}, {0, 0}, 0.2_fx + turns, 1.2_fx + turns), b,
+                                    Linear({4, 0.1_fx}, {-2, 0}, -0.3_fx - turns, 0.4_fx - turns));
     EXPECT_EQ(base.state, b2TOIOutput::e_touching);
     EXPECT_EQ(base.state, shifted.state);
     EXPECT_EQ(base.t, shifted.t);

@@ -2,11 +2,11 @@
 // +-15,000 m) build the same tree, and proxies at the corners of a +-16,000 m world with huge
 // boxes never overflow (the checked build traps on any overflow; the default build counts
 // saturations, which must stay at zero).
-#include <gtest/gtest.h>
-
 #include <cstdint>
 #include <map>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/DynamicTree.h"
@@ -26,7 +26,9 @@ public:
         z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
         return z ^ (z >> 31);
     }
-    int64_t Range(int64_t lo, int64_t hi) { return lo + static_cast<int64_t>(Next() % static_cast<uint64_t>(hi - lo + 1)); }
+    int64_t Range(int64_t lo, int64_t hi) {
+        return lo + static_cast<int64_t>(Next() % static_cast<uint64_t>(hi - lo + 1));
+    }
     Fixed Metres(int32_t lo, int32_t hi) {
         return Fixed::FromRaw(static_cast<int32_t>(Range(int64_t{lo} * 65536, int64_t{hi} * 65536)));
     }

@@ -1,13 +1,13 @@
 // b2DynamicTree under 10,000 seeded random insert/move/remove operations: the structure
 // validates after every batch, and Query and RayCast agree with brute-force scans over the
 // fat AABBs (exact integer slab tests).
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <map>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/DynamicTree.h"
@@ -30,7 +30,9 @@ public:
         return z ^ (z >> 31);
     }
     /// Uniform integer in [lo, hi].
-    int64_t Range(int64_t lo, int64_t hi) { return lo + static_cast<int64_t>(Next() % static_cast<uint64_t>(hi - lo + 1)); }
+    int64_t Range(int64_t lo, int64_t hi) {
+        return lo + static_cast<int64_t>(Next() % static_cast<uint64_t>(hi - lo + 1));
+    }
     /// Fixed with raw uniform in [lo, hi] metres.
     Fixed Metres(int32_t lo, int32_t hi) {
         return Fixed::FromRaw(static_cast<int32_t>(Range(int64_t{lo} * 65536, int64_t{hi} * 65536)));
@@ -161,7 +163,7 @@ void CheckRayCasts(const b2DynamicTree& tree, const std::map<int32, Proxy>& live
         input.p1 = b2Vec2{rng.Metres(-250, 250), rng.Metres(-250, 250)};
         // Some rays are axis-aligned or degenerate (p1 == p2) on purpose.
         const int64_t kind = rng.Range(0, 9);
-        input.p2 = kind == 0 ? input.p1
+        input.p2 = kind == 0   ? input.p1
                    : kind == 1 ? b2Vec2{input.p1.x, rng.Metres(-250, 250)}
                                : b2Vec2{rng.Metres(-250, 250), rng.Metres(-250, 250)};
         input.maxFraction = Fixed::FromRaw(static_cast<int32_t>(rng.Range(1, 65536)));
@@ -253,10 +255,11 @@ TEST(TreeRandom, TenThousandOperationsMatchBruteForce) {
             ASSERT_LE(tree.GetMaxBalance(), 2);
         }
     }
-    std::printf("[tree] leaves at end %zu, max height %d, max balance %d, area ratio %.3f, "
-                "ray callbacks %lld for %lld exact hits\n",
-                live.size(), maxHeight, maxBalance, tree.GetAreaRatio().ToDouble(),
-                static_cast<long long>(rayCalls), static_cast<long long>(rayHits));
+    std::printf(
+        "[tree] leaves at end %zu, max height %d, max balance %d, area ratio %.3f, "
+        "ray callbacks %lld for %lld exact hits\n",
+        live.size(), maxHeight, maxBalance, tree.GetAreaRatio().ToDouble(), static_cast<long long>(rayCalls),
+        static_cast<long long>(rayHits));
 }
 
 TEST(TreeRandom, RebuildBottomUpKeepsLeavesAndValidates) {

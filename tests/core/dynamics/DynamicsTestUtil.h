@@ -71,10 +71,26 @@ inline b2Body* MakeDynamicCircle(b2World& world, Fixed x, Fixed y, Fixed r, Fixe
 /// Counts contact events and records their order.
 class RecordingListener : public b2ContactListener {
 public:
-    void BeginContact(b2Contact* c) override { ++begins; log.push_back('B'); last = c; }
-    void EndContact(b2Contact* c) override { ++ends; log.push_back('E'); last = c; }
-    void PreSolve(b2Contact* c, const b2Manifold*) override { ++preSolves; log.push_back('P'); last = c; }
-    void PostSolve(b2Contact* c, const b2ContactImpulse*) override { ++postSolves; log.push_back('S'); last = c; }
+    void BeginContact(b2Contact* c) override {
+        ++begins;
+        log.push_back('B');
+        last = c;
+    }
+    void EndContact(b2Contact* c) override {
+        ++ends;
+        log.push_back('E');
+        last = c;
+    }
+    void PreSolve(b2Contact* c, const b2Manifold*) override {
+        ++preSolves;
+        log.push_back('P');
+        last = c;
+    }
+    void PostSolve(b2Contact* c, const b2ContactImpulse*) override {
+        ++postSolves;
+        log.push_back('S');
+        last = c;
+    }
     int begins = 0, ends = 0, preSolves = 0, postSolves = 0;
     std::string log;
     b2Contact* last = nullptr;

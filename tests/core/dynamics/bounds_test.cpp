@@ -1,7 +1,7 @@
 // World bounds (ARCHITECTURE §5) and bounded angles.
-#include <gtest/gtest.h>
-
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "DynamicsTestUtil.h"
 #include "FixedPrint.h"

@@ -1,8 +1,8 @@
 // Test 4a: the manual's contact behaviours: body-type rules, the filter truth table, sensors,
 // listener events (order and counts), PreSolve (one-sided platform), SetFilterData timing.
-#include <gtest/gtest.h>
-
 #include <cstdio>
+
+#include <gtest/gtest.h>
 
 #include "DynamicsTestUtil.h"
 #include "FixedPrint.h"
@@ -197,7 +197,7 @@ TEST(ContactRules, PreSolveDisablingMakesAOneSidedPlatform) {
         world.Step(kDt, 8, 3);
         maxY = Max(maxY, ball->GetPosition().y);
     }
-    EXPECT_GT(maxY, Fixed(6));                 // went through from below
+    EXPECT_GT(maxY, Fixed(6));                                 // went through from below
     EXPECT_NEAR(ball->GetPosition().y.ToDouble(), 5.5, 0.03);  // resting on top
 }
 

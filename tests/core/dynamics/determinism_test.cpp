@@ -1,8 +1,8 @@
 // Determinism: identical runs give identical bits; a scene moved by whole metres gives the same
 // relative motion (ARCHITECTURE §5), as long as no coordinate changes sign.
-#include <gtest/gtest.h>
-
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "DynamicsTestUtil.h"
 #include "FixedPrint.h"
@@ -25,7 +25,8 @@ State RunScene(int ox, int oy) {
     for (int i = 0; i < 6; ++i) {
         bodies.push_back(MakeDynamicBox(world, fx + Fixed::FromRatio(3 * i, 10), fy + Fixed(1) + Fixed(1.1) * Fixed(i),
                                         Fixed(0.4), Fixed(0.3), 1, Fixed(0.5), 0, Fixed::FromRatio(i, 7)));
-        bodies.push_back(MakeDynamicCircle(world, fx + 6 + Fixed::FromRatio(i, 5), fy + Fixed(4) + Fixed(i), Fixed(0.25)));
+        bodies.push_back(
+            MakeDynamicCircle(world, fx + 6 + Fixed::FromRatio(i, 5), fy + Fixed(4) + Fixed(i), Fixed(0.25)));
     }
     for (int n = 0; n < 300; ++n) world.Step(kDt, 8, 3);
     State s;

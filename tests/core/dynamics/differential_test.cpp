@@ -1,14 +1,14 @@
 // Test 6: differential runs against float Box2D 2.4.1 over the first 60 steps at lockbox's
 // real time step (1092/65536 s): positions within 0.01 m, angles within 0.01 rad.
-#include "DynamicsTestUtil.h"
-
-#include "Box2DFloat.h"  // float Box2D without its constant macros
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
+
+#include <gtest/gtest.h>
+
+#include "Box2DFloat.h"  // float Box2D without its constant macros
+#include "DynamicsTestUtil.h"
 
 namespace {
 
@@ -124,13 +124,9 @@ double Compare(const char* name, const std::vector<BoxSpec>& scene) {
 // Angles in radians: 0.3 rad slope.
 const BoxSpec kGround{false, 0, -10, 50, 10, 0, 0.3, false};
 
-TEST(Differential, HelloWorld) {
-    Compare("hello", {kGround, {true, 0, 4, 1, 1, 0, 0.3, false}});
-}
+TEST(Differential, HelloWorld) { Compare("hello", {kGround, {true, 0, 4, 1, 1, 0, 0.3, false}}); }
 
-TEST(Differential, FallingCircle) {
-    Compare("circle", {kGround, {true, 0.25, 3, 0.5, 0, 0, 0.3, true}});
-}
+TEST(Differential, FallingCircle) { Compare("circle", {kGround, {true, 0.25, 3, 0.5, 0, 0, 0.3, true}}); }
 
 TEST(Differential, BoxOnSlope) {
     // A slope of 0.3 rad (tan 0.309 > mu 0.2): the box slides.

@@ -1,13 +1,13 @@
 // Test 1: the manual's Hello World against float Box2D 2.4.1 at lockbox's real time step.
-#include "DynamicsTestUtil.h"
-
-#include "Box2DFloat.h"  // float Box2D without its constant macros
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
+
+#include <gtest/gtest.h>
+
+#include "Box2DFloat.h"  // float Box2D without its constant macros
+#include "DynamicsTestUtil.h"
 
 namespace {
 
@@ -74,8 +74,8 @@ std::vector<Pose> RunLockboxHelloWorld() {
     std::vector<Pose> out;
     for (int i = 0; i < 60; ++i) {
         world.Step(kDt, 6, 2);
-        out.push_back({body->GetPosition().x.ToDouble(), body->GetPosition().y.ToDouble(),
-                       body->GetAngle().ToDouble()});
+        out.push_back(
+            {body->GetPosition().x.ToDouble(), body->GetPosition().y.ToDouble(), body->GetAngle().ToDouble()});
     }
     return out;
 }

@@ -1,10 +1,10 @@
 // Test 2: free fall and projectile against the symplectic-Euler closed form, a box on a slope
 // (slides iff tan(theta) > mu, acceleration g (sin - mu cos)), bounce heights for restitution.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include <gtest/gtest.h>
 
 #include "DynamicsTestUtil.h"
 #include "FixedPrint.h"

@@ -1,9 +1,9 @@
 // Every shape pair with a collider gets a contact through b2Contact::Evaluate (in the
 // registered order), surface/surface pairs get none; kinematic bodies, sub-stepping.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "DynamicsTestUtil.h"
 #include "FixedPrint.h"
@@ -39,8 +39,7 @@ void AddShape(b2Body* body, b2Shape::Type type) {
             body->CreateFixture(&s, 0);
             break;
         }
-        default:
-            break;
+        default: break;
     }
 }
 

@@ -1,10 +1,10 @@
 // Test 3: a 10-box stack settles and sleeps, a base-20 pyramid holds, and a bullet at the
 // speed cap does not pass a thin static wall.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "DynamicsTestUtil.h"
 #include "FixedPrint.h"
@@ -18,7 +18,8 @@ TEST(Stacking, TenBoxStackSettlesAndSleeps) {
     std::vector<b2Body*> boxes;
     for (int i = 0; i < 10; ++i) {
         // 1 m boxes with a small gap (the polygon skins touch at 0.02 m).
-        boxes.push_back(MakeDynamicBox(world, 0, Fixed(0.5) + Fixed(1.02) * Fixed(i), Fixed(0.5), Fixed(0.5), 1, Fixed(0.6)));
+        boxes.push_back(
+            MakeDynamicBox(world, 0, Fixed(0.5) + Fixed(1.02) * Fixed(i), Fixed(0.5), Fixed(0.5), 1, Fixed(0.6)));
     }
     std::vector<b2Vec2> start;
     for (b2Body* b : boxes) start.push_back(b->GetPosition());

@@ -1,10 +1,10 @@
 // World state hash (b2WorldHash): identical worlds agree, a one-raw-ULP change is caught and
 // narrowed to the right category and body, listeners and debug draw are not state, and long
 // runs repeat.
-#include <gtest/gtest.h>
-
 #include <memory>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "FixedPrint.h"
 #include "lockbox/collision/CircleShape.h"

@@ -1,10 +1,10 @@
 // Test 4b: the manual's world behaviours: queries and ray casts, the destruction listener,
 // the locked world, sleep and wake, SetTransform, inactive bodies, mass rules, ids.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "DynamicsTestUtil.h"
 #include "FixedPrint.h"
@@ -40,10 +40,10 @@ struct RayRecorder : b2RayCastCallback {
         if (mode == 3 && f->GetBody()->GetPosition().x == Fixed(2)) return Fixed(-1);
         point = p;
         normal = n;
-        if (mode == 0) return Fixed();       // stop at the first hit reported
-        if (mode == 1) return fraction;      // clip: ends with the closest
-        if (mode == 2) return Fixed(1);      // continue: all hits
-        return fraction;  // mode 3: filtered above, clip the rest
+        if (mode == 0) return Fixed();   // stop at the first hit reported
+        if (mode == 1) return fraction;  // clip: ends with the closest
+        if (mode == 2) return Fixed(1);  // continue: all hits
+        return fraction;                 // mode 3: filtered above, clip the rest
     }
     int mode = 1;
     std::vector<double> hits;

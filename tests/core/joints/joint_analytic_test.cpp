@@ -2,11 +2,11 @@
 // invariants, motor speed and stall, limits under load, rope length, friction stopping
 // distance. Each bound is written next to its check; measured figures are printed for
 // docs/joints.md.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "JointTestUtil.h"
 
@@ -91,8 +91,7 @@ TEST(JointAnalytic, DistanceSpringFrequency) {
         const std::vector<double> c = UpCrossings(y, -2.0);
         ASSERT_GE(c.size(), 2u);
         const double f = 1.0 / MeanPeriod(c);
-        std::printf("[joints] distance spring %.2f Hz: measured %.4f Hz (%.2f %%)\n", D(hz), f,
-                    100 * (f / D(hz) - 1));
+        std::printf("[joints] distance spring %.2f Hz: measured %.4f Hz (%.2f %%)\n", D(hz), f, 100 * (f / D(hz) - 1));
         EXPECT_NEAR(f / D(hz), 1.0, 0.05);
     }
 }
@@ -270,7 +269,7 @@ TEST(JointAnalytic, RopeNeverExceedsMaxLength) {
         worst = std::max(worst, Dist(j->GetAnchorA(), j->GetAnchorB()) - 2.0);
     }
     std::printf("[joints] rope: max length - maxLength %.5f m\n", worst);
-    EXPECT_LT(worst, 0.005);  // linearSlop
+    EXPECT_LT(worst, 0.005);   // linearSlop
     EXPECT_GT(worst, -0.005);  // the rope did go taut
 }
 

@@ -1,8 +1,8 @@
 // Joint lifetime and API: creation, ids, lists, user data, collideConnected, destruction
 // listener, the gear joint's dependency rule, and "no joints, no joint loop".
-#include <gtest/gtest.h>
-
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "JointTestUtil.h"
 

@@ -2,13 +2,13 @@
 // and a heavy (100 kg) body. Each scene swings or slides so the constraint is loaded and
 // moving; the worst error over all steps is checked against the bound in the table below and
 // printed for docs/joints.md.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "JointTestUtil.h"
 
@@ -135,8 +135,7 @@ TEST_P(JointError, Weld) {
         worstAngle = std::max(worstAngle, std::abs(D(WrapAngle(b->GetAngle() - a->GetAngle()))));
         return Dist(j->GetAnchorA(), j->GetAnchorB());
     });
-    std::printf("[joints] weld %s: max anchor separation %.5f m, angle %.5f rad\n", GetParam().name, worst,
-                worstAngle);
+    std::printf("[joints] weld %s: max anchor separation %.5f m, angle %.5f rad\n", GetParam().name, worst, worstAngle);
     EXPECT_LT(worst, kLinearBound);
     EXPECT_LT(worstAngle, kAngularBound);
 }
@@ -189,8 +188,8 @@ TEST_P(JointError, Gear) {
     gd.ratio = 2;
     world.CreateJoint(&gd);
     const double worst = RunWorst(world, [&] { return std::abs(D(j1->GetJointAngle()) + 2 * D(j2->GetJointAngle())); });
-    std::printf("[joints] gear (revolute-revolute, ratio 2) %s: max |angle1 + 2 angle2| %.5f rad\n",
-                GetParam().name, worst);
+    std::printf("[joints] gear (revolute-revolute, ratio 2) %s: max |angle1 + 2 angle2| %.5f rad\n", GetParam().name,
+                worst);
     EXPECT_LT(worst, kAngularBound);
 }
 

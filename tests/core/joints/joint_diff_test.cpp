@@ -7,15 +7,15 @@
 // b2LinearStiffness with the two-body reduced mass, while 2.2.1 uses the effective mass along
 // the axis, including rotation), and its revolute solves the limit separately. The car's
 // bound is wider for that reason.
-#include "JointTestUtil.h"
-
-#include "Box2DFloat.h"  // float Box2D without its constant macros
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
+
+#include <gtest/gtest.h>
+
+#include "Box2DFloat.h"  // float Box2D without its constant macros
+#include "JointTestUtil.h"
 
 namespace {
 
@@ -51,7 +51,10 @@ Trace ChainFloat(int links, bool box) {
     b2BodyDef gd;
     b2Body* ground = world.CreateBody(&gd);
     b2PolygonShape shape;
-    if (box) shape.SetAsBox(0.5f, 0.5f); else shape.SetAsBox(0.6f, 0.125f);
+    if (box)
+        shape.SetAsBox(0.5f, 0.5f);
+    else
+        shape.SetAsBox(0.6f, 0.125f);
     std::vector<b2Body*> bodies;
     b2Body* prev = ground;
     for (int i = 0; i < links; ++i) {
@@ -92,7 +95,10 @@ Trace ChainFixed(int links, bool box) {
     b2World world(b2Vec2(0, -10));
     b2Body* ground = Ground(world);
     b2PolygonShape shape;
-    if (box) shape.SetAsBox(Fixed(0.5), Fixed(0.5)); else shape.SetAsBox(Fixed(0.6), Fixed(0.125));
+    if (box)
+        shape.SetAsBox(Fixed(0.5), Fixed(0.5));
+    else
+        shape.SetAsBox(Fixed(0.6), Fixed(0.125));
     std::vector<b2Body*> bodies;
     b2Body* prev = ground;
     for (int i = 0; i < links; ++i) {
@@ -253,9 +259,10 @@ TEST(JointDifferential, CarOnWheelJoints) {
     const Trace x = lb::jt::CarFixed();
     double angle = 0;
     const double dev = MaxDeviation(f, x, &angle);
-    std::printf("[joints] diff car vs Box2D 2.4.1 (60 steps): max position %.6f m, angle %.6f rad; chassis x %.4f vs "
-                "%.4f\n",
-                dev, angle, x.back()[0], f.back()[0]);
+    std::printf(
+        "[joints] diff car vs Box2D 2.4.1 (60 steps): max position %.6f m, angle %.6f rad; chassis x %.4f vs "
+        "%.4f\n",
+        dev, angle, x.back()[0], f.back()[0]);
     EXPECT_LT(dev, 0.05);
 }
 

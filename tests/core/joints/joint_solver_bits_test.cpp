@@ -7,10 +7,10 @@
 // prepared solvers reproduced them exactly); since determinism version 0x00020002 the point
 // iterations multiply by the point block's inverse, and steps 60 and 300 were recorded anew
 // (step 1 did not change).
-#include <gtest/gtest.h>
-
 #include <cinttypes>
 #include <cstdio>
+
+#include <gtest/gtest.h>
 
 #include "JointTestUtil.h"
 

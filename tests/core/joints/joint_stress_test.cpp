@@ -2,11 +2,11 @@
 // light chain), springs at 0.1 Hz and 29 Hz on 0.01 kg and 1000 kg bodies, a mouse joint with
 // maxForce = 1000 m on a 1000 kg body (NUMERICS stability test 9; no overflow event in any
 // build), and a revolute limit at +-10 turns.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "JointTestUtil.h"
 
@@ -56,8 +56,8 @@ TEST(JointStress, SixtyLinkChain) {
         worst = std::max(worst, MaxSeparation(joints));
         if (i >= 1140) settled = std::max(settled, MaxSeparation(joints));
     }
-    std::printf("[joints] 60-link chain: max joint separation %.5f m while falling, %.5f m in the last second\n",
-                worst, settled);
+    std::printf("[joints] 60-link chain: max joint separation %.5f m while falling, %.5f m in the last second\n", worst,
+                settled);
     // Float Box2D 2.4.1 on the same scene, step and iterations: 0.0900 m falling, 0.0361 m in
     // the last second (the 60 m chain is still swinging after 20 s). Bounds: 0.1 and 0.05 m.
     EXPECT_LT(worst, 0.1);
@@ -204,8 +204,8 @@ TEST(JointStress, RevoluteLimitTenTurns) {
         Step(world);
         minAngle = std::min(minAngle, D(j->GetJointAngle()));
     }
-    std::printf("[joints] revolute -10 turns: min angle %.5f rad (limit %.5f), final %.5f\n", minAngle,
-                -D(tenTurns), D(j->GetJointAngle()));
+    std::printf("[joints] revolute -10 turns: min angle %.5f rad (limit %.5f), final %.5f\n", minAngle, -D(tenTurns),
+                D(j->GetJointAngle()));
     EXPECT_GT(minAngle, -D(tenTurns) - 10 * kDtD - 0.035);
     EXPECT_NEAR(D(j->GetJointAngle()), -D(tenTurns), 0.05);
 }

@@ -4,11 +4,11 @@
 // negative count. And the native 128-bit paths of the joint solvers' hot loops (b2Cross of an
 // arm and an impulse, the prepared 2x2 solve, the shifted division) against the portable
 // limbs: the same bits and the same overflow reports on random and extreme inputs.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdint>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/dynamics/joints/WideMatrix.h"
 #include "lockbox/fixed/Overflow.h"
@@ -113,7 +113,9 @@ TEST_F(NativeWide, Prepared3x3SolveMatchesThePortableLimbs) {
     int native = 0;
     for (int i = 0; i < 200000; ++i) {
         const int bits = static_cast<int>(rng_() % 64);
-        auto col = [&]() { return b2WideVec3(Wide::FromRaw(Raw(bits)), Wide::FromRaw(Raw(bits)), Wide::FromRaw(Raw(bits))); };
+        auto col = [&]() {
+            return b2WideVec3(Wide::FromRaw(Raw(bits)), Wide::FromRaw(Raw(bits)), Wide::FromRaw(Raw(bits)));
+        };
         const b2WideVec3 ex = col(), ey = col();
         const b2WideVec3 ez = i % 50 == 0 ? ex : col();  // singular now and then
         const b2WideSolver33 k(ex, ey, ez);
@@ -149,7 +151,8 @@ TEST_F(NativeWide, NormalisingScaleRoundsLikeThe128BitShift) {
     for (int i = 0; i < 300000; ++i) {
         const int64_t raw = i % 1000 == 0 ? (i % 2000 == 0 ? INT64_MAX : -INT64_MAX) : Raw(63);
         const int s = 1 + static_cast<int>(rng_() % 28);
-        ASSERT_EQ(detail::ScaleRaw(raw, s), detail::ToS64(detail::ShrRoundS128(detail::MulS64(raw, 1), s))) << raw << " " << s;
+        ASSERT_EQ(detail::ScaleRaw(raw, s), detail::ToS64(detail::ShrRoundS128(detail::MulS64(raw, 1), s)))
+            << raw << " " << s;
     }
 }
 
@@ -207,7 +210,8 @@ TEST(WideMatrixInverse, EntriesAreTheInverseRounded) {
         const double condition = norm * norm / std::abs(det);
         for (int e = 0; e < 4; ++e) {
             const double tolerance = 1.5 + std::abs(expect[e]) * 4294967296.0 * 4e-11 * condition;
-            ASSERT_NEAR(static_cast<double>(got[e].Raw()), expect[e] * 4294967296.0, tolerance) << "case " << i << " entry " << e;
+            ASSERT_NEAR(static_cast<double>(got[e].Raw()), expect[e] * 4294967296.0, tolerance)
+                << "case " << i << " entry " << e;
         }
         EXPECT_EQ(M.ex.y, M.ey.x) << "a symmetric K has a symmetric inverse, bit for bit";
     }

@@ -22,11 +22,8 @@ struct Stats {
     int32_t worst_y = 0, worst_x = 0;
     void Add(int32_t y, int32_t x) {
         const long double ref =
-            (y == 0 && x == 0)
-                ? 0.0L
-                : std::atan2(static_cast<long double>(y), static_cast<long double>(x)) * 65536.0L;
-        const long double e =
-            std::fabs(static_cast<long double>(lockbox::detail::Atan2Raw(y, x)) - ref);
+            (y == 0 && x == 0) ? 0.0L : std::atan2(static_cast<long double>(y), static_cast<long double>(x)) * 65536.0L;
+        const long double e = std::fabs(static_cast<long double>(lockbox::detail::Atan2Raw(y, x)) - ref);
         if (e > max_err) {
             max_err = e;
             worst_y = y;
@@ -49,9 +46,8 @@ struct Stats {
 };
 
 void Report(const char* name, const Stats& st) {
-    std::printf("%s: %llu pairs, max %.6Lf ULP (y=%d x=%d), mean %.4Lf, CR %.6f%% (%llu not CR)\n",
-                name, static_cast<unsigned long long>(st.count), st.max_err, st.worst_y, st.worst_x,
-                st.sum / st.count,
+    std::printf("%s: %llu pairs, max %.6Lf ULP (y=%d x=%d), mean %.4Lf, CR %.6f%% (%llu not CR)\n", name,
+                static_cast<unsigned long long>(st.count), st.max_err, st.worst_y, st.worst_x, st.sum / st.count,
                 100.0 * static_cast<double>(st.count - st.not_cr) / static_cast<double>(st.count),
                 static_cast<unsigned long long>(st.not_cr));
     ::testing::Test::RecordProperty(std::string(name) + "_not_cr", std::to_string(st.not_cr));
@@ -76,10 +72,8 @@ TEST(Atan2Exhaustive, CirclesFromOneMillimetreToTwentyKilometres) {
         for (long double radius : radii) {
             for (int i = t; i < kAngles; i += 2) {
                 const long double th = (i + 0.5L) / kAngles * 2 * kPiL - kPiL;
-                const int32_t y =
-                    static_cast<int32_t>(std::llround(radius * std::sin(th) * 65536.0L));
-                const int32_t x =
-                    static_cast<int32_t>(std::llround(radius * std::cos(th) * 65536.0L));
+                const int32_t y = static_cast<int32_t>(std::llround(radius * std::sin(th) * 65536.0L));
+                const int32_t x = static_cast<int32_t>(std::llround(radius * std::cos(th) * 65536.0L));
                 out.Add(y, x);
             }
         }
@@ -96,11 +90,9 @@ TEST(Atan2Exhaustive, TenMillionLogUniformPairs) {
         auto draw = [&rng]() -> int32_t {
             const int bits = static_cast<int>(rng() % 32);  // magnitude in [2^bits, 2^(bits+1))
             int64_t v = static_cast<int64_t>((rng() >> (63 - bits)) | (uint64_t{1} << bits));
-            if (v > 2147483647)
-                v = 2147483647;
+            if (v > 2147483647) v = 2147483647;
             const bool neg = (rng() & 1) != 0;
-            if (neg && bits == 31)
-                return -2147483647 - 1;  // include INT32_MIN
+            if (neg && bits == 31) return -2147483647 - 1;  // include INT32_MIN
             return neg ? static_cast<int32_t>(-v) : static_cast<int32_t>(v);
         };
         for (int i = 0; i < kPairs / 2; ++i) {

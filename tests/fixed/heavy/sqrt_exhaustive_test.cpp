@@ -26,8 +26,7 @@ Result CheckRange(int64_t begin, int64_t end) {
         const uint64_t lo = rr == 0 ? 0 : (2 * rr - 1) * (2 * rr - 1);
         const uint64_t hi = (2 * rr + 1) * (2 * rr + 1);
         if (r < 0 || lo > v4 || v4 >= hi) {
-            if (res.failures++ == 0)
-                res.first_bad = x;
+            if (res.failures++ == 0) res.first_bad = x;
         }
     }
     return res;
@@ -46,20 +45,17 @@ TEST(SqrtExhaustive, AllNonNegativeRawInputsAreCorrectlyRounded) {
             Result total;
             for (int64_t chunk = t; chunk < (kEnd >> 20); chunk += kThreads) {
                 const Result r = CheckRange(chunk << 20, (chunk + 1) << 20);
-                if (r.failures != 0 && total.first_bad < 0)
-                    total.first_bad = r.first_bad;
+                if (r.failures != 0 && total.first_bad < 0) total.first_bad = r.first_bad;
                 total.failures += r.failures;
             }
             results[t] = total;
         });
     }
-    for (std::thread& th : threads)
-        th.join();
+    for (std::thread& th : threads) th.join();
     uint64_t failures = 0;
     for (const Result& r : results) {
         failures += r.failures;
-        if (r.failures != 0)
-            ADD_FAILURE() << "first bad input " << r.first_bad;
+        if (r.failures != 0) ADD_FAILURE() << "first bad input " << r.first_bad;
     }
     EXPECT_EQ(failures, 0u);
     // Negative inputs are a domain error and return 0.

@@ -21,10 +21,8 @@ struct Stats {
     long double sum_sin = 0, sum_cos = 0;
     uint64_t count = 0, not_cr_sin = 0, not_cr_cos = 0;
     void Merge(const Stats& o) {
-        if (o.max_sin > max_sin)
-            max_sin = o.max_sin;
-        if (o.max_cos > max_cos)
-            max_cos = o.max_cos;
+        if (o.max_sin > max_sin) max_sin = o.max_sin;
+        if (o.max_cos > max_cos) max_cos = o.max_cos;
         sum_sin += o.sum_sin;
         sum_cos += o.sum_cos;
         count += o.count;
@@ -39,10 +37,8 @@ void MeasureOne(int32_t x, Stats& st) {
     const long double a = static_cast<long double>(x) / 65536.0L;
     const long double es = std::fabs(static_cast<long double>(s) - std::sin(a) * 65536.0L);
     const long double ec = std::fabs(static_cast<long double>(c) - std::cos(a) * 65536.0L);
-    if (es > st.max_sin)
-        st.max_sin = es;
-    if (ec > st.max_cos)
-        st.max_cos = ec;
+    if (es > st.max_sin) st.max_sin = es;
+    if (ec > st.max_cos) st.max_cos = ec;
     st.sum_sin += es;
     st.sum_cos += ec;
     st.not_cr_sin += es > 0.5L ? 1 : 0;
@@ -64,29 +60,23 @@ Stats Sweep(int64_t begin, int64_t last, int64_t stride) {
             parts[t] = st;
         });
     }
-    for (std::thread& th : threads)
-        th.join();
+    for (std::thread& th : threads) th.join();
     Stats total;
-    for (const Stats& p : parts)
-        total.Merge(p);
+    for (const Stats& p : parts) total.Merge(p);
     return total;
 }
 
 void Report(const char* name, const Stats& st) {
-    const double cr_sin =
-        100.0 * static_cast<double>(st.count - st.not_cr_sin) / static_cast<double>(st.count);
-    const double cr_cos =
-        100.0 * static_cast<double>(st.count - st.not_cr_cos) / static_cast<double>(st.count);
+    const double cr_sin = 100.0 * static_cast<double>(st.count - st.not_cr_sin) / static_cast<double>(st.count);
+    const double cr_cos = 100.0 * static_cast<double>(st.count - st.not_cr_cos) / static_cast<double>(st.count);
     std::printf(
         "%s: %llu angles; sin max %.6Lf ULP mean %.4Lf, CR %.6f%% (%llu not CR); "
         "cos max %.6Lf ULP mean %.4Lf, CR %.6f%% (%llu not CR)\n",
         name, static_cast<unsigned long long>(st.count), st.max_sin, st.sum_sin / st.count, cr_sin,
         static_cast<unsigned long long>(st.not_cr_sin), st.max_cos, st.sum_cos / st.count, cr_cos,
         static_cast<unsigned long long>(st.not_cr_cos));
-    ::testing::Test::RecordProperty(std::string(name) + "_sin_not_cr",
-                                    std::to_string(st.not_cr_sin));
-    ::testing::Test::RecordProperty(std::string(name) + "_cos_not_cr",
-                                    std::to_string(st.not_cr_cos));
+    ::testing::Test::RecordProperty(std::string(name) + "_sin_not_cr", std::to_string(st.not_cr_sin));
+    ::testing::Test::RecordProperty(std::string(name) + "_cos_not_cr", std::to_string(st.not_cr_cos));
 }
 
 }  // namespace

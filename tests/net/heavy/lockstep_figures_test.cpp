@@ -3,9 +3,9 @@
 // time a late joiner takes to be admitted. Asserts behaviour only (each run finishes); the
 // printed numbers are virtual-clock figures, so they are the same on every machine.
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
+
+#include <gtest/gtest.h>
 
 #include "../LockstepHarness.h"
 
@@ -40,10 +40,11 @@ TEST(LockstepFigures, BandwidthPerPeer) {
             }
             const uint64_t down = m.net().Endpoint(0).Stats().wireBytesSent - s0.wireBytesSent;
             const double secs = static_cast<double>(us) / 1e6;
-            std::printf("[figures] 4 clients, rtt %3u ms, loss %2u %%: up %.1f kbit/s/peer (max %.1f), down %.1f kbit/s/peer, "
-                        "%.1f datagrams/s/peer up, %.1f frames/s, delay %u\n",
-                        rtt, loss / 10'000, up * 8 / secs / 1000 / 4, upMax * 8 / secs / 1000, down * 8 / secs / 1000 / 4,
-                        dgrams / secs / 4, (m.player(0).client->Frame() - f0) / secs, m.player(0).client->InputDelay());
+            std::printf(
+                "[figures] 4 clients, rtt %3u ms, loss %2u %%: up %.1f kbit/s/peer (max %.1f), down %.1f kbit/s/peer, "
+                "%.1f datagrams/s/peer up, %.1f frames/s, delay %u\n",
+                rtt, loss / 10'000, up * 8 / secs / 1000 / 4, upMax * 8 / secs / 1000, down * 8 / secs / 1000 / 4,
+                dgrams / secs / 4, (m.player(0).client->Frame() - f0) / secs, m.player(0).client->InputDelay());
         }
     }
 }
@@ -62,16 +63,19 @@ TEST(LockstepFigures, DesyncDetectionTime) {
             const int32_t kFrame = 200;
             m.player(2).nudge.nudgeFrame = kFrame;
             uint64_t steppedAt = 0;
-            ASSERT_TRUE(m.RunUntil([&] {
-                if (steppedAt == 0 && m.player(2).client->Frame() > kFrame) steppedAt = m.net().NowMicros();
-                return m.CountServerEvents(ServerEvent::Kind::e_desync) > 0;
-            }, 60'000));
+            ASSERT_TRUE(m.RunUntil(
+                [&] {
+                    if (steppedAt == 0 && m.player(2).client->Frame() > kFrame) steppedAt = m.net().NowMicros();
+                    return m.CountServerEvents(ServerEvent::Kind::e_desync) > 0;
+                },
+                60'000));
             int32_t frame = -1;
             for (const auto& e : m.serverEvents())
                 if (e.kind == ServerEvent::Kind::e_desync) frame = e.frame;
-            std::printf("[figures] desync: interval %2u, rtt %3u ms: event %.0f ms after the divergent frame was stepped "
-                        "(named frame %d, diverged at %d)\n",
-                        interval, rtt, (m.net().NowMicros() - steppedAt) / 1000.0, frame, kFrame);
+            std::printf(
+                "[figures] desync: interval %2u, rtt %3u ms: event %.0f ms after the divergent frame was stepped "
+                "(named frame %d, diverged at %d)\n",
+                interval, rtt, (m.net().NowMicros() - steppedAt) / 1000.0, frame, kFrame);
         }
     }
 }
@@ -94,18 +98,22 @@ TEST(LockstepFigures, LateJoinTime) {
             const uint64_t t0 = m.net().NowMicros();
             Player& joiner = m.AddPlayer();
             uint64_t loadedAt = 0;
-            ASSERT_TRUE(m.RunUntil([&] {
-                if (loadedAt == 0 && joiner.client->State() == ClientState::e_catchingUp) loadedAt = m.net().NowMicros();
-                return joiner.client->State() == ClientState::e_running;
-            }, 30'000));
+            ASSERT_TRUE(m.RunUntil(
+                [&] {
+                    if (loadedAt == 0 && joiner.client->State() == ClientState::e_catchingUp)
+                        loadedAt = m.net().NowMicros();
+                    return joiner.client->State() == ClientState::e_running;
+                },
+                30'000));
             const uint64_t admittedAt = m.net().NowMicros();
             const size_t blob = LockstepClient::SnapshotBlob(m.player(0).game.world(), m.player(0).game).size();
             ASSERT_TRUE(m.RunToFrame(s.frames, 60'000));
             EXPECT_EQ(joiner.hashAtStop, m.player(0).hashAtStop);
-            std::printf("[figures] late join (%s, pyramid20, %zu-byte snapshot), rtt %3u ms: snapshot loaded after %.0f ms, "
-                        "admitted after %.0f ms\n",
-                        authoritative ? "authoritative" : "relay", blob, rtt, (loadedAt - t0) / 1000.0,
-                        (admittedAt - t0) / 1000.0);
+            std::printf(
+                "[figures] late join (%s, pyramid20, %zu-byte snapshot), rtt %3u ms: snapshot loaded after %.0f ms, "
+                "admitted after %.0f ms\n",
+                authoritative ? "authoritative" : "relay", blob, rtt, (loadedAt - t0) / 1000.0,
+                (admittedAt - t0) / 1000.0);
         }
     }
 }

@@ -3,10 +3,10 @@
 // constant-latency ones). Every cell: equal final hashes, a moving world, no desync, and the
 // upstream budget (tests/net/LockstepHarness.h, UpBudgetBitsPerSecond).
 
-#include <gtest/gtest.h>
-
 #include <string>
 #include <tuple>
+
+#include <gtest/gtest.h>
 
 #include "../LockstepHarness.h"
 

@@ -5,9 +5,9 @@
 // final hash 300 frames past the cut. Each run prints RBLEAVE lines (figures for the docs).
 // The fast suite (rollback_disconnect_test.cpp) runs four of these cells.
 
-#include <gtest/gtest.h>
-
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "../rollback_leave.h"
 

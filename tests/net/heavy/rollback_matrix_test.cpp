@@ -3,9 +3,9 @@
 // prints one line of figures (rollbacks, depth, waits, frame-advantage spread) for
 // docs/rollback.md; the assertions are behaviour only.
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
+
+#include <gtest/gtest.h>
 
 #include "../rollback_harness.h"
 
@@ -94,15 +94,16 @@ TEST(RollbackLong, BudgetGuardFollowsAChangingLink) {
         for (size_t i = 0; i < r.peers.size(); ++i) {
             const RbPeer& p = r.peers[i];
             SCOPED_TRACE(testing::Message() << spec.Describe() << " peer " << i);
-            EXPECT_GE(p.maxDelay, 6u);                     // 125 ms one way is 7.5 frames
+            EXPECT_GE(p.maxDelay, 6u);                           // 125 ms one way is 7.5 frames
             EXPECT_LE(p.session->InputDelay() + 3, p.maxDelay);  // and most of it given back
             EXPECT_GE(p.guard->Lowerings(), 3u);
             ExpectNoInputLost(p);
-            std::printf("guard on a changing link: peers %u peer %zu: max delay %u, final %u, raises %u, lowerings %u, "
-                        "repeated %llu, absorbed %llu\n",
-                        peers, i, p.maxDelay, p.session->InputDelay(), p.guard->Raises(), p.guard->Lowerings(),
-                        static_cast<unsigned long long>(p.session->Stats().inputsRepeated),
-                        static_cast<unsigned long long>(p.session->Stats().inputsAbsorbed));
+            std::printf(
+                "guard on a changing link: peers %u peer %zu: max delay %u, final %u, raises %u, lowerings %u, "
+                "repeated %llu, absorbed %llu\n",
+                peers, i, p.maxDelay, p.session->InputDelay(), p.guard->Raises(), p.guard->Lowerings(),
+                static_cast<unsigned long long>(p.session->Stats().inputsRepeated),
+                static_cast<unsigned long long>(p.session->Stats().inputsAbsorbed));
         }
     }
 }

@@ -33,9 +33,7 @@ TEST_P(EveryScene, RecordVerifySeek) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Library, EveryScene, ::testing::ValuesIn(scenes::AllSceneNames()),
-                         [](const ::testing::TestParamInfo<std::string_view>& p) {
-                             return std::string(p.param);
-                         });
+                         [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 
 }  // namespace
 }  // namespace lockbox::replay::testing

@@ -1,9 +1,9 @@
 // Golden world hashes of the four heavy scenes (large_pyramid, many_pyramids, rain,
 // joint_grid at steps 1, 60 and 120): the lines of tests/golden/hashes.txt that the fast
 // suite's golden_hash_test.cpp skips. Regenerate the file with the fast suite.
-#include <gtest/gtest.h>
-
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "../../cross/GoldenScenes.h"
 

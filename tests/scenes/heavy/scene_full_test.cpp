@@ -1,9 +1,9 @@
 // The SCENES.md scenes at full size and full length on lockbox (release only, label heavy):
 // they run without an assert, replay bit for bit, and meet the structural checks a stable
 // engine should (stacks stand, the fast projectile behaves as each mode predicts).
-#include <gtest/gtest.h>
-
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/scenes/LockboxScenes.h"
 

@@ -2,10 +2,10 @@
 // pyramids with base 40, every library scene (the heavy ones included) compared at two
 // quadrants' placements, and the 30- and 10-minute long runs. Release only (label heavy).
 
-#include <gtest/gtest.h>
-
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "lockbox/stability/Cases.h"
 

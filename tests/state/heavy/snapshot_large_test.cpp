@@ -29,7 +29,6 @@ TEST_P(SnapshotLarge, FreshWorldMatches) {
     }
 }
 
-
 INSTANTIATE_TEST_SUITE_P(Large, SnapshotLarge, ::testing::ValuesIn(testing_state::SceneNames(/*large=*/true)),
                          [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 

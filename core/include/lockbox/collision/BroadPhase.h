@@ -161,9 +161,8 @@ void b2BroadPhase::UpdatePairs(T* callback) {
     // Total order on (A, B): equal elements are identical, so any sort gives the same sequence.
     // Proxy ids are never negative here, so (A, B) packed into one unsigned key orders exactly
     // as b2PairLessThan does, in one comparison the sort can inline.
-    std::sort(m_pairBuffer.begin(), m_pairBuffer.end(), [](const b2Pair& p1, const b2Pair& p2) noexcept {
-        return PairKey(p1) < PairKey(p2);
-    });
+    std::sort(m_pairBuffer.begin(), m_pairBuffer.end(),
+              [](const b2Pair& p1, const b2Pair& p2) noexcept { return PairKey(p1) < PairKey(p2); });
 
     // Report each distinct pair once.
     const size_t count = m_pairBuffer.size();

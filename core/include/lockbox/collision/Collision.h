@@ -40,10 +40,10 @@ struct b2ContactID {
 /// impulses the solver accumulated for warm starting. Impulses are Wide (Q32.32): an impact
 /// impulse of a 1000 kg body at 120 m/s overflows Q16.16 (NUMERICS Table 1).
 struct b2ManifoldPoint {
-    b2Vec2 localPoint;     ///< usage depends on manifold type
-    Wide normalImpulse;    ///< the non-penetration impulse, N*s
-    Wide tangentImpulse;   ///< the friction impulse, N*s
-    b2ContactID id;        ///< uniquely identifies a contact point between two shapes
+    b2Vec2 localPoint;    ///< usage depends on manifold type
+    Wide normalImpulse;   ///< the non-penetration impulse, N*s
+    Wide tangentImpulse;  ///< the friction impulse, N*s
+    b2ContactID id;       ///< uniquely identifies a contact point between two shapes
 };
 
 /// Contact points of two touching convex shapes, in the local frame of one of them so they
@@ -60,12 +60,12 @@ struct b2Manifold {
 /// World-frame contact information computed from a manifold and the two transforms.
 struct b2WorldManifold {
     /// Fills normal, points and separations. Radii are the shapes' m_radius.
-    void Initialize(const b2Manifold* manifold, const b2Transform& xfA, Fixed radiusA,
-                    const b2Transform& xfB, Fixed radiusB);
+    void Initialize(const b2Manifold* manifold, const b2Transform& xfA, Fixed radiusA, const b2Transform& xfB,
+                    Fixed radiusB);
 
-    b2Vec2 normal;                               ///< world vector pointing from A to B
-    b2Vec2 points[b2_maxManifoldPoints];         ///< world contact points (mid-points of overlap)
-    Fixed separations[b2_maxManifoldPoints];     ///< negative when overlapping, m (Box2D 2.3+)
+    b2Vec2 normal;                            ///< world vector pointing from A to B
+    b2Vec2 points[b2_maxManifoldPoints];      ///< world contact points (mid-points of overlap)
+    Fixed separations[b2_maxManifoldPoints];  ///< negative when overlapping, m (Box2D 2.3+)
 };
 
 /// State of a contact point between two manifolds.
@@ -104,9 +104,7 @@ struct b2AABB {
     b2Vec2 upperBound;  ///< upper vertex
 
     /// True when the bounds are sorted (lower <= upper on both axes).
-    constexpr bool IsValid() const noexcept {
-        return upperBound.x >= lowerBound.x && upperBound.y >= lowerBound.y;
-    }
+    constexpr bool IsValid() const noexcept { return upperBound.x >= lowerBound.x && upperBound.y >= lowerBound.y; }
     /// Centre, rounded once per axis: (lower + upper) / 2 formed exactly.
     constexpr b2Vec2 GetCenter() const noexcept {
         return {Half(int64_t{lowerBound.x.Raw()} + upperBound.x.Raw()),
@@ -160,8 +158,8 @@ constexpr bool b2TestOverlap(const b2AABB& a, const b2AABB& b) noexcept {
 }
 
 /// True when child shapes A and B overlap (GJK distance below the slop-scaled threshold).
-bool b2TestOverlap(const b2Shape* shapeA, int32 indexA, const b2Shape* shapeB, int32 indexB,
-                   const b2Transform& xfA, const b2Transform& xfB);
+bool b2TestOverlap(const b2Shape* shapeA, int32 indexA, const b2Shape* shapeB, int32 indexB, const b2Transform& xfA,
+                   const b2Transform& xfB);
 
 /// Manifold of two circles.
 void b2CollideCircles(b2Manifold* manifold, const b2CircleShape* circleA, const b2Transform& xfA,

@@ -69,27 +69,27 @@ struct b2SimplexCache {
     /// (Q32.32) because an area at the contact scale (linearSlop², 1.6 raw in Q16.16) does not
     /// survive Q16.16 (NUMERICS Table 3).
     Wide metric;
-    uint16 count = 0;     ///< number of cached vertices, 0 to 3
-    uint8 indexA[3] = {}; ///< vertex indices on shape A
-    uint8 indexB[3] = {}; ///< vertex indices on shape B
+    uint16 count = 0;      ///< number of cached vertices, 0 to 3
+    uint8 indexA[3] = {};  ///< vertex indices on shape A
+    uint8 indexB[3] = {};  ///< vertex indices on shape B
 };
 
 /// Input of b2Distance. With useRadii the result is the distance between the rounded shapes
 /// (core distance minus both radii, clamped at 0); without, between the core vertex clouds.
 struct b2DistanceInput {
-    b2DistanceProxy proxyA;   ///< shape A
-    b2DistanceProxy proxyB;   ///< shape B
-    b2Transform transformA;   ///< world frame of A
-    b2Transform transformB;   ///< world frame of B
-    bool useRadii = false;    ///< subtract the radii from the distance
+    b2DistanceProxy proxyA;  ///< shape A
+    b2DistanceProxy proxyB;  ///< shape B
+    b2Transform transformA;  ///< world frame of A
+    b2Transform transformB;  ///< world frame of B
+    bool useRadii = false;   ///< subtract the radii from the distance
 };
 
 /// Output of b2Distance.
 struct b2DistanceOutput {
-    b2Vec2 pointA;        ///< closest point on shape A (world, metres)
-    b2Vec2 pointB;        ///< closest point on shape B (world, metres)
-    Fixed distance;       ///< distance between them (metres, >= 0; 0 when overlapping)
-    int32 iterations = 0; ///< number of GJK iterations (support-point evaluations), 0 to 20
+    b2Vec2 pointA;         ///< closest point on shape A (world, metres)
+    b2Vec2 pointB;         ///< closest point on shape B (world, metres)
+    Fixed distance;        ///< distance between them (metres, >= 0; 0 when overlapping)
+    int32 iterations = 0;  ///< number of GJK iterations (support-point evaluations), 0 to 20
 };
 
 /// Computes the closest points between two convex shapes (circle, polygon, edge, chain child)

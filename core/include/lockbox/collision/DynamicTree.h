@@ -47,8 +47,8 @@ struct b2TreeNode {
     /// Field-wise equality (every field, free nodes included).
     friend constexpr bool operator==(const b2TreeNode& a, const b2TreeNode& b) noexcept {
         return a.aabb.lowerBound == b.aabb.lowerBound && a.aabb.upperBound == b.aabb.upperBound &&
-               a.userData == b.userData && a.parent == b.parent && a.next == b.next &&
-               a.child1 == b.child1 && a.child2 == b.child2 && a.height == b.height;
+               a.userData == b.userData && a.parent == b.parent && a.next == b.next && a.child1 == b.child1 &&
+               a.child2 == b.child2 && a.height == b.height;
     }
 };
 
@@ -77,7 +77,8 @@ public:
     /// Pops the last index pushed; the stack must not be empty.
     int32 Pop() {
         --m_count;
-        if (m_count < kInline) [[likely]] return m_inline[m_count];
+        if (m_count < kInline) [[likely]]
+            return m_inline[m_count];
         return m_spill[static_cast<size_t>(m_count - kInline)];
     }
     /// Number of entries.
@@ -223,9 +224,7 @@ private:
     int32 m_insertionCount = 0;
 };
 
-inline uint64 b2DynamicTree::GetUserData(int32 proxyId) const {
-    return m_nodes[static_cast<size_t>(proxyId)].userData;
-}
+inline uint64 b2DynamicTree::GetUserData(int32 proxyId) const { return m_nodes[static_cast<size_t>(proxyId)].userData; }
 
 inline const b2AABB& b2DynamicTree::GetFatAABB(int32 proxyId) const {
     return m_nodes[static_cast<size_t>(proxyId)].aabb;

@@ -30,10 +30,10 @@ public:
     /// Zero mass and inertia; the centre is the midpoint (as 2.2.1).
     void ComputeMass(b2MassData* massData, Fixed density) const override;
 
-    b2Vec2 m_vertex1;          ///< first end point, body frame, m
-    b2Vec2 m_vertex2;          ///< second end point, body frame, m
-    b2Vec2 m_vertex0;          ///< ghost vertex before m_vertex1 (valid when m_hasVertex0)
-    b2Vec2 m_vertex3;          ///< ghost vertex after m_vertex2 (valid when m_hasVertex3)
+    b2Vec2 m_vertex1;           ///< first end point, body frame, m
+    b2Vec2 m_vertex2;           ///< second end point, body frame, m
+    b2Vec2 m_vertex0;           ///< ghost vertex before m_vertex1 (valid when m_hasVertex0)
+    b2Vec2 m_vertex3;           ///< ghost vertex after m_vertex2 (valid when m_hasVertex3)
     bool m_hasVertex0 = false;  ///< m_vertex0 is set
     bool m_hasVertex3 = false;  ///< m_vertex3 is set
 };

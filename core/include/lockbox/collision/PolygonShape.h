@@ -71,10 +71,10 @@ public:
     /// vertex strictly inside every other edge's half-plane, exact test). False when empty.
     bool Validate() const noexcept;
 
-    b2Vec2 m_centroid;                           ///< area centroid, body frame, m
-    b2Vec2 m_vertices[b2_maxPolygonVertices];    ///< counter-clockwise, body frame, m
-    b2Vec2 m_normals[b2_maxPolygonVertices];     ///< unit outward normal of edge i -> i+1
-    int32 m_vertexCount = 0;                     ///< 3..8 once set
+    b2Vec2 m_centroid;                         ///< area centroid, body frame, m
+    b2Vec2 m_vertices[b2_maxPolygonVertices];  ///< counter-clockwise, body frame, m
+    b2Vec2 m_normals[b2_maxPolygonVertices];   ///< unit outward normal of edge i -> i+1
+    int32 m_vertexCount = 0;                   ///< 3..8 once set
 };
 
 }  // namespace lockbox

@@ -29,10 +29,10 @@ struct b2TOIOutput {
         e_separated    ///< no contact before tMax (t = tMax)
     };
 
-    State state = e_unknown;  ///< result class
-    Fixed t;                  ///< time fraction of the result, in [0, tMax]
-    int32 iterations = 0;     ///< outer (separating-axis) iterations, 1 to b2_maxTOIIterations
-    int32 rootIterations = 0; ///< root-finder iterations summed over the whole call
+    State state = e_unknown;   ///< result class
+    Fixed t;                   ///< time fraction of the result, in [0, tMax]
+    int32 iterations = 0;      ///< outer (separating-axis) iterations, 1 to b2_maxTOIIterations
+    int32 rootIterations = 0;  ///< root-finder iterations summed over the whole call
 };
 
 /// The largest number of outer iterations of b2TimeOfImpact (2.2.1's k_maxIterations).

@@ -25,20 +25,20 @@ enum b2BodyType {
 
 /// Everything needed to create a body; reusable.
 struct b2BodyDef {
-    b2BodyType type = b2_staticBody;   ///< body type
-    b2Vec2 position;                   ///< world position of the body origin, m
-    Fixed angle;                       ///< world angle, rad
-    b2Vec2 linearVelocity;             ///< of the origin, m/s
-    Fixed angularVelocity;             ///< rad/s
-    Fixed linearDamping;               ///< 1/s, >= 0 (v *= 1 / (1 + h*c) each step)
-    Fixed angularDamping;              ///< 1/s, >= 0
-    bool allowSleep = true;            ///< may this body fall asleep?
-    bool awake = true;                 ///< initially awake?
-    bool fixedRotation = false;        ///< prevents rotation (zero inverse inertia)
-    bool bullet = false;               ///< continuous collision against dynamic bodies too
-    bool active = true;                ///< in the simulation at start?
-    uint64 userData = 0;               ///< application data
-    Fixed gravityScale = 1;            ///< multiplies the world gravity for this body
+    b2BodyType type = b2_staticBody;  ///< body type
+    b2Vec2 position;                  ///< world position of the body origin, m
+    Fixed angle;                      ///< world angle, rad
+    b2Vec2 linearVelocity;            ///< of the origin, m/s
+    Fixed angularVelocity;            ///< rad/s
+    Fixed linearDamping;              ///< 1/s, >= 0 (v *= 1 / (1 + h*c) each step)
+    Fixed angularDamping;             ///< 1/s, >= 0
+    bool allowSleep = true;           ///< may this body fall asleep?
+    bool awake = true;                ///< initially awake?
+    bool fixedRotation = false;       ///< prevents rotation (zero inverse inertia)
+    bool bullet = false;              ///< continuous collision against dynamic bodies too
+    bool active = true;               ///< in the simulation at start?
+    uint64 userData = 0;              ///< application data
+    Fixed gravityScale = 1;           ///< multiplies the world gravity for this body
 };
 
 /// A rigid body.
@@ -187,12 +187,12 @@ public:
     b2BodyType m_type;
     uint16 m_flags = 0;
     int32 m_islandIndex = 0;
-    b2Transform m_xf;   ///< body origin transform
-    b2Sweep m_sweep;    ///< swept motion for CCD
+    b2Transform m_xf;  ///< body origin transform
+    b2Sweep m_sweep;   ///< swept motion for CCD
     b2Vec2 m_linearVelocity;
     Fixed m_angularVelocity;
-    b2Vec2 m_force;     ///< N
-    Fixed m_torque;     ///< N*m
+    b2Vec2 m_force;  ///< N
+    Fixed m_torque;  ///< N*m
     b2World* m_world;
     b2Body* m_prev = nullptr;
     b2Body* m_next = nullptr;

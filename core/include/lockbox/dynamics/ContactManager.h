@@ -46,9 +46,9 @@ public:
     b2BroadPhase m_broadPhase;
     b2Contact* m_contactList = nullptr;
     int32 m_contactCount = 0;
-    b2ContactFilter* m_contactFilter = nullptr;  ///< nullptr: the default rule
+    b2ContactFilter* m_contactFilter = nullptr;      ///< nullptr: the default rule
     b2ContactListener* m_contactListener = nullptr;  ///< nullptr: no events, no overhead
-    b2Profile* m_profile = nullptr;  ///< counters of the current step (owned by the world)
+    b2Profile* m_profile = nullptr;                  ///< counters of the current step (owned by the world)
 
 private:
     bool ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB);

@@ -12,7 +12,11 @@ namespace lockbox {
 struct b2Color {
     b2Color() = default;
     b2Color(float rIn, float gIn, float bIn) : r(rIn), g(gIn), b(bIn) {}
-    void Set(float rIn, float gIn, float bIn) { r = rIn; g = gIn; b = bIn; }
+    void Set(float rIn, float gIn, float bIn) {
+        r = rIn;
+        g = gIn;
+        b = bIn;
+    }
     float r = 0.0f;
     float g = 0.0f;
     float b = 0.0f;

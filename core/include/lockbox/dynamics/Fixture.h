@@ -27,22 +27,22 @@ struct b2Filter {
 
 /// Definition of a fixture; the shape is cloned, so the definition can be reused.
 struct b2FixtureDef {
-    const b2Shape* shape = nullptr;  ///< must be set
-    uint64 userData = 0;             ///< application data (an id or handle, never a pointer)
+    const b2Shape* shape = nullptr;          ///< must be set
+    uint64 userData = 0;                     ///< application data (an id or handle, never a pointer)
     Fixed friction = Fixed::FromRaw(13107);  ///< Coulomb coefficient, usually [0, 1] (default 0.2)
-    Fixed restitution;               ///< elasticity, usually [0, 1]
-    Fixed density;                   ///< kg/m^2
-    bool isSensor = false;           ///< a sensor reports overlaps but never responds
-    b2Filter filter;                 ///< contact filtering data
+    Fixed restitution;                       ///< elasticity, usually [0, 1]
+    Fixed density;                           ///< kg/m^2
+    bool isSensor = false;                   ///< a sensor reports overlaps but never responds
+    b2Filter filter;                         ///< contact filtering data
 };
 
 /// One broad-phase proxy of a fixture (one per shape child). The broad phase's user data is
 /// b2FixtureProxy::MakeKey(fixtureId, childIndex): ids, never addresses.
 struct b2FixtureProxy {
-    b2AABB aabb;                  ///< fat-free AABB of the child, m
-    b2Fixture* fixture = nullptr; ///< owner
-    int32 childIndex = 0;         ///< child of the shape
-    int32 proxyId = -1;           ///< broad-phase proxy id
+    b2AABB aabb;                   ///< fat-free AABB of the child, m
+    b2Fixture* fixture = nullptr;  ///< owner
+    int32 childIndex = 0;          ///< child of the shape
+    int32 proxyId = -1;            ///< broad-phase proxy id
 
     /// Packs a fixture id and child index into the broad phase's 64-bit user data.
     static constexpr uint64 MakeKey(int32 fixtureId, int32 childIndex) noexcept {

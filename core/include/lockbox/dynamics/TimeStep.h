@@ -24,25 +24,25 @@ struct b2Profile {
     int64_t solveTOINs = 0;       ///< continuous collision
 
     // ---- deterministic work counters (reset at the start of each Step) ----
-    int32 pairsFound = 0;           ///< broad-phase pairs reported to AddPair
-    int32 contactsCreated = 0;      ///< contacts created from new pairs
-    int32 contactsDestroyed = 0;    ///< contacts destroyed (filtering, lost overlap, bodies)
-    int32 contactsUpdated = 0;      ///< contacts whose narrow phase ran (b2Contact::Update)
-    int32 manifoldsEvaluated = 0;   ///< b2Collide* calls (sensors use overlap tests instead)
-    int32 islandsSolved = 0;        ///< discrete islands solved
-    int32 bodiesIntegrated = 0;     ///< bodies integrated by the discrete solver
-    int32 contactConstraints = 0;   ///< contact constraints initialised by the discrete solver
-    int32 jointConstraints = 0;     ///< joints initialised by the discrete solver
-    int32 velocityIterations = 0;   ///< sum over islands of velocity iterations x constraints
+    int32 pairsFound = 0;               ///< broad-phase pairs reported to AddPair
+    int32 contactsCreated = 0;          ///< contacts created from new pairs
+    int32 contactsDestroyed = 0;        ///< contacts destroyed (filtering, lost overlap, bodies)
+    int32 contactsUpdated = 0;          ///< contacts whose narrow phase ran (b2Contact::Update)
+    int32 manifoldsEvaluated = 0;       ///< b2Collide* calls (sensors use overlap tests instead)
+    int32 islandsSolved = 0;            ///< discrete islands solved
+    int32 bodiesIntegrated = 0;         ///< bodies integrated by the discrete solver
+    int32 contactConstraints = 0;       ///< contact constraints initialised by the discrete solver
+    int32 jointConstraints = 0;         ///< joints initialised by the discrete solver
+    int32 velocityIterations = 0;       ///< sum over islands of velocity iterations x constraints
     int32 jointVelocityIterations = 0;  ///< sum over islands of velocity iterations x joints
-    int32 positionIterations = 0;   ///< position iterations run (all islands)
-    int32 sleepChecks = 0;          ///< bodies examined by the sleep test
-    int32 toiCandidates = 0;        ///< contacts examined by the TOI search (beyond the cheap check)
-    int32 toiCalls = 0;             ///< b2TimeOfImpact calls
-    int32 toiEvents = 0;            ///< TOI events (earliest contact advanced)
-    int32 toiSubSteps = 0;          ///< TOI islands solved (sub-steps)
-    int32 listenerCallbacks = 0;    ///< Begin/End/PreSolve/PostSolve calls made
-    int32 boundsViolations = 0;     ///< bodies taken out of the world by the bounds check
+    int32 positionIterations = 0;       ///< position iterations run (all islands)
+    int32 sleepChecks = 0;              ///< bodies examined by the sleep test
+    int32 toiCandidates = 0;            ///< contacts examined by the TOI search (beyond the cheap check)
+    int32 toiCalls = 0;                 ///< b2TimeOfImpact calls
+    int32 toiEvents = 0;                ///< TOI events (earliest contact advanced)
+    int32 toiSubSteps = 0;              ///< TOI islands solved (sub-steps)
+    int32 listenerCallbacks = 0;        ///< Begin/End/PreSolve/PostSolve calls made
+    int32 boundsViolations = 0;         ///< bodies taken out of the world by the bounds check
 
     // ---- headroom telemetry (filled only when b2World::SetHeadroomTelemetry(true)) ----
     /// Largest magnitude per quantity class at the end of the step, and the step's saturation
@@ -52,9 +52,9 @@ struct b2Profile {
 
 /// What the solver needs to know about the current (sub-)step.
 struct b2TimeStep {
-    Fixed dt;             ///< time step, s (1/60 s is raw 1092)
-    Fixed inv_dt;         ///< 1 / dt computed in Q16.16, s^-1 (0 when dt is 0)
-    Fixed dtRatio;        ///< dt * inv_dt0: warm-start scaling for a variable step (1 exactly for a fixed dt)
+    Fixed dt;       ///< time step, s (1/60 s is raw 1092)
+    Fixed inv_dt;   ///< 1 / dt computed in Q16.16, s^-1 (0 when dt is 0)
+    Fixed dtRatio;  ///< dt * inv_dt0: warm-start scaling for a variable step (1 exactly for a fixed dt)
     int32 velocityIterations = 0;
     int32 positionIterations = 0;
     int32 stepsToSleep = 0;  ///< round(b2_timeToSleep / dt): consecutive still steps before sleep

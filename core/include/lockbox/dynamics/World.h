@@ -47,7 +47,6 @@ struct FrameCacheDeleter {
 uint64 NextWorldSerial() noexcept;
 }  // namespace state_detail
 
-
 /// Called for programmer errors such as modifying a locked world. expr names the check, msg
 /// explains it. The default prints to stderr and aborts. If the handler returns, the call is
 /// refused (nothing changes; creators return nullptr).
@@ -277,7 +276,7 @@ public:
     b2FrameRestoreCounts m_frameRestores;
     mutable std::unique_ptr<state_detail::FrameCache, state_detail::FrameCacheDeleter> m_frameCache;
     b2Profile m_profile;
-    bool m_headroomTelemetry = false;  ///< fill m_profile.headroom at the end of each Step
+    bool m_headroomTelemetry = false;          ///< fill m_profile.headroom at the end of each Step
     b2StepObserver* m_stepObserver = nullptr;  ///< step fenceposts (not state)
 
 private:

@@ -65,9 +65,7 @@ struct b2Headroom {
 
     /// The entry of one class.
     b2HeadroomEntry& operator[](b2HeadroomClass c) noexcept { return entries[static_cast<int32>(c)]; }
-    const b2HeadroomEntry& operator[](b2HeadroomClass c) const noexcept {
-        return entries[static_cast<int32>(c)];
-    }
+    const b2HeadroomEntry& operator[](b2HeadroomClass c) const noexcept { return entries[static_cast<int32>(c)]; }
 
     /// Running maximum: keeps the larger magnitude per class and adds the saturations.
     void Merge(const b2Headroom& other) noexcept;

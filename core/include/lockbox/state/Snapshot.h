@@ -36,17 +36,17 @@ inline constexpr uint32 b2_snapshotMagic = 0x4E53424Cu;  // 'L' 'B' 'S' 'N', low
 
 /// Why a restore was refused.
 enum class b2SnapshotError : uint32 {
-    e_ok = 0,               ///< restored
-    e_truncated,            ///< the image ends before a field or a section it announces
-    e_badEndianFlag,        ///< the first byte is not Cereal's little-endian flag (1)
-    e_badMagic,             ///< not a lockbox snapshot
-    e_badFormatVersion,     ///< written by another snapshot format version
-    e_badDeterminismVersion,///< written under another hash/number-format definition
-    e_badChecksum,          ///< the payload does not match its XXH3-64 checksum
-    e_corrupt,              ///< well formed but inconsistent (the message names the field)
-    e_trailingBytes,        ///< bytes after the last section
-    e_locked,               ///< Restore called inside Step
-    e_foreignFrame,         ///< RestoreFrame given an empty frame or another world's
+    e_ok = 0,                 ///< restored
+    e_truncated,              ///< the image ends before a field or a section it announces
+    e_badEndianFlag,          ///< the first byte is not Cereal's little-endian flag (1)
+    e_badMagic,               ///< not a lockbox snapshot
+    e_badFormatVersion,       ///< written by another snapshot format version
+    e_badDeterminismVersion,  ///< written under another hash/number-format definition
+    e_badChecksum,            ///< the payload does not match its XXH3-64 checksum
+    e_corrupt,                ///< well formed but inconsistent (the message names the field)
+    e_trailingBytes,          ///< bytes after the last section
+    e_locked,                 ///< Restore called inside Step
+    e_foreignFrame,           ///< RestoreFrame given an empty frame or another world's
 };
 
 /// Recomputes the checksum of an image after its bytes were edited (tools, tests, fuzzing);
@@ -68,15 +68,15 @@ struct b2RestoreResult {
 
 /// Byte counts of one snapshot by section (b2World::SaveStats), for size reports.
 struct b2SnapshotStats {
-    uint32 headerBytes = 0;      ///< fixed header including the endianness flag
-    uint32 settingsBytes = 0;    ///< world switches and carry-over
-    uint32 bodyBytes = 0;        ///< body pool and bodies
-    uint32 fixtureBytes = 0;     ///< fixture pool, fixtures and shapes
-    uint32 contactBytes = 0;     ///< contact pool and contacts with manifolds
-    uint32 jointBytes = 0;       ///< joints
-    uint32 broadPhaseBytes = 0;  ///< dynamic tree and move buffer
+    uint32 headerBytes = 0;         ///< fixed header including the endianness flag
+    uint32 settingsBytes = 0;       ///< world switches and carry-over
+    uint32 bodyBytes = 0;           ///< body pool and bodies
+    uint32 fixtureBytes = 0;        ///< fixture pool, fixtures and shapes
+    uint32 contactBytes = 0;        ///< contact pool and contacts with manifolds
+    uint32 jointBytes = 0;          ///< joints
+    uint32 broadPhaseBytes = 0;     ///< dynamic tree and move buffer
     uint32 jointReactionBytes = 0;  ///< joints' reaction directions (not hashed)
-    uint32 totalBytes = 0;       ///< the whole image
+    uint32 totalBytes = 0;          ///< the whole image
 };
 
 }  // namespace lockbox

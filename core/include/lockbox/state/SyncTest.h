@@ -51,14 +51,14 @@ struct SyncTestConfig {
 /// What a sync test found.
 struct SyncTestResult {
     bool ok = true;
-    int32 framesSimulated = 0;   ///< frames advanced for the first time
-    int32 rollbacks = 0;         ///< restores followed by a checked re-simulation
-    int32 framesResimulated = 0; ///< checked re-simulated frames
-    int32 firstBadFrame = -1;    ///< the state after this many frames differs (-1: none)
-    uint64 expected = 0;         ///< first-run hash at firstBadFrame
-    uint64 actual = 0;           ///< re-simulated hash at firstBadFrame
-    b2HashMismatch where;        ///< first differing category and body
-    std::string message;         ///< a one-line account of the failure; empty when ok
+    int32 framesSimulated = 0;    ///< frames advanced for the first time
+    int32 rollbacks = 0;          ///< restores followed by a checked re-simulation
+    int32 framesResimulated = 0;  ///< checked re-simulated frames
+    int32 firstBadFrame = -1;     ///< the state after this many frames differs (-1: none)
+    uint64 expected = 0;          ///< first-run hash at firstBadFrame
+    uint64 actual = 0;            ///< re-simulated hash at firstBadFrame
+    b2HashMismatch where;         ///< first differing category and body
+    std::string message;          ///< a one-line account of the failure; empty when ok
     /// In frames mode: how the run's RestoreFrame calls went (same structure, spawns undone,
     /// structure image restored).
     b2FrameRestoreCounts frameRestores;

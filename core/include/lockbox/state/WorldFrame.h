@@ -91,21 +91,21 @@ namespace frame_detail {
 struct Structure {
     std::vector<uint8> image;
     std::vector<uint8> bodyLive, fixtureLive, jointLive;  ///< a flag per slot (joints: per id)
-    std::vector<int32> bodyFree, fixtureFree;  ///< free stacks, bottom first
+    std::vector<int32> bodyFree, fixtureFree;             ///< free stacks, bottom first
 };
 
 }  // namespace frame_detail
 
 /// Byte counts of one frame (b2WorldFrame::Stats).
 struct b2FrameStats {
-    uint32 bodyBytes = 0;       ///< body motion (64 per body)
-    uint32 forceBytes = 0;      ///< pending forces (16 per body that has one)
-    uint32 proxyBytes = 0;      ///< proxy boxes (16 per proxy)
-    uint32 contactBytes = 0;    ///< contacts, manifold points and the contact pool's layout
-    uint32 jointBytes = 0;      ///< joints' state fields
-    uint32 broadPhaseBytes = 0; ///< tree nodes and move buffer
-    uint32 frameBytes = 0;      ///< all of the above plus the fixed part: this frame's own memory
-    uint32 structureBytes = 0;  ///< the structure image and pool layouts (shared with other frames)
+    uint32 bodyBytes = 0;        ///< body motion (64 per body)
+    uint32 forceBytes = 0;       ///< pending forces (16 per body that has one)
+    uint32 proxyBytes = 0;       ///< proxy boxes (16 per proxy)
+    uint32 contactBytes = 0;     ///< contacts, manifold points and the contact pool's layout
+    uint32 jointBytes = 0;       ///< joints' state fields
+    uint32 broadPhaseBytes = 0;  ///< tree nodes and move buffer
+    uint32 frameBytes = 0;       ///< all of the above plus the fixed part: this frame's own memory
+    uint32 structureBytes = 0;   ///< the structure image and pool layouts (shared with other frames)
 };
 
 /// A world's state at one moment, for that world's RestoreFrame. Reuse frames (a ring): a
@@ -128,14 +128,14 @@ private:
     std::shared_ptr<const frame_detail::Structure> m_structure;  ///< that epoch's structure
     uint64 m_checkHash = 0;  ///< b2WorldHash at the save (checked builds; 0 otherwise)
     frame_detail::Settings m_settings;
-    std::vector<frame_detail::BodyMotion> m_bodies;  ///< body-list order
-    std::vector<frame_detail::BodyForce> m_forces;   ///< ascending body index
-    std::vector<b2AABB> m_proxies;  ///< each body's fixtures' proxies, body then fixture order
-    std::vector<uint8> m_contactLive;  ///< contact pool: a flag per slot
-    std::vector<int32> m_contactFree;  ///< contact pool: free stack, bottom first
+    std::vector<frame_detail::BodyMotion> m_bodies;       ///< body-list order
+    std::vector<frame_detail::BodyForce> m_forces;        ///< ascending body index
+    std::vector<b2AABB> m_proxies;                        ///< each body's fixtures' proxies, body then fixture order
+    std::vector<uint8> m_contactLive;                     ///< contact pool: a flag per slot
+    std::vector<int32> m_contactFree;                     ///< contact pool: free stack, bottom first
     std::vector<frame_detail::ContactRecord> m_contacts;  ///< contact-list order
-    std::vector<b2ManifoldPoint> m_points;  ///< each contact's manifold points, in order
-    std::vector<uint8> m_joints;  ///< per joint (id order): user data, VisitState, reaction
+    std::vector<b2ManifoldPoint> m_points;                ///< each contact's manifold points, in order
+    std::vector<uint8> m_joints;                          ///< per joint (id order): user data, VisitState, reaction
     std::vector<b2TreeNode> m_nodes;
     int32 m_treeRoot = b2_nullNode, m_treeFree = b2_nullNode, m_treeNodeCount = 0, m_treeInsertions = 0;
     int32 m_proxyCount = 0;

@@ -61,9 +61,9 @@ struct b2BodyHashEntry {
 
 /// The world hash with its breakdown.
 struct b2WorldHashReport {
-    uint64 total = 0;  ///< equals b2WorldHash(world)
+    uint64 total = 0;                                                      ///< equals b2WorldHash(world)
     uint64 categories[static_cast<uint32>(b2HashCategory::e_count)] = {};  ///< by b2HashCategory
-    std::vector<b2BodyHashEntry> bodies;  ///< one per body, in body-list order
+    std::vector<b2BodyHashEntry> bodies;                                   ///< one per body, in body-list order
 };
 
 /// Where two reports first differ.

@@ -1,8 +1,7 @@
 // b2AABB::RayCast: the slab method of 2.2.1 with every slab fraction kept as an exact ratio.
 
-#include "lockbox/collision/Collision.h"
-
 #include "ShapeInternal.h"
+#include "lockbox/collision/Collision.h"
 
 namespace lockbox {
 

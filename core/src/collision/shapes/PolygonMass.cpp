@@ -11,9 +11,8 @@
 // b2_maxShapeCoordinate (2^28 raw) give edges < 2^29 raw, D < 2^59, D q < 2^120 and the total
 // below 2^125, so nothing is rounded until the final scaling.
 
-#include "lockbox/collision/PolygonShape.h"
-
 #include "ShapeInternal.h"
+#include "lockbox/collision/PolygonShape.h"
 
 namespace lockbox {
 
@@ -47,8 +46,8 @@ FanSums SumFan(const b2Vec2* v, int32 count) noexcept {
 // round(num / den) for a Q48.48 sum over a Q32.32 divisor: a Q16.16 raw.
 Fixed RatioToFixed(const S128& num, int64_t den) noexcept {
     const S128 q = detail::DivRoundS128(num, shape_detail::ToS128(den));
-    return Fixed::FromRaw(static_cast<int32_t>(detail::NarrowRaw(detail::FitsS64(q) ? detail::ToS64(q) : INT64_MAX,
-                                                                 "polygon centroid", den, 0)));
+    return Fixed::FromRaw(static_cast<int32_t>(
+        detail::NarrowRaw(detail::FitsS64(q) ? detail::ToS64(q) : INT64_MAX, "polygon centroid", den, 0)));
 }
 
 }  // namespace
@@ -85,9 +84,9 @@ void b2PolygonShape::ComputeMass(b2MassData* massData, Fixed density) const {
     if (sums.sumD <= 0) return;  // unreachable for validated polygons (area >= 2^-10 m^2)
 
     // mass = density * sum(D) / 2: Q16.16 * Q32.32 -> shift 17 to Q32.32, one rounding.
-    massData->mass = Wide::FromRaw(detail::NarrowWide(
-        detail::ShrRoundS128(detail::MulS64(density.Raw(), sums.sumD), 17), "b2PolygonShape::ComputeMass mass",
-        density.Raw(), sums.sumD));
+    massData->mass =
+        Wide::FromRaw(detail::NarrowWide(detail::ShrRoundS128(detail::MulS64(density.Raw(), sums.sumD), 17),
+                                         "b2PolygonShape::ComputeMass mass", density.Raw(), sums.sumD));
 
     const Fixed cx = RatioToFixed(sums.cx, 3 * sums.sumD);
     const Fixed cy = RatioToFixed(sums.cy, 3 * sums.sumD);
@@ -103,7 +102,8 @@ void b2PolygonShape::ComputeMass(b2MassData* massData, Fixed density) const {
     // I0 / density as Q?.48 (rounding 2^-49 m^4, negligible), then times density (Q16.16) and
     // down to Q32.32. MulShiftNarrow saturates when I exceeds the Wide range (~2.1e9 kg m^2).
     const S128 unitI = detail::DivRoundS128(twelveI, shape_detail::ToS128(int64_t{12} << 16));
-    massData->I = Wide::FromRaw(shape_detail::MulShiftNarrow(unitI, density.Raw(), 32, "b2PolygonShape::ComputeMass I"));
+    massData->I =
+        Wide::FromRaw(shape_detail::MulShiftNarrow(unitI, density.Raw(), 32, "b2PolygonShape::ComputeMass I"));
 }
 
 }  // namespace lockbox

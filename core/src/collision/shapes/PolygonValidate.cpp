@@ -4,9 +4,8 @@
 
 #include <vector>
 
-#include "lockbox/collision/PolygonShape.h"
-
 #include "ShapeInternal.h"
+#include "lockbox/collision/PolygonShape.h"
 
 namespace lockbox {
 
@@ -100,7 +99,8 @@ b2ShapeError b2PolygonShape::SetFromHull(const b2Vec2* points, int32 count) {
                 continue;
             }
             const int64_t s = Cross3Raw(current, points[best], points[j]);
-            if (s < 0 || (s == 0 && DistanceSquaredRaw(current, points[j]) > DistanceSquaredRaw(current, points[best]))) {
+            if (s < 0 ||
+                (s == 0 && DistanceSquaredRaw(current, points[j]) > DistanceSquaredRaw(current, points[best]))) {
                 best = j;
             }
         }

@@ -10,7 +10,8 @@ const char* b2ShapeErrorMessage(b2ShapeError error) noexcept {
     switch (error) {
         case b2ShapeError::ok: return "ok";
         case b2ShapeError::tooFewVertices: return "too few vertices (polygon and loop need 3, chain needs 2)";
-        case b2ShapeError::tooManyVertices: return "too many vertices (a polygon has at most b2_maxPolygonVertices = 8)";
+        case b2ShapeError::tooManyVertices:
+            return "too many vertices (a polygon has at most b2_maxPolygonVertices = 8)";
         case b2ShapeError::duplicateVertices: return "two vertices are closer than the weld distance";
         case b2ShapeError::collinear: return "collinear vertices (all on a line, or a vertex on its neighbours' chord)";
         case b2ShapeError::notConvex: return "the polygon is not convex";
@@ -33,8 +34,8 @@ b2AABB SegmentAABB(const b2Vec2& v1, const b2Vec2& v2, Fixed radius) noexcept {
     return aabb;
 }
 
-bool RayCastSegment(b2RayCastOutput* output, const b2RayCastInput& input, const b2Transform& xf,
-                    const b2Vec2& v1, const b2Vec2& v2) {
+bool RayCastSegment(b2RayCastOutput* output, const b2RayCastInput& input, const b2Transform& xf, const b2Vec2& v1,
+                    const b2Vec2& v2) {
     // The ray in the segment's frame, as 2.2.1 does; after this everything is exact.
     const b2Vec2 p1 = b2MulT(xf.q, input.p1 - xf.p);
     const b2Vec2 p2 = b2MulT(xf.q, input.p2 - xf.p);

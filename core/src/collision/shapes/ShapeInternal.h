@@ -83,8 +83,8 @@ constexpr int64_t Cross3Raw(const b2Vec2& a, const b2Vec2& b, const b2Vec2& c) n
 b2AABB SegmentAABB(const b2Vec2& v1, const b2Vec2& v2, Fixed radius) noexcept;
 
 /// Ray cast against the segment v1-v2 given in the frame xf (shared by edges and chains).
-bool RayCastSegment(b2RayCastOutput* output, const b2RayCastInput& input, const b2Transform& xf,
-                    const b2Vec2& v1, const b2Vec2& v2);
+bool RayCastSegment(b2RayCastOutput* output, const b2RayCastInput& input, const b2Transform& xf, const b2Vec2& v1,
+                    const b2Vec2& v2);
 
 /// Area centroid of a validated polygon (exact sums, one rounding per coordinate).
 b2Vec2 ComputePolygonCentroid(const b2Vec2* vertices, int32 count) noexcept;

@@ -44,8 +44,13 @@ bool b2Contact::NeedsSwap(b2Shape::Type typeA, b2Shape::Type typeB) noexcept {
 }
 
 b2Contact::b2Contact(b2Fixture* fA, int32 indexA, b2Fixture* fB, int32 indexB, int32 id)
-    : m_fixtureA(fA), m_fixtureB(fB), m_indexA(indexA), m_indexB(indexB), m_fixtureIdA(fA->GetId()),
-      m_fixtureIdB(fB->GetId()), m_id(id) {
+    : m_fixtureA(fA),
+      m_fixtureB(fB),
+      m_indexA(indexA),
+      m_indexB(indexB),
+      m_fixtureIdA(fA->GetId()),
+      m_fixtureIdB(fB->GetId()),
+      m_id(id) {
     m_manifold.pointCount = 0;
     m_friction = b2MixFriction(m_fixtureA->m_friction, m_fixtureB->m_friction);
     m_restitution = b2MixRestitution(m_fixtureA->m_restitution, m_fixtureB->m_restitution);
@@ -107,9 +112,7 @@ void b2Contact::Evaluate(b2Manifold* manifold, const b2Transform& xfA, const b2T
             }
             return;
         }
-        default:
-            manifold->pointCount = 0;
-            return;
+        default: manifold->pointCount = 0; return;
     }
 }
 
@@ -161,7 +164,10 @@ void b2Contact::Update(b2ContactListener* listener, b2Profile* profile) {
         }
     }
 
-    if (touching) m_flags |= e_touchingFlag; else m_flags &= ~e_touchingFlag;
+    if (touching)
+        m_flags |= e_touchingFlag;
+    else
+        m_flags &= ~e_touchingFlag;
 
     if (listener == nullptr) return;
     if (!wasTouching && touching) {

@@ -131,7 +131,8 @@ Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 count, b2P
 }  // namespace
 
 bool b2ContactSolver::SolvePositionConstraints() {
-    const Fixed minSeparation = SolvePass(m_positionConstraints, m_count, m_positions, m_rotations, b2_baumgarte, false, -1, -1);
+    const Fixed minSeparation =
+        SolvePass(m_positionConstraints, m_count, m_positions, m_rotations, b2_baumgarte, false, -1, -1);
     // Box2D accepts an overlap of up to 3 linearSlop (m, raw 984) since it is pushing the
     // separation toward -linearSlop.
     return minSeparation >= Fixed::FromRaw(-3 * b2_linearSlop.Raw());

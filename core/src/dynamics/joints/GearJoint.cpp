@@ -34,8 +34,8 @@ b2GearJoint::Side b2GearJoint::MakeSide(b2Joint* joint) {
     return s;
 }
 
-Fixed b2GearJoint::Coordinate(const Side& s, const b2Vec2& cG, Fixed aG, const b2Vec2& c, Fixed a,
-                              const b2Vec2& lcG, const b2Vec2& lc) {
+Fixed b2GearJoint::Coordinate(const Side& s, const b2Vec2& cG, Fixed aG, const b2Vec2& c, Fixed a, const b2Vec2& lcG,
+                              const b2Vec2& lc) {
     if (s.type == e_revoluteJoint) {
         // Continuous angle: the branch nearest the last one (body angles wrap each step).
         return s.angleBase + WrapAngle(a - aG - s.referenceAngle - s.angleBase);
@@ -144,8 +144,7 @@ void b2GearJoint::InitVelocityConstraints(const b2SolverData& data) {
         m_JvBD = m_ratio * u;
         m_JwD = m_ratio * b2Cross(rD, u);
         m_JwB = m_ratio * b2Cross(rB, u);
-        mass += (m_mD + m_mB) * MulWide(m_ratio, m_ratio) + m_iD * MulWide(m_JwD, m_JwD) +
-                m_iB * MulWide(m_JwB, m_JwB);
+        mass += (m_mD + m_mB) * MulWide(m_ratio, m_ratio) + m_iD * MulWide(m_JwD, m_JwD) + m_iB * MulWide(m_JwB, m_JwB);
     }
     m_mass = Invert(mass);
 

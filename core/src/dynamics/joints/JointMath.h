@@ -63,11 +63,11 @@ struct Soft {
 
 inline Soft SoftCoefficients(Wide mass, Fixed frequencyHz, Fixed dampingRatio, Fixed h) noexcept {
     Soft s;
-    const Fixed omega = kTwoPi * frequencyHz;                   // rad/s (<= 188 for 30 Hz)
+    const Fixed omega = kTwoPi * frequencyHz;                       // rad/s (<= 188 for 30 Hz)
     const Wide d = mass * MulWide(Fixed(2) * dampingRatio, omega);  // N*s/m
-    const Wide k = mass * MulWide(omega, omega);                 // N/m
-    const Wide hk = k * h;                                       // N*s/m
-    const Wide denom = (d + hk) * h;                             // kg
+    const Wide k = mass * MulWide(omega, omega);                    // N/m
+    const Wide hk = k * h;                                          // N*s/m
+    const Wide denom = (d + hk) * h;                                // kg
     s.gamma = Invert(denom);
     s.biasRate = hk * s.gamma;
     return s;

@@ -178,9 +178,7 @@ void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
     const Wide mA = m_invMassA, mB = m_invMassB, iA = m_invIA, iB = m_invIB;
 
     // Axial velocity: dot(axis, vB - vA) + a2 wB - a1 wA, formed exactly and rounded once.
-    auto axial = [&]() {
-        return b2DotWide(m_axis, vB - vA) + MulWide(m_a2, wB) - MulWide(m_a1, wA);
-    };
+    auto axial = [&]() { return b2DotWide(m_axis, vB - vA) + MulWide(m_a2, wB) - MulWide(m_a1, wA); };
 
     // Solve the linear motor constraint.
     if (m_enableMotor && m_limitState != e_equalLimits) {
@@ -313,8 +311,7 @@ Fixed b2PrismaticJoint::GetJointSpeed() const {
     const b2Vec2 axis = b2Mul(bA->m_xf.q, m_localXAxisA);
     const b2Vec2 vA = bA->m_linearVelocity, vB = bB->m_linearVelocity;
     const Fixed wA = bA->m_angularVelocity, wB = bB->m_angularVelocity;
-    return (b2DotWide(d, b2Cross(wA, axis)) +
-            b2DotWide(axis, vB + b2Cross(wB, rB) - vA - b2Cross(wA, rA))).ToFixed();
+    return (b2DotWide(d, b2Cross(wA, axis)) + b2DotWide(axis, vB + b2Cross(wB, rB) - vA - b2Cross(wA, rA))).ToFixed();
 }
 
 Fixed b2PrismaticJoint::GetMotorForce(Fixed inv_dt) const { return MulToFixed(m_motorImpulse, inv_dt); }

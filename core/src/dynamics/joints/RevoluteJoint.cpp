@@ -172,7 +172,8 @@ void b2RevoluteJoint::SolveVelocityConstraints(const b2SolverData& data) {
             const bool violates = m_limitState == e_atLowerLimit ? newImpulse < Wide() : newImpulse > Wide();
             if (violates) {
                 // Clamp the accumulated limit impulse to zero and re-solve the point part.
-                const b2WideVec2 rhs = -b2WideVec2(Cdot1) + b2WideVec2(m_impulse.z * m_mass.ez.x, m_impulse.z * m_mass.ez.y);
+                const b2WideVec2 rhs =
+                    -b2WideVec2(Cdot1) + b2WideVec2(m_impulse.z * m_mass.ez.x, m_impulse.z * m_mass.ez.y);
                 const b2WideVec2 reduced = m_pointSolver.Solve(rhs);
                 impulse.x = reduced.x;
                 impulse.y = reduced.y;
@@ -278,9 +279,7 @@ b2Vec2 b2RevoluteJoint::GetReactionForce(Fixed inv_dt) const {
 
 Fixed b2RevoluteJoint::GetReactionTorque(Fixed inv_dt) const { return MulToFixed(m_impulse.z, inv_dt); }
 
-Fixed b2RevoluteJoint::GetJointAngle() const {
-    return ContinuousAngle(m_bodyA->m_sweep.a, m_bodyB->m_sweep.a);
-}
+Fixed b2RevoluteJoint::GetJointAngle() const { return ContinuousAngle(m_bodyA->m_sweep.a, m_bodyB->m_sweep.a); }
 
 Fixed b2RevoluteJoint::GetJointSpeed() const { return m_bodyB->m_angularVelocity - m_bodyA->m_angularVelocity; }
 

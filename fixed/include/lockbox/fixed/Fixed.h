@@ -74,7 +74,7 @@ public:
     /// zero). A run-time float or double does not compile: use the `_fx` literal, FromRatio,
     /// Parse, or the named FromDoubleNondeterministic.
     consteval Fixed(double v) : raw_(CheckedLiteral(detail::RoundDoubleToRaw(v, kFractionBits))) {}  // NOLINT
-    consteval Fixed(float v)  // NOLINT
+    consteval Fixed(float v)                                                                         // NOLINT
         : raw_(CheckedLiteral(detail::RoundDoubleToRaw(static_cast<double>(v), kFractionBits))) {}
 
     /// Bit-exact construction from a raw Q16.16 value.
@@ -91,8 +91,7 @@ public:
 
     /// Parses decimal text exactly ("-12.375", "1e-3"); no floating point is involved.
     /// Returns false and leaves `out` unchanged on malformed or out-of-range text.
-    static constexpr bool Parse(std::string_view text, Fixed& out,
-                                const char** error = nullptr) noexcept {
+    static constexpr bool Parse(std::string_view text, Fixed& out, const char** error = nullptr) noexcept {
         const detail::DecimalResult r = detail::ParseDecimal(text, kFractionBits, kMaxRaw);
         if (r.error != detail::DecimalError::None) {
             if (error) *error = detail::DecimalErrorMessage(r.error);
@@ -130,8 +129,7 @@ public:
     }
     friend constexpr Fixed operator*(Fixed a, Fixed b) noexcept {
         const int64_t p = int64_t{a.raw_} * b.raw_;
-        return FromRaw(detail::NarrowRaw(detail::ShiftRound(p, kFractionBits), "Fixed::operator*",
-                                         a.raw_, b.raw_));
+        return FromRaw(detail::NarrowRaw(detail::ShiftRound(p, kFractionBits), "Fixed::operator*", a.raw_, b.raw_));
     }
     friend constexpr Fixed operator/(Fixed a, Fixed b) noexcept {
         return FromRaw(DivRaw(int64_t{a.raw_} * kOneRaw, b.raw_, "Fixed::operator/", a.raw_));
@@ -261,6 +259,8 @@ public:
     static constexpr lockbox::Fixed lowest() noexcept { return lockbox::Fixed::FromRaw(-lockbox::Fixed::kMaxRaw); }
     static constexpr lockbox::Fixed max() noexcept { return lockbox::Fixed::FromRaw(lockbox::Fixed::kMaxRaw); }
     static constexpr lockbox::Fixed epsilon() noexcept { return lockbox::Fixed::FromRaw(1); }
-    static constexpr lockbox::Fixed round_error() noexcept { return lockbox::Fixed::FromRaw(lockbox::Fixed::kOneRaw / 2); }
+    static constexpr lockbox::Fixed round_error() noexcept {
+        return lockbox::Fixed::FromRaw(lockbox::Fixed::kOneRaw / 2);
+    }
     static constexpr lockbox::Fixed denorm_min() noexcept { return lockbox::Fixed::FromRaw(1); }
 };

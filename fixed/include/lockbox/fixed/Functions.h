@@ -22,7 +22,8 @@ inline constexpr Fixed kHalfPi = Fixed::FromRaw(detail::kHalfPiRaw);
 /// non-negative inputs). Result in [0, 181.02]. A negative x is a domain error: it traps in checked builds and
 /// returns 0 (counted as a saturation) otherwise.
 constexpr Fixed Sqrt(Fixed x) noexcept {
-    if (x.Raw() < 0) [[unlikely]] detail::OnOverflow("Sqrt (negative argument)", x.Raw(), 0);
+    if (x.Raw() < 0) [[unlikely]]
+        detail::OnOverflow("Sqrt (negative argument)", x.Raw(), 0);
     return Fixed::FromRaw(detail::SqrtRaw(x.Raw()));
 }
 
@@ -54,31 +55,23 @@ inline SinCosResult SinCos(Fixed angle) noexcept {
 }
 
 /// Sine of an angle in radians (any value). Within 1 ULP; same kernel as SinCos.
-inline Fixed Sin(Fixed angle) noexcept {
-    return SinCos(angle).sin;
-}
+inline Fixed Sin(Fixed angle) noexcept { return SinCos(angle).sin; }
 
 /// Cosine of an angle in radians (any value). Within 1 ULP; same kernel as SinCos.
-inline Fixed Cos(Fixed angle) noexcept {
-    return SinCos(angle).cos;
-}
+inline Fixed Cos(Fixed angle) noexcept { return SinCos(angle).cos; }
 
 /// Angle of the vector (x, y) in radians, in [-pi, pi] (raw [-205887, 205887]). Any inputs:
 /// only the ratio matters, and there is no overflow even for extreme values. Within 1 ULP for
 /// every (y, x). Atan2(0, 0) = 0; Atan2(0, x < 0) = +pi; the axes and diagonals give
 /// correctly rounded 0, +-pi/2, +-pi/4, +-3pi/4, pi. Atan2(-y, x) = -Atan2(y, x) for y != 0.
-inline Fixed Atan2(Fixed y, Fixed x) noexcept {
-    return Fixed::FromRaw(detail::Atan2Raw(y.Raw(), x.Raw()));
-}
+inline Fixed Atan2(Fixed y, Fixed x) noexcept { return Fixed::FromRaw(detail::Atan2Raw(y.Raw(), x.Raw())); }
 
 /// Wraps an angle in radians into [-pi, pi) by removing whole turns of the exact 2 pi.
 /// The result is the Q16.16 value nearest to a - n 2pi, with n chosen so that the exact value
 /// lies in [-pi, pi); error <= 0.5 ULP, no drift from an inexact 2 pi. Raw result range
 /// [-205887, 205887] (both ends are inside [-pi, pi), since pi is not representable);
 /// WrapAngle(kPi) == kPi. Values already in range are returned unchanged.
-inline Fixed WrapAngle(Fixed angle) noexcept {
-    return Fixed::FromRaw(detail::WrapAngleRaw(angle.Raw()));
-}
+inline Fixed WrapAngle(Fixed angle) noexcept { return Fixed::FromRaw(detail::WrapAngleRaw(angle.Raw())); }
 
 /// WrapAngle that also returns the number of whole turns removed:
 /// angle ~ result + turns * 2 pi (up to the 0.5 ULP rounding). turns is in [-5215, 5215].

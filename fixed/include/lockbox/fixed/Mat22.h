@@ -35,9 +35,18 @@ struct b2Mat22 {
     constexpr b2Mat22(const b2Vec2& c1, const b2Vec2& c2) noexcept : ex(c1), ey(c2) {}
     constexpr b2Mat22(Fixed a11, Fixed a12, Fixed a21, Fixed a22) noexcept : ex(a11, a21), ey(a12, a22) {}
 
-    constexpr void Set(const b2Vec2& c1, const b2Vec2& c2) noexcept { ex = c1; ey = c2; }
-    constexpr void SetIdentity() noexcept { ex.Set(1, 0); ey.Set(0, 1); }
-    constexpr void SetZero() noexcept { ex.SetZero(); ey.SetZero(); }
+    constexpr void Set(const b2Vec2& c1, const b2Vec2& c2) noexcept {
+        ex = c1;
+        ey = c2;
+    }
+    constexpr void SetIdentity() noexcept {
+        ex.Set(1, 0);
+        ey.Set(0, 1);
+    }
+    constexpr void SetZero() noexcept {
+        ex.SetZero();
+        ey.SetZero();
+    }
 
     /// Exact determinant as Q32.32.
     constexpr Wide DeterminantWide() const noexcept {
@@ -61,8 +70,10 @@ struct b2Mat22 {
     /// Solves A * x = b. A singular matrix gives x = 0.
     constexpr b2Vec2 Solve(const b2Vec2& b) const noexcept {
         const detail::S128 det = detail::MulS64(DeterminantWide().Raw(), 1);
-        const detail::S128 nx = detail::SubS128(detail::MulS64(ey.y.Raw(), b.x.Raw()), detail::MulS64(ey.x.Raw(), b.y.Raw()));
-        const detail::S128 ny = detail::SubS128(detail::MulS64(ex.x.Raw(), b.y.Raw()), detail::MulS64(ex.y.Raw(), b.x.Raw()));
+        const detail::S128 nx =
+            detail::SubS128(detail::MulS64(ey.y.Raw(), b.x.Raw()), detail::MulS64(ey.x.Raw(), b.y.Raw()));
+        const detail::S128 ny =
+            detail::SubS128(detail::MulS64(ex.x.Raw(), b.y.Raw()), detail::MulS64(ex.y.Raw(), b.x.Raw()));
         return {detail::DivExactToFixed(nx, det, 16, "b2Mat22::Solve"),
                 detail::DivExactToFixed(ny, det, 16, "b2Mat22::Solve")};
     }

@@ -19,7 +19,11 @@ struct b2Mat33 {
     constexpr b2Mat33() noexcept = default;
     constexpr b2Mat33(const b2Vec3& c1, const b2Vec3& c2, const b2Vec3& c3) noexcept : ex(c1), ey(c2), ez(c3) {}
 
-    constexpr void SetZero() noexcept { ex.SetZero(); ey.SetZero(); ez.SetZero(); }
+    constexpr void SetZero() noexcept {
+        ex.SetZero();
+        ey.SetZero();
+        ez.SetZero();
+    }
 
     /// Solves A * x = b. A singular matrix gives x = 0.
     constexpr b2Vec3 Solve33(const b2Vec3& b) const noexcept {
@@ -30,9 +34,7 @@ struct b2Mat33 {
     }
 
     /// Solves the upper 2x2 block: A22 * x = b. A singular block gives x = 0.
-    constexpr b2Vec2 Solve22(const b2Vec2& b) const noexcept {
-        return b2Mat22(ex.x, ey.x, ex.y, ey.y).Solve(b);
-    }
+    constexpr b2Vec2 Solve22(const b2Vec2& b) const noexcept { return b2Mat22(ex.x, ey.x, ex.y, ey.y).Solve(b); }
 
     /// Inverse of the upper 2x2 block into M, with the third row and column zero.
     constexpr void GetInverse22(b2Mat33* M) const noexcept {

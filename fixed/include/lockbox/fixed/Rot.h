@@ -16,7 +16,10 @@ struct b2Rot {
     explicit b2Rot(Fixed angle) noexcept { Set(angle); }
 
     void Set(Fixed angle) noexcept { SinCos(angle, s, c); }
-    constexpr void SetIdentity() noexcept { s = 0; c = 1; }
+    constexpr void SetIdentity() noexcept {
+        s = 0;
+        c = 1;
+    }
     /// The angle in radians, in [-pi, pi].
     Fixed GetAngle() const noexcept { return Atan2(s, c); }
     constexpr b2Vec2 GetXAxis() const noexcept { return {c, s}; }

@@ -13,8 +13,14 @@ struct b2Transform {
     constexpr b2Transform() noexcept = default;
     constexpr b2Transform(const b2Vec2& position, const b2Rot& rotation) noexcept : p(position), q(rotation) {}
 
-    constexpr void SetIdentity() noexcept { p.SetZero(); q.SetIdentity(); }
-    void Set(const b2Vec2& position, Fixed angle) noexcept { p = position; q.Set(angle); }
+    constexpr void SetIdentity() noexcept {
+        p.SetZero();
+        q.SetIdentity();
+    }
+    void Set(const b2Vec2& position, Fixed angle) noexcept {
+        p = position;
+        q.Set(angle);
+    }
 };
 
 /// T * v: rotate (rounded once), then translate (exact). Rounding R v before adding p keeps

@@ -45,17 +45,35 @@ struct b2Vec2 {
     constexpr b2Vec2() noexcept = default;
     constexpr b2Vec2(Fixed xIn, Fixed yIn) noexcept : x(xIn), y(yIn) {}
 
-    constexpr void SetZero() noexcept { x = Fixed(); y = Fixed(); }
-    constexpr void Set(Fixed x_, Fixed y_) noexcept { x = x_; y = y_; }
+    constexpr void SetZero() noexcept {
+        x = Fixed();
+        y = Fixed();
+    }
+    constexpr void Set(Fixed x_, Fixed y_) noexcept {
+        x = x_;
+        y = y_;
+    }
 
     constexpr b2Vec2 operator-() const noexcept { return {-x, -y}; }
     /// Component access: 0 is x, 1 is y.
     constexpr Fixed operator()(int i) const noexcept { return i == 0 ? x : y; }
     constexpr Fixed& operator()(int i) noexcept { return i == 0 ? x : y; }
 
-    constexpr b2Vec2& operator+=(const b2Vec2& v) noexcept { x += v.x; y += v.y; return *this; }
-    constexpr b2Vec2& operator-=(const b2Vec2& v) noexcept { x -= v.x; y -= v.y; return *this; }
-    constexpr b2Vec2& operator*=(Fixed a) noexcept { x *= a; y *= a; return *this; }
+    constexpr b2Vec2& operator+=(const b2Vec2& v) noexcept {
+        x += v.x;
+        y += v.y;
+        return *this;
+    }
+    constexpr b2Vec2& operator-=(const b2Vec2& v) noexcept {
+        x -= v.x;
+        y -= v.y;
+        return *this;
+    }
+    constexpr b2Vec2& operator*=(Fixed a) noexcept {
+        x *= a;
+        y *= a;
+        return *this;
+    }
 
     /// Exact x² + y² as Q32.32 (no overflow for any vector inside the world bounds).
     constexpr Wide LengthSquaredWide() const noexcept {
@@ -138,13 +156,9 @@ constexpr b2Vec2 b2Cross(Fixed s, const b2Vec2& a) noexcept { return {-(s * a.y)
 /// Distance between two points, correctly rounded.
 constexpr Fixed b2Distance(const b2Vec2& a, const b2Vec2& b) noexcept { return (a - b).Length(); }
 /// Exact squared distance as Q32.32.
-constexpr Wide b2DistanceSquaredWide(const b2Vec2& a, const b2Vec2& b) noexcept {
-    return (a - b).LengthSquaredWide();
-}
+constexpr Wide b2DistanceSquaredWide(const b2Vec2& a, const b2Vec2& b) noexcept { return (a - b).LengthSquaredWide(); }
 /// Squared distance rounded to Q16.16 (saturates beyond 181 m).
-constexpr Fixed b2DistanceSquared(const b2Vec2& a, const b2Vec2& b) noexcept {
-    return (a - b).LengthSquared();
-}
+constexpr Fixed b2DistanceSquared(const b2Vec2& a, const b2Vec2& b) noexcept { return (a - b).LengthSquared(); }
 
 constexpr b2Vec2 b2Abs(const b2Vec2& a) noexcept { return {Abs(a.x), Abs(a.y)}; }
 constexpr b2Vec2 b2Min(const b2Vec2& a, const b2Vec2& b) noexcept { return {Min(a.x, b.x), Min(a.y, b.y)}; }

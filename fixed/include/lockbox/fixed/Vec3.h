@@ -16,12 +16,31 @@ struct b2Vec3 {
     constexpr b2Vec3(Fixed xIn, Fixed yIn, Fixed zIn) noexcept : x(xIn), y(yIn), z(zIn) {}
 
     constexpr void SetZero() noexcept { x = y = z = Fixed(); }
-    constexpr void Set(Fixed x_, Fixed y_, Fixed z_) noexcept { x = x_; y = y_; z = z_; }
+    constexpr void Set(Fixed x_, Fixed y_, Fixed z_) noexcept {
+        x = x_;
+        y = y_;
+        z = z_;
+    }
 
     constexpr b2Vec3 operator-() const noexcept { return {-x, -y, -z}; }
-    constexpr b2Vec3& operator+=(const b2Vec3& v) noexcept { x += v.x; y += v.y; z += v.z; return *this; }
-    constexpr b2Vec3& operator-=(const b2Vec3& v) noexcept { x -= v.x; y -= v.y; z -= v.z; return *this; }
-    constexpr b2Vec3& operator*=(Fixed s) noexcept { x *= s; y *= s; z *= s; return *this; }
+    constexpr b2Vec3& operator+=(const b2Vec3& v) noexcept {
+        x += v.x;
+        y += v.y;
+        z += v.z;
+        return *this;
+    }
+    constexpr b2Vec3& operator-=(const b2Vec3& v) noexcept {
+        x -= v.x;
+        y -= v.y;
+        z -= v.z;
+        return *this;
+    }
+    constexpr b2Vec3& operator*=(Fixed s) noexcept {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
 };
 
 constexpr b2Vec3 operator+(const b2Vec3& a, const b2Vec3& b) noexcept { return {a.x + b.x, a.y + b.y, a.z + b.z}; }

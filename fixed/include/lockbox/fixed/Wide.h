@@ -54,7 +54,8 @@ constexpr int64_t NarrowWide(const S128& v, const char* op, int64_t a, int64_t b
     if (!__builtin_mul_overflow(a, b, &product)) [[likely]] {
         const int64_t bias = (int64_t{1} << (shift - 1)) + (product >> 63);
         int64_t biased = 0;
-        if (!__builtin_add_overflow(product, bias, &biased)) [[likely]] return biased >> shift;
+        if (!__builtin_add_overflow(product, bias, &biased)) [[likely]]
+            return biased >> shift;
     }
 #ifdef LOCKBOX_NATIVE_INT128
     // On magnitudes: floor((p + half - (p < 0)) / 2^shift) of the signed product p equals the
@@ -187,14 +188,18 @@ public:
     // branches on the overflow flag directly instead of materialising it (same results).
     [[gnu::always_inline]] friend constexpr Wide operator+(Wide a, Wide b) noexcept {
         int64_t r = 0;
-        if (__builtin_add_overflow(a.raw_, b.raw_, &r)) [[unlikely]] return SaturateAdd(a, b);
-        if (r == std::numeric_limits<int64_t>::min()) [[unlikely]] return SaturateAdd(a, b);
+        if (__builtin_add_overflow(a.raw_, b.raw_, &r)) [[unlikely]]
+            return SaturateAdd(a, b);
+        if (r == std::numeric_limits<int64_t>::min()) [[unlikely]]
+            return SaturateAdd(a, b);
         return FromRaw(r);
     }
     [[gnu::always_inline]] friend constexpr Wide operator-(Wide a, Wide b) noexcept {
         int64_t r = 0;
-        if (__builtin_sub_overflow(a.raw_, b.raw_, &r)) [[unlikely]] return SaturateSub(a, b);
-        if (r == std::numeric_limits<int64_t>::min()) [[unlikely]] return SaturateSub(a, b);
+        if (__builtin_sub_overflow(a.raw_, b.raw_, &r)) [[unlikely]]
+            return SaturateSub(a, b);
+        if (r == std::numeric_limits<int64_t>::min()) [[unlikely]]
+            return SaturateSub(a, b);
         return FromRaw(r);
     }
     [[gnu::always_inline]] friend constexpr Wide operator*(Wide a, Wide b) noexcept {

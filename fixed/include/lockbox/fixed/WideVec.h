@@ -21,13 +21,24 @@ struct b2WideVec2 {
     constexpr explicit b2WideVec2(const b2Vec2& v) noexcept : x(Wide(v.x)), y(Wide(v.y)) {}
 
     /// Sets all components to zero.
-    constexpr void SetZero() noexcept { x = Wide(); y = Wide(); }
+    constexpr void SetZero() noexcept {
+        x = Wide();
+        y = Wide();
+    }
     /// Component-wise arithmetic (saturating Wide operations).
     constexpr b2WideVec2 operator-() const noexcept { return {-x, -y}; }
     /// Component-wise arithmetic (saturating Wide operations).
-    constexpr b2WideVec2& operator+=(const b2WideVec2& v) noexcept { x += v.x; y += v.y; return *this; }
+    constexpr b2WideVec2& operator+=(const b2WideVec2& v) noexcept {
+        x += v.x;
+        y += v.y;
+        return *this;
+    }
     /// Component-wise arithmetic (saturating Wide operations).
-    constexpr b2WideVec2& operator-=(const b2WideVec2& v) noexcept { x -= v.x; y -= v.y; return *this; }
+    constexpr b2WideVec2& operator-=(const b2WideVec2& v) noexcept {
+        x -= v.x;
+        y -= v.y;
+        return *this;
+    }
     /// Squared length (Q32.32, rounded once; saturates beyond 46341). b2ClampLength compares
     /// exact 128-bit squares instead.
     constexpr Wide LengthSquared() const noexcept { return x * x + y * y; }
@@ -63,14 +74,28 @@ struct b2WideVec3 {
     /// Component-wise arithmetic (saturating Wide operations).
     constexpr b2WideVec3 operator-() const noexcept { return {-x, -y, -z}; }
     /// Component-wise arithmetic (saturating Wide operations).
-    constexpr b2WideVec3& operator+=(const b2WideVec3& v) noexcept { x += v.x; y += v.y; z += v.z; return *this; }
+    constexpr b2WideVec3& operator+=(const b2WideVec3& v) noexcept {
+        x += v.x;
+        y += v.y;
+        z += v.z;
+        return *this;
+    }
     /// Component-wise arithmetic (saturating Wide operations).
-    constexpr b2WideVec3& operator-=(const b2WideVec3& v) noexcept { x -= v.x; y -= v.y; z -= v.z; return *this; }
+    constexpr b2WideVec3& operator-=(const b2WideVec3& v) noexcept {
+        x -= v.x;
+        y -= v.y;
+        z -= v.z;
+        return *this;
+    }
 };
 
 /// Component-wise arithmetic (saturating Wide operations).
-constexpr b2WideVec3 operator+(const b2WideVec3& a, const b2WideVec3& b) noexcept { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+constexpr b2WideVec3 operator+(const b2WideVec3& a, const b2WideVec3& b) noexcept {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
 /// Component-wise arithmetic (saturating Wide operations).
-constexpr b2WideVec3 operator-(const b2WideVec3& a, const b2WideVec3& b) noexcept { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+constexpr b2WideVec3 operator-(const b2WideVec3& a, const b2WideVec3& b) noexcept {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
 
 }  // namespace lockbox

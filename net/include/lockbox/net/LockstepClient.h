@@ -45,29 +45,29 @@ struct ClientConfig {
     /// Input delay in frames: -1 follows the server (its fixed delay, or automatic when it has
     /// none); 0: automatic; 1 .. 255: fixed.
     int32_t inputDelay = -1;
-    uint32_t maxAutoDelay = 30;        ///< cap of the automatic delay, frames
-    uint64_t interruptMicros = 500'000;    ///< server silence before an `interrupted` event
-    uint64_t disconnectMicros = 2'000'000; ///< server silence before giving up (`disconnected`)
-    uint64_t helloRetryMicros = 200'000;   ///< Hello resend period; no answer in 5 x disconnectMicros: `disconnected`
-    uint64_t keepAliveMicros = 200'000;    ///< longest gap between datagrams to the server
-    uint64_t pingMicros = 250'000;         ///< RTT probe period once running
-    uint32_t maxCatchUpFrames = 16;        ///< frames stepped per Update at most
-    uint32_t velocityIterations = 8;       ///< step settings (match the scene's)
+    uint32_t maxAutoDelay = 30;             ///< cap of the automatic delay, frames
+    uint64_t interruptMicros = 500'000;     ///< server silence before an `interrupted` event
+    uint64_t disconnectMicros = 2'000'000;  ///< server silence before giving up (`disconnected`)
+    uint64_t helloRetryMicros = 200'000;    ///< Hello resend period; no answer in 5 x disconnectMicros: `disconnected`
+    uint64_t keepAliveMicros = 200'000;     ///< longest gap between datagrams to the server
+    uint64_t pingMicros = 250'000;          ///< RTT probe period once running
+    uint32_t maxCatchUpFrames = 16;         ///< frames stepped per Update at most
+    uint32_t velocityIterations = 8;        ///< step settings (match the scene's)
     uint32_t positionIterations = 3;
 };
 
 /// Something the caller may want to know about.
 struct ClientEvent {
     enum class Kind : uint8_t {
-        e_connected,     ///< Welcome received (frame: the start frame)
-        e_rejected,      ///< the server refused us (reason)
-        e_running,       ///< inputs may be submitted from now on (frame: first input frame)
-        e_snapshotLoaded,///< late join: the snapshot of `frame` was restored
-        e_admitted,      ///< late join: hash matched, inputs from `frame`
-        e_interrupted,   ///< the server went silent for interruptMicros
-        e_resumed,       ///< it was heard again
-        e_disconnected,  ///< the session ended (reason: timeout, server closing, ...)
-        e_desync,        ///< the server saw diverging hashes at `frame`
+        e_connected,       ///< Welcome received (frame: the start frame)
+        e_rejected,        ///< the server refused us (reason)
+        e_running,         ///< inputs may be submitted from now on (frame: first input frame)
+        e_snapshotLoaded,  ///< late join: the snapshot of `frame` was restored
+        e_admitted,        ///< late join: hash matched, inputs from `frame`
+        e_interrupted,     ///< the server went silent for interruptMicros
+        e_resumed,         ///< it was heard again
+        e_disconnected,    ///< the session ended (reason: timeout, server closing, ...)
+        e_desync,          ///< the server saw diverging hashes at `frame`
     };
     Kind kind = Kind::e_connected;
     int32_t frame = -1;
@@ -76,12 +76,12 @@ struct ClientEvent {
 
 /// The client's view of its session.
 enum class ClientState : uint8_t {
-    e_connecting,    ///< sending Hello
-    e_syncing,       ///< Welcome received, measuring RTT (automatic delay)
-    e_loading,       ///< late join: receiving the snapshot
-    e_catchingUp,    ///< late join: stepping confirmed frames, waiting for Admit
-    e_running,       ///< sending inputs and stepping
-    e_closed,        ///< rejected, disconnected or left
+    e_connecting,  ///< sending Hello
+    e_syncing,     ///< Welcome received, measuring RTT (automatic delay)
+    e_loading,     ///< late join: receiving the snapshot
+    e_catchingUp,  ///< late join: stepping confirmed frames, waiting for Admit
+    e_running,     ///< sending inputs and stepping
+    e_closed,      ///< rejected, disconnected or left
 };
 
 /// Called after each confirmed frame is stepped: the frame, its inputs (all players), the

@@ -30,17 +30,17 @@ namespace lockbox::net {
 
 /// Server settings.
 struct ServerConfig {
-    uint32_t playerCount = 2;      ///< slots, 1 .. kMaxPlayers
-    uint32_t startPlayers = 0;     ///< frames confirm once this many slots were filled (0: playerCount)
-    uint32_t inputBytes = 8;       ///< per player per frame, 1 .. kMaxInputBytes
-    uint32_t tickRate = 60;        ///< frames per second, 1 .. 1000
-    uint32_t hashInterval = 30;    ///< clients report the hash after every frame f with f % interval == 0 (>= 1)
-    uint32_t inputDelay = 0;       ///< frames handed to clients; 0: each client picks it from its RTT
-    uint64_t interruptMicros = 500'000;    ///< silence before an `interrupted` event
-    uint64_t disconnectMicros = 2'000'000; ///< silence before the slot is dropped (empty input)
-    uint64_t keepAliveMicros = 200'000;    ///< longest gap between datagrams to a client
-    uint32_t maxCatchUpFrames = 16;        ///< authoritative mode: frames simulated per Update
-    uint64_t tokenSeed = 1;        ///< seeds the session tokens (any value; tests fix it)
+    uint32_t playerCount = 2;            ///< slots, 1 .. kMaxPlayers
+    uint32_t startPlayers = 0;           ///< frames confirm once this many slots were filled (0: playerCount)
+    uint32_t inputBytes = 8;             ///< per player per frame, 1 .. kMaxInputBytes
+    uint32_t tickRate = 60;              ///< frames per second, 1 .. 1000
+    uint32_t hashInterval = 30;          ///< clients report the hash after every frame f with f % interval == 0 (>= 1)
+    uint32_t inputDelay = 0;             ///< frames handed to clients; 0: each client picks it from its RTT
+    uint64_t interruptMicros = 500'000;  ///< silence before an `interrupted` event
+    uint64_t disconnectMicros = 2'000'000;  ///< silence before the slot is dropped (empty input)
+    uint64_t keepAliveMicros = 200'000;     ///< longest gap between datagrams to a client
+    uint32_t maxCatchUpFrames = 16;         ///< authoritative mode: frames simulated per Update
+    uint64_t tokenSeed = 1;                 ///< seeds the session tokens (any value; tests fix it)
     /// Authoritative mode: the server also simulates every confirmed frame on this world with
     /// this game (both outlive the server), reports its own hash and serves late joiners from
     /// its own state. Both null: relay mode (late joiners get a live client's snapshot).
@@ -52,7 +52,7 @@ struct ServerConfig {
 
 /// A state hash reported for one frame.
 struct SlotHash {
-    int32_t slot = -1;   ///< the reporting slot; -1: the authoritative server
+    int32_t slot = -1;  ///< the reporting slot; -1: the authoritative server
     uint64_t hash = 0;
 };
 
@@ -70,26 +70,26 @@ struct ServerEvent {
         e_spoofedInput,  ///< `peer` sent inputs claiming `claimedSlot`, which it does not own
     };
     Kind kind = Kind::e_joined;
-    int32_t slot = -1;        ///< the slot concerned (-1 when none)
-    PeerId peer = kNoPeer;    ///< the transport peer concerned
-    int32_t frame = -1;       ///< the frame concerned (-1 when none)
-    int32_t claimedSlot = -1; ///< e_spoofedInput: the slot the inputs claimed
+    int32_t slot = -1;                           ///< the slot concerned (-1 when none)
+    PeerId peer = kNoPeer;                       ///< the transport peer concerned
+    int32_t frame = -1;                          ///< the frame concerned (-1 when none)
+    int32_t claimedSlot = -1;                    ///< e_spoofedInput: the slot the inputs claimed
     RejectReason reason = RejectReason::e_none;  ///< e_disconnected / e_joinFailed: why
-    std::vector<SlotHash> hashes;  ///< e_desync: every report of `frame` at that moment, by slot
+    std::vector<SlotHash> hashes;                ///< e_desync: every report of `frame` at that moment, by slot
 };
 
 /// Counters.
 struct ServerStats {
-    DecodeErrorCounts malformed{};   ///< refused datagrams by DecodeError
-    uint64_t badToken = 0;           ///< well-formed datagrams with the wrong session token
-    uint64_t unknownPeer = 0;        ///< session messages from a peer that owns no slot
-    uint64_t spoofedInputs = 0;      ///< Inputs messages claiming another slot
-    uint64_t unexpected = 0;         ///< messages a server does not take (Welcome, Confirmed, ...)
-    uint64_t rejected = 0;           ///< Hellos answered with Reject
-    uint64_t desyncFrames = 0;       ///< frames with mismatching reports (one event for the first)
-    uint64_t snapshotsServed = 0;    ///< snapshots fully delivered to joiners
+    DecodeErrorCounts malformed{};  ///< refused datagrams by DecodeError
+    uint64_t badToken = 0;          ///< well-formed datagrams with the wrong session token
+    uint64_t unknownPeer = 0;       ///< session messages from a peer that owns no slot
+    uint64_t spoofedInputs = 0;     ///< Inputs messages claiming another slot
+    uint64_t unexpected = 0;        ///< messages a server does not take (Welcome, Confirmed, ...)
+    uint64_t rejected = 0;          ///< Hellos answered with Reject
+    uint64_t desyncFrames = 0;      ///< frames with mismatching reports (one event for the first)
+    uint64_t snapshotsServed = 0;   ///< snapshots fully delivered to joiners
     uint64_t datagramsSent = 0;
-    int32_t confirmedFrames = 0;     ///< frames confirmed so far (= the next frame to confirm)
+    int32_t confirmedFrames = 0;  ///< frames confirmed so far (= the next frame to confirm)
     /// Sum of malformed[].
     uint64_t MalformedTotal() const noexcept {
         uint64_t n = 0;

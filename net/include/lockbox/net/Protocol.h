@@ -72,10 +72,10 @@ std::string_view RejectReasonName(RejectReason reason) noexcept;
 
 /// Handshake request, client -> server. The protocol version is the header's.
 struct Hello {
-    uint32_t determinismVersion = 0;  ///< the client's b2_determinismVersion
-    uint32_t token = 0;               ///< a previous session's token to reconnect, else 0
-    uint8_t requestedSlot = kAnySlot; ///< 0 .. kMaxPlayers-1, or kAnySlot
-    uint64_t clientTime = 0;          ///< the client's clock, microseconds (echoed in Welcome)
+    uint32_t determinismVersion = 0;   ///< the client's b2_determinismVersion
+    uint32_t token = 0;                ///< a previous session's token to reconnect, else 0
+    uint8_t requestedSlot = kAnySlot;  ///< 0 .. kMaxPlayers-1, or kAnySlot
+    uint64_t clientTime = 0;           ///< the client's clock, microseconds (echoed in Welcome)
     bool operator==(const Hello&) const = default;
 };
 
@@ -104,9 +104,9 @@ struct Reject {
 /// One player's inputs for frames [firstFrame, firstFrame + count), client -> server: the
 /// frames the server has not acknowledged yet, resent in every datagram until acked.
 struct Inputs {
-    uint8_t slot = 0;              ///< the slot these inputs claim
-    int32_t firstFrame = 0;        ///< >= 0
-    std::vector<uint8_t> bytes;    ///< count * inputBytes, count in 1 .. kMaxRunFrames
+    uint8_t slot = 0;            ///< the slot these inputs claim
+    int32_t firstFrame = 0;      ///< >= 0
+    std::vector<uint8_t> bytes;  ///< count * inputBytes, count in 1 .. kMaxRunFrames
     bool operator==(const Inputs&) const = default;
 };
 
@@ -121,8 +121,8 @@ struct InputAck {
 /// Server -> client: the confirmed inputs of frames [firstFrame, firstFrame + count), every
 /// player's bytes per frame (slot 0 first), resent until the client acks them.
 struct Confirmed {
-    int32_t firstFrame = 0;        ///< >= 0
-    std::vector<uint8_t> bytes;    ///< count * playerCount * inputBytes, count in 1 .. kMaxRunFrames
+    int32_t firstFrame = 0;      ///< >= 0
+    std::vector<uint8_t> bytes;  ///< count * playerCount * inputBytes, count in 1 .. kMaxRunFrames
     bool operator==(const Confirmed&) const = default;
 };
 
@@ -200,15 +200,29 @@ struct DesyncNotice {
 };
 
 /// Any message.
-using Message = std::variant<Hello, Welcome, Reject, Inputs, InputAck, Confirmed, ConfirmedAck, Ping, Pong,
-                             HashReport, KeepAlive, Disconnect, SnapshotRequest, SnapshotChunk, SnapshotAck, Admit,
-                             DesyncNotice>;
+using Message = std::variant<Hello, Welcome, Reject, Inputs, InputAck, Confirmed, ConfirmedAck, Ping, Pong, HashReport,
+                             KeepAlive, Disconnect, SnapshotRequest, SnapshotChunk, SnapshotAck, Admit, DesyncNotice>;
 
 /// Type byte of each message (the variant index + 1).
 enum class MessageType : uint8_t {
-    e_hello = 1, e_welcome, e_reject, e_inputs, e_inputAck, e_confirmed, e_confirmedAck, e_ping, e_pong,
-    e_hashReport, e_keepAlive, e_disconnect, e_snapshotRequest, e_snapshotChunk, e_snapshotAck, e_admit,
-    e_desyncNotice, e_end
+    e_hello = 1,
+    e_welcome,
+    e_reject,
+    e_inputs,
+    e_inputAck,
+    e_confirmed,
+    e_confirmedAck,
+    e_ping,
+    e_pong,
+    e_hashReport,
+    e_keepAlive,
+    e_disconnect,
+    e_snapshotRequest,
+    e_snapshotChunk,
+    e_snapshotAck,
+    e_admit,
+    e_desyncNotice,
+    e_end
 };
 
 /// Why a datagram was refused.

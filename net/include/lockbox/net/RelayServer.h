@@ -29,12 +29,12 @@ struct RelayServerConfig {
 
 /// Counters of a relay.
 struct RelayServerStats {
-    uint64_t joins = 0;          ///< valid joins answered (repeats included)
-    uint64_t rebinds = 0;        ///< a slot moved to a new PeerId
-    uint64_t forwarded = 0;      ///< datagrams forwarded
-    uint64_t forwardedBytes = 0; ///< payload bytes forwarded
-    uint64_t refused = 0;        ///< malformed, wrong match, bad token, unknown sender, bad slot
-    uint64_t sendFailures = 0;   ///< the transport refused a forward or a welcome
+    uint64_t joins = 0;           ///< valid joins answered (repeats included)
+    uint64_t rebinds = 0;         ///< a slot moved to a new PeerId
+    uint64_t forwarded = 0;       ///< datagrams forwarded
+    uint64_t forwardedBytes = 0;  ///< payload bytes forwarded
+    uint64_t refused = 0;         ///< malformed, wrong match, bad token, unknown sender, bad slot
+    uint64_t sendFailures = 0;    ///< the transport refused a forward or a welcome
 };
 
 class RelayServer {

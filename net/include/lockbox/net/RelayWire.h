@@ -40,8 +40,8 @@ struct RelayFrame {
     RelayKind kind = RelayKind::e_join;
     uint32_t matchId = 0;
     uint8_t slot = 0;
-    uint64_t token = 0;                 ///< join only
-    std::span<const uint8_t> payload;   ///< e_toSlot / e_fromSlot only, never empty
+    uint64_t token = 0;                ///< join only
+    std::span<const uint8_t> payload;  ///< e_toSlot / e_fromSlot only, never empty
 };
 
 /// Parses one datagram; nullopt for a wrong magic or version, an unknown kind, a wrong length

@@ -19,7 +19,7 @@ namespace lockbox::net {
 
 /// Settings of a relayed member.
 struct RelayedTransportConfig {
-    PeerId relay = kNoPeer;             ///< the relay's PeerId on the inner transport
+    PeerId relay = kNoPeer;  ///< the relay's PeerId on the inner transport
     uint32_t matchId = 1;
     uint32_t slot = 0;                  ///< this member's slot, < slots
     uint32_t slots = 2;                 ///< the relay's slot count, 2 .. kRelayMaxSlots

@@ -30,16 +30,17 @@ namespace lockbox::net {
 
 /// Settings of a RollbackBudgetGuard (checked by RollbackBudgetGuard::Check).
 struct RollbackBudgetConfig {
-    uint32_t budgetMicros = 8000;      ///< the chosen percentile of a rollback tick's cost, at most (>= 1)
-    uint32_t percentile = 99;          ///< 1 .. 100
-    uint32_t minDelay = 0;             ///< the guard never goes below this
-    uint32_t maxDelay = 16;            ///< nor above this (<= kRollbackMaxInputDelay)
-    uint32_t rollbacksKept = 120;      ///< the latest rollbacks the percentile is taken over, 10 .. 4096
-    uint32_t sampleTicks = 1200;       ///< a rollback older than this many ticks no longer counts (>= 1)
-    uint32_t minRollbacks = 20;        ///< a raise needs at least this many since the last change, 1 .. rollbacksKept
-    uint32_t settleTicks = 60;         ///< ticks after any change before the next raise is considered
-    uint32_t lowerAfterTicks = 600;    ///< ticks after any change before a lowering is considered
-    uint32_t lowerMarginPercent = 75;  ///< lower only if the deeper rollbacks' cost fits in this % of the budget, 1 .. 100
+    uint32_t budgetMicros = 8000;    ///< the chosen percentile of a rollback tick's cost, at most (>= 1)
+    uint32_t percentile = 99;        ///< 1 .. 100
+    uint32_t minDelay = 0;           ///< the guard never goes below this
+    uint32_t maxDelay = 16;          ///< nor above this (<= kRollbackMaxInputDelay)
+    uint32_t rollbacksKept = 120;    ///< the latest rollbacks the percentile is taken over, 10 .. 4096
+    uint32_t sampleTicks = 1200;     ///< a rollback older than this many ticks no longer counts (>= 1)
+    uint32_t minRollbacks = 20;      ///< a raise needs at least this many since the last change, 1 .. rollbacksKept
+    uint32_t settleTicks = 60;       ///< ticks after any change before the next raise is considered
+    uint32_t lowerAfterTicks = 600;  ///< ticks after any change before a lowering is considered
+    uint32_t lowerMarginPercent =
+        75;  ///< lower only if the deeper rollbacks' cost fits in this % of the budget, 1 .. 100
 };
 
 /// Advises the input delay of one rollback session.
@@ -83,12 +84,12 @@ private:
 
     RollbackBudgetConfig config_;
     uint32_t delay_ = 0;
-    std::vector<Sample> kept_;   // a ring once full
-    size_t next_ = 0;            // ring position of the oldest sample when full
-    uint64_t ticks_ = 0;         // Record calls so far
-    uint64_t sinceChange_ = 0;   // ticks
-    uint64_t frameMicros_ = 0;   // the latest per-frame cost seen (0 also when under 1 us)
-    bool costSeen_ = false;      // any rollback recorded: lowering is never blind
+    std::vector<Sample> kept_;  // a ring once full
+    size_t next_ = 0;           // ring position of the oldest sample when full
+    uint64_t ticks_ = 0;        // Record calls so far
+    uint64_t sinceChange_ = 0;  // ticks
+    uint64_t frameMicros_ = 0;  // the latest per-frame cost seen (0 also when under 1 us)
+    bool costSeen_ = false;     // any rollback recorded: lowering is never blind
     uint32_t raises_ = 0;
     uint32_t lowerings_ = 0;
     mutable std::vector<uint64_t> scratch_;

@@ -39,8 +39,8 @@ namespace lockbox::net {
 
 /// Another machine of the match and the players whose inputs it adds.
 struct RollbackRemote {
-    PeerId peer = kNoPeer;           ///< its PeerId on the transport
-    std::vector<uint32_t> players;   ///< players local to it (each remote in the session)
+    PeerId peer = kNoPeer;          ///< its PeerId on the transport
+    std::vector<uint32_t> players;  ///< players local to it (each remote in the session)
 };
 
 /// Settings of a RollbackPeer.
@@ -52,7 +52,7 @@ struct RollbackPeerConfig {
     /// e_resumed follows when it is heard again). Should be < disconnectTimeoutMicros.
     uint64_t interruptTimeoutMicros = 500000;
     std::vector<RollbackRemote> remotes;
-    std::vector<PeerId> spectators;              ///< receive the confirmed inputs (RbConfirmed)
+    std::vector<PeerId> spectators;  ///< receive the confirmed inputs (RbConfirmed)
     /// Senders not listed anywhere whose first valid datagram carries an RbJoinRequest become
     /// late-join spectators, up to this many (0: only the listed spectators).
     uint32_t maxLateSpectators = 0;
@@ -72,19 +72,19 @@ struct RollbackPeerConfig {
 struct RollbackPeerStats {
     uint64_t datagramsSent = 0;
     uint64_t datagramsReceived = 0;
-    uint64_t refused = 0;          ///< malformed, other match, unknown or incompatible sender
-    uint64_t waitsRecommended = 0; ///< WaitThisTick returned true
-    uint64_t snapshotsOffered = 0; ///< OfferSnapshot calls that started a transfer
+    uint64_t refused = 0;             ///< malformed, other match, unknown or incompatible sender
+    uint64_t waitsRecommended = 0;    ///< WaitThisTick returned true
+    uint64_t snapshotsOffered = 0;    ///< OfferSnapshot calls that started a transfer
     uint64_t snapshotChunksSent = 0;  ///< chunk datagrams, resends included
 };
 
 /// What OfferSnapshot made of a snapshot.
 enum class SnapshotOfferResult : uint8_t {
-    e_ok = 0,          ///< sent to every spectator that wanted one
-    e_notWanted,       ///< no spectator waits for a snapshot (nothing sent)
-    e_notConfirmed,    ///< frame < 0 or past min(ConfirmedFrame, CurrentFrame): could still change
-    e_inputsGone,      ///< the session no longer keeps the inputs of `frame`: offer a newer frame
-    e_badSize,         ///< empty or larger than kRbMaxSnapshotBytes
+    e_ok = 0,        ///< sent to every spectator that wanted one
+    e_notWanted,     ///< no spectator waits for a snapshot (nothing sent)
+    e_notConfirmed,  ///< frame < 0 or past min(ConfirmedFrame, CurrentFrame): could still change
+    e_inputsGone,    ///< the session no longer keeps the inputs of `frame`: offer a newer frame
+    e_badSize,       ///< empty or larger than kRbMaxSnapshotBytes
 };
 
 class RollbackPeer {
@@ -190,7 +190,7 @@ private:
     RollbackPeerStats stats_;
     uint32_t ticksSinceWait_ = 0;
     bool left_ = false;
-    int32_t delayWish_ = -1;  // what AskInputDelay set; -1: never asked, nothing sent
+    int32_t delayWish_ = -1;                           // what AskInputDelay set; -1: never asked, nothing sent
     std::array<bool, kRollbackMaxPlayers> removed_{};  // local players a remote named gone
 };
 

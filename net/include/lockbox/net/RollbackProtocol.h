@@ -49,9 +49,9 @@ struct RollbackHeader {
 /// One player's inputs for frames [firstFrame, firstFrame + count): the frames the receiver
 /// has not acknowledged yet, resent in every datagram until acked.
 struct RbInputs {
-    uint8_t player = 0;           ///< < players
-    int32_t firstFrame = 0;       ///< >= 0
-    std::vector<uint8_t> bytes;   ///< count * inputBytes, count in 1 .. kRollbackMaxRun
+    uint8_t player = 0;          ///< < players
+    int32_t firstFrame = 0;      ///< >= 0
+    std::vector<uint8_t> bytes;  ///< count * inputBytes, count in 1 .. kRollbackMaxRun
     bool operator==(const RbInputs&) const = default;
 };
 
@@ -67,9 +67,9 @@ struct RbInputAck {
 /// sees it (thousandths of a frame, positive: the sender is ahead), and its clock for the
 /// receiver to echo.
 struct RbQuality {
-    int32_t frame = 0;                 ///< >= 0
-    int32_t advantageMilli = 0;        ///< any int32 (zigzag varint)
-    uint64_t time = 0;                 ///< sender clock, microseconds
+    int32_t frame = 0;           ///< >= 0
+    int32_t advantageMilli = 0;  ///< any int32 (zigzag varint)
+    uint64_t time = 0;           ///< sender clock, microseconds
     bool operator==(const RbQuality&) const = default;
 };
 
@@ -91,8 +91,8 @@ struct RbHash {
 /// Every player's confirmed inputs of [firstFrame, firstFrame + count), for spectators
 /// (players * inputBytes per frame, player 0 first), resent until acked.
 struct RbConfirmed {
-    int32_t firstFrame = 0;       ///< >= 0
-    std::vector<uint8_t> bytes;   ///< count * players * inputBytes, count in 1 .. kRollbackMaxRun
+    int32_t firstFrame = 0;      ///< >= 0
+    std::vector<uint8_t> bytes;  ///< count * players * inputBytes, count in 1 .. kRollbackMaxRun
     bool operator==(const RbConfirmed&) const = default;
 };
 
@@ -183,14 +183,29 @@ struct RbDelayWish {
 };
 
 /// Any rollback message.
-using RollbackMessage = std::variant<RbInputs, RbInputAck, RbQuality, RbQualityReply, RbHash, RbConfirmed,
-                                     RbConfirmedAck, RbKeepAlive, RbDisconnect, RbJoinRequest, RbSnapshotChunk,
-                                     RbSnapshotAck, RbView, RbFrozen, RbHello, RbDelayWish>;
+using RollbackMessage =
+    std::variant<RbInputs, RbInputAck, RbQuality, RbQualityReply, RbHash, RbConfirmed, RbConfirmedAck, RbKeepAlive,
+                 RbDisconnect, RbJoinRequest, RbSnapshotChunk, RbSnapshotAck, RbView, RbFrozen, RbHello, RbDelayWish>;
 
 /// Type byte of each message (the variant index + 1).
 enum class RollbackMessageType : uint8_t {
-    e_inputs = 1, e_inputAck, e_quality, e_qualityReply, e_hash, e_confirmed, e_confirmedAck, e_keepAlive,
-    e_disconnect, e_joinRequest, e_snapshotChunk, e_snapshotAck, e_view, e_frozen, e_hello, e_delayWish, e_end
+    e_inputs = 1,
+    e_inputAck,
+    e_quality,
+    e_qualityReply,
+    e_hash,
+    e_confirmed,
+    e_confirmedAck,
+    e_keepAlive,
+    e_disconnect,
+    e_joinRequest,
+    e_snapshotChunk,
+    e_snapshotAck,
+    e_view,
+    e_frozen,
+    e_hello,
+    e_delayWish,
+    e_end
 };
 
 /// The reason a datagram from a known sender shows, from its decoding (`error`, `header`

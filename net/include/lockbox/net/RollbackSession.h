@@ -68,8 +68,8 @@ struct LoadState {
 /// Apply frame `frame`'s inputs and step once.
 struct AdvanceRequest {
     int32_t frame = 0;
-    std::vector<uint8_t> inputs;       ///< players * inputBytes bytes, player 0 first
-    std::vector<InputStatus> status;   ///< one per player
+    std::vector<uint8_t> inputs;      ///< players * inputBytes bytes, player 0 first
+    std::vector<InputStatus> status;  ///< one per player
 };
 /// One thing AdvanceFrame asks the game to do.
 using RollbackRequest = std::variant<SaveState, LoadState, AdvanceRequest>;
@@ -112,8 +112,8 @@ struct RollbackEvent {
     /// The player (e_disconnected, e_removed: a local one) or the remote peer tag (e_desync,
     /// e_interrupted, e_resumed, e_incompatible).
     uint32_t player = 0;
-    uint64_t localHash = 0;   ///< desync: ours
-    uint64_t remoteHash = 0;  ///< desync: theirs
+    uint64_t localHash = 0;                                                     ///< desync: ours
+    uint64_t remoteHash = 0;                                                    ///< desync: theirs
     RollbackIncompatibility incompatibility = RollbackIncompatibility::e_none;  ///< e_incompatible: why
 };
 
@@ -121,9 +121,8 @@ struct RollbackEvent {
 /// zeros when there is none), `lastFrame` its frame (-1 when none); fill `out` (inputBytes).
 /// Must be a pure function of its arguments: every peer may predict differently, but the
 /// same session must get the same guess for the same arguments.
-using InputPredictor =
-    std::function<void(uint32_t player, int32_t frame, std::span<const uint8_t> last, int32_t lastFrame,
-                       std::span<uint8_t> out)>;
+using InputPredictor = std::function<void(uint32_t player, int32_t frame, std::span<const uint8_t> last,
+                                          int32_t lastFrame, std::span<uint8_t> out)>;
 
 /// Whether local `next` may stand as a repeat of the player's `previous` input (the one
 /// queued last) while a lowered input delay catches up (RollbackSession::SetInputDelay): true
@@ -138,24 +137,24 @@ using InputRepeatTest =
 /// What AddLocalInput / AddRemoteInput said.
 enum class InputResult : uint8_t {
     e_ok = 0,
-    e_badPlayer,      ///< no such player, or not local (local call) / local (remote call)
-    e_badSize,        ///< not inputBytes bytes
-    e_alreadyAdded,   ///< local: this tick's input is queued already (the session is waiting)
-    e_duplicate,      ///< remote: this frame arrived before (ignored, not an error)
-    e_gap,            ///< remote: an earlier frame is missing (ignored; the sender resends)
-    e_disconnected,   ///< the player left
-    e_tooFarAhead,    ///< remote: beyond what the window can ever need (ignored)
+    e_badPlayer,     ///< no such player, or not local (local call) / local (remote call)
+    e_badSize,       ///< not inputBytes bytes
+    e_alreadyAdded,  ///< local: this tick's input is queued already (the session is waiting)
+    e_duplicate,     ///< remote: this frame arrived before (ignored, not an error)
+    e_gap,           ///< remote: an earlier frame is missing (ignored; the sender resends)
+    e_disconnected,  ///< the player left
+    e_tooFarAhead,   ///< remote: beyond what the window can ever need (ignored)
 };
 
 /// Running figures.
 struct RollbackStats {
-    uint64_t framesAdvanced = 0;      ///< Advance requests for new frames
-    uint64_t rollbacks = 0;           ///< LoadState requests
-    uint64_t framesResimulated = 0;   ///< Advance requests inside rollbacks
-    uint32_t deepestRollback = 0;     ///< frames re-simulated by the deepest rollback
-    uint64_t waits = 0;               ///< AdvanceFrame calls that could not advance
-    uint64_t predictedInputs = 0;     ///< player inputs predicted in new frames
-    uint64_t hashesCompared = 0;      ///< local/remote hash pairs compared
+    uint64_t framesAdvanced = 0;     ///< Advance requests for new frames
+    uint64_t rollbacks = 0;          ///< LoadState requests
+    uint64_t framesResimulated = 0;  ///< Advance requests inside rollbacks
+    uint32_t deepestRollback = 0;    ///< frames re-simulated by the deepest rollback
+    uint64_t waits = 0;              ///< AdvanceFrame calls that could not advance
+    uint64_t predictedInputs = 0;    ///< player inputs predicted in new frames
+    uint64_t hashesCompared = 0;     ///< local/remote hash pairs compared
     /// ReportFrozen values below the final frame, ignored (only a peer that died before
     /// others heard it can cause one; see docs/rollback.md, "Disconnects").
     uint64_t frozenReportsIgnored = 0;
@@ -185,24 +184,51 @@ class RollbackSession;
 class RollbackSessionBuilder {
 public:
     /// Number of players, 1 .. kRollbackMaxPlayers (default 2).
-    RollbackSessionBuilder& Players(uint32_t players) { config_.players = players; return *this; }
+    RollbackSessionBuilder& Players(uint32_t players) {
+        config_.players = players;
+        return *this;
+    }
     /// Bytes of one player's input per frame, 1 .. kRollbackMaxInputBytes (default 8).
-    RollbackSessionBuilder& InputBytes(uint32_t bytes) { config_.inputBytes = bytes; return *this; }
+    RollbackSessionBuilder& InputBytes(uint32_t bytes) {
+        config_.inputBytes = bytes;
+        return *this;
+    }
     /// Marks `player` as local (its inputs come from AddLocalInput). Call once per local player.
-    RollbackSessionBuilder& LocalPlayer(uint32_t player) { config_.localPlayers.push_back(player); return *this; }
+    RollbackSessionBuilder& LocalPlayer(uint32_t player) {
+        config_.localPlayers.push_back(player);
+        return *this;
+    }
     /// Frames the session may run ahead of HeldFrame(), the first frame it lacks an input of (default 8).
-    RollbackSessionBuilder& PredictionWindow(uint32_t frames) { config_.predictionWindow = frames; return *this; }
+    RollbackSessionBuilder& PredictionWindow(uint32_t frames) {
+        config_.predictionWindow = frames;
+        return *this;
+    }
     /// Frames between adding a local input and the frame it is applied in (default 0).
-    RollbackSessionBuilder& InputDelay(uint32_t frames) { config_.inputDelay = frames; return *this; }
+    RollbackSessionBuilder& InputDelay(uint32_t frames) {
+        config_.inputDelay = frames;
+        return *this;
+    }
     /// Sync test check distance (default 8).
-    RollbackSessionBuilder& CheckDistance(uint32_t frames) { config_.checkDistance = frames; return *this; }
+    RollbackSessionBuilder& CheckDistance(uint32_t frames) {
+        config_.checkDistance = frames;
+        return *this;
+    }
     /// Hash comparison interval in frames (default 10; 0 turns desync detection off).
-    RollbackSessionBuilder& DesyncInterval(uint32_t frames) { config_.desyncInterval = frames; return *this; }
+    RollbackSessionBuilder& DesyncInterval(uint32_t frames) {
+        config_.desyncInterval = frames;
+        return *this;
+    }
     /// A custom predictor (default: repeat the last confirmed input).
-    RollbackSessionBuilder& Predictor(InputPredictor predictor) { config_.predictor = std::move(predictor); return *this; }
+    RollbackSessionBuilder& Predictor(InputPredictor predictor) {
+        config_.predictor = std::move(predictor);
+        return *this;
+    }
     /// What counts as a repeated local input while a lowered input delay catches up (default:
     /// equal bytes). See InputRepeatTest.
-    RollbackSessionBuilder& RepeatTest(InputRepeatTest test) { config_.repeatTest = std::move(test); return *this; }
+    RollbackSessionBuilder& RepeatTest(InputRepeatTest test) {
+        config_.repeatTest = std::move(test);
+        return *this;
+    }
 
     /// Empty when the settings are valid, else a one-line reason.
     std::string_view Check() const noexcept;

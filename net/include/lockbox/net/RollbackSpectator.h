@@ -19,7 +19,6 @@
 #include <vector>
 
 #include "lockbox/net/Protocol.h"
-
 #include "lockbox/net/RollbackProtocol.h"
 #include "lockbox/net/Transport.h"
 #include "lockbox/state/WorldHash.h"
@@ -30,16 +29,16 @@ class SnapshotReceiver;
 
 /// Settings of a spectator.
 struct RollbackSpectatorConfig {
-    uint32_t matchId = 1;                   ///< the match's id (RollbackPeerConfig::matchId)
-    uint32_t players = 2;                   ///< 1 .. kRollbackMaxPlayers
-    uint32_t inputBytes = 8;                ///< 1 .. kRollbackMaxInputBytes
-    PeerId host = kNoPeer;                  ///< the peer that sends the confirmed inputs
-    uint64_t timeoutMicros = 2000000;       ///< silence after which HostAlive() turns false
+    uint32_t matchId = 1;              ///< the match's id (RollbackPeerConfig::matchId)
+    uint32_t players = 2;              ///< 1 .. kRollbackMaxPlayers
+    uint32_t inputBytes = 8;           ///< 1 .. kRollbackMaxInputBytes
+    PeerId host = kNoPeer;             ///< the peer that sends the confirmed inputs
+    uint64_t timeoutMicros = 2000000;  ///< silence after which HostAlive() turns false
     /// Silence after which HostInterrupted() turns true and e_interrupted is queued (like a
     /// player's RollbackPeerConfig::interruptTimeoutMicros); 0 turns the reports off.
     uint64_t interruptTimeoutMicros = 500000;
-    uint32_t maxBufferedFrames = 4096;      ///< frames kept before Next takes them (more are not acked)
-    bool lateJoin = false;                  ///< ask the host for a snapshot instead of starting at frame 0
+    uint32_t maxBufferedFrames = 4096;                ///< frames kept before Next takes them (more are not acked)
+    bool lateJoin = false;                            ///< ask the host for a snapshot instead of starting at frame 0
     uint32_t maxSnapshotBytes = kRbMaxSnapshotBytes;  ///< larger snapshots are refused, 1 .. kRbMaxSnapshotBytes
     /// The engine's determinism version, announced to the host and required of it (RbHello).
     uint32_t determinismVersion = b2_determinismVersion;
@@ -47,9 +46,9 @@ struct RollbackSpectatorConfig {
 
 /// Where a spectator stands.
 enum class SpectatorState : uint8_t {
-    e_following = 0,     ///< receiving the confirmed inputs (from frame 0, or after TakeSnapshot)
-    e_joining = 1,       ///< late join: asking for / assembling a snapshot
-    e_snapshotReady = 2, ///< late join: a checked snapshot waits for TakeSnapshot
+    e_following = 0,      ///< receiving the confirmed inputs (from frame 0, or after TakeSnapshot)
+    e_joining = 1,        ///< late join: asking for / assembling a snapshot
+    e_snapshotReady = 2,  ///< late join: a checked snapshot waits for TakeSnapshot
     /// The host runs another protocol, match, engine determinism version or session shape
     /// (Incompatibility() says which): nothing more is taken from it and Next gives nothing.
     e_incompatible = 3,

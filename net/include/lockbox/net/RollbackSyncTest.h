@@ -23,12 +23,12 @@ using SyncTestInputSource = std::function<void(int32_t frame, std::span<uint8_t>
 
 /// Settings of a sync test session.
 struct SyncTestSessionConfig {
-    uint32_t players = 2;         ///< 1 .. kRollbackMaxPlayers
-    uint32_t inputBytes = 8;      ///< 1 .. kRollbackMaxInputBytes
-    uint32_t checkDistance = 8;   ///< frames re-simulated after each frame, 1 .. kRollbackMaxWindow
-    bool mispredict = false;      ///< re-simulate with wrong inputs first
-    uint64_t seed = 0x5eed;       ///< wrong-input generator (mispredict mode)
-    WorldStepSettings step;       ///< how each frame steps the world
+    uint32_t players = 2;        ///< 1 .. kRollbackMaxPlayers
+    uint32_t inputBytes = 8;     ///< 1 .. kRollbackMaxInputBytes
+    uint32_t checkDistance = 8;  ///< frames re-simulated after each frame, 1 .. kRollbackMaxWindow
+    bool mispredict = false;     ///< re-simulate with wrong inputs first
+    uint64_t seed = 0x5eed;      ///< wrong-input generator (mispredict mode)
+    WorldStepSettings step;      ///< how each frame steps the world
 };
 
 /// The sync test settings of a session built with RollbackSessionBuilder (players, input

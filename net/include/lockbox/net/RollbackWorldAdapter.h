@@ -23,7 +23,7 @@ namespace lockbox::net {
 
 /// How the adapter steps the world.
 struct WorldStepSettings {
-    uint32_t tickRate = 60;            ///< frames per second, >= 1 (time step 1/tickRate s)
+    uint32_t tickRate = 60;  ///< frames per second, >= 1 (time step 1/tickRate s)
     uint32_t velocityIterations = 8;
     uint32_t positionIterations = 3;
 };

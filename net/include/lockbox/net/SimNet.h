@@ -35,22 +35,22 @@ namespace lockbox::net {
 /// model has no floating point and draws from one seeded integer generator. Values above
 /// 1,000,000 ppm act as 1,000,000 (always).
 struct LinkProfile {
-    uint32_t latencyMicros = 0;       ///< fixed one-way delay
-    uint32_t jitterMicros = 0;        ///< extra delay, uniform in [0, jitterMicros]
-    uint32_t lossPpm = 0;             ///< Bernoulli loss per datagram
+    uint32_t latencyMicros = 0;  ///< fixed one-way delay
+    uint32_t jitterMicros = 0;   ///< extra delay, uniform in [0, jitterMicros]
+    uint32_t lossPpm = 0;        ///< Bernoulli loss per datagram
     /// Gilbert-Elliott burst loss: per-datagram chance to enter / leave the bad state, and the
     /// loss inside it. All zero: no bursts. The mean length of a bad period is
     /// 1e6 / burstLeavePpm datagrams.
     uint32_t burstEnterPpm = 0;
     uint32_t burstLeavePpm = 0;
     uint32_t burstLossPpm = 0;
-    uint32_t duplicatePpm = 0;        ///< chance a datagram is delivered twice
-    uint32_t reorderPpm = 0;          ///< chance a datagram is held back by reorderDelayMicros
+    uint32_t duplicatePpm = 0;  ///< chance a datagram is delivered twice
+    uint32_t reorderPpm = 0;    ///< chance a datagram is held back by reorderDelayMicros
     uint32_t reorderDelayMicros = 0;
     /// 0: unlimited; else wire bytes queue at this rate. Valid range 1 .. 1e12 (1 Tbit/s);
     /// larger values act as 1e12.
     uint64_t bandwidthBitsPerSecond = 0;
-    uint32_t queueLimitBytes = 65536;     ///< with a bandwidth cap: tail drop beyond this backlog
+    uint32_t queueLimitBytes = 65536;  ///< with a bandwidth cap: tail drop beyond this backlog
 };
 
 /// What happened on one direction of one link. Every datagram accepted by Send on the link

@@ -41,8 +41,8 @@ struct TransportStats {
     uint64_t wireBytesSent = 0;      ///< payload plus per-datagram header overhead
     uint64_t datagramsReceived = 0;  ///< handed out by Poll
     uint64_t payloadBytesReceived = 0;
-    uint64_t sendFailures = 0;       ///< Send returned false (unknown peer, too large, OS error)
-    uint64_t droppedUnknown = 0;     ///< received from a sender the transport would not admit
+    uint64_t sendFailures = 0;    ///< Send returned false (unknown peer, too large, OS error)
+    uint64_t droppedUnknown = 0;  ///< received from a sender the transport would not admit
 };
 
 class Transport {

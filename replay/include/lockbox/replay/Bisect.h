@@ -16,20 +16,20 @@ inline constexpr int32 kStageAfterToi = static_cast<int32>(kStagesPerFrame);
 
 /// What Bisect found.
 struct BisectResult {
-    bool diverged = false;   ///< re-simulation disagrees with the recording
-    int32 frame = -1;        ///< first divergent frame (its step produces a different state)
-    bool frameExact = true;  ///< false when hashes are sparse: the frame is the first checked
-                             ///< frame that differs, the divergence lies within the interval
-    int32 stage = -1;        ///< first differing fencepost (StageName, or kStageAfterToi); -1: unknown
-    int32 solvePhase = -1;   ///< inside the solve stage: first differing phase (SolvePhaseName); -1: not
-                             ///< the solve stage, or no solve-phase hashes stored
-    uint64 expected = 0;     ///< recorded hash (of the stage, or of the frame)
-    uint64 actual = 0;       ///< re-simulated hash
-    int32 lowKeyframe = 0;   ///< last stored state known to re-simulate correctly (a frame)
-    int32 highKeyframe = 0;  ///< first stored state known to differ (a frame)
-    int32 restores = 0;      ///< snapshots restored
+    bool diverged = false;     ///< re-simulation disagrees with the recording
+    int32 frame = -1;          ///< first divergent frame (its step produces a different state)
+    bool frameExact = true;    ///< false when hashes are sparse: the frame is the first checked
+                               ///< frame that differs, the divergence lies within the interval
+    int32 stage = -1;          ///< first differing fencepost (StageName, or kStageAfterToi); -1: unknown
+    int32 solvePhase = -1;     ///< inside the solve stage: first differing phase (SolvePhaseName); -1: not
+                               ///< the solve stage, or no solve-phase hashes stored
+    uint64 expected = 0;       ///< recorded hash (of the stage, or of the frame)
+    uint64 actual = 0;         ///< re-simulated hash
+    int32 lowKeyframe = 0;     ///< last stored state known to re-simulate correctly (a frame)
+    int32 highKeyframe = 0;    ///< first stored state known to differ (a frame)
+    int32 restores = 0;        ///< snapshots restored
     int64_t framesPlayed = 0;  ///< frames simulated
-    int32 probes = 0;        ///< binary-search probes over keyframes
+    int32 probes = 0;          ///< binary-search probes over keyframes
     Error error;
     /// One or a few lines for people.
     std::string Describe() const;

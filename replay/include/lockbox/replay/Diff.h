@@ -20,14 +20,14 @@ struct FieldDifference {
 
 /// Where two worlds or two runs first differ.
 struct DiffResult {
-    bool same = true;              ///< no difference found
-    int32 frame = -1;              ///< first frame after which the states differ (-1: the seed)
-    int32 firstInputFrame = -1;    ///< first frame whose recorded inputs differ (-1: none)
-    uint64 hashA = 0, hashB = 0;   ///< world hashes at the difference
-    b2HashMismatch where;          ///< first differing category and body
+    bool same = true;                     ///< no difference found
+    int32 frame = -1;                     ///< first frame after which the states differ (-1: the seed)
+    int32 firstInputFrame = -1;           ///< first frame whose recorded inputs differ (-1: none)
+    uint64 hashA = 0, hashB = 0;          ///< world hashes at the difference
+    b2HashMismatch where;                 ///< first differing category and body
     std::vector<FieldDifference> fields;  ///< differing fields of where.bodyId (all of them)
-    std::string note;              ///< anything else (different lengths, settings)
-    Error error;                   ///< a replay could not be played
+    std::string note;                     ///< anything else (different lengths, settings)
+    Error error;                          ///< a replay could not be played
     /// A multi-line account for people.
     std::string Describe() const;
 };

@@ -77,33 +77,33 @@ const char* SolvePhaseName(uint32 phase) noexcept;
 struct Header {
     uint16 formatVersion = kFormatVersion;
     uint16 engineMajor = 0, engineMinor = 0, enginePatch = 0;  ///< engine that recorded it
-    uint32 determinismVersion = 0;     ///< b2_determinismVersion of the recording engine
-    uint16 snapshotFormatVersion = 0;  ///< b2_snapshotFormatVersion of its snapshots
-    uint16 tickRate = 60;              ///< frames per second (display and speed reports)
-    int32 timeStepRaw = 0;             ///< Q16.16 raw step length passed to b2World::Step, s
+    uint32 determinismVersion = 0;                             ///< b2_determinismVersion of the recording engine
+    uint16 snapshotFormatVersion = 0;                          ///< b2_snapshotFormatVersion of its snapshots
+    uint16 tickRate = 60;                                      ///< frames per second (display and speed reports)
+    int32 timeStepRaw = 0;                                     ///< Q16.16 raw step length passed to b2World::Step, s
     uint16 velocityIterations = 8;
     uint16 positionIterations = 3;
-    uint32 worldFlags = 0;             ///< WorldFlag bits at the seed
-    uint16 playerCount = 1;            ///< 1 .. kMaxPlayers
-    uint16 inputBytes = 8;             ///< per player per frame, 0 .. kMaxInputBytes
-    uint32 hashInterval = 1;           ///< a hash is stored after every this-many frames (>= 1)
-    uint32 keyframeInterval = 0;       ///< a keyframe every this-many frames; 0: none
-    uint32 reserved = 0;               ///< written 0; ignored by version-1 readers
+    uint32 worldFlags = 0;        ///< WorldFlag bits at the seed
+    uint16 playerCount = 1;       ///< 1 .. kMaxPlayers
+    uint16 inputBytes = 8;        ///< per player per frame, 0 .. kMaxInputBytes
+    uint32 hashInterval = 1;      ///< a hash is stored after every this-many frames (>= 1)
+    uint32 keyframeInterval = 0;  ///< a keyframe every this-many frames; 0: none
+    uint32 reserved = 0;          ///< written 0; ignored by version-1 readers
 };
 
 /// Why a file was refused.
 enum class ErrorCode : uint32 {
     e_ok = 0,
-    e_io,            ///< the file could not be opened, read or written
-    e_truncated,     ///< the bytes end inside the header or a chunk
-    e_badMagic,      ///< not a replay file
-    e_badVersion,    ///< another (newer or unknown) format version
-    e_badEngine,     ///< another determinism or snapshot version: cannot verify bit for bit
-    e_badChecksum,   ///< a header or chunk checksum does not match
-    e_badChunk,      ///< a chunk is malformed (sizes, order, frames out of sequence)
-    e_badSnapshot,   ///< the seed or a keyframe snapshot was refused by b2World::Restore
-    e_missing,       ///< a required chunk (META, SEED, END) is missing
-    e_usage,         ///< the call does not fit the replay (frame out of range, wrong world)
+    e_io,           ///< the file could not be opened, read or written
+    e_truncated,    ///< the bytes end inside the header or a chunk
+    e_badMagic,     ///< not a replay file
+    e_badVersion,   ///< another (newer or unknown) format version
+    e_badEngine,    ///< another determinism or snapshot version: cannot verify bit for bit
+    e_badChecksum,  ///< a header or chunk checksum does not match
+    e_badChunk,     ///< a chunk is malformed (sizes, order, frames out of sequence)
+    e_badSnapshot,  ///< the seed or a keyframe snapshot was refused by b2World::Restore
+    e_missing,      ///< a required chunk (META, SEED, END) is missing
+    e_usage,        ///< the call does not fit the replay (frame out of range, wrong world)
 };
 
 /// Short name of an error code ("truncated", "bad checksum", ...).
@@ -112,11 +112,11 @@ const char* ErrorCodeName(ErrorCode code) noexcept;
 /// An error with where it happened.
 struct Error {
     ErrorCode code = ErrorCode::e_ok;
-    uint64 offset = 0;        ///< byte offset in the file of the header or chunk concerned
-    int32 chunkIndex = -1;    ///< 0-based chunk number; -1 for the header
-    uint32 chunkType = 0;     ///< the chunk's type tag; 0 for the header
-    int32 frame = -1;         ///< the frame concerned; -1 when none
-    std::string message;      ///< what is wrong
+    uint64 offset = 0;      ///< byte offset in the file of the header or chunk concerned
+    int32 chunkIndex = -1;  ///< 0-based chunk number; -1 for the header
+    uint32 chunkType = 0;   ///< the chunk's type tag; 0 for the header
+    int32 frame = -1;       ///< the frame concerned; -1 when none
+    std::string message;    ///< what is wrong
     bool ok() const noexcept { return code == ErrorCode::e_ok; }
     explicit operator bool() const noexcept { return !ok(); }
     /// One line: "<code> at offset N (chunk i 'TYPE', frame f): message".

@@ -14,15 +14,15 @@ namespace lockbox::replay {
 
 /// What Player::Verify found.
 struct VerifyResult {
-    bool ok = false;            ///< every stored hash and the final hash matched
-    int32 frames = 0;           ///< frames simulated
-    int32 hashesChecked = 0;    ///< stored hashes compared
-    int32 firstBadFrame = -1;   ///< first frame whose resulting state differs (-1: none)
-    uint64 expected = 0;        ///< stored hash at firstBadFrame
-    uint64 actual = 0;          ///< re-simulated hash at firstBadFrame
-    uint64 finalHash = 0;       ///< hash after the last frame simulated
-    Error error;                ///< set when the replay could not be played at all
-    std::string message;        ///< one line: "OK ..." or the first divergence
+    bool ok = false;           ///< every stored hash and the final hash matched
+    int32 frames = 0;          ///< frames simulated
+    int32 hashesChecked = 0;   ///< stored hashes compared
+    int32 firstBadFrame = -1;  ///< first frame whose resulting state differs (-1: none)
+    uint64 expected = 0;       ///< stored hash at firstBadFrame
+    uint64 actual = 0;         ///< re-simulated hash at firstBadFrame
+    uint64 finalHash = 0;      ///< hash after the last frame simulated
+    Error error;               ///< set when the replay could not be played at all
+    std::string message;       ///< one line: "OK ..." or the first divergence
 };
 
 /// Steps a world through a parsed replay.

@@ -56,18 +56,18 @@ private:
 
 /// Recording settings.
 struct RecorderConfig {
-    std::string gameName;            ///< stored in META; tells a player what to build
-    std::vector<uint8> gameParams;   ///< stored in META, opaque
-    uint16 tickRate = 60;            ///< frames per second; the step is round(65536 / tickRate) raw
+    std::string gameName;           ///< stored in META; tells a player what to build
+    std::vector<uint8> gameParams;  ///< stored in META, opaque
+    uint16 tickRate = 60;           ///< frames per second; the step is round(65536 / tickRate) raw
     uint16 velocityIterations = 8;
     uint16 positionIterations = 3;
-    uint16 playerCount = 1;          ///< 1 .. 64
-    uint16 inputBytes = 8;           ///< per player per frame, 0 .. 1024
-    uint32 hashInterval = 1;         ///< store a hash after every this-many frames (>= 1)
-    uint32 keyframeInterval = 600;   ///< a keyframe every this-many frames; 0: none
-    bool stageHashes = false;        ///< store the fencepost hashes of every frame (for bisect)
-    uint32 blockFrames = 60;         ///< frames per INPT/HASH/STAG chunk (>= 1)
-    int compressionLevel = 3;        ///< zstd level; 0 stores chunks raw
+    uint16 playerCount = 1;         ///< 1 .. 64
+    uint16 inputBytes = 8;          ///< per player per frame, 0 .. 1024
+    uint32 hashInterval = 1;        ///< store a hash after every this-many frames (>= 1)
+    uint32 keyframeInterval = 600;  ///< a keyframe every this-many frames; 0: none
+    bool stageHashes = false;       ///< store the fencepost hashes of every frame (for bisect)
+    uint32 blockFrames = 60;        ///< frames per INPT/HASH/STAG chunk (>= 1)
+    int compressionLevel = 3;       ///< zstd level; 0 stores chunks raw
 };
 
 /// Records frames of a world driven by a game.

@@ -13,10 +13,10 @@ namespace lockbox::replay {
 
 /// A stored snapshot: the seed (frame 0) or a keyframe.
 struct Keyframe {
-    int32 frame = 0;            ///< frames simulated before this state (0: the seed)
-    uint64 hash = 0;            ///< b2World::Hash of the state when it was recorded
-    std::vector<uint8> world;   ///< b2World::Save image
-    std::vector<uint8> user;    ///< Game::SaveUserState bytes
+    int32 frame = 0;           ///< frames simulated before this state (0: the seed)
+    uint64 hash = 0;           ///< b2World::Hash of the state when it was recorded
+    std::vector<uint8> world;  ///< b2World::Save image
+    std::vector<uint8> user;   ///< Game::SaveUserState bytes
 };
 
 /// Count and sizes of one chunk type in a file.
@@ -30,25 +30,23 @@ struct ChunkStat {
 /// A whole replay.
 struct ReplayFile {
     Header header;
-    std::string gameName;           ///< what the player must build (e.g. "scene:rain")
-    std::vector<uint8> gameParams;  ///< the game's own parameters
-    Keyframe seed;                  ///< the state before frame 0
-    int32 frameCount = 0;           ///< frames recorded (the END record's count)
-    std::vector<uint8> inputs;      ///< frameCount * playerCount * inputBytes
-    std::vector<uint64> hashes;     ///< by frame: state hash after that frame (0 if not stored)
-    std::vector<uint8> hashStored;  ///< by frame: 1 where hashes[] holds a stored hash
-    std::vector<uint64> stageHashes;  ///< frameCount * kStagesPerFrame, or empty
-    std::vector<uint64> solveHashes;  ///< frameCount * kSolvePhasesPerFrame, or empty
-    std::vector<Keyframe> keyframes;  ///< increasing frame order, seed excluded
-    uint64 finalHash = 0;             ///< hash after the last frame (END record)
+    std::string gameName;               ///< what the player must build (e.g. "scene:rain")
+    std::vector<uint8> gameParams;      ///< the game's own parameters
+    Keyframe seed;                      ///< the state before frame 0
+    int32 frameCount = 0;               ///< frames recorded (the END record's count)
+    std::vector<uint8> inputs;          ///< frameCount * playerCount * inputBytes
+    std::vector<uint64> hashes;         ///< by frame: state hash after that frame (0 if not stored)
+    std::vector<uint8> hashStored;      ///< by frame: 1 where hashes[] holds a stored hash
+    std::vector<uint64> stageHashes;    ///< frameCount * kStagesPerFrame, or empty
+    std::vector<uint64> solveHashes;    ///< frameCount * kSolvePhasesPerFrame, or empty
+    std::vector<Keyframe> keyframes;    ///< increasing frame order, seed excluded
+    uint64 finalHash = 0;               ///< hash after the last frame (END record)
     std::vector<ChunkStat> chunkStats;  ///< by first appearance
     uint64 fileBytes = 0;
     uint32 unknownChunks = 0;  ///< chunks of types this reader does not know (skipped)
 
     /// Bytes per frame of inputs (all players).
-    size_t FrameInputBytes() const noexcept {
-        return static_cast<size_t>(header.playerCount) * header.inputBytes;
-    }
+    size_t FrameInputBytes() const noexcept { return static_cast<size_t>(header.playerCount) * header.inputBytes; }
     /// Frame `frame`'s inputs (all players); empty outside [0, frameCount).
     std::span<const uint8> Inputs(int32 frame) const noexcept;
     /// True when a hash after frame `frame` is stored.

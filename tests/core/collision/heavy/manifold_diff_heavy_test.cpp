@@ -3,10 +3,10 @@
 // their class and must stay at or below 0.1 % per type; pairs where 2.2.1 and 2.4.1 differ
 // by design are printed and counted separately (see manifold_diff_common.h).
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "../manifold_diff_common.h"
 
@@ -20,10 +20,11 @@ TEST_P(ManifoldDiffHeavy, AgreesWithFloatBox2D) {
     const Pair type = GetParam();
     constexpr int kPairs = 20000;
     const manifold_diff::RunResult r = manifold_diff::Run(type, kPairs, 0xB0C5000u + static_cast<unsigned>(type));
-    std::printf("%s: %d pairs, %d touching, %d disagreements, %d excluded by version rule, max deviation of "
-                "agreeing pairs %.3g\n%s",
-                manifold_diff::PairName(type), r.pairs, r.touching, r.disagreements, r.versionRule, r.maxDeviation,
-                r.report.c_str());
+    std::printf(
+        "%s: %d pairs, %d touching, %d disagreements, %d excluded by version rule, max deviation of "
+        "agreeing pairs %.3g\n%s",
+        manifold_diff::PairName(type), r.pairs, r.touching, r.disagreements, r.versionRule, r.maxDeviation,
+        r.report.c_str());
     // Only the first part of the by-design list, to keep the log readable.
     std::printf("%s\n", r.versionReport.substr(0, 4000).c_str());
     EXPECT_LE(r.disagreements * 1000, r.pairs) << r.report;
@@ -33,14 +34,15 @@ TEST_P(ManifoldDiffHeavy, AgreesWithFloatBox2D) {
 }
 
 std::string PairTestName(const ::testing::TestParamInfo<Pair>& info) {
-    static const char* const kNames[] = {"CircleCircle", "PolygonCircle",   "PolygonPolygon", "EdgeCircle",
+    static const char* const kNames[] = {"CircleCircle", "PolygonCircle",   "PolygonPolygon",  "EdgeCircle",
                                          "EdgePolygon",  "EdgeCircleGhost", "EdgePolygonGhost"};
     return kNames[static_cast<int>(info.param)];
 }
 
 INSTANTIATE_TEST_SUITE_P(AllPairs, ManifoldDiffHeavy,
-                         ::testing::Values(Pair::circleCircle, Pair::polygonCircle, Pair::polygonPolygon, Pair::edgeCircle,
-                                           Pair::edgePolygon, Pair::edgeCircleGhost, Pair::edgePolygonGhost),
+                         ::testing::Values(Pair::circleCircle, Pair::polygonCircle, Pair::polygonPolygon,
+                                           Pair::edgeCircle, Pair::edgePolygon, Pair::edgeCircleGhost,
+                                           Pair::edgePolygonGhost),
                          PairTestName);
 
 }  // namespace

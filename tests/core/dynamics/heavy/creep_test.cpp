@@ -1,9 +1,9 @@
 // Test 7 (heavy): a box resting on the ground, kept awake, for 10 simulated minutes drifts less
 // than 1 ULP per minute (NUMERICS stability test 7: catches rounding bias such as floor-mul).
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <cstdlib>
+
+#include <gtest/gtest.h>
 
 #include "../DynamicsTestUtil.h"
 #include "FixedPrint.h"

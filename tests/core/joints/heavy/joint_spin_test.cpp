@@ -2,11 +2,11 @@
 // 94.25 rad/s) for 30 simulated minutes (108 000 steps). The body angle stays in [-pi, pi),
 // the joint's continuous angle never saturates, and afterwards a limit at +-10 turns around
 // the current angle still holds. A gear on the spinning wheel keeps its invariant too.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include <gtest/gtest.h>
 
 #include "../JointTestUtil.h"
 

@@ -25,10 +25,10 @@ inline Fixed b2MixRestitution(Fixed r1, Fixed r2) noexcept { return r1 > r2 ? r1
 
 /// A contact edge links a body to a contact and to the other body in the contact graph.
 struct b2ContactEdge {
-    b2Body* other = nullptr;       ///< the other body
-    b2Contact* contact = nullptr;  ///< the contact
-    b2ContactEdge* prev = nullptr; ///< previous edge in the body's contact list
-    b2ContactEdge* next = nullptr; ///< next edge in the body's contact list
+    b2Body* other = nullptr;        ///< the other body
+    b2Contact* contact = nullptr;   ///< the contact
+    b2ContactEdge* prev = nullptr;  ///< previous edge in the body's contact list
+    b2ContactEdge* next = nullptr;  ///< next edge in the body's contact list
 };
 
 /// A potential contact between two fixture children. Owned by the contact manager.
@@ -43,7 +43,10 @@ public:
     bool IsTouching() const noexcept { return (m_flags & e_touchingFlag) != 0; }
     /// Enables or disables the contact for the current step only (PreSolve use).
     void SetEnabled(bool flag) noexcept {
-        if (flag) m_flags |= e_enabledFlag; else m_flags &= ~e_enabledFlag;
+        if (flag)
+            m_flags |= e_enabledFlag;
+        else
+            m_flags &= ~e_enabledFlag;
     }
     bool IsEnabled() const noexcept { return (m_flags & e_enabledFlag) != 0; }
     /// Next contact in the world's list (newest first).
@@ -89,8 +92,14 @@ public:
 
     b2Contact(b2Fixture* fixtureA, int32 indexA, b2Fixture* fixtureB, int32 indexB, int32 id);
     /// Rollback frames: a contact whose every field the frame then writes (no fixture is read).
-    b2Contact(b2RestoreTag, int32 id) noexcept : m_fixtureA(nullptr), m_fixtureB(nullptr), m_indexA(0), m_indexB(0),
-        m_fixtureIdA(-1), m_fixtureIdB(-1), m_id(id) {}
+    b2Contact(b2RestoreTag, int32 id) noexcept
+        : m_fixtureA(nullptr),
+          m_fixtureB(nullptr),
+          m_indexA(0),
+          m_indexB(0),
+          m_fixtureIdA(-1),
+          m_fixtureIdB(-1),
+          m_id(id) {}
     b2Contact(const b2Contact&) = delete;
     b2Contact& operator=(const b2Contact&) = delete;
 
@@ -111,7 +120,7 @@ public:
     int32 m_fixtureIdB;  ///< m_fixtureB->GetId()
     b2Manifold m_manifold;
     int32 m_toiCount = 0;
-    Fixed m_toi;           ///< cached time of impact, fraction of the step in [0, 1]
+    Fixed m_toi;  ///< cached time of impact, fraction of the step in [0, 1]
     Fixed m_friction;
     Fixed m_restitution;
     int32 m_id;

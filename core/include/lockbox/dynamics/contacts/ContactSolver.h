@@ -29,15 +29,15 @@ struct b2WideSym22 {
 /// (r x d), the angular responses iA (rA x d) and the linear ones mA d (per contact) are
 /// computed once per step.
 struct b2VelocityConstraintPoint {
-    Wide normalImpulse;  ///< accumulated, N*s
-    Wide tangentImpulse; ///< accumulated, N*s
-    Wide normalMass;     ///< 1 / K_normal, kg
-    Wide tangentMass;    ///< 1 / K_tangent, kg
-    Wide turnNA, turnNB; ///< iA (rA x normal), iB (rB x normal): rad/s per N*s
-    Wide turnTA, turnTB; ///< the same for the tangent
-    Fixed velocityBias;  ///< restitution target, m/s
-    Fixed rnA, rnB;      ///< rA x normal, rB x normal, m
-    Fixed rtA, rtB;      ///< rA x tangent, rB x tangent, m
+    Wide normalImpulse;   ///< accumulated, N*s
+    Wide tangentImpulse;  ///< accumulated, N*s
+    Wide normalMass;      ///< 1 / K_normal, kg
+    Wide tangentMass;     ///< 1 / K_tangent, kg
+    Wide turnNA, turnNB;  ///< iA (rA x normal), iB (rB x normal): rad/s per N*s
+    Wide turnTA, turnTB;  ///< the same for the tangent
+    Fixed velocityBias;   ///< restitution target, m/s
+    Fixed rnA, rnB;       ///< rA x normal, rB x normal, m
+    Fixed rtA, rtB;       ///< rA x tangent, rB x tangent, m
 };
 
 /// One contact's velocity constraint.
@@ -57,7 +57,7 @@ struct b2ContactVelocityConstraint {
     Fixed restitution;
     int32 pointCount = 0;
     int32 contactIndex = 0;
-    bool useBlock = false;   ///< two points and a well-conditioned K
+    bool useBlock = false;  ///< two points and a well-conditioned K
 };
 
 /// One contact's position constraint (copied from the manifold).

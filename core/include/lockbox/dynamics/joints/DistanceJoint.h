@@ -15,11 +15,11 @@ struct b2DistanceJointDef : b2JointDef {
     /// Sets bodies and local anchors from two world anchors (m); length = their distance.
     void Initialize(b2Body* bodyA, b2Body* bodyB, const b2Vec2& anchorA, const b2Vec2& anchorB);
 
-    b2Vec2 localAnchorA;     ///< anchor on A relative to A's origin, m
-    b2Vec2 localAnchorB;     ///< anchor on B relative to B's origin, m
-    Fixed length = 1;        ///< natural length, m (> 0)
-    Fixed frequencyHz;       ///< spring frequency, Hz, in [0, 30]; 0 makes the joint rigid
-    Fixed dampingRatio;      ///< 0 = no damping, 1 = critical, in [0, 10]
+    b2Vec2 localAnchorA;  ///< anchor on A relative to A's origin, m
+    b2Vec2 localAnchorB;  ///< anchor on B relative to B's origin, m
+    Fixed length = 1;     ///< natural length, m (> 0)
+    Fixed frequencyHz;    ///< spring frequency, Hz, in [0, 30]; 0 makes the joint rigid
+    Fixed dampingRatio;   ///< 0 = no damping, 1 = critical, in [0, 10]
 };
 
 /// Distance joint.

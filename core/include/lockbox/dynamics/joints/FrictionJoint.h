@@ -80,7 +80,7 @@ private:
     b2Vec2 m_localCenterB;
     Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
     b2WideSolver22 m_linearK;  ///< linear effective-mass matrix, prepared once per step; solved, never inverted
-    Wide m_angularMass;     ///< kg*m^2
+    Wide m_angularMass;        ///< kg*m^2
 };
 
 }  // namespace lockbox

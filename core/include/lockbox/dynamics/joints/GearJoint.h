@@ -89,8 +89,8 @@ private:
         b2Vec2 localAnchorGround;  ///< anchor on the ground body, m
         b2Vec2 localAnchorBody;    ///< anchor on the geared body, m
         Fixed referenceAngle;
-        b2Vec2 localAxisGround;    ///< prismatic axis in the ground frame
-        Fixed angleBase;           ///< last continuous revolute coordinate, rad
+        b2Vec2 localAxisGround;  ///< prismatic axis in the ground frame
+        Fixed angleBase;         ///< last continuous revolute coordinate, rad
     };
 
     static Side MakeSide(b2Joint* joint);
@@ -102,8 +102,8 @@ private:
         v(s.localAnchorGround, s.localAnchorBody, s.referenceAngle, s.localAxisGround, s.angleBase);
     }
     /// Coordinate from body positions (ground at cG, aG; body at c, a).
-    static Fixed Coordinate(const Side& s, const b2Vec2& cG, Fixed aG, const b2Vec2& c, Fixed a,
-                            const b2Vec2& lcG, const b2Vec2& lc);
+    static Fixed Coordinate(const Side& s, const b2Vec2& cG, Fixed aG, const b2Vec2& c, Fixed a, const b2Vec2& lcG,
+                            const b2Vec2& lc);
 
     b2Joint* m_joint1;
     b2Joint* m_joint2;

@@ -34,8 +34,8 @@ enum b2LimitState { e_inactiveLimit, e_atLowerLimit, e_atUpperLimit, e_equalLimi
 /// A joint edge connects bodies and joints in the constraint graph: each joint has two
 /// edges, one per attached body, linked into that body's joint list (newest first).
 struct b2JointEdge {
-    b2Body* other = nullptr;    ///< the body at the other end
-    b2Joint* joint = nullptr;   ///< the joint
+    b2Body* other = nullptr;      ///< the body at the other end
+    b2Joint* joint = nullptr;     ///< the joint
     b2JointEdge* prev = nullptr;  ///< previous edge in the body's joint list
     b2JointEdge* next = nullptr;  ///< next edge in the body's joint list
 };
@@ -114,8 +114,11 @@ public:
 protected:
     b2Joint(b2RestoreTag, b2JointType type) : m_type(type) {}
     explicit b2Joint(const b2JointDef* def)
-        : m_type(def->type), m_bodyA(def->bodyA), m_bodyB(def->bodyB),
-          m_collideConnected(def->collideConnected), m_userData(def->userData) {}
+        : m_type(def->type),
+          m_bodyA(def->bodyA),
+          m_bodyB(def->bodyB),
+          m_collideConnected(def->collideConnected),
+          m_userData(def->userData) {}
 };
 
 }  // namespace lockbox

@@ -15,10 +15,10 @@ struct b2MouseJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2MouseJointDef() { type = e_mouseJoint; }
 
-    b2Vec2 target;                   ///< initial world target, m (also the grab point on B)
-    Wide maxForce;                   ///< N, >= 0 (Q32.32, up to ~2e9)
-    Fixed frequencyHz = 5;           ///< response speed, Hz, in (0, 30]
-    Fixed dampingRatio = Fixed(0.7); ///< 0 = no damping, 1 = critical
+    b2Vec2 target;                    ///< initial world target, m (also the grab point on B)
+    Wide maxForce;                    ///< N, >= 0 (Q32.32, up to ~2e9)
+    Fixed frequencyHz = 5;            ///< response speed, Hz, in (0, 30]
+    Fixed dampingRatio = Fixed(0.7);  ///< 0 = no damping, 1 = critical
 };
 
 /// Mouse joint.
@@ -76,7 +76,7 @@ private:
     b2Vec2 m_targetA;
     Fixed m_frequencyHz;
     Fixed m_dampingRatio;
-    Wide m_beta;   ///< 1/s
+    Wide m_beta;  ///< 1/s
     b2WideVec2 m_impulse;
     Wide m_maxForce;
     Wide m_gamma;  ///< 1/kg
@@ -86,7 +86,7 @@ private:
     b2Vec2 m_localCenterB;
     Wide m_invMassB, m_invIB;
     b2WideSolver22 m_K;  ///< the effective-mass matrix, prepared once per step; solved, never inverted
-    b2WideVec2 m_C;   ///< beta * position error, m/s
+    b2WideVec2 m_C;      ///< beta * position error, m/s
 };
 
 }  // namespace lockbox

@@ -10,22 +10,25 @@ namespace lockbox {
 /// Prismatic joint definition.
 struct b2PrismaticJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
-    b2PrismaticJointDef() { type = e_prismaticJoint; localAxisA.Set(1, 0); }
+    b2PrismaticJointDef() {
+        type = e_prismaticJoint;
+        localAxisA.Set(1, 0);
+    }
 
     /// Bodies, anchors from one world point (m), the axis from a world direction (normalised
     /// here), and the reference angle from the current angles.
     void Initialize(b2Body* bodyA, b2Body* bodyB, const b2Vec2& anchor, const b2Vec2& axis);
 
-    b2Vec2 localAnchorA;          ///< m, relative to A's origin
-    b2Vec2 localAnchorB;          ///< m, relative to B's origin
-    b2Vec2 localAxisA;            ///< translation axis in A's frame (unit length)
-    Fixed referenceAngle;         ///< angleB - angleA in the reference state, rad
-    bool enableLimit = false;     ///< enforce [lowerTranslation, upperTranslation]?
-    Fixed lowerTranslation;       ///< m
-    Fixed upperTranslation;       ///< m, >= lowerTranslation
-    bool enableMotor = false;     ///< drive the translation speed?
-    Fixed maxMotorForce;          ///< N, >= 0
-    Fixed motorSpeed;             ///< m/s
+    b2Vec2 localAnchorA;       ///< m, relative to A's origin
+    b2Vec2 localAnchorB;       ///< m, relative to B's origin
+    b2Vec2 localAxisA;         ///< translation axis in A's frame (unit length)
+    Fixed referenceAngle;      ///< angleB - angleA in the reference state, rad
+    bool enableLimit = false;  ///< enforce [lowerTranslation, upperTranslation]?
+    Fixed lowerTranslation;    ///< m
+    Fixed upperTranslation;    ///< m, >= lowerTranslation
+    bool enableMotor = false;  ///< drive the translation speed?
+    Fixed maxMotorForce;       ///< N, >= 0
+    Fixed motorSpeed;          ///< m/s
 };
 
 /// Prismatic joint.
@@ -138,7 +141,7 @@ private:
     b2WideSolver22 m_pointSolver;  ///< m_K's upper block, prepared once per step
     b2WideMat22 m_pointMass;       ///< its inverse, once per step: the point iterations' product
     b2WideSolver33 m_limitSolver;  ///< m_K, prepared once per step while the limit is solved
-    Wide m_motorMass;  ///< kg
+    Wide m_motorMass;              ///< kg
 };
 
 }  // namespace lockbox

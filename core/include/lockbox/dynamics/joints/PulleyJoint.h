@@ -89,7 +89,7 @@ private:
     b2Vec2 m_localAnchorB;
     Fixed m_constant;  ///< lengthA + ratio * lengthB, m
     Fixed m_ratio;
-    Wide m_impulse;    ///< N*s
+    Wide m_impulse;  ///< N*s
 
     int32 m_indexA = 0;
     int32 m_indexB = 0;

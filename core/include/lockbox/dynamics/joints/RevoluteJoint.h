@@ -25,15 +25,15 @@ struct b2RevoluteJointDef : b2JointDef {
     /// bodies' current angles.
     void Initialize(b2Body* bodyA, b2Body* bodyB, const b2Vec2& anchor);
 
-    b2Vec2 localAnchorA;      ///< m, relative to A's origin
-    b2Vec2 localAnchorB;      ///< m, relative to B's origin
-    Fixed referenceAngle;     ///< angleB - angleA in the reference state, rad
-    bool enableLimit = false; ///< enforce [lowerAngle, upperAngle]?
-    Fixed lowerAngle;         ///< rad, may be many turns (|value| <= 16000)
-    Fixed upperAngle;         ///< rad, >= lowerAngle
-    bool enableMotor = false; ///< drive the relative angular speed?
-    Fixed motorSpeed;         ///< rad/s
-    Fixed maxMotorTorque;     ///< N*m, >= 0
+    b2Vec2 localAnchorA;       ///< m, relative to A's origin
+    b2Vec2 localAnchorB;       ///< m, relative to B's origin
+    Fixed referenceAngle;      ///< angleB - angleA in the reference state, rad
+    bool enableLimit = false;  ///< enforce [lowerAngle, upperAngle]?
+    Fixed lowerAngle;          ///< rad, may be many turns (|value| <= 16000)
+    Fixed upperAngle;          ///< rad, >= lowerAngle
+    bool enableMotor = false;  ///< drive the relative angular speed?
+    Fixed motorSpeed;          ///< rad/s
+    Fixed maxMotorTorque;      ///< N*m, >= 0
 };
 
 /// Revolute joint.
@@ -103,8 +103,8 @@ public:
     /// carried angles), in the order of the state hash and the snapshot (docs/determinism.md).
     template <class V>
     void VisitState(V& v) {
-        v(m_localAnchorA, m_localAnchorB, m_referenceAngle, m_enableLimit, m_lowerAngle, m_upperAngle,
-          m_enableMotor, m_motorSpeed, m_maxMotorTorque, m_impulse, m_motorImpulse, m_angleBase, m_limitState);
+        v(m_localAnchorA, m_localAnchorB, m_referenceAngle, m_enableLimit, m_lowerAngle, m_upperAngle, m_enableMotor,
+          m_motorSpeed, m_maxMotorTorque, m_impulse, m_motorImpulse, m_angleBase, m_limitState);
     }
 
 private:
@@ -137,8 +137,8 @@ private:
     Fixed m_referenceAngle;
     Fixed m_lowerAngle;
     Fixed m_upperAngle;
-    Fixed m_angleBase;  ///< continuous joint angle at the last velocity init, rad
-    b2WideMat33 m_mass;  ///< the K matrix (1/kg, 1/(kg m), 1/(kg m^2)); its point block is also inverted
+    Fixed m_angleBase;             ///< continuous joint angle at the last velocity init, rad
+    b2WideMat33 m_mass;            ///< the K matrix (1/kg, 1/(kg m), 1/(kg m^2)); its point block is also inverted
     b2WideSolver22 m_pointSolver;  ///< m_mass's point block, prepared once per step
     b2WideSolver33 m_limitSolver;  ///< m_mass, prepared once per step while the limit is solved
 };

@@ -71,7 +71,7 @@ public:
 private:
     Fixed m_frequencyHz;
     Fixed m_dampingRatio;
-    Wide m_bias;   ///< rad/s
+    Wide m_bias;  ///< rad/s
     b2Vec2 m_localAnchorA;
     b2Vec2 m_localAnchorB;
     Fixed m_referenceAngle;
@@ -85,11 +85,11 @@ private:
     b2Vec2 m_localCenterA;
     b2Vec2 m_localCenterB;
     Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
-    b2WideMat33 m_K;       ///< solved, never inverted
+    b2WideMat33 m_K;               ///< solved, never inverted
     b2WideSolver22 m_pointSolver;  ///< m_K's upper block, prepared once per step (soft weld)
     b2WideMat22 m_pointMass;       ///< its inverse, once per step: the point iterations' product
     b2WideSolver33 m_rigidSolver;  ///< m_K, prepared once per step (rigid weld)
-    Wide m_angularMass;    ///< soft angular effective mass, kg*m^2
+    Wide m_angularMass;            ///< soft angular effective mass, kg*m^2
 };
 
 }  // namespace lockbox

@@ -10,18 +10,21 @@ namespace lockbox {
 /// Wheel joint definition.
 struct b2WheelJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
-    b2WheelJointDef() { type = e_wheelJoint; localAxisA.Set(1, 0); }
+    b2WheelJointDef() {
+        type = e_wheelJoint;
+        localAxisA.Set(1, 0);
+    }
 
     /// Bodies, anchors from one world point (m) and the axis from a world direction.
     void Initialize(b2Body* bodyA, b2Body* bodyB, const b2Vec2& anchor, const b2Vec2& axis);
 
-    b2Vec2 localAnchorA;       ///< m, relative to A's origin
-    b2Vec2 localAnchorB;       ///< m, relative to B's origin
-    b2Vec2 localAxisA;         ///< suspension axis in A's frame (unit length)
-    bool enableMotor = false;  ///< drive the wheel's rotation?
-    Fixed maxMotorTorque;      ///< N*m, >= 0
-    Fixed motorSpeed;          ///< rad/s
-    Fixed frequencyHz = 2;     ///< suspension frequency, Hz, in [0, 30]; 0 = rigid axle
+    b2Vec2 localAnchorA;              ///< m, relative to A's origin
+    b2Vec2 localAnchorB;              ///< m, relative to B's origin
+    b2Vec2 localAxisA;                ///< suspension axis in A's frame (unit length)
+    bool enableMotor = false;         ///< drive the wheel's rotation?
+    Fixed maxMotorTorque;             ///< N*m, >= 0
+    Fixed motorSpeed;                 ///< rad/s
+    Fixed frequencyHz = 2;            ///< suspension frequency, Hz, in [0, 30]; 0 = rigid axle
     Fixed dampingRatio = Fixed(0.7);  ///< suspension damping ratio
 };
 
@@ -89,8 +92,8 @@ public:
     /// carried angles), in the order of the state hash and the snapshot (docs/determinism.md).
     template <class V>
     void VisitState(V& v) {
-        v(m_localAnchorA, m_localAnchorB, m_localXAxisA, m_localYAxisA, m_enableMotor, m_motorSpeed,
-          m_maxMotorTorque, m_frequencyHz, m_dampingRatio, m_impulse, m_motorImpulse, m_springImpulse);
+        v(m_localAnchorA, m_localAnchorB, m_localXAxisA, m_localYAxisA, m_enableMotor, m_motorSpeed, m_maxMotorTorque,
+          m_frequencyHz, m_dampingRatio, m_impulse, m_motorImpulse, m_springImpulse);
     }
     /// Visits the directions the last solve computed that GetReactionForce/GetReactionTorque
     /// read (solver temporaries, not state a step depends on): the snapshot carries them so a
@@ -122,11 +125,11 @@ private:
     Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
     b2Vec2 m_ax, m_ay;
     Fixed m_sAx, m_sBx, m_sAy, m_sBy;  ///< arms, m
-    Wide m_mass;        ///< kg
-    Wide m_motorMass;   ///< kg*m^2
-    Wide m_springMass;  ///< kg
-    Wide m_bias;        ///< m/s
-    Wide m_gamma;       ///< 1/kg
+    Wide m_mass;                       ///< kg
+    Wide m_motorMass;                  ///< kg*m^2
+    Wide m_springMass;                 ///< kg
+    Wide m_bias;                       ///< m/s
+    Wide m_gamma;                      ///< 1/kg
 };
 
 }  // namespace lockbox

@@ -53,7 +53,8 @@ constexpr Wide b2Cross(const b2Vec2& r, const b2WideVec2& p) noexcept {
     if (!std::is_constant_evaluated()) {
         using namespace detail;
         // |r| < 2^31 and |P| < 2^63: each product is below 2^94, the difference below 2^95.
-        const NativeI128 e = static_cast<NativeI128>(r.x.Raw()) * p.y.Raw() - static_cast<NativeI128>(r.y.Raw()) * p.x.Raw();
+        const NativeI128 e =
+            static_cast<NativeI128>(r.x.Raw()) * p.y.Raw() - static_cast<NativeI128>(r.y.Raw()) * p.x.Raw();
         const NativeU128 mag = (MagnitudeU128(e) + (NativeU128{1} << 15)) >> 16;
         return Wide::FromRaw(NarrowMagnitude(mag, e < 0, kOp, r.x.Raw(), p.y.Raw()));
     }
@@ -93,7 +94,8 @@ inline int64_t DivShiftNative(NativeI128 n, NativeI128 d, int shift, const char*
     if (n == 0) return 0;
     NativeU128 nm = MagnitudeU128(n);
     const auto hi = static_cast<uint64_t>(nm >> 64);
-    const int width = hi != 0 ? 64 + static_cast<int>(std::bit_width(hi)) : static_cast<int>(std::bit_width(static_cast<uint64_t>(nm)));
+    const int width = hi != 0 ? 64 + static_cast<int>(std::bit_width(hi))
+                              : static_cast<int>(std::bit_width(static_cast<uint64_t>(nm)));
     if (shift < 0 || shift > 126 - width) {
         return DivShiftS128(FromNative(n), FromNative(d), shift, op);
     }
@@ -156,7 +158,8 @@ constexpr uint64_t IsqrtU128(U128 n) noexcept {
 /// the scaling is one rounded division per component. Used for the friction and mouse clamps.
 constexpr b2WideVec2 b2ClampLength(const b2WideVec2& v, Wide maxLength) noexcept {
     using namespace detail;
-    const U128 sum = AddU128(MulU64(AbsU64(v.x.Raw()), AbsU64(v.x.Raw())), MulU64(AbsU64(v.y.Raw()), AbsU64(v.y.Raw())));
+    const U128 sum =
+        AddU128(MulU64(AbsU64(v.x.Raw()), AbsU64(v.x.Raw())), MulU64(AbsU64(v.y.Raw()), AbsU64(v.y.Raw())));
     const int64_t maxRaw = maxLength.Raw() > 0 ? maxLength.Raw() : 0;
     const U128 lim = MulU64(static_cast<uint64_t>(maxRaw), static_cast<uint64_t>(maxRaw));
     if (!LessU128(lim, sum)) return v;
@@ -173,9 +176,9 @@ constexpr b2WideVec2 b2ClampLength(const b2WideVec2& v, Wide maxLength) noexcept
 /// (InitVelocityConstraints) and each iteration pays only for the right-hand side. Solve gives
 /// the bits of b2WideMat22::Solve, which is this same code run once.
 struct b2WideSolver22 {
-    int s = 0;                         ///< the normalising exponent (NormShift)
+    int s = 0;                                   ///< the normalising exponent (NormShift)
     int64_t a11 = 0, a21 = 0, a12 = 0, a22 = 0;  ///< K's entries scaled by 2^-s
-    detail::S128 det;                  ///< exact a11 a22 - a12 a21
+    detail::S128 det;                            ///< exact a11 a22 - a12 a21
 
     constexpr b2WideSolver22() noexcept = default;
     /// Prepares K = [ex ey] (Q32.32 columns).
@@ -229,7 +232,8 @@ private:
 #ifdef LOCKBOX_NATIVE_INT128
     /// det as a native value (|det| < 2^73).
     detail::NativeI128 NativeDet() const noexcept {
-        const auto m = static_cast<detail::NativeI128>((static_cast<detail::NativeU128>(det.mag.hi) << 64) | det.mag.lo);
+        const auto m =
+            static_cast<detail::NativeI128>((static_cast<detail::NativeU128>(det.mag.hi) << 64) | det.mag.lo);
         return det.negative ? -m : m;
     }
 #endif
@@ -238,9 +242,9 @@ private:
 /// A 3x3 K made ready for many solves (see b2WideSolver22): Solve33 gives the bits of
 /// b2WideMat33::Solve33.
 struct b2WideSolver33 {
-    int s = 0;                 ///< the normalising exponent (NormShift)
-    int64_t m[9] = {};         ///< K's columns scaled by 2^-s: c0 = m[0..2], c1 = m[3..5], c2 = m[6..8]
-    detail::S128 det;          ///< exact c0 . (c1 x c2)
+    int s = 0;          ///< the normalising exponent (NormShift)
+    int64_t m[9] = {};  ///< K's columns scaled by 2^-s: c0 = m[0..2], c1 = m[3..5], c2 = m[6..8]
+    detail::S128 det;   ///< exact c0 . (c1 x c2)
 
     constexpr b2WideSolver33() noexcept = default;
     /// Prepares K = [ex ey ez] (Q32.32 columns).
@@ -295,7 +299,8 @@ private:
 #ifdef LOCKBOX_NATIVE_INT128
     /// det as a native value (|det| < 2^110).
     detail::NativeI128 NativeDet() const noexcept {
-        const auto v = static_cast<detail::NativeI128>((static_cast<detail::NativeU128>(det.mag.hi) << 64) | det.mag.lo);
+        const auto v =
+            static_cast<detail::NativeI128>((static_cast<detail::NativeU128>(det.mag.hi) << 64) | det.mag.lo);
         return det.negative ? -v : v;
     }
     /// Triple in native integers; callers keep every entry below 2^47 (see Solve33).

@@ -11,10 +11,10 @@ namespace lockbox::detail {
 
 enum class DecimalError : uint8_t {
     None,
-    Empty,        ///< no digits
-    BadCharacter, ///< something other than [+-]digits[.digits][e[+-]digits]
-    TooLong,      ///< more than kMaxDecimalDigits significant digits
-    OutOfRange,   ///< magnitude beyond the target format
+    Empty,         ///< no digits
+    BadCharacter,  ///< something other than [+-]digits[.digits][e[+-]digits]
+    TooLong,       ///< more than kMaxDecimalDigits significant digits
+    OutOfRange,    ///< magnitude beyond the target format
 };
 
 inline constexpr int kMaxDecimalDigits = 64;

@@ -58,9 +58,7 @@ constexpr U128 SubU128(U128 a, U128 b) noexcept {
     return r;
 }
 
-constexpr bool LessU128(U128 a, U128 b) noexcept {
-    return a.hi < b.hi || (a.hi == b.hi && a.lo < b.lo);
-}
+constexpr bool LessU128(U128 a, U128 b) noexcept { return a.hi < b.hi || (a.hi == b.hi && a.lo < b.lo); }
 
 /// Logical right shift by 0..127.
 constexpr U128 ShrU128(U128 a, int s) noexcept {

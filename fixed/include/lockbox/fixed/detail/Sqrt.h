@@ -29,8 +29,7 @@ namespace sqrt_impl {
 constexpr uint64_t SlowIsqrt(uint64_t n) noexcept {
     uint64_t root = 0;
     uint64_t bit = uint64_t{1} << 62;
-    while (bit > n)
-        bit >>= 2;
+    while (bit > n) bit >>= 2;
     while (bit != 0) {
         if (n >= root + bit) {
             n -= root + bit;
@@ -44,7 +43,7 @@ constexpr uint64_t SlowIsqrt(uint64_t n) noexcept {
 }
 
 inline constexpr int kSeedBits = 9;
-inline constexpr uint32_t kSeedFirst = 1u << (kSeedBits - 2);  // 128: top 9 bits of m are >= 128
+inline constexpr uint32_t kSeedFirst = 1u << (kSeedBits - 2);           // 128: top 9 bits of m are >= 128
 inline constexpr uint32_t kSeedCount = (1u << kSeedBits) - kSeedFirst;  // 384 entries
 
 // Entry i - 128 holds round(2^15 / sqrt(a_mid)) with a_mid = (i + 1/2) / 512 the centre of the
@@ -55,8 +54,7 @@ constexpr std::array<uint16_t, kSeedCount> MakeRsqrtSeed() noexcept {
         // round(sqrt(q)) for q = 2^40 / (2i + 1): floor root, then round up when q - r^2 > r.
         const uint64_t q = (uint64_t{1} << 40) / (2 * uint64_t{i} + 1);
         uint64_t r = SlowIsqrt(q);
-        if (q - r * r > r)
-            ++r;
+        if (q - r * r > r) ++r;
         table[i - kSeedFirst] = static_cast<uint16_t>(r);
     }
     return table;
@@ -73,8 +71,7 @@ struct IsqrtRem {
 
 /// Exact floor square root and remainder for every uint64 n (see the algorithm at the top).
 constexpr IsqrtRem IsqrtFloorRem64(uint64_t n) noexcept {
-    if (n == 0)
-        return {0, 0};
+    if (n == 0) return {0, 0};
     const int half_shift = std::countl_zero(n) >> 1;  // h; n << 2h has its top bit at 62 or 63
     const uint64_t m = n << (2 * half_shift);
     const uint32_t a = static_cast<uint32_t>(m >> 32);                     // a / 2^32 in [1/4, 1)
@@ -110,9 +107,7 @@ constexpr IsqrtRem IsqrtFloorRem64(uint64_t n) noexcept {
 }  // namespace sqrt_impl
 
 /// floor(sqrt(n)) for every n in [0, 2^64 - 1]; the result is in [0, 2^32 - 1]. Exact.
-constexpr uint32_t IsqrtFloor64(uint64_t n) noexcept {
-    return sqrt_impl::IsqrtFloorRem64(n).root;
-}
+constexpr uint32_t IsqrtFloor64(uint64_t n) noexcept { return sqrt_impl::IsqrtFloorRem64(n).root; }
 
 /// round(sqrt(n)) (to nearest; ties cannot occur for integer n) for every n in [0, 2^64 - 1].
 /// The result is in [0, 2^32]: it equals 2^32 for n >= 2^64 - 2^32 + 1, hence the uint64_t
@@ -129,8 +124,7 @@ constexpr uint64_t IsqrtRound64(uint64_t n) noexcept {
 /// Result range [0, 11863283] (sqrt(32768) ~ 181.02). For x < 0 it returns 0 (domain error; the
 /// public Fixed wrapper reports it).
 constexpr int32_t SqrtRaw(int32_t x) noexcept {
-    if (x <= 0)
-        return 0;
+    if (x <= 0) return 0;
     return static_cast<int32_t>(IsqrtRound64(static_cast<uint64_t>(x) << 16));
 }
 

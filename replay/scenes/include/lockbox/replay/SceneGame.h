@@ -143,8 +143,7 @@ private:
             case e_actDestroy:
                 if (b2Body* b = Pick(world, in.pick, true)) world.DestroyBody(b);
                 return;
-            default:
-                return;  // e_actNone, or an action this game does not know: no effect
+            default: return;  // e_actNone, or an action this game does not know: no effect
         }
     }
 
@@ -167,11 +166,11 @@ public:
                 in.action = e_actImpulse;
                 in.pick = static_cast<uint8>(Rand());
                 in.a = static_cast<int16>(static_cast<int64_t>(Rand() % 8193) - 4096);  // +-4 N s
-                in.b = static_cast<int16>(Rand() % 8193);                                 // up to 8 N s
+                in.b = static_cast<int16>(Rand() % 8193);                               // up to 8 N s
             } else if (roll < 37) {
                 in.action = roll < 31 ? e_actSpawnBox : e_actSpawnCircle;
                 in.a = static_cast<int16>(static_cast<int64_t>(Rand() % 1921) - 960);  // x in [-15, 15] m
-                in.b = static_cast<int16>(640 + Rand() % 1281);                         // y in [10, 30] m
+                in.b = static_cast<int16>(640 + Rand() % 1281);                        // y in [10, 30] m
                 in.c = static_cast<uint16>(Rand() & 3);
             } else if (roll < 41) {
                 in.action = e_actDestroy;

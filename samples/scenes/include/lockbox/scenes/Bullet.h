@@ -25,12 +25,10 @@ public:
     static constexpr SceneInfo kInfos[6] = {
         {"bullet_wall_dynamic", 60, 8, 3, 60, true, true, false, "projectile vs wall, dynamic"},
         {"bullet_wall_bullet", 60, 8, 3, 60, true, true, false, "projectile vs wall, bullet flag"},
-        {"bullet_wall_nocontinuous", 60, 8, 3, 60, true, true, false,
-         "projectile vs wall, continuous physics off"},
+        {"bullet_wall_nocontinuous", 60, 8, 3, 60, true, true, false, "projectile vs wall, continuous physics off"},
         {"bullet_stack_dynamic", 60, 8, 3, 60, true, true, false, "projectile vs stack, dynamic"},
         {"bullet_stack_bullet", 60, 8, 3, 60, true, true, false, "projectile vs stack, bullet flag"},
-        {"bullet_stack_nocontinuous", 60, 8, 3, 60, true, true, false,
-         "projectile vs stack, continuous physics off"},
+        {"bullet_stack_nocontinuous", 60, 8, 3, 60, true, true, false, "projectile vs stack, continuous physics off"},
     };
     /// One of the six variants.
     BulletScene(BulletTarget target, BulletMode mode) : target_(target), mode_(mode) {}

@@ -16,8 +16,8 @@ template <class E>
 class CarScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"car", 600, 8, 3, 60, true, false, false,
-                                     "car on wheel-joint springs over chain-shape hills"};
+    static constexpr SceneInfo kInfo{
+        "car", 600, 8, 3, 60, true, false, false, "car on wheel-joint springs over chain-shape hills"};
     /// True when engine E has the joint types this scene needs.
     static constexpr bool kAvailable = E::kHasWheel;
     /// The defaults above.
@@ -41,9 +41,9 @@ public:
             gfd.friction = E::R(6, 10);
             ground->CreateFixture(&gfd);
 
-            const typename E::Vec hull[6] = {E::V(E::R(-3, 2), E::R(-1, 2)), E::V(E::R(3, 2), E::R(-1, 2)),
-                                             E::V(E::R(3, 2), 0),            E::V(0, E::R(9, 10)),
-                                             E::V(E::R(-23, 20), E::R(9, 10)), E::V(E::R(-3, 2), E::R(1, 5))};
+            const typename E::Vec hull[6] = {
+                E::V(E::R(-3, 2), E::R(-1, 2)), E::V(E::R(3, 2), E::R(-1, 2)),    E::V(E::R(3, 2), 0),
+                E::V(0, E::R(9, 10)),           E::V(E::R(-23, 20), E::R(9, 10)), E::V(E::R(-3, 2), E::R(1, 5))};
             typename E::PolygonShape chassis;
             chassis.Set(hull, 6);
             typename E::BodyDef bd;

@@ -14,8 +14,8 @@ template <class E>
 class Chain60Scene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"chain60", 600, 8, 3, 60, true, true, false,
-                                     "testbed Chain: 60 links on revolute joints"};
+    static constexpr SceneInfo kInfo{
+        "chain60", 600, 8, 3, 60, true, true, false, "testbed Chain: 60 links on revolute joints"};
     /// True when engine E has the joint types this scene needs.
     static constexpr bool kAvailable = E::kHasRevolute;
     static constexpr int kLinks = 60;

@@ -12,8 +12,8 @@ template <class E>
 class HelloScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"hello", 60, 6, 2, 60, true, true, false,
-                                     "manual Hello World: one box falls on a ground box"};
+    static constexpr SceneInfo kInfo{
+        "hello", 60, 6, 2, 60, true, true, false, "manual Hello World: one box falls on a ground box"};
     /// The defaults above.
     const SceneInfo& Info() const override { return kInfo; }
 

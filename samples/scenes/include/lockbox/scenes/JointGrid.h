@@ -15,8 +15,8 @@ template <class E>
 class JointGridScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"joint_grid", 500, 8, 3, 60, false, true, true,
-                                     "v3 joint_grid: 10000 bodies, 19800 revolute joints"};
+    static constexpr SceneInfo kInfo{
+        "joint_grid", 500, 8, 3, 60, false, true, true, "v3 joint_grid: 10000 bodies, 19800 revolute joints"};
     /// True when engine E has the joint types this scene needs.
     static constexpr bool kAvailable = E::kHasRevolute;
     /// n: grid side (100 in SCENES.md; smaller grids for quick tests; static columns are

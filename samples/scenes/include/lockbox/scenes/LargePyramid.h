@@ -13,8 +13,8 @@ template <class E>
 class LargePyramidScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"large_pyramid", 500, 8, 3, 60, false, true, true,
-                                     "v3 large_pyramid: 5050 touching boxes, sleep off"};
+    static constexpr SceneInfo kInfo{
+        "large_pyramid", 500, 8, 3, 60, false, true, true, "v3 large_pyramid: 5050 touching boxes, sleep off"};
     /// base: number of rows (1..100).
     explicit LargePyramidScene(int base = 100) : base_(base) {}
     /// The defaults above.

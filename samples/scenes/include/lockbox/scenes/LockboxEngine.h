@@ -10,9 +10,8 @@
 #include <memory>
 #include <type_traits>
 
-#include "lockbox/lockbox.h"
-
 #include "lockbox/dynamics/joints/Joints.h"
+#include "lockbox/lockbox.h"
 
 namespace lockbox::scenes {
 
@@ -70,9 +69,7 @@ public:
     /// A two-sided edge v1-v2 (2.2.1 `Set`).
     static void SetEdge(EdgeShape& edge, const Vec& v1, const Vec& v2) { edge.Set(v1, v2); }
     /// An open chain through count vertices (2.2.1 `CreateChain`, no ghost vertices).
-    static void CreateChain(ChainShape& chain, const Vec* vertices, int count) {
-        chain.CreateChain(vertices, count);
-    }
+    static void CreateChain(ChainShape& chain, const Vec* vertices, int count) { chain.CreateChain(vertices, count); }
     /// The wheel suspension spring: frequency (Hz) and damping ratio (2.2.1 fields).
     static void SetWheelSpring(WheelJointDef& def, Num hz, Num dampingRatio) {
         def.frequencyHz = hz;

@@ -14,8 +14,8 @@ template <class E>
 class ManyPyramidsScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"many_pyramids", 200, 8, 3, 60, false, true, true,
-                                     "v3 many_pyramids: 400 pyramids, 22000 boxes, sleep off"};
+    static constexpr SceneInfo kInfo{
+        "many_pyramids", 200, 8, 3, 60, false, true, true, "v3 many_pyramids: 400 pyramids, 22000 boxes, sleep off"};
     static constexpr int kBase = 10;
     /// rows, columns: grid size (1..20 each).
     explicit ManyPyramidsScene(int rows = 20, int columns = 20) : rows_(rows), columns_(columns) {}
@@ -46,8 +46,8 @@ public:
                         typename E::BodyDef bd;
                         bd.type = E::kDynamic;
                         // In half metres: x = 2 centerX - 1 + (i+1) + 2(j-i), y = 2 baseY + 2i + 1.
-                        bd.position = E::V(E::R(2 * centerX - 1 + (i + 1) + 2 * (j - i), 2),
-                                           E::R(2 * baseY + 2 * i + 1, 2));
+                        bd.position =
+                            E::V(E::R(2 * centerX - 1 + (i + 1) + 2 * (j - i), 2), E::R(2 * baseY + 2 * i + 1, 2));
                         apex = e.world().CreateBody(&bd);
                         apex->CreateFixture(&fd);
                     }

@@ -16,7 +16,14 @@ template <class E>
 class OneSidedPlatformScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"one_sided_platform", 300, 8, 3, 60, true, false, false,
+    static constexpr SceneInfo kInfo{"one_sided_platform",
+                                     300,
+                                     8,
+                                     3,
+                                     60,
+                                     true,
+                                     false,
+                                     false,
                                      "PreSolve one-way platform: one actor drops on, one jumps through"};
     /// The defaults above.
     const SceneInfo& Info() const override { return kInfo; }

@@ -17,8 +17,8 @@ template <class E>
 class PendulumScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"pendulum", 900, 8, 3, 60, true, false, false,
-                                     "disc pendulum on a revolute joint, analytic period"};
+    static constexpr SceneInfo kInfo{
+        "pendulum", 900, 8, 3, 60, true, false, false, "disc pendulum on a revolute joint, analytic period"};
     /// True when engine E has the joint types this scene needs.
     static constexpr bool kAvailable = E::kHasRevolute;
     static constexpr double kRadius = 0.25, kLength = 5, kG = 10;

@@ -21,8 +21,8 @@ template <class E>
 class PulleyGearScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"pulley_gear", 600, 8, 3, 60, true, false, false,
-                                     "pulley, gear train and rack-and-pinion machine"};
+    static constexpr SceneInfo kInfo{
+        "pulley_gear", 600, 8, 3, 60, true, false, false, "pulley, gear train and rack-and-pinion machine"};
     /// True when engine E has the joint types this scene needs.
     static constexpr bool kAvailable = E::kHasRevolute && E::kHasPrismatic && E::kHasPulley && E::kHasGear;
     /// The defaults above.
@@ -49,8 +49,8 @@ public:
                 pulleyBodies_[k]->CreateFixture(&box, densities[k]);
             }
             typename E::PulleyJointDef pd;
-            pd.Initialize(pulleyBodies_[0], pulleyBodies_[1], E::V(-4, 20), E::V(-1, 20),
-                          E::V(-4, E::R(21, 2)), E::V(-1, E::R(21, 2)), E::R(3, 2));
+            pd.Initialize(pulleyBodies_[0], pulleyBodies_[1], E::V(-4, 20), E::V(-1, 20), E::V(-4, E::R(21, 2)),
+                          E::V(-1, E::R(21, 2)), E::R(3, 2));
             e.CreateJoint(pd);
             pulley0_ = PulleyCoordinate();
 

@@ -13,8 +13,8 @@ template <class E>
 class Pyramid20Scene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"pyramid20", 600, 8, 3, 60, true, true, false,
-                                     "testbed Pyramid: 210 boxes with gaps"};
+    static constexpr SceneInfo kInfo{
+        "pyramid20", 600, 8, 3, 60, true, true, false, "testbed Pyramid: 210 boxes with gaps"};
     static constexpr int kCount = 20;
     /// The defaults above.
     const SceneInfo& Info() const override { return kInfo; }

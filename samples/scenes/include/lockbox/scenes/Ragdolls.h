@@ -15,8 +15,8 @@ template <class E>
 class RagdollsScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"ragdolls", 600, 8, 3, 60, true, false, false,
-                                     "12 ragdolls with limited revolute joints piled in a box"};
+    static constexpr SceneInfo kInfo{
+        "ragdolls", 600, 8, 3, 60, true, false, false, "12 ragdolls with limited revolute joints piled in a box"};
     /// True when engine E has the joint types this scene needs.
     static constexpr bool kAvailable = E::kHasRevolute;
     static constexpr int kCount = 12;
@@ -58,8 +58,8 @@ private:
     void BuildOne(E& e, int k) {
         if constexpr (kAvailable) {
             static constexpr Part kParts[10] = {
-                {0, 150, 25, 60},                     // 0 torso (90..210)
-                {0, 230, 20, 0},                      // 1 head
+                {0, 150, 25, 60},                       // 0 torso (90..210)
+                {0, 230, 20, 0},                        // 1 head
                 {-35, 180, 10, 30}, {35, 180, 10, 30},  // 2, 3 upper arms (150..210)
                 {-35, 120, 10, 30}, {35, 120, 10, 30},  // 4, 5 lower arms (90..150)
                 {-12, 65, 10, 25},  {12, 65, 10, 25},   // 6, 7 thighs (40..90)
@@ -70,11 +70,11 @@ private:
                 int a, b, x, y, lo, hi;
             };
             static constexpr JointSpec kJoints[9] = {
-                {0, 1, 0, 210, -40, 40},                            // neck
-                {0, 2, -35, 205, -90, 90},   {0, 3, 35, 205, -90, 90},  // shoulders
-                {2, 4, -35, 150, 0, 130},    {3, 5, 35, 150, -130, 0},  // elbows
-                {0, 6, -12, 90, -30, 90},    {0, 7, 12, 90, -30, 90},   // hips
-                {6, 8, -12, 40, -120, 0},    {7, 9, 12, 40, -120, 0},   // knees
+                {0, 1, 0, 210, -40, 40},                              // neck
+                {0, 2, -35, 205, -90, 90}, {0, 3, 35, 205, -90, 90},  // shoulders
+                {2, 4, -35, 150, 0, 130},  {3, 5, 35, 150, -130, 0},  // elbows
+                {0, 6, -12, 90, -30, 90},  {0, 7, 12, 90, -30, 90},   // hips
+                {6, 8, -12, 40, -120, 0},  {7, 9, 12, 40, -120, 0},   // knees
             };
             const int baseX = 100 * (-6 + 4 * (k % 4));
             const int baseY = 100 + 350 * (k / 4);

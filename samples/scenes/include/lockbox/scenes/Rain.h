@@ -15,8 +15,8 @@ template <class E>
 class RainScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"rain", 1000, 8, 3, 60, true, true, false,
-                                     "2000 circles and boxes rain into a container"};
+    static constexpr SceneInfo kInfo{
+        "rain", 1000, 8, 3, 60, true, true, false, "2000 circles and boxes rain into a container"};
     static constexpr int kPerRow = 25;
     static constexpr int kMaxBodies = 2000;
     /// The defaults above.

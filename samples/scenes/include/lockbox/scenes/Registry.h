@@ -23,9 +23,20 @@ namespace lockbox::scenes {
 
 /// Names of the SCENES.md scenes, in SCENES.md order (bullet as its six variants).
 inline std::vector<std::string_view> SharedSceneNames() {
-    return {"hello", "vertical_stack", "pyramid20", "large_pyramid", "many_pyramids", "rain",
-            "joint_grid", "tumbler", "chain60", "bullet_wall_dynamic", "bullet_wall_bullet",
-            "bullet_wall_nocontinuous", "bullet_stack_dynamic", "bullet_stack_bullet",
+    return {"hello",
+            "vertical_stack",
+            "pyramid20",
+            "large_pyramid",
+            "many_pyramids",
+            "rain",
+            "joint_grid",
+            "tumbler",
+            "chain60",
+            "bullet_wall_dynamic",
+            "bullet_wall_bullet",
+            "bullet_wall_nocontinuous",
+            "bullet_stack_dynamic",
+            "bullet_stack_bullet",
             "bullet_stack_nocontinuous"};
 }
 

@@ -65,10 +65,9 @@ struct Resolved {
 
 /// Applies the overrides in s to the defaults in info.
 inline Resolved Resolve(const SceneInfo& info, const RunSettings& s) {
-    return Resolved{s.steps >= 0 ? s.steps : info.steps,
-                    s.velocityIterations >= 0 ? s.velocityIterations : info.velocityIterations,
-                    s.positionIterations >= 0 ? s.positionIterations : info.positionIterations,
-                    s.hz > 0 ? s.hz : info.hz};
+    return Resolved{
+        s.steps >= 0 ? s.steps : info.steps, s.velocityIterations >= 0 ? s.velocityIterations : info.velocityIterations,
+        s.positionIterations >= 0 ? s.positionIterations : info.positionIterations, s.hz > 0 ? s.hz : info.hz};
 }
 
 /// The largest penetration over touching, enabled manifold points of the current contacts, m
@@ -135,7 +134,10 @@ public:
     /// does). Scenes that sample at fixed times read the frequency from here.
     void Prepare(const Resolved& r) noexcept { run_ = r; }
     /// Called before step `step` (0-based); rain spawns bodies here.
-    virtual void BeforeStep(E& e, int step) { (void)e; (void)step; }
+    virtual void BeforeStep(E& e, int step) {
+        (void)e;
+        (void)step;
+    }
     /// Called after step `step` when metrics are tracked. The base tracks max_pen and
     /// all_asleep_step; scenes add their own and call the base.
     virtual void AfterStep(E& e, int step) {
@@ -155,12 +157,10 @@ public:
 
 protected:
     /// The step length of the run in seconds: round(65536 / hz) / 65536 (display only).
-    double StepSeconds() const noexcept {
-        return static_cast<double>((65536 + run_.hz / 2) / run_.hz) / 65536.0;
-    }
+    double StepSeconds() const noexcept { return static_cast<double>((65536 + run_.hz / 2) / run_.hz) / 65536.0; }
     Resolved run_{60, 8, 3, 60};  ///< settings of the current run
-    double maxPen_ = 0;       ///< running max of MaxPenetration, m
-    int allAsleepStep_ = -1;  ///< first step count after which all dynamic bodies sleep
+    double maxPen_ = 0;           ///< running max of MaxPenetration, m
+    int allAsleepStep_ = -1;      ///< first step count after which all dynamic bodies sleep
 };
 
 /// Tracks a body against an ideal rest position: top_dx, top_sag, collapsed (SCENES.md).

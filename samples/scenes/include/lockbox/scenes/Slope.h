@@ -16,8 +16,8 @@ template <class E>
 class SlopeScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"slope", 120, 8, 3, 60, true, false, false,
-                                     "box sliding on a 3:4 slope, analytic a = 4.4 m/s^2"};
+    static constexpr SceneInfo kInfo{
+        "slope", 120, 8, 3, 60, true, false, false, "box sliding on a 3:4 slope, analytic a = 4.4 m/s^2"};
     static constexpr double kTrueAcceleration = 4.4;  ///< g (sin - mu cos), m/s^2
     /// The defaults above.
     const SceneInfo& Info() const override { return kInfo; }

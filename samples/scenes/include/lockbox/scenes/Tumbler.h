@@ -15,8 +15,8 @@ template <class E>
 class TumblerScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"tumbler", 750, 8, 3, 60, true, true, false,
-                                     "v3 tumbler: rotating drum with 2025 boxes"};
+    static constexpr SceneInfo kInfo{
+        "tumbler", 750, 8, 3, 60, true, true, false, "v3 tumbler: rotating drum with 2025 boxes"};
     /// True when engine E has the joint types this scene needs.
     static constexpr bool kAvailable = E::kHasRevolute;
     static constexpr int kGrid = 45;

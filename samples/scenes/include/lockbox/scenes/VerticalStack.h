@@ -13,8 +13,8 @@ template <class E>
 class VerticalStackScene : public Scene<E> {
 public:
     /// Name, default steps, iterations, Hz and sleep flag of this scene.
-    static constexpr SceneInfo kInfo{"vertical_stack", 600, 8, 3, 60, true, true, false,
-                                     "testbed VerticalStack: a column of 20 boxes"};
+    static constexpr SceneInfo kInfo{
+        "vertical_stack", 600, 8, 3, 60, true, true, false, "testbed VerticalStack: a column of 20 boxes"};
     static constexpr int kCount = 20;
     /// The defaults above.
     const SceneInfo& Info() const override { return kInfo; }

@@ -35,10 +35,10 @@ struct CaseResult {
 
 /// Everything one case produced.
 struct CaseReport {
-    std::string name;                  ///< case name
-    std::vector<CaseResult> results;   ///< judged figures, in print order
-    b2Headroom headroom;               ///< running maximum over every world and step of the case
-    int64_t steps = 0;                 ///< world steps taken (all worlds of the case)
+    std::string name;                 ///< case name
+    std::vector<CaseResult> results;  ///< judged figures, in print order
+    b2Headroom headroom;              ///< running maximum over every world and step of the case
+    int64_t steps = 0;                ///< world steps taken (all worlds of the case)
     /// True when every result passed.
     bool Passed() const noexcept;
 };
@@ -67,9 +67,9 @@ std::string FormatLine(const CaseResult& r);
 
 /// Headroom of one library scene run (lockbox::scenes, default settings).
 struct SceneHeadroom {
-    std::string scene;   ///< scene name
-    int steps = 0;       ///< steps run
-    b2Headroom headroom; ///< running maximum over the run
+    std::string scene;    ///< scene name
+    int steps = 0;        ///< steps run
+    b2Headroom headroom;  ///< running maximum over the run
 };
 
 /// Runs a library scene with headroom telemetry on; steps < 0 uses the scene's default.
