@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Checks that every tracked C++ file is formatted with the committed .clang-format.
+#   scripts/check-format.sh          report files that differ, exit 1 if any
+#   scripts/check-format.sh --fix    reformat them in place
+# Needs clang-format (Debian package clang-format, installed by scripts/install-deps.sh).
+set -euo pipefail
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$repo_root"
+
+fix=0
+for arg in "$@"; do
+    case "$arg" in
+        --fix) fix=1 ;;
+        *) echo "check-format.sh: unknown argument '$arg' (expected --fix)" >&2; exit 2 ;;
+    esac
+done
+
+mapfile -t files < <(git ls-files '*.h' '*.cpp')
+if [ "$fix" -eq 1 ]; then
+    clang-format -i "${files[@]}"
+    exit 0
+fi
+
+bad=()
+for f in "${files[@]}"; do
+    if ! clang-format --dry-run --Werror "$f" >/dev/null 2>&1; then
+        bad+=("$f")
+    fi
+done
+if [ "${#bad[@]}" -ne 0 ]; then
+    echo "check-format: ${#bad[@]} file(s) differ from .clang-format (run scripts/check-format.sh --fix):" >&2
+    printf '  %s\n' "${bad[@]}" >&2
+    exit 1
+fi
+echo "check-format: ${#files[@]} files formatted"
