@@ -1,14 +1,17 @@
-# LockboxCompilerOptions.cmake: the INTERFACE target `lockbox_compile_options` that every lockbox
-# target links to. It carries warnings, the floating-point flags that keep results bit-identical,
-# and the compile definitions selected by these cache options (declared by the top-level
-# CMakeLists.txt, before or after including this file):
+# LockboxCompilerOptions.cmake: the INTERFACE target `lockbox_compile_options` that every target
+# of this repository links PRIVATELY (libraries through $<BUILD_INTERFACE:...>, so it is never
+# exported). It carries our warnings, -Werror (LOCKBOX_WERROR) and -ffp-contract=off. None of it
+# reaches a consumer:
 #
-#   LOCKBOX_CHECKED          -> LOCKBOX_CHECKED=1          asserts and overflow traps
-#   LOCKBOX_PORTABLE_INT128  -> LOCKBOX_PORTABLE_INT128=1  force the portable 128-bit fallback
-#   LOCKBOX_WERROR           -> -Werror
+# - Warnings and -Werror are our policy, not a requirement of the headers.
+# - -ffp-contract=off keeps the display and benchmark float code of this repository free of
+#   fused multiply-adds. A consumer does not need it: the simulation state is integers, and the
+#   only floating point in the public headers is the compile-time (consteval) literal conversion,
+#   which the compiler evaluates one exact IEEE operation at a time whatever the flag says, and
+#   ToDouble/ToFloat for display.
 #
-# The options are read at the end of the directory that includes this file, so the order of
-# option() and include() does not matter.
+# What does reach consumers (as usage requirements of lockbox::fixed) are the two defines that
+# change the ABI or the bits: LOCKBOX_CHECKED and LOCKBOX_PORTABLE_INT128 (see fixed/CMakeLists.txt).
 
 include_guard(GLOBAL)
 
@@ -18,23 +21,7 @@ set(_lockbox_gnu_like "$<CXX_COMPILER_ID:GNU,Clang,AppleClang>")
 
 target_compile_options(lockbox_compile_options INTERFACE
     "$<${_lockbox_gnu_like}:-Wall;-Wextra;-Wpedantic;-Wshadow>"
-    # Determinism: never fuse a multiply and an add into an FMA, not even in display code.
+    # Never fuse a multiply and an add into an FMA, not even in display code.
     "$<${_lockbox_gnu_like}:-ffp-contract=off>"
+    "$<$<AND:$<BOOL:${LOCKBOX_WERROR}>,${_lockbox_gnu_like}>:-Werror>"
 )
-
-function(_lockbox_apply_option_flags)
-    if(LOCKBOX_CHECKED)
-        target_compile_definitions(lockbox_compile_options INTERFACE LOCKBOX_CHECKED=1)
-    endif()
-    if(LOCKBOX_PORTABLE_INT128)
-        target_compile_definitions(lockbox_compile_options INTERFACE LOCKBOX_PORTABLE_INT128=1)
-    endif()
-    if(LOCKBOX_WERROR)
-        target_compile_options(lockbox_compile_options INTERFACE
-            "$<${_lockbox_gnu_like}:-Werror>")
-    endif()
-    message(STATUS "lockbox options: CHECKED=${LOCKBOX_CHECKED} "
-        "PORTABLE_INT128=${LOCKBOX_PORTABLE_INT128} WERROR=${LOCKBOX_WERROR}")
-endfunction()
-
-cmake_language(DEFER CALL _lockbox_apply_option_flags)

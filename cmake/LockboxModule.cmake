@@ -1,27 +1,41 @@
-# lockbox_add_module(NAME <name> [DEPS <targets>...])
-# One library per top-level folder: sources are every .cpp below <folder>/src, public headers
-# live in <folder>/include/lockbox/. Creates lockbox_<name> with the alias lockbox::<name>.
+# LockboxModule.cmake: one library per top-level module folder, and one test executable per test
+# folder.
 include_guard(GLOBAL)
 
+include(GNUInstallDirs)
+
+# lockbox_add_module(NAME <name> SOURCES <file>...
+#                    [PUBLIC_DEPS <target>...] [PRIVATE_DEPS <target>...])
+#
+# Creates lockbox_<name> (alias lockbox::<name>, exported as lockbox::<name>) from the listed
+# sources, which are relative to the calling folder: its public headers are <folder>/include
+# (installed as they are), its own headers <folder>/src. STATIC unless BUILD_SHARED_LIBS is ON.
+# PUBLIC_DEPS are lockbox modules whose headers the public headers include. PRIVATE_DEPS are
+# third-party libraries used by the sources only; a static library still passes their link
+# step on to consumers, a shared one does not. A header-only dependency goes in as
+# $<BUILD_INTERFACE:...> so that consumers do not look for it at all.
 function(lockbox_add_module)
-    cmake_parse_arguments(ARG "" "NAME" "DEPS" ${ARGN})
-    file(GLOB_RECURSE _sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp")
-    set(_target lockbox_${ARG_NAME})
-    if(_sources)
-        add_library(${_target} STATIC ${_sources})
-        target_include_directories(${_target} PUBLIC
-            "$<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>"
-            PRIVATE "${CMAKE_CURRENT_SOURCE_DIR}/src")
-        target_link_libraries(${_target} PUBLIC ${ARG_DEPS} PRIVATE lockbox_compile_options)
-        # Consumers get the determinism flags and option defines too.
-        target_link_libraries(${_target} INTERFACE lockbox_compile_options)
-    else()
-        add_library(${_target} INTERFACE)
-        target_include_directories(${_target} INTERFACE
-            "$<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>")
-        target_link_libraries(${_target} INTERFACE ${ARG_DEPS} lockbox_compile_options)
+    cmake_parse_arguments(PARSE_ARGV 0 arg "" "NAME" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS")
+    if(NOT arg_NAME OR NOT arg_SOURCES)
+        message(FATAL_ERROR "lockbox_add_module: NAME and SOURCES are required")
     endif()
-    add_library(lockbox::${ARG_NAME} ALIAS ${_target})
+    set(target lockbox_${arg_NAME})
+    add_library(${target} ${arg_SOURCES})
+    add_library(lockbox::${arg_NAME} ALIAS ${target})
+    set_target_properties(${target} PROPERTIES
+        EXPORT_NAME ${arg_NAME}
+        VERSION ${PROJECT_VERSION}
+        # Before 1.0 a minor release may change the ABI.
+        SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
+    target_compile_features(${target} PUBLIC cxx_std_20)
+    target_include_directories(${target}
+        PUBLIC "$<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>"
+               "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>"
+        PRIVATE "${CMAKE_CURRENT_SOURCE_DIR}/src")
+    target_link_libraries(${target}
+        PUBLIC ${arg_PUBLIC_DEPS}
+        PRIVATE ${arg_PRIVATE_DEPS} "$<BUILD_INTERFACE:lockbox_compile_options>")
+    set_property(GLOBAL APPEND PROPERTY LOCKBOX_MODULES ${arg_NAME})
 endfunction()
 
 # lockbox_add_test_suite(NAME <exe> DIR <folder> LIBS <targets>... [LABELS <labels>...])
@@ -35,10 +49,13 @@ function(lockbox_add_test_suite)
     endif()
     add_executable(${ARG_NAME} ${_sources})
     target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gmock GTest::gtest_main lockbox_compile_options)
-    target_include_directories(${ARG_NAME} PRIVATE "${CMAKE_SOURCE_DIR}/tests/support")
+    target_include_directories(${ARG_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests/support")
     set(_props)
     if(ARG_LABELS)
         set(_props PROPERTIES LABELS "${ARG_LABELS}")
     endif()
-    gtest_discover_tests(${ARG_NAME} DISCOVERY_TIMEOUT 60 ${_props})
+    # Tests find their golden files next to __FILE__. A compiler launcher such as ccache with a
+    # base directory makes __FILE__ relative to the directory the build tool runs the compiler
+    # in, which is the top of the build tree: run the tests from there.
+    gtest_discover_tests(${ARG_NAME} DISCOVERY_TIMEOUT 60 WORKING_DIRECTORY "${CMAKE_BINARY_DIR}" ${_props})
 endfunction()
