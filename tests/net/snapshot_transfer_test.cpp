@@ -12,9 +12,9 @@
 
 #include <gtest/gtest.h>
 
-#include "SnapshotTransfer.h"
 #include "lockbox/lockbox.h"
 #include "lockbox/scenes/LockboxScenes.h"
+#include "session/SnapshotTransfer.h"
 
 namespace lockbox::net {
 namespace {

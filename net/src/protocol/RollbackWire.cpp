@@ -5,9 +5,9 @@
 #include <climits>
 #include <type_traits>
 
-#include "WireIO.h"
 #include "lockbox/net/RollbackProtocol.h"
 #include "lockbox/net/RollbackSession.h"
+#include "protocol/WireIO.h"
 
 namespace lockbox::net {
 

@@ -2,7 +2,7 @@
 // join: a spectator's RbJoinRequest marks it as waiting, the game offers the bytes of a final
 // frame, and the snapshot goes out in acked, resent chunks before the stream resumes there.
 
-#include "RollbackSnapshotHost.h"
+#include "rollback/RollbackSnapshotHost.h"
 
 #include <xxhash.h>
 

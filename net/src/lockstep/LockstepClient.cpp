@@ -3,9 +3,9 @@
 
 #include <algorithm>
 
-#include "LockstepClientImpl.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/replay/Game.h"
+#include "lockstep/LockstepClientImpl.h"
 
 namespace lockbox::net {
 

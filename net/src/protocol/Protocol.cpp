@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "WireIO.h"
+#include "protocol/WireIO.h"
 
 namespace lockbox::net {
 

@@ -1,6 +1,6 @@
 // Shared session helpers (SessionCommon.h).
 
-#include "SessionCommon.h"
+#include "session/SessionCommon.h"
 
 #include <vector>
 

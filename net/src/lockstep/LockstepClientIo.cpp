@@ -3,10 +3,10 @@
 
 #include <algorithm>
 
-#include "LockstepClientImpl.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/replay/Game.h"
 #include "lockbox/state/WorldHash.h"
+#include "lockstep/LockstepClientImpl.h"
 
 namespace lockbox::net {
 namespace {

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <type_traits>
 
-#include "WireIO.h"
 #include "lockbox/net/Protocol.h"
+#include "protocol/WireIO.h"
 
 namespace lockbox::net {
 namespace {

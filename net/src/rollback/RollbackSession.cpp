@@ -2,7 +2,7 @@
 // bookkeeping. See RollbackSession.h for the contract; finality, views and disconnect cuts
 // are in RollbackSessionFinality.cpp.
 
-#include "RollbackSessionImpl.h"
+#include "rollback/RollbackSessionImpl.h"
 
 namespace lockbox::net {
 

@@ -8,7 +8,7 @@
 // of every player has its inputs on every survivor, so every frozen value, hence the cut, is
 // at or past it.
 
-#include "RollbackSessionImpl.h"
+#include "rollback/RollbackSessionImpl.h"
 
 namespace lockbox::net {
 

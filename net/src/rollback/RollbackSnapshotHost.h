@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "SnapshotTransfer.h"
 #include "lockbox/net/RollbackPeer.h"
+#include "session/SnapshotTransfer.h"
 
 namespace lockbox::net {
 

@@ -5,9 +5,9 @@
 #include <deque>
 #include <vector>
 
-#include "SessionCommon.h"
-#include "SnapshotTransfer.h"
 #include "lockbox/net/LockstepClient.h"
+#include "session/SessionCommon.h"
+#include "session/SnapshotTransfer.h"
 
 namespace lockbox::net {
 

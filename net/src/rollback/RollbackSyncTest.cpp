@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <vector>
 
-#include "SessionCommon.h"
 #include "lockbox/lockbox.h"
 #include "lockbox/net/RollbackSession.h"
 #include "lockbox/replay/Game.h"
+#include "session/SessionCommon.h"
 
 namespace lockbox::net {
 

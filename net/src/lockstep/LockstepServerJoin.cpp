@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "LockstepServerImpl.h"
 #include "lockbox/net/LockstepClient.h"
+#include "lockstep/LockstepServerImpl.h"
 
 namespace lockbox::net {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <algorithm>
 
-#include "SnapshotTransfer.h"
 #include "lockbox/net/RollbackSession.h"
+#include "session/SnapshotTransfer.h"
 
 namespace lockbox::net {
 

@@ -6,9 +6,9 @@
 #include <map>
 #include <vector>
 
-#include "SessionCommon.h"
-#include "SnapshotTransfer.h"
 #include "lockbox/net/LockstepServer.h"
+#include "session/SessionCommon.h"
+#include "session/SnapshotTransfer.h"
 
 namespace lockbox::net {
 

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "LockstepServerImpl.h"
+#include "lockstep/LockstepServerImpl.h"
 
 namespace lockbox::net {
 namespace {

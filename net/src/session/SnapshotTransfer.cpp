@@ -1,6 +1,6 @@
 // Chunked snapshot transfer (SnapshotTransfer.h).
 
-#include "SnapshotTransfer.h"
+#include "session/SnapshotTransfer.h"
 
 #include <zstd.h>
 

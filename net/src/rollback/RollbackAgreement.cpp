@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "RollbackPeerRemote.h"
+#include "rollback/RollbackPeerRemote.h"
 
 namespace lockbox::net {
 

@@ -8,8 +8,8 @@
 #include <map>
 #include <vector>
 
-#include "SessionCommon.h"
 #include "lockbox/net/RollbackPeer.h"
+#include "session/SessionCommon.h"
 
 namespace lockbox::net {
 

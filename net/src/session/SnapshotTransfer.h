@@ -13,8 +13,8 @@
 #include <span>
 #include <vector>
 
-#include "SessionCommon.h"
 #include "lockbox/net/Protocol.h"
+#include "session/SessionCommon.h"
 
 namespace lockbox::net {
 

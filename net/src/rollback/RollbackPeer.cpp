@@ -7,8 +7,8 @@
 #include <deque>
 #include <map>
 
-#include "RollbackPeerRemote.h"
-#include "RollbackSnapshotHost.h"
+#include "rollback/RollbackPeerRemote.h"
+#include "rollback/RollbackSnapshotHost.h"
 
 namespace lockbox::net {
 

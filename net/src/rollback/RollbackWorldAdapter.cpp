@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <variant>
 
-#include "SessionCommon.h"
 #include "lockbox/lockbox.h"
 #include "lockbox/replay/Game.h"
 #include "lockbox/state/WorldHash.h"
+#include "session/SessionCommon.h"
 
 namespace lockbox::net {
 

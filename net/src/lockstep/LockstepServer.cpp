@@ -4,11 +4,11 @@
 
 #include <algorithm>
 
-#include "LockstepServerImpl.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/net/LockstepClient.h"
 #include "lockbox/replay/Game.h"
 #include "lockbox/state/WorldHash.h"
+#include "lockstep/LockstepServerImpl.h"
 
 namespace lockbox::net {
 namespace {
