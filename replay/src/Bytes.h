@@ -13,13 +13,13 @@ namespace lockbox::replay::detail {
 /// Appends little-endian integers to a byte vector.
 class ByteWriter {
 public:
-    explicit ByteWriter(std::vector<uint8>& out) : out_(out) {}
-    void U8(uint8 v) { out_.push_back(v); }
+    explicit ByteWriter(std::vector<uint8>& out) : m_out(out) {}
+    void U8(uint8 v) { m_out.push_back(v); }
     void U16(uint16 v) { Le(v, 2); }
     void U32(uint32 v) { Le(v, 4); }
     void U64(uint64 v) { Le(v, 8); }
     void I32(int32 v) { U32(static_cast<uint32>(v)); }
-    void Bytes(std::span<const uint8> b) { out_.insert(out_.end(), b.begin(), b.end()); }
+    void Bytes(std::span<const uint8> b) { m_out.insert(m_out.end(), b.begin(), b.end()); }
     /// A u32 length then the bytes.
     void Blob(std::span<const uint8> b) {
         U32(static_cast<uint32>(b.size()));
@@ -28,16 +28,16 @@ public:
 
 private:
     void Le(uint64 v, int n) {
-        for (int i = 0; i < n; ++i) out_.push_back(static_cast<uint8>(v >> (8 * i)));
+        for (int i = 0; i < n; ++i) m_out.push_back(static_cast<uint8>(v >> (8 * i)));
     }
-    std::vector<uint8>& out_;
+    std::vector<uint8>& m_out;
 };
 
 /// Reads little-endian integers; any read past the end sets failed() and returns zeros, so a
 /// parser checks once after a group of reads.
 class ByteReader {
 public:
-    explicit ByteReader(std::span<const uint8> in) : in_(in) {}
+    explicit ByteReader(std::span<const uint8> in) : m_in(in) {}
     uint8 U8() { return static_cast<uint8>(Le(1)); }
     uint16 U16() { return static_cast<uint16>(Le(2)); }
     uint32 U32() { return static_cast<uint32>(Le(4)); }
@@ -45,34 +45,34 @@ public:
     int32 I32() { return static_cast<int32>(U32()); }
     /// n bytes as a view into the input (empty and failed when fewer remain).
     std::span<const uint8> Bytes(size_t n) {
-        if (failed_ || n > Remaining()) {
-            failed_ = true;
+        if (m_failed || n > Remaining()) {
+            m_failed = true;
             return {};
         }
-        std::span<const uint8> s = in_.subspan(pos_, n);
-        pos_ += n;
+        std::span<const uint8> s = m_in.subspan(m_pos, n);
+        m_pos += n;
         return s;
     }
     /// A u32 length then that many bytes.
     std::span<const uint8> Blob() { return Bytes(U32()); }
-    size_t Remaining() const noexcept { return in_.size() - pos_; }
-    size_t Position() const noexcept { return pos_; }
-    bool failed() const noexcept { return failed_; }
+    size_t Remaining() const noexcept { return m_in.size() - m_pos; }
+    size_t Position() const noexcept { return m_pos; }
+    bool failed() const noexcept { return m_failed; }
 
 private:
     uint64 Le(int n) {
-        if (failed_ || static_cast<size_t>(n) > Remaining()) {
-            failed_ = true;
+        if (m_failed || static_cast<size_t>(n) > Remaining()) {
+            m_failed = true;
             return 0;
         }
         uint64 v = 0;
-        for (int i = 0; i < n; ++i) v |= static_cast<uint64>(in_[pos_ + static_cast<size_t>(i)]) << (8 * i);
-        pos_ += static_cast<size_t>(n);
+        for (int i = 0; i < n; ++i) v |= static_cast<uint64>(m_in[m_pos + static_cast<size_t>(i)]) << (8 * i);
+        m_pos += static_cast<size_t>(n);
         return v;
     }
-    std::span<const uint8> in_;
-    size_t pos_ = 0;
-    bool failed_ = false;
+    std::span<const uint8> m_in;
+    size_t m_pos = 0;
+    bool m_failed = false;
 };
 
 }  // namespace lockbox::replay::detail

@@ -15,13 +15,13 @@ std::string Hex(uint64 v) {
 }
 }  // namespace
 
-Player::Player(const ReplayFile& file, b2World& world, Game& game) : file_(file), world_(world), game_(game) {}
+Player::Player(const ReplayFile& file, b2World& world, Game& game) : m_file(file), m_world(world), m_game(game) {}
 
 Player::~Player() = default;
 
 Error Player::Restore(const Keyframe& keyframe) {
-    const b2RestoreResult r = world_.Restore(keyframe.world);
-    ++restores_;
+    const b2RestoreResult r = m_world.Restore(keyframe.world);
+    ++m_restores;
     if (!r.ok()) {
         Error e;
         e.code = ErrorCode::e_badSnapshot;
@@ -30,52 +30,52 @@ Error Player::Restore(const Keyframe& keyframe) {
                     " snapshot refused: " + b2SnapshotErrorName(r.error) + ": " + r.message;
         return e;
     }
-    game_.LoadUserState(keyframe.user);
-    frame_ = keyframe.frame;
-    restored_ = true;
+    m_game.LoadUserState(keyframe.user);
+    m_frame = keyframe.frame;
+    m_restored = true;
     return {};
 }
 
-Error Player::Reset() { return Restore(file_.seed); }
+Error Player::Reset() { return Restore(m_file.seed); }
 
 Error Player::Seek(int32 frame) {
-    if (frame < 0 || frame > file_.frameCount) {
+    if (frame < 0 || frame > m_file.frameCount) {
         Error e;
         e.code = ErrorCode::e_usage;
         e.frame = frame;
-        e.message = "seek to frame " + std::to_string(frame) + " outside 0.." + std::to_string(file_.frameCount);
+        e.message = "seek to frame " + std::to_string(frame) + " outside 0.." + std::to_string(m_file.frameCount);
         return e;
     }
-    const Keyframe& k = file_.NearestKeyframe(frame);
+    const Keyframe& k = m_file.NearestKeyframe(frame);
     // Stepping on from where we are is cheaper than a restore when no keyframe lies between.
-    if (!restored_ || frame < frame_ || k.frame > frame_) {
+    if (!m_restored || frame < m_frame || k.frame > m_frame) {
         if (Error e = Restore(k)) return e;
     }
-    while (frame_ < frame) Step();
+    while (m_frame < frame) Step();
     return {};
 }
 
 bool Player::Step() {
     if (AtEnd()) return false;
-    const int32 frame = frame_;
-    game_.Apply(world_, frame, file_.Inputs(frame));
-    const Fixed dt = Fixed::FromRaw(file_.header.timeStepRaw);
-    if (stageHashing_ || hook_ != nullptr) {
+    const int32 frame = m_frame;
+    m_game.Apply(m_world, frame, m_file.Inputs(frame));
+    const Fixed dt = Fixed::FromRaw(m_file.header.timeStepRaw);
+    if (m_stageHashing || m_hook != nullptr) {
         detail::StageHasher stages;
-        stages.hook = hook_;
-        stages.hashing = stageHashing_;
-        stages.BeginFrame(frame, world_);
-        b2StepObserver* previous = world_.GetStepObserver();
-        world_.SetStepObserver(&stages);
-        world_.Step(dt, file_.header.velocityIterations, file_.header.positionIterations);
-        world_.SetStepObserver(previous);
-        for (uint32 i = 0; i < kStagesPerFrame; ++i) lastStages_[i] = stages.stages[i];
-        for (uint32 i = 0; i < kSolvePhasesPerFrame; ++i) lastSolve_[i] = stages.solve[i];
+        stages.hook = m_hook;
+        stages.hashing = m_stageHashing;
+        stages.BeginFrame(frame, m_world);
+        b2StepObserver* previous = m_world.GetStepObserver();
+        m_world.SetStepObserver(&stages);
+        m_world.Step(dt, m_file.header.velocityIterations, m_file.header.positionIterations);
+        m_world.SetStepObserver(previous);
+        for (uint32 i = 0; i < kStagesPerFrame; ++i) m_lastStages[i] = stages.stages[i];
+        for (uint32 i = 0; i < kSolvePhasesPerFrame; ++i) m_lastSolve[i] = stages.solve[i];
     } else {
-        world_.Step(dt, file_.header.velocityIterations, file_.header.positionIterations);
+        m_world.Step(dt, m_file.header.velocityIterations, m_file.header.positionIterations);
     }
-    ++frame_;
-    ++framesPlayed_;
+    ++m_frame;
+    ++m_framesPlayed;
     return true;
 }
 
@@ -86,23 +86,23 @@ VerifyResult Player::Verify() {
         r.message = e.Describe();
         return r;
     }
-    if (world_.Hash() != file_.seed.hash) {
+    if (m_world.Hash() != m_file.seed.hash) {
         r.firstBadFrame = 0;
-        r.expected = file_.seed.hash;
-        r.actual = world_.Hash();
+        r.expected = m_file.seed.hash;
+        r.actual = m_world.Hash();
         r.message = "seed state hash differs after restore: expected " + Hex(r.expected) + ", got " + Hex(r.actual);
         return r;
     }
     while (!AtEnd()) {
-        const int32 frame = frame_;
+        const int32 frame = m_frame;
         Step();
         ++r.frames;
-        if (!file_.HasHash(frame)) continue;
-        const uint64 h = world_.Hash();
+        if (!m_file.HasHash(frame)) continue;
+        const uint64 h = m_world.Hash();
         ++r.hashesChecked;
-        if (h != file_.hashes[static_cast<size_t>(frame)]) {
+        if (h != m_file.hashes[static_cast<size_t>(frame)]) {
             r.firstBadFrame = frame;
-            r.expected = file_.hashes[static_cast<size_t>(frame)];
+            r.expected = m_file.hashes[static_cast<size_t>(frame)];
             r.actual = h;
             r.finalHash = h;
             r.message = "DIVERGED at frame " + std::to_string(frame) + ": recorded " + Hex(r.expected) +
@@ -110,12 +110,12 @@ VerifyResult Player::Verify() {
             return r;
         }
     }
-    r.finalHash = world_.Hash();
-    if (r.finalHash != file_.finalHash) {
-        r.firstBadFrame = file_.frameCount - 1;
-        r.expected = file_.finalHash;
+    r.finalHash = m_world.Hash();
+    if (r.finalHash != m_file.finalHash) {
+        r.firstBadFrame = m_file.frameCount - 1;
+        r.expected = m_file.finalHash;
         r.actual = r.finalHash;
-        r.message = "DIVERGED: final state after frame " + std::to_string(file_.frameCount - 1) + " recorded " +
+        r.message = "DIVERGED: final state after frame " + std::to_string(m_file.frameCount - 1) + " recorded " +
                     Hex(r.expected) + ", re-simulated " + Hex(r.actual) + " (no stored hash before it differed)";
         return r;
     }

@@ -11,20 +11,20 @@
 
 namespace lockbox::replay {
 
-FileSink::FileSink(const std::string& path) : file_(std::fopen(path.c_str(), "wb")) {}
+FileSink::FileSink(const std::string& path) : m_file(std::fopen(path.c_str(), "wb")) {}
 
 FileSink::~FileSink() { Close(); }
 
 bool FileSink::Write(std::span<const uint8> bytes) {
-    if (file_ == nullptr) return false;
-    return std::fwrite(bytes.data(), 1, bytes.size(), file_) == bytes.size();
+    if (m_file == nullptr) return false;
+    return std::fwrite(bytes.data(), 1, bytes.size(), m_file) == bytes.size();
 }
 
 bool FileSink::Close() {
-    if (file_ == nullptr) return true;
-    const bool ok = std::fflush(file_) == 0 && std::ferror(file_) == 0;
-    std::fclose(file_);
-    file_ = nullptr;
+    if (m_file == nullptr) return true;
+    const bool ok = std::fflush(m_file) == 0 && std::ferror(m_file) == 0;
+    std::fclose(m_file);
+    m_file = nullptr;
     return ok;
 }
 
@@ -43,189 +43,190 @@ uint32 WorldFlags(const b2World& w) {
 }  // namespace
 
 Recorder::Recorder(b2World& world, Game& game, Sink& sink, RecorderConfig config)
-    : world_(world), game_(game), sink_(sink), config_(std::move(config)) {
-    config_.hashInterval = std::max<uint32>(config_.hashInterval, 1);
-    config_.blockFrames = std::max<uint32>(config_.blockFrames, 1);
-    config_.tickRate = std::max<uint16>(config_.tickRate, 1);
-    config_.playerCount = std::clamp<uint16>(config_.playerCount, 1, static_cast<uint16>(kMaxPlayers));
-    config_.inputBytes = std::min<uint16>(config_.inputBytes, static_cast<uint16>(kMaxInputBytes));
+    : m_world(world), m_game(game), m_sink(sink), m_config(std::move(config)) {
+    m_config.hashInterval = std::max<uint32>(m_config.hashInterval, 1);
+    m_config.blockFrames = std::max<uint32>(m_config.blockFrames, 1);
+    m_config.tickRate = std::max<uint16>(m_config.tickRate, 1);
+    m_config.playerCount = std::clamp<uint16>(m_config.playerCount, 1, static_cast<uint16>(kMaxPlayers));
+    m_config.inputBytes = std::min<uint16>(m_config.inputBytes, static_cast<uint16>(kMaxInputBytes));
 }
 
 Recorder::~Recorder() = default;
 
 void Recorder::Emit(uint32 type, std::span<const uint8> payload) {
-    chunk_.clear();
-    detail::EncodeChunk(type, payload, config_.compressionLevel, chunk_);
-    if (!sink_.Write(chunk_) && writeError_.ok()) {
-        writeError_.code = ErrorCode::e_io;
-        writeError_.chunkType = type;
-        writeError_.frame = frames_;
-        writeError_.message = "the sink refused a write";
+    m_chunk.clear();
+    detail::EncodeChunk(type, payload, m_config.compressionLevel, m_chunk);
+    if (!m_sink.Write(m_chunk) && m_writeError.ok()) {
+        m_writeError.code = ErrorCode::e_io;
+        m_writeError.chunkType = type;
+        m_writeError.frame = m_frames;
+        m_writeError.message = "the sink refused a write";
     }
 }
 
 Error Recorder::Begin() {
-    if (begun_) return writeError_;
-    begun_ = true;
-    header_.engineMajor = lockbox_versionMajor;
-    header_.engineMinor = lockbox_versionMinor;
-    header_.enginePatch = lockbox_versionPatch;
-    header_.determinismVersion = b2_determinismVersion;
-    header_.snapshotFormatVersion = b2_snapshotFormatVersion;
-    header_.tickRate = config_.tickRate;
-    header_.timeStepRaw = Fixed::FromRatio(1, config_.tickRate).Raw();
-    header_.velocityIterations = config_.velocityIterations;
-    header_.positionIterations = config_.positionIterations;
-    header_.worldFlags = WorldFlags(world_);
-    header_.playerCount = config_.playerCount;
-    header_.inputBytes = config_.inputBytes;
-    header_.hashInterval = config_.hashInterval;
-    header_.keyframeInterval = config_.keyframeInterval;
-    scratch_.clear();
-    detail::EncodeHeader(header_, scratch_);
-    if (!sink_.Write(scratch_)) {
-        writeError_.code = ErrorCode::e_io;
-        writeError_.message = "the sink refused the header";
-        return writeError_;
+    if (m_begun) return m_writeError;
+    m_begun = true;
+    m_header.engineMajor = lockbox_versionMajor;
+    m_header.engineMinor = lockbox_versionMinor;
+    m_header.enginePatch = lockbox_versionPatch;
+    m_header.determinismVersion = b2_determinismVersion;
+    m_header.snapshotFormatVersion = b2_snapshotFormatVersion;
+    m_header.tickRate = m_config.tickRate;
+    m_header.timeStepRaw = Fixed::FromRatio(1, m_config.tickRate).Raw();
+    m_header.velocityIterations = m_config.velocityIterations;
+    m_header.positionIterations = m_config.positionIterations;
+    m_header.worldFlags = WorldFlags(m_world);
+    m_header.playerCount = m_config.playerCount;
+    m_header.inputBytes = m_config.inputBytes;
+    m_header.hashInterval = m_config.hashInterval;
+    m_header.keyframeInterval = m_config.keyframeInterval;
+    m_scratch.clear();
+    detail::EncodeHeader(m_header, m_scratch);
+    if (!m_sink.Write(m_scratch)) {
+        m_writeError.code = ErrorCode::e_io;
+        m_writeError.message = "the sink refused the header";
+        return m_writeError;
     }
 
-    scratch_.clear();
-    detail::ByteWriter meta(scratch_);
-    const std::string& name = config_.gameName;
+    m_scratch.clear();
+    detail::ByteWriter meta(m_scratch);
+    const std::string& name = m_config.gameName;
     meta.U16(static_cast<uint16>(std::min<size_t>(name.size(), 0xFFFF)));
     meta.Bytes(
         std::span<const uint8>(reinterpret_cast<const uint8*>(name.data()), std::min<size_t>(name.size(), 0xFFFF)));
-    meta.Blob(config_.gameParams);
-    Emit(e_chunkMeta, scratch_);
+    meta.Blob(m_config.gameParams);
+    Emit(e_chunkMeta, m_scratch);
 
-    std::vector<uint8> image = world_.Save();
-    game_.SaveUserState(user_);
-    scratch_.clear();
-    detail::ByteWriter seed(scratch_);
+    std::vector<uint8> image = m_world.Save();
+    m_game.SaveUserState(m_user);
+    m_scratch.clear();
+    detail::ByteWriter seed(m_scratch);
     seed.U32(0);
-    seed.U64(world_.Hash());
+    seed.U64(m_world.Hash());
     seed.Blob(image);
-    seed.Blob(user_);
-    Emit(e_chunkSeed, scratch_);
-    return writeError_;
+    seed.Blob(m_user);
+    Emit(e_chunkSeed, m_scratch);
+    return m_writeError;
 }
 
 std::span<const uint8> Recorder::PushInputs(std::span<const uint8> inputs) {
-    const size_t frameBytes = static_cast<size_t>(config_.playerCount) * config_.inputBytes;
-    const size_t at = inputBlock_.size();
-    inputBlock_.resize(at + frameBytes, 0);
+    const size_t frameBytes = static_cast<size_t>(m_config.playerCount) * m_config.inputBytes;
+    const size_t at = m_inputBlock.size();
+    m_inputBlock.resize(at + frameBytes, 0);
     std::copy_n(inputs.begin(), std::min(inputs.size(), frameBytes),
-                inputBlock_.begin() + static_cast<std::ptrdiff_t>(at));
-    return std::span<const uint8>(inputBlock_.data() + at, frameBytes);
+                m_inputBlock.begin() + static_cast<std::ptrdiff_t>(at));
+    return std::span<const uint8>(m_inputBlock.data() + at, frameBytes);
 }
 
 uint64 Recorder::Advance(std::span<const uint8> inputs) {
-    if (!begun_ || finished_) return 0;
+    if (!m_begun || m_finished) return 0;
     const std::span<const uint8> frameInputs = PushInputs(inputs);
-    const int32 frame = frames_;
-    game_.Apply(world_, frame, frameInputs);
-    const Fixed dt = Fixed::FromRaw(header_.timeStepRaw);
-    if (config_.stageHashes) {
+    const int32 frame = m_frames;
+    m_game.Apply(m_world, frame, frameInputs);
+    const Fixed dt = Fixed::FromRaw(m_header.timeStepRaw);
+    if (m_config.stageHashes) {
         detail::StageHasher stages;
         // Stage 0 is the state Step starts from, after the inputs were applied.
-        stages.BeginFrame(frame, world_);
-        b2StepObserver* previous = world_.GetStepObserver();
-        world_.SetStepObserver(&stages);
-        world_.Step(dt, config_.velocityIterations, config_.positionIterations);
-        world_.SetStepObserver(previous);
-        stageBlock_.insert(stageBlock_.end(), std::begin(stages.stages), std::end(stages.stages));
-        solveBlock_.insert(solveBlock_.end(), std::begin(stages.solve), std::end(stages.solve));
+        stages.BeginFrame(frame, m_world);
+        b2StepObserver* previous = m_world.GetStepObserver();
+        m_world.SetStepObserver(&stages);
+        m_world.Step(dt, m_config.velocityIterations, m_config.positionIterations);
+        m_world.SetStepObserver(previous);
+        m_stageBlock.insert(m_stageBlock.end(), std::begin(stages.stages), std::end(stages.stages));
+        m_solveBlock.insert(m_solveBlock.end(), std::begin(stages.solve), std::end(stages.solve));
     } else {
-        world_.Step(dt, config_.velocityIterations, config_.positionIterations);
+        m_world.Step(dt, m_config.velocityIterations, m_config.positionIterations);
     }
-    const bool hashed = static_cast<uint32>(frame + 1) % config_.hashInterval == 0;
-    const uint64 hash = hashed ? world_.Hash() : 0;
-    Record(hash, &world_);
+    const bool hashed = static_cast<uint32>(frame + 1) % m_config.hashInterval == 0;
+    const uint64 hash = hashed ? m_world.Hash() : 0;
+    Record(hash, &m_world);
     return hash;
 }
 
 void Recorder::AppendConfirmed(std::span<const uint8> inputs, uint64 hashAfter, const b2World* worldAtFrame) {
-    if (!begun_ || finished_) return;
+    if (!m_begun || m_finished) return;
     PushInputs(inputs);
-    if (config_.stageHashes) {
+    if (m_config.stageHashes) {
         // Unknown fenceposts are stored as 0 (a frame not covered); bisect then names no stage.
-        stageBlock_.insert(stageBlock_.end(), kStagesPerFrame, 0);
-        solveBlock_.insert(solveBlock_.end(), kSolvePhasesPerFrame, 0);
+        m_stageBlock.insert(m_stageBlock.end(), kStagesPerFrame, 0);
+        m_solveBlock.insert(m_solveBlock.end(), kSolvePhasesPerFrame, 0);
     }
     Record(hashAfter, worldAtFrame);
 }
 
 void Recorder::Record(uint64 hash, const b2World* keyframeWorld) {
-    const int32 frame = frames_;
-    ++frames_;
-    if (static_cast<uint32>(frames_) % config_.hashInterval == 0) {
-        if (hashBlockStart_ < 0) hashBlockStart_ = frame;
-        hashBlock_.push_back(hash);
+    const int32 frame = m_frames;
+    ++m_frames;
+    if (static_cast<uint32>(m_frames) % m_config.hashInterval == 0) {
+        if (m_hashBlockStart < 0) m_hashBlockStart = frame;
+        m_hashBlock.push_back(hash);
     }
-    const bool keyframe = config_.keyframeInterval != 0 && static_cast<uint32>(frames_) % config_.keyframeInterval == 0;
-    if (keyframe || static_cast<uint32>(frames_ - blockStart_) >= config_.blockFrames) Flush();
+    const bool keyframe =
+        m_config.keyframeInterval != 0 && static_cast<uint32>(m_frames) % m_config.keyframeInterval == 0;
+    if (keyframe || static_cast<uint32>(m_frames - m_blockStart) >= m_config.blockFrames) Flush();
     if (keyframe && keyframeWorld != nullptr) {
         std::vector<uint8> image = keyframeWorld->Save();
-        game_.SaveUserState(user_);
-        scratch_.clear();
-        detail::ByteWriter w(scratch_);
-        w.U32(static_cast<uint32>(frames_));
+        m_game.SaveUserState(m_user);
+        m_scratch.clear();
+        detail::ByteWriter w(m_scratch);
+        w.U32(static_cast<uint32>(m_frames));
         w.U64(keyframeWorld->Hash());
         w.Blob(image);
-        w.Blob(user_);
-        Emit(e_chunkKeyframe, scratch_);
+        w.Blob(m_user);
+        Emit(e_chunkKeyframe, m_scratch);
     }
 }
 
 void Recorder::Flush() {
-    const int32 count = frames_ - blockStart_;
+    const int32 count = m_frames - m_blockStart;
     if (count > 0) {
-        scratch_.clear();
-        detail::ByteWriter w(scratch_);
-        w.U32(static_cast<uint32>(blockStart_));
+        m_scratch.clear();
+        detail::ByteWriter w(m_scratch);
+        w.U32(static_cast<uint32>(m_blockStart));
         w.U32(static_cast<uint32>(count));
-        w.Bytes(inputBlock_);
-        Emit(e_chunkInputs, scratch_);
+        w.Bytes(m_inputBlock);
+        Emit(e_chunkInputs, m_scratch);
     }
-    if (!hashBlock_.empty()) {
-        scratch_.clear();
-        detail::ByteWriter w(scratch_);
-        w.U32(static_cast<uint32>(hashBlockStart_));
-        w.U32(static_cast<uint32>(hashBlock_.size()));
-        for (uint64 h : hashBlock_) w.U64(h);
-        Emit(e_chunkHashes, scratch_);
+    if (!m_hashBlock.empty()) {
+        m_scratch.clear();
+        detail::ByteWriter w(m_scratch);
+        w.U32(static_cast<uint32>(m_hashBlockStart));
+        w.U32(static_cast<uint32>(m_hashBlock.size()));
+        for (uint64 h : m_hashBlock) w.U64(h);
+        Emit(e_chunkHashes, m_scratch);
     }
-    EmitFrameHashes(e_chunkStages, count, kStagesPerFrame, stageBlock_);
-    EmitFrameHashes(e_chunkSolve, count, kSolvePhasesPerFrame, solveBlock_);
-    inputBlock_.clear();
-    hashBlock_.clear();
-    stageBlock_.clear();
-    solveBlock_.clear();
-    hashBlockStart_ = -1;
-    blockStart_ = frames_;
+    EmitFrameHashes(e_chunkStages, count, kStagesPerFrame, m_stageBlock);
+    EmitFrameHashes(e_chunkSolve, count, kSolvePhasesPerFrame, m_solveBlock);
+    m_inputBlock.clear();
+    m_hashBlock.clear();
+    m_stageBlock.clear();
+    m_solveBlock.clear();
+    m_hashBlockStart = -1;
+    m_blockStart = m_frames;
 }
 
 void Recorder::EmitFrameHashes(uint32 type, int32 count, uint32 per, const std::vector<uint64>& block) {
     if (block.empty()) return;
-    scratch_.clear();
-    detail::ByteWriter w(scratch_);
-    w.U32(static_cast<uint32>(blockStart_));
+    m_scratch.clear();
+    detail::ByteWriter w(m_scratch);
+    w.U32(static_cast<uint32>(m_blockStart));
     w.U32(static_cast<uint32>(count));
     w.U32(per);
     for (uint64 h : block) w.U64(h);
-    Emit(type, scratch_);
+    Emit(type, m_scratch);
 }
 
 Error Recorder::Finish() {
-    if (!begun_ || finished_) return writeError_;
-    finished_ = true;
+    if (!m_begun || m_finished) return m_writeError;
+    m_finished = true;
     Flush();
-    scratch_.clear();
-    detail::ByteWriter w(scratch_);
-    w.U32(static_cast<uint32>(frames_));
-    w.U64(world_.Hash());
-    Emit(e_chunkEnd, scratch_);
-    return writeError_;
+    m_scratch.clear();
+    detail::ByteWriter w(m_scratch);
+    w.U32(static_cast<uint32>(m_frames));
+    w.U64(m_world.Hash());
+    Emit(e_chunkEnd, m_scratch);
+    return m_writeError;
 }
 
 }  // namespace lockbox::replay

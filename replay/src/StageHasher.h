@@ -20,16 +20,16 @@ namespace lockbox::replay::detail {
 class StageHasher : public b2StepObserver {
 public:
     StageHasher() noexcept {
-        for (XXH3_state_t& s : phaseState_) XXH3_64bits_reset(&s);
+        for (XXH3_state_t& s : m_phaseState) XXH3_64bits_reset(&s);
     }
 
     /// Starts a frame: clears the stages and records stage 0 (inputs applied).
     void BeginFrame(int32 frame, b2World& world) {
-        frame_ = frame;
-        world_ = &world;
+        m_frame = frame;
+        m_world = &world;
         for (uint64& h : stages) h = 0;
         for (uint64& h : solve) h = 0;
-        for (XXH3_state_t& s : phaseState_) XXH3_64bits_reset(&s);
+        for (XXH3_state_t& s : m_phaseState) XXH3_64bits_reset(&s);
         if (hook != nullptr) hook->OnStage(frame, 0, world);
         if (hashing) stages[0] = world.Hash();
     }
@@ -38,16 +38,16 @@ public:
         const uint32 index = static_cast<uint32>(stage) + 1;
         if (index >= kStagesPerFrame) return;
         // The hook gets the mutable world the player owns (the observer interface is const).
-        if (hook != nullptr) hook->OnStage(frame_, index, *world_);
-        if (hashing) stages[index] = world_->Hash();
+        if (hook != nullptr) hook->OnStage(m_frame, index, *m_world);
+        if (hashing) stages[index] = m_world->Hash();
         if (hashing && stage == b2StepStage::e_solve)
-            for (uint32 p = 0; p < kSolvePhasesPerFrame; ++p) solve[p] = XXH3_64bits_digest(&phaseState_[p]);
+            for (uint32 p = 0; p < kSolvePhasesPerFrame; ++p) solve[p] = XXH3_64bits_digest(&m_phaseState[p]);
     }
     void OnIsland(b2IslandPhase phase, std::span<b2Body* const> bodies, std::span<b2Position> positions,
                   std::span<b2Velocity> velocities) override {
         const uint32 p = static_cast<uint32>(phase);
         if (p >= kSolvePhasesPerFrame) return;
-        if (hook != nullptr) hook->OnIsland(frame_, phase, bodies, positions, velocities);
+        if (hook != nullptr) hook->OnIsland(m_frame, phase, bodies, positions, velocities);
         if (!hashing) return;
         // Little-endian words: the body id, then x, y, angle (raw Q16.16) of the phase's buffer.
         for (size_t i = 0; i < bodies.size(); ++i) {
@@ -59,7 +59,7 @@ public:
             uint8 bytes[16];
             for (int w = 0; w < 4; ++w)
                 for (int b = 0; b < 4; ++b) bytes[w * 4 + b] = static_cast<uint8>(words[w] >> (8 * b));
-            XXH3_64bits_update(&phaseState_[p], bytes, sizeof bytes);
+            XXH3_64bits_update(&m_phaseState[p], bytes, sizeof bytes);
         }
     }
 
@@ -69,9 +69,9 @@ public:
     uint64 solve[kSolvePhasesPerFrame] = {};
 
 private:
-    int32 frame_ = 0;
-    b2World* world_ = nullptr;
-    XXH3_state_t phaseState_[kSolvePhasesPerFrame];
+    int32 m_frame = 0;
+    b2World* m_world = nullptr;
+    XXH3_state_t m_phaseState[kSolvePhasesPerFrame];
 };
 
 }  // namespace lockbox::replay::detail

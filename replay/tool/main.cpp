@@ -188,9 +188,9 @@ int Diff(const char* pathA, const char* pathB) {
 // frame and stage.
 class Nudge : public StageHook {
 public:
-    Nudge(int32 frame, uint32 stage) : frame_(frame), stage_(stage) {}
+    Nudge(int32 frame, uint32 stage) : m_frame(frame), m_stage(stage) {}
     void OnStage(int32 frame, uint32 stage, b2World& world) override {
-        if (frame != frame_ || stage != stage_) return;
+        if (frame != m_frame || stage != m_stage) return;
         for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
             if (b->GetType() != b2_dynamicBody) continue;
             b->m_linearVelocity.x = Fixed::FromRaw(b->m_linearVelocity.x.Raw() + 1);
@@ -199,8 +199,8 @@ public:
     }
 
 private:
-    int32 frame_;
-    uint32 stage_;
+    int32 m_frame;
+    uint32 m_stage;
 };
 
 int BisectCommand(int argc, char** argv) {

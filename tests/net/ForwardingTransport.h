@@ -13,18 +13,18 @@ namespace lockbox::net {
 
 class ForwardingTransport : public Transport {
 public:
-    explicit ForwardingTransport(Transport& inner) : inner_(inner) {}
+    explicit ForwardingTransport(Transport& inner) : m_inner(inner) {}
     bool Send(PeerId peer, std::span<const uint8_t> bytes, Delivery delivery = Delivery::e_unreliable) override {
-        return inner_.Send(peer, bytes, delivery);
+        return m_inner.Send(peer, bytes, delivery);
     }
-    size_t Poll(std::vector<Datagram>& out) override { return inner_.Poll(out); }
-    uint64_t NowMicros() const override { return inner_.NowMicros(); }
-    size_t MaxDatagram() const noexcept override { return inner_.MaxDatagram(); }
-    const TransportStats& Stats() const noexcept override { return inner_.Stats(); }
-    void Disconnect(PeerId peer) override { inner_.Disconnect(peer); }
+    size_t Poll(std::vector<Datagram>& out) override { return m_inner.Poll(out); }
+    uint64_t NowMicros() const override { return m_inner.NowMicros(); }
+    size_t MaxDatagram() const noexcept override { return m_inner.MaxDatagram(); }
+    const TransportStats& Stats() const noexcept override { return m_inner.Stats(); }
+    void Disconnect(PeerId peer) override { m_inner.Disconnect(peer); }
 
 private:
-    Transport& inner_;
+    Transport& m_inner;
 };
 
 }  // namespace lockbox::net

@@ -81,37 +81,37 @@ struct Player {
 class Match {
 public:
     explicit Match(const MatchSpec& spec, ServerConfig serverConfig = {}, ClientConfig clientConfig = {})
-        : spec_(spec), net_(spec.seed), serverEndpoint_(net_.AddEndpoint()) {
-        net_.SetAllLinks(spec.Link());
+        : m_spec(spec), m_net(spec.seed), m_serverEndpoint(m_net.AddEndpoint()) {
+        m_net.SetAllLinks(spec.Link());
         serverConfig.playerCount = spec.clients + spec.extraSlots;
         serverConfig.startPlayers = spec.clients;
         serverConfig.hashInterval = spec.hashInterval;
         serverConfig.inputDelay = spec.serverDelay;
         serverConfig.tokenSeed = spec.seed;
         if (spec.authoritative) {
-            authGame_ = std::make_unique<replay::SceneGame>(spec.scene);
-            serverConfig.world = &authGame_->world();
-            serverConfig.game = authGame_.get();
+            m_authGame = std::make_unique<replay::SceneGame>(spec.scene);
+            serverConfig.world = &m_authGame->world();
+            serverConfig.game = m_authGame.get();
         }
-        server_ = std::make_unique<LockstepServer>(serverEndpoint_, serverConfig);
-        clientConfig_ = clientConfig;
+        m_server = std::make_unique<LockstepServer>(m_serverEndpoint, serverConfig);
+        m_clientConfig = clientConfig;
         for (uint32_t i = 0; i < spec.clients; ++i) AddPlayer();
     }
 
     /// A new client (a late joiner when the match runs).
     Player& AddPlayer(ClientConfig config) {
-        players_.push_back(std::make_unique<Player>(net_, spec_, static_cast<uint32_t>(players_.size()), config));
-        players_.back()->stopFrame = spec_.frames;
-        return *players_.back();
+        m_players.push_back(std::make_unique<Player>(m_net, m_spec, static_cast<uint32_t>(m_players.size()), config));
+        m_players.back()->stopFrame = m_spec.frames;
+        return *m_players.back();
     }
-    Player& AddPlayer() { return AddPlayer(clientConfig_); }
+    Player& AddPlayer() { return AddPlayer(m_clientConfig); }
 
     /// One millisecond: the clock moves, then the server and every client update.
     void Step() {
-        net_.Advance(1000);
-        server_->Update();
-        for (auto& e : server_->TakeEvents()) serverEvents_.push_back(std::move(e));
-        for (auto& p : players_) {
+        m_net.Advance(1000);
+        m_server->Update();
+        for (auto& e : m_server->TakeEvents()) m_serverEvents.push_back(std::move(e));
+        for (auto& p : m_players) {
             if (p->paused) continue;
             p->client->Update();
             while (p->client->WantsInput()) {
@@ -134,7 +134,7 @@ public:
     bool RunToFrame(int32_t frame, uint64_t maxMillis) {
         return RunUntil(
             [&] {
-                for (auto& p : players_)
+                for (auto& p : m_players)
                     if (!p->paused && p->client->State() != ClientState::e_closed && p->client->Frame() < frame)
                         return false;
                 return true;
@@ -142,28 +142,28 @@ public:
             maxMillis);
     }
 
-    SimNet& net() { return net_; }
-    LockstepServer& server() { return *server_; }
-    Player& player(size_t i) { return *players_[i]; }
-    size_t players() const { return players_.size(); }
-    std::vector<ServerEvent>& serverEvents() { return serverEvents_; }
+    SimNet& net() { return m_net; }
+    LockstepServer& server() { return *m_server; }
+    Player& player(size_t i) { return *m_players[i]; }
+    size_t players() const { return m_players.size(); }
+    std::vector<ServerEvent>& serverEvents() { return m_serverEvents; }
     size_t CountServerEvents(ServerEvent::Kind kind) const {
         size_t n = 0;
-        for (const auto& e : serverEvents_) n += e.kind == kind ? 1u : 0u;
+        for (const auto& e : m_serverEvents) n += e.kind == kind ? 1u : 0u;
         return n;
     }
-    replay::SceneGame* authGame() { return authGame_.get(); }
-    const MatchSpec& spec() const { return spec_; }
+    replay::SceneGame* authGame() { return m_authGame.get(); }
+    const MatchSpec& spec() const { return m_spec; }
 
 private:
-    MatchSpec spec_;
-    SimNet net_;
-    SimEndpoint& serverEndpoint_;
-    std::unique_ptr<replay::SceneGame> authGame_;
-    std::unique_ptr<LockstepServer> server_;
-    ClientConfig clientConfig_;
-    std::vector<std::unique_ptr<Player>> players_;
-    std::vector<ServerEvent> serverEvents_;
+    MatchSpec m_spec;
+    SimNet m_net;
+    SimEndpoint& m_serverEndpoint;
+    std::unique_ptr<replay::SceneGame> m_authGame;
+    std::unique_ptr<LockstepServer> m_server;
+    ClientConfig m_clientConfig;
+    std::vector<std::unique_ptr<Player>> m_players;
+    std::vector<ServerEvent> m_serverEvents;
 };
 
 /// Upstream budget per peer for a loss rate (docs/net.md "Measured figures"): 32 kbit/s at

@@ -15,7 +15,7 @@ namespace lockbox::net::test_games {
 
 class NudgeGame : public replay::Game {
 public:
-    explicit NudgeGame(replay::SceneGame& inner) : inner_(inner) {}
+    explicit NudgeGame(replay::SceneGame& inner) : m_inner(inner) {}
     void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {
         if (frame == nudgeFrame) {
             for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
@@ -26,14 +26,14 @@ public:
                 break;
             }
         }
-        inner_.Apply(world, frame, inputs);
+        m_inner.Apply(world, frame, inputs);
     }
-    void SaveUserState(std::vector<uint8>& out) const override { inner_.SaveUserState(out); }
-    void LoadUserState(std::span<const uint8> in) override { inner_.LoadUserState(in); }
+    void SaveUserState(std::vector<uint8>& out) const override { m_inner.SaveUserState(out); }
+    void LoadUserState(std::span<const uint8> in) override { m_inner.LoadUserState(in); }
     int32_t nudgeFrame = -1;  ///< the frame whose Apply nudges first (-1: never)
 
 private:
-    replay::SceneGame& inner_;
+    replay::SceneGame& m_inner;
 };
 
 }  // namespace lockbox::net::test_games

@@ -44,20 +44,20 @@ TEST(RollbackSyncTest, SceneGamePassesBothModes) {
 // Pushes the first dynamic body by an amount that grows with a counter the save misses.
 class LeakyGame : public replay::Game {
 public:
-    explicit LeakyGame(replay::SceneGame& inner) : inner_(inner) {}
+    explicit LeakyGame(replay::SceneGame& inner) : m_inner(inner) {}
     void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {
-        ++hidden_;
+        ++m_hidden;
         for (b2Body* b = world.GetBodyList(); b; b = b->GetNext())
             if (b->GetType() == b2_dynamicBody) {
-                b->ApplyLinearImpulse(b2Vec2(Fixed::FromRaw(hidden_ * 64), Fixed::FromRaw(0)), b->GetWorldCenter());
+                b->ApplyLinearImpulse(b2Vec2(Fixed::FromRaw(m_hidden * 64), Fixed::FromRaw(0)), b->GetWorldCenter());
                 break;
             }
-        inner_.Apply(world, frame, inputs);
+        m_inner.Apply(world, frame, inputs);
     }
 
 private:
-    replay::SceneGame& inner_;
-    int32 hidden_ = 0;
+    replay::SceneGame& m_inner;
+    int32 m_hidden = 0;
 };
 
 TEST(RollbackSyncTest, ConfigFromTheSessionBuilder) {

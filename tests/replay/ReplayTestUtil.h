@@ -73,11 +73,11 @@ struct Playback {
 /// one frame and stage: a fault the size of one rounding difference.
 class NudgeHook : public StageHook {
 public:
-    NudgeHook(int32 frame, uint32 stage, int32 bodyId = -1) : frame_(frame), stage_(stage), bodyId_(bodyId) {}
+    NudgeHook(int32 frame, uint32 stage, int32 bodyId = -1) : m_frame(frame), m_stage(stage), m_bodyId(bodyId) {}
     void OnStage(int32 frame, uint32 stage, b2World& world) override {
-        if (frame != frame_ || stage != stage_) return;
+        if (frame != m_frame || stage != m_stage) return;
         for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
-            if (b->GetType() != b2_dynamicBody || (bodyId_ >= 0 && b->GetId() != bodyId_)) continue;
+            if (b->GetType() != b2_dynamicBody || (m_bodyId >= 0 && b->GetId() != m_bodyId)) continue;
             b->m_linearVelocity.x = Fixed::FromRaw(b->m_linearVelocity.x.Raw() + 1);
             touched = b->GetId();
             return;
@@ -86,9 +86,9 @@ public:
     int32 touched = -1;  ///< id of the body nudged (-1: not yet)
 
 private:
-    int32 frame_;
-    uint32 stage_;
-    int32 bodyId_;
+    int32 m_frame;
+    uint32 m_stage;
+    int32 m_bodyId;
 };
 
 }  // namespace lockbox::replay::testing

@@ -116,25 +116,25 @@ INSTANTIATE_TEST_SUITE_P(Stages, BisectStage, ::testing::Values(0u, 1u, 2u, 3u))
 // solver before the next keyframe, and bisect then rightly reports no divergence.
 class IslandNudge : public StageHook {
 public:
-    IslandNudge(int32 frame, b2IslandPhase phase) : frame_(frame), phase_(phase) {}
+    IslandNudge(int32 frame, b2IslandPhase phase) : m_frame(frame), m_phase(phase) {}
     void OnStage(int32, uint32 stage, b2World&) override {
-        if (stage == 0) done_ = false;  // a new pass over a frame
+        if (stage == 0) m_done = false;  // a new pass over a frame
     }
     void OnIsland(int32 frame, b2IslandPhase phase, std::span<b2Body* const> bodies, std::span<b2Position> positions,
                   std::span<b2Velocity> velocities) override {
-        if (frame != frame_ || phase != phase_ || done_ || bodies.size() <= 2) return;
+        if (frame != m_frame || phase != m_phase || m_done || bodies.size() <= 2) return;
         if (phase == b2IslandPhase::e_velocity) {
             velocities[0].v.x = Fixed::FromRaw(velocities[0].v.x.Raw() + 1024);
         } else {
             positions[0].c.x = Fixed::FromRaw(positions[0].c.x.Raw() + 1024);
         }
-        done_ = true;
+        m_done = true;
     }
 
 private:
-    int32 frame_;
-    b2IslandPhase phase_;
-    bool done_ = false;
+    int32 m_frame;
+    b2IslandPhase m_phase;
+    bool m_done = false;
 };
 
 class BisectSolvePhase : public ::testing::TestWithParam<b2IslandPhase> {};

@@ -19,7 +19,7 @@ namespace lockbox::state_detail {
 /// whoever made the cursor).
 class ByteCursor {
 public:
-    explicit ByteCursor(uint8* at) noexcept : p_(at) {}
+    explicit ByteCursor(uint8* at) noexcept : m_p(at) {}
 
     void U8(uint32 v) noexcept { Put(static_cast<uint8>(v)); }
     void U16(uint32 v) noexcept { Put(static_cast<uint16>(v)); }
@@ -37,27 +37,27 @@ public:
     }
 
     /// One past the last byte written.
-    uint8* Position() const noexcept { return p_; }
+    uint8* Position() const noexcept { return m_p; }
 
 private:
     template <class T>
     void Put(T v) noexcept {
         if constexpr (std::endian::native == std::endian::little) {
-            std::memcpy(p_, &v, sizeof v);  // host order is stream order: one store
+            std::memcpy(m_p, &v, sizeof v);  // host order is stream order: one store
         } else {
-            for (size_t i = 0; i < sizeof v; ++i) p_[i] = static_cast<uint8>(static_cast<uint64>(v) >> (8 * i));
+            for (size_t i = 0; i < sizeof v; ++i) m_p[i] = static_cast<uint8>(static_cast<uint64>(v) >> (8 * i));
         }
-        p_ += sizeof v;
+        m_p += sizeof v;
     }
 
-    uint8* p_;
+    uint8* m_p;
 };
 
 /// Reads fixed-width little-endian fields from a position with enough bytes left (checked by
 /// whoever made the cursor).
 class ReadCursor {
 public:
-    explicit ReadCursor(const uint8* at) noexcept : p_(at) {}
+    explicit ReadCursor(const uint8* at) noexcept : m_p(at) {}
 
     uint8 U8() noexcept { return Get<uint8>(); }
     uint16 U16() noexcept { return Get<uint16>(); }
@@ -73,25 +73,25 @@ public:
     }
 
     /// Moves past `bytes` bytes without reading them.
-    void Skip(size_t bytes) noexcept { p_ += bytes; }
+    void Skip(size_t bytes) noexcept { m_p += bytes; }
 
     /// One past the last byte read.
-    const uint8* Position() const noexcept { return p_; }
+    const uint8* Position() const noexcept { return m_p; }
 
 private:
     template <class T>
     T Get() noexcept {
         T v = 0;
         if constexpr (std::endian::native == std::endian::little) {
-            std::memcpy(&v, p_, sizeof v);
+            std::memcpy(&v, m_p, sizeof v);
         } else {
-            for (size_t i = 0; i < sizeof v; ++i) v = static_cast<T>(v | (static_cast<T>(p_[i]) << (8 * i)));
+            for (size_t i = 0; i < sizeof v; ++i) v = static_cast<T>(v | (static_cast<T>(m_p[i]) << (8 * i)));
         }
-        p_ += sizeof v;
+        m_p += sizeof v;
         return v;
     }
 
-    const uint8* p_;
+    const uint8* m_p;
 };
 
 }  // namespace lockbox::state_detail

@@ -44,18 +44,18 @@ public:
 /// records go through Begin/End: one room check per record, then an unchecked cursor.
 class FieldWriter {
 public:
-    FieldWriter(std::vector<uint8>& out, size_t start) : out_(out), used_(start) {
-        if (out_.size() < start) out_.resize(start);
+    FieldWriter(std::vector<uint8>& out, size_t start) : m_out(out), m_used(start) {
+        if (m_out.size() < start) m_out.resize(start);
     }
 
     /// A cursor with room for `maxBytes` (any size); hand it back to End.
     ByteCursor Begin(size_t maxBytes) {
-        if (maxBytes > out_.size() - used_) [[unlikely]]
+        if (maxBytes > m_out.size() - m_used) [[unlikely]]
             Grow(maxBytes);
-        return ByteCursor(out_.data() + used_);
+        return ByteCursor(m_out.data() + m_used);
     }
     /// Takes the bytes a cursor from Begin wrote.
-    void End(const ByteCursor& c) noexcept { used_ = static_cast<size_t>(c.Position() - out_.data()); }
+    void End(const ByteCursor& c) noexcept { m_used = static_cast<size_t>(c.Position() - m_out.data()); }
 
     void U8(uint32 v) {
         One([&](ByteCursor& c) { c.U8(v); });
@@ -84,13 +84,13 @@ public:
         One([&](ByteCursor& c) { c.V(v); });
     }
 
-    size_t Position() const noexcept { return used_; }
+    size_t Position() const noexcept { return m_used; }
     /// Overwrites a 4-byte field written earlier (section lengths).
     void Patch32(size_t at, uint32 v) noexcept {
-        for (int i = 0; i < 4; ++i) out_[at + static_cast<size_t>(i)] = static_cast<uint8>(v >> (8 * i));
+        for (int i = 0; i < 4; ++i) m_out[at + static_cast<size_t>(i)] = static_cast<uint8>(v >> (8 * i));
     }
     /// Trims the vector to the bytes written.
-    void Finish() { out_.resize(used_); }
+    void Finish() { m_out.resize(m_used); }
 
 private:
     template <class Fn>
@@ -106,11 +106,11 @@ private:
     /// A reused vector keeps its capacity, so this does not reallocate.
     [[gnu::noinline]] void Grow(size_t maxBytes) {
         constexpr size_t kStep = 16 * 1024;
-        out_.resize(used_ + (maxBytes > kStep ? maxBytes : kStep));
+        m_out.resize(m_used + (maxBytes > kStep ? maxBytes : kStep));
     }
 
-    std::vector<uint8>& out_;
-    size_t used_;
+    std::vector<uint8>& m_out;
+    size_t m_used;
 };
 
 /// Raised by FieldReader when the image ends early (mapped to e_truncated).
@@ -120,7 +120,7 @@ struct TruncatedImage {};
 /// TruncatedImage.
 class FieldReader {
 public:
-    FieldReader(std::span<const uint8> bytes, size_t start) : data_(bytes.data()), size_(bytes.size()), at_(start) {}
+    FieldReader(std::span<const uint8> bytes, size_t start) : m_data(bytes.data()), m_size(bytes.size()), m_at(start) {}
 
     uint8 U8() { return static_cast<uint8>(Get<1>()); }
     uint16 U16() { return static_cast<uint16>(Get<2>()); }
@@ -138,32 +138,32 @@ public:
     /// A cursor over the next `bytes` bytes (throws TruncatedImage when fewer are left);
     /// hand it back to End.
     ReadCursor Begin(size_t bytes) const {
-        if (size_ - at_ < bytes) throw TruncatedImage{};
-        return ReadCursor(data_ + at_);
+        if (m_size - m_at < bytes) throw TruncatedImage{};
+        return ReadCursor(m_data + m_at);
     }
     /// Moves past the bytes a cursor from Begin read.
-    void End(const ReadCursor& c) noexcept { at_ = static_cast<size_t>(c.Position() - data_); }
+    void End(const ReadCursor& c) noexcept { m_at = static_cast<size_t>(c.Position() - m_data); }
 
-    size_t Position() const noexcept { return at_; }
-    size_t Remaining() const noexcept { return size_ - at_; }
+    size_t Position() const noexcept { return m_at; }
+    size_t Remaining() const noexcept { return m_size - m_at; }
 
 private:
     template <int N>
     uint64 Get() {
-        if (size_ - at_ < N) throw TruncatedImage{};
+        if (m_size - m_at < N) throw TruncatedImage{};
         uint64 v = 0;
         if constexpr (std::endian::native == std::endian::little) {
-            std::memcpy(&v, data_ + at_, N);  // one load: the stream order is the host order
+            std::memcpy(&v, m_data + m_at, N);  // one load: the stream order is the host order
         } else {
-            for (int i = 0; i < N; ++i) v |= static_cast<uint64>(data_[at_ + static_cast<size_t>(i)]) << (8 * i);
+            for (int i = 0; i < N; ++i) v |= static_cast<uint64>(m_data[m_at + static_cast<size_t>(i)]) << (8 * i);
         }
-        at_ += N;
+        m_at += N;
         return v;
     }
 
-    const uint8* data_;
-    size_t size_;
-    size_t at_;
+    const uint8* m_data;
+    size_t m_size;
+    size_t m_at;
 };
 
 }  // namespace lockbox::state_detail

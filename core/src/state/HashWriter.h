@@ -23,18 +23,18 @@ public:
     /// The largest record Begin accepts (bytes).
     static constexpr size_t kMaxRecord = 1024;
 
-    HashWriter() noexcept { XXH3_64bits_reset(&state_); }
+    HashWriter() noexcept { XXH3_64bits_reset(&m_state); }
     HashWriter(const HashWriter&) = delete;
     HashWriter& operator=(const HashWriter&) = delete;
 
     /// A cursor with room for `maxBytes` (at most kMaxRecord); hand it back to End.
     ByteCursor Begin(size_t maxBytes) noexcept {
         assert(maxBytes <= kMaxRecord);
-        if (used_ + maxBytes > kBuffer) Flush();
-        return ByteCursor(buffer_ + used_);
+        if (m_used + maxBytes > kBuffer) Flush();
+        return ByteCursor(m_buffer + m_used);
     }
     /// Takes the bytes a cursor from Begin wrote.
-    void End(const ByteCursor& c) noexcept { used_ = static_cast<size_t>(c.Position() - buffer_); }
+    void End(const ByteCursor& c) noexcept { m_used = static_cast<size_t>(c.Position() - m_buffer); }
 
     void U8(uint32_t v) noexcept {
         One([&](ByteCursor& c) { c.U8(v); });
@@ -67,13 +67,13 @@ public:
     /// Raw bytes, already encoded (an image section).
     void Bytes(const void* data, size_t size) noexcept {
         Flush();
-        Xxh3Update(&state_, data, size);
+        Xxh3Update(&m_state, data, size);
     }
 
     /// The hash of everything written so far (the writer stays usable).
     uint64_t Digest() noexcept {
         Flush();
-        return XXH3_64bits_digest(&state_);
+        return XXH3_64bits_digest(&m_state);
     }
 
 private:
@@ -85,17 +85,17 @@ private:
     }
 
     void Flush() noexcept {
-        if (used_ != 0) Xxh3Update(&state_, buffer_, used_);
-        used_ = 0;
+        if (m_used != 0) Xxh3Update(&m_state, m_buffer, m_used);
+        m_used = 0;
     }
 
     // 4 KiB amortise the update call over ~25 bodies, and the three writers the hash runs
     // at once stay in L1 together.
     static constexpr size_t kBuffer = 4096;
     static_assert(kMaxRecord <= kBuffer);
-    XXH3_state_t state_;
-    uint8 buffer_[kBuffer];
-    size_t used_ = 0;
+    XXH3_state_t m_state;
+    uint8 m_buffer[kBuffer];
+    size_t m_used = 0;
 };
 
 /// Opens a category's stream: version and category index, so that two categories with equal

@@ -25,10 +25,10 @@ constexpr int kJointToWideShift = 24;
 
 class Walker {
 public:
-    explicit Walker(b2Headroom& h) : h_(h) {}
+    explicit Walker(b2Headroom& h) : m_h(h) {}
 
     void See(C c, int64_t raw) noexcept {
-        b2HeadroomEntry& e = h_[c];
+        b2HeadroomEntry& e = m_h[c];
         const uint64 m = Mag(raw);
         if (m > e.maxRaw) e.maxRaw = m;
     }
@@ -39,7 +39,7 @@ public:
     void SeeJointImpulse(int32 raw) noexcept { See(C::e_impulse, static_cast<int64_t>(Mag(raw) << kJointToWideShift)); }
 
 private:
-    b2Headroom& h_;
+    b2Headroom& m_h;
 };
 
 }  // namespace

@@ -11,8 +11,8 @@ namespace lockbox::net {
 
 LockstepClient::LockstepClient(Transport& transport, PeerId server, ClientConfig config, b2World& world,
                                replay::Game& game)
-    : impl_(std::make_unique<Impl>(transport, server, config, world, game)) {
-    Impl& s = *impl_;
+    : m_impl(std::make_unique<Impl>(transport, server, config, world, game)) {
+    Impl& s = *m_impl;
     s.config.maxCatchUpFrames = std::max<uint32_t>(s.config.maxCatchUpFrames, 1);
     s.config.maxAutoDelay = std::clamp<uint32_t>(s.config.maxAutoDelay, 1, 255);
     s.connectStart = transport.NowMicros();
@@ -22,7 +22,7 @@ LockstepClient::LockstepClient(Transport& transport, PeerId server, ClientConfig
 LockstepClient::~LockstepClient() = default;
 
 void LockstepClient::Update() {
-    Impl& s = *impl_;
+    Impl& s = *m_impl;
     const uint64_t now = s.transport.NowMicros();
     s.Receive(now);
     if (s.state == ClientState::e_closed) return;
@@ -107,7 +107,7 @@ void LockstepClient::Impl::StepFrames() {
 }
 
 bool LockstepClient::WantsInput() const {
-    const Impl& s = *impl_;
+    const Impl& s = *m_impl;
     if (s.state != ClientState::e_running) return false;
     const int64_t window = static_cast<int64_t>(s.frame) + s.delay;
     if (s.nextInputFrame > window) return false;
@@ -118,7 +118,7 @@ bool LockstepClient::WantsInput() const {
 }
 
 bool LockstepClient::SubmitLocalInput(std::span<const uint8_t> input) {
-    Impl& s = *impl_;
+    Impl& s = *m_impl;
     if (s.state != ClientState::e_running) return false;
     if (static_cast<int64_t>(s.nextInputFrame) > static_cast<int64_t>(s.frame) + s.delay) return false;
     std::vector<uint8_t> bytes(s.shape.inputBytes, 0);
@@ -140,10 +140,10 @@ bool LockstepClient::SubmitLocalInput(std::span<const uint8_t> input) {
     return true;
 }
 
-int32_t LockstepClient::NextInputFrame() const noexcept { return impl_->nextInputFrame; }
+int32_t LockstepClient::NextInputFrame() const noexcept { return m_impl->nextInputFrame; }
 
 void LockstepClient::Leave() {
-    Impl& s = *impl_;
+    Impl& s = *m_impl;
     if (s.state == ClientState::e_closed) return;
     if (s.token != 0) {
         // Three copies: the server also times us out if all of them are lost.
@@ -156,24 +156,24 @@ void LockstepClient::Leave() {
     s.Close(ClientEvent::Kind::e_disconnected, RejectReason::e_left);
 }
 
-void LockstepClient::SetConfirmedFrameHook(ConfirmedFrameHook hook) { impl_->hook = std::move(hook); }
+void LockstepClient::SetConfirmedFrameHook(ConfirmedFrameHook hook) { m_impl->hook = std::move(hook); }
 
 std::vector<ClientEvent> LockstepClient::TakeEvents() {
     std::vector<ClientEvent> out;
-    out.swap(impl_->events);
+    out.swap(m_impl->events);
     return out;
 }
 
-ClientState LockstepClient::State() const noexcept { return impl_->state; }
-int32_t LockstepClient::Frame() const noexcept { return impl_->frame; }
-int32_t LockstepClient::Slot() const noexcept { return impl_->slot; }
-uint32_t LockstepClient::Token() const noexcept { return impl_->token; }
-uint32_t LockstepClient::InputDelay() const noexcept { return impl_->delay; }
-uint64_t LockstepClient::RttMicros() const noexcept { return impl_->rtt.Srtt(); }
-uint64_t LockstepClient::JitterMicros() const noexcept { return impl_->rtt.Var(); }
-uint64_t LockstepClient::LastHash() const noexcept { return impl_->lastHash; }
-SessionShape LockstepClient::Shape() const noexcept { return impl_->shape; }
-const DecodeErrorCounts& LockstepClient::Malformed() const noexcept { return impl_->malformed; }
+ClientState LockstepClient::State() const noexcept { return m_impl->state; }
+int32_t LockstepClient::Frame() const noexcept { return m_impl->frame; }
+int32_t LockstepClient::Slot() const noexcept { return m_impl->slot; }
+uint32_t LockstepClient::Token() const noexcept { return m_impl->token; }
+uint32_t LockstepClient::InputDelay() const noexcept { return m_impl->delay; }
+uint64_t LockstepClient::RttMicros() const noexcept { return m_impl->rtt.Srtt(); }
+uint64_t LockstepClient::JitterMicros() const noexcept { return m_impl->rtt.Var(); }
+uint64_t LockstepClient::LastHash() const noexcept { return m_impl->lastHash; }
+SessionShape LockstepClient::Shape() const noexcept { return m_impl->shape; }
+const DecodeErrorCounts& LockstepClient::Malformed() const noexcept { return m_impl->malformed; }
 
 uint64_t LockstepClient::StateHash(const b2World& world, const replay::Game& game) {
     return FoldedStateHash(world, game);

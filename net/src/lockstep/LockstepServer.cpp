@@ -256,11 +256,11 @@ void LockstepServer::Impl::Simulate() {
 // ---- public ----
 
 LockstepServer::LockstepServer(Transport& transport, ServerConfig config)
-    : impl_(std::make_unique<Impl>(transport, config)) {}
+    : m_impl(std::make_unique<Impl>(transport, config)) {}
 LockstepServer::~LockstepServer() = default;
 
 void LockstepServer::Update() {
-    Impl& s = *impl_;
+    Impl& s = *m_impl;
     if (s.closed) return;
     const uint64_t now = s.transport.NowMicros();
     s.Receive(now);
@@ -273,7 +273,7 @@ void LockstepServer::Update() {
 }
 
 void LockstepServer::Close() {
-    Impl& s = *impl_;
+    Impl& s = *m_impl;
     if (s.closed) return;
     for (Impl::Slot& slot : s.slots)
         if (slot.peer != kNoPeer && slot.state != State::e_free && slot.state != State::e_disconnected)
@@ -283,19 +283,19 @@ void LockstepServer::Close() {
 
 std::vector<ServerEvent> LockstepServer::TakeEvents() {
     std::vector<ServerEvent> out;
-    out.swap(impl_->events);
+    out.swap(m_impl->events);
     return out;
 }
-const ServerStats& LockstepServer::Stats() const noexcept { return impl_->stats; }
-const ServerConfig& LockstepServer::Config() const noexcept { return impl_->config; }
-int32_t LockstepServer::ConfirmedFrames() const noexcept { return impl_->confirmedNext; }
-bool LockstepServer::Started() const noexcept { return impl_->started; }
-int32_t LockstepServer::SimulatedFrames() const noexcept { return impl_->simulated; }
+const ServerStats& LockstepServer::Stats() const noexcept { return m_impl->stats; }
+const ServerConfig& LockstepServer::Config() const noexcept { return m_impl->config; }
+int32_t LockstepServer::ConfirmedFrames() const noexcept { return m_impl->confirmedNext; }
+bool LockstepServer::Started() const noexcept { return m_impl->started; }
+int32_t LockstepServer::SimulatedFrames() const noexcept { return m_impl->simulated; }
 
 SlotInfo LockstepServer::Slot(uint32_t slot) const {
     SlotInfo info;
-    if (slot >= impl_->slots.size()) return info;
-    const Impl::Slot& s = impl_->slots[slot];
+    if (slot >= m_impl->slots.size()) return info;
+    const Impl::Slot& s = m_impl->slots[slot];
     info.state = s.state;
     info.peer = s.peer;
     info.nextInputFrame = s.nextInput;
@@ -304,7 +304,7 @@ SlotInfo LockstepServer::Slot(uint32_t slot) const {
 }
 
 std::span<const uint8_t> LockstepServer::ConfirmedInputs(int32_t frame) const {
-    const Impl& s = *impl_;
+    const Impl& s = *m_impl;
     if (frame < 0 || frame >= s.confirmedNext) return {};
     if (frame < s.historyBase) return {};
     return std::span<const uint8_t>(s.Row(frame), s.RowBytes());

@@ -56,9 +56,9 @@ DecodeError DecodeHeader(std::span<const uint8_t> datagram, Header& header) noex
 }
 
 void DatagramWriter::Begin(const Header& header) {
-    bytes_.clear();
-    messages_ = 0;
-    wire::Writer w(bytes_);
+    m_bytes.clear();
+    m_messages = 0;
+    wire::Writer w(m_bytes);
     w.U16(kProtocolMagic);
     w.U8(header.version);
     w.U32(header.token);

@@ -287,12 +287,12 @@ DecodeError DecodeDatagram(std::span<const uint8_t> datagram, const SessionShape
 }
 
 bool DatagramWriter::Add(const Message& message, const SessionShape& shape, size_t limit) {
-    scratch_.clear();
-    Writer w(scratch_);
+    m_scratch.clear();
+    Writer w(m_scratch);
     if (!EncodeAny(w, message, shape)) return false;
-    if (bytes_.size() + scratch_.size() > limit) return false;
-    bytes_.insert(bytes_.end(), scratch_.begin(), scratch_.end());
-    ++messages_;
+    if (m_bytes.size() + m_scratch.size() > limit) return false;
+    m_bytes.insert(m_bytes.end(), m_scratch.begin(), m_scratch.end());
+    ++m_messages;
     return true;
 }
 

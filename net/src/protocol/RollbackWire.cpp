@@ -351,17 +351,17 @@ RollbackIncompatibility FindIncompatibility(DecodeError error, const RollbackHea
 }
 
 void RollbackDatagramWriter::Begin(const RollbackHeader& header) {
-    bytes_.clear();
-    messages_ = 0;
-    Writer w(bytes_);
+    m_bytes.clear();
+    m_messages = 0;
+    Writer w(m_bytes);
     w.U16(kRollbackMagic);
     w.U8(header.version);
     w.U32(header.matchId);
 }
 
 bool RollbackDatagramWriter::Add(const RollbackMessage& message, const RollbackShape& shape, size_t limit) {
-    scratch_.clear();
-    Writer w(scratch_);
+    m_scratch.clear();
+    Writer w(m_scratch);
     w.U8(static_cast<uint8_t>(message.index() + 1));
     const bool ok = std::visit(
         [&](const auto& m) {
@@ -372,9 +372,9 @@ bool RollbackDatagramWriter::Add(const RollbackMessage& message, const RollbackS
             return Enc(w, m, shape);
         },
         message);
-    if (!ok || bytes_.size() + scratch_.size() > limit) return false;
-    bytes_.insert(bytes_.end(), scratch_.begin(), scratch_.end());
-    ++messages_;
+    if (!ok || m_bytes.size() + m_scratch.size() > limit) return false;
+    m_bytes.insert(m_bytes.end(), m_scratch.begin(), m_scratch.end());
+    ++m_messages;
     return true;
 }
 

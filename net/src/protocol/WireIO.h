@@ -16,8 +16,8 @@ namespace lockbox::net::wire {
 /// Appends little-endian fields to a byte vector.
 class Writer {
 public:
-    explicit Writer(std::vector<uint8_t>& out) : out_(out) {}
-    void U8(uint8_t v) { out_.push_back(v); }
+    explicit Writer(std::vector<uint8_t>& out) : m_out(out) {}
+    void U8(uint8_t v) { m_out.push_back(v); }
     void U16(uint16_t v) {
         U8(static_cast<uint8_t>(v));
         U8(static_cast<uint8_t>(v >> 8));
@@ -36,46 +36,46 @@ public:
         }
         U8(static_cast<uint8_t>(v));
     }
-    void Bytes(std::span<const uint8_t> b) { out_.insert(out_.end(), b.begin(), b.end()); }
+    void Bytes(std::span<const uint8_t> b) { m_out.insert(m_out.end(), b.begin(), b.end()); }
 
 private:
-    std::vector<uint8_t>& out_;
+    std::vector<uint8_t>& m_out;
 };
 
 /// Reads fields from a span; after the first error every read returns 0 and error() says why.
 class Reader {
 public:
-    explicit Reader(std::span<const uint8_t> in) : in_(in) {}
-    bool ok() const noexcept { return error_ == DecodeError::e_ok; }
-    DecodeError error() const noexcept { return error_; }
+    explicit Reader(std::span<const uint8_t> in) : m_in(in) {}
+    bool ok() const noexcept { return m_error == DecodeError::e_ok; }
+    DecodeError error() const noexcept { return m_error; }
     void Fail(DecodeError e) noexcept {
-        if (ok()) error_ = e;
+        if (ok()) m_error = e;
     }
-    size_t Remaining() const noexcept { return in_.size() - at_; }
-    bool AtEnd() const noexcept { return at_ == in_.size(); }
+    size_t Remaining() const noexcept { return m_in.size() - m_at; }
+    bool AtEnd() const noexcept { return m_at == m_in.size(); }
 
     uint8_t U8() noexcept {
         if (!Need(1)) return 0;
-        return in_[at_++];
+        return m_in[m_at++];
     }
     uint16_t U16() noexcept {
         if (!Need(2)) return 0;
-        const uint16_t v = static_cast<uint16_t>(in_[at_] | (in_[at_ + 1] << 8));
-        at_ += 2;
+        const uint16_t v = static_cast<uint16_t>(m_in[m_at] | (m_in[m_at + 1] << 8));
+        m_at += 2;
         return v;
     }
     uint32_t U32() noexcept {
         if (!Need(4)) return 0;
         uint32_t v = 0;
-        for (int i = 0; i < 4; ++i) v |= static_cast<uint32_t>(in_[at_ + static_cast<size_t>(i)]) << (8 * i);
-        at_ += 4;
+        for (int i = 0; i < 4; ++i) v |= static_cast<uint32_t>(m_in[m_at + static_cast<size_t>(i)]) << (8 * i);
+        m_at += 4;
         return v;
     }
     uint64_t U64() noexcept {
         if (!Need(8)) return 0;
         uint64_t v = 0;
-        for (int i = 0; i < 8; ++i) v |= static_cast<uint64_t>(in_[at_ + static_cast<size_t>(i)]) << (8 * i);
-        at_ += 8;
+        for (int i = 0; i < 8; ++i) v |= static_cast<uint64_t>(m_in[m_at + static_cast<size_t>(i)]) << (8 * i);
+        m_at += 8;
         return v;
     }
     /// A minimal LEB128 of at most 10 bytes whose value fits 64 bits.
@@ -83,7 +83,7 @@ public:
         uint64_t v = 0;
         for (int i = 0; i < 10; ++i) {
             if (!Need(1)) return 0;
-            const uint8_t b = in_[at_++];
+            const uint8_t b = m_in[m_at++];
             // The tenth byte holds bit 63 only.
             if (i == 9 && b > 1) {
                 Fail(DecodeError::e_badVarint);
@@ -114,8 +114,8 @@ public:
     /// Copies n bytes out (nothing on failure).
     bool Bytes(uint8_t* out, size_t n) noexcept {
         if (!Need(n)) return false;
-        if (n > 0) std::memcpy(out, in_.data() + at_, n);
-        at_ += n;
+        if (n > 0) std::memcpy(out, m_in.data() + m_at, n);
+        m_at += n;
         return true;
     }
 
@@ -128,9 +128,9 @@ private:
         }
         return true;
     }
-    std::span<const uint8_t> in_;
-    size_t at_ = 0;
-    DecodeError error_ = DecodeError::e_ok;
+    std::span<const uint8_t> m_in;
+    size_t m_at = 0;
+    DecodeError m_error = DecodeError::e_ok;
 };
 
 /// Writes `entries` entries of `width` bytes with the repeat bitmap: bit i (LSB first) set

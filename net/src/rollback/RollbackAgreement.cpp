@@ -19,83 +19,83 @@ void RollbackPeer::DropRemote(Remote& r, bool tell) {
     if (!r.alive) return;
     r.alive = false;
     r.interrupted = false;
-    session_.DropPeer(r.index);
+    m_session.DropPeer(r.index);
     // Freeze at what this peer holds now; the agreement may lower it to a survivor's value.
-    for (uint32_t p : r.players) session_.FreezePlayer(p);
-    if (tell && !left_) {
+    for (uint32_t p : r.players) m_session.FreezePlayer(p);
+    if (tell && !m_left) {
         // It may still run (a half-broken link, a long stall): a few copies of its players'
         // frozen values tell it it is out (e_removed there) instead of letting it play on alone.
-        writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
+        m_writer.Begin(RollbackHeader{kRollbackProtocolVersion, m_config.matchId});
         for (uint32_t p : r.players)
-            if (session_.FrozenFrame(p) >= 0)
-                writer_.Add(RbFrozen{static_cast<uint8_t>(p), session_.FrozenFrame(p)}, shape_,
-                            transport_.MaxDatagram());
-        for (int copy = 0; copy < 3 && writer_.MessageCount() > 0; ++copy)
-            if (transport_.Send(r.peer, writer_.Bytes())) ++stats_.datagramsSent;
+            if (m_session.FrozenFrame(p) >= 0)
+                m_writer.Add(RbFrozen{static_cast<uint8_t>(p), m_session.FrozenFrame(p)}, m_shape,
+                             m_transport.MaxDatagram());
+        for (int copy = 0; copy < 3 && m_writer.MessageCount() > 0; ++copy)
+            if (m_transport.Send(r.peer, m_writer.Bytes())) ++m_stats.datagramsSent;
     }
     // One peer fewer to wait for: agreements pending on its value may complete now.
     TryAgree();
 }
 
 void RollbackPeer::OnView(Remote& r, const RbView& v) {
-    if (v.received.size() != shape_.players) return;
-    session_.SetPeerView(r.index, v.received);
-    for (uint32_t lp : localPlayers_) {
+    if (v.received.size() != m_shape.players) return;
+    m_session.SetPeerView(r.index, v.received);
+    for (uint32_t lp : m_localPlayers) {
         // An ack never runs past what this peer has: a confused remote cannot make us skip
         // inputs it never got.
-        const int32_t known = std::min(v.received[lp], session_.ReceivedFrame(lp));
+        const int32_t known = std::min(v.received[lp], m_session.ReceivedFrame(lp));
         r.acked[lp] = std::max(r.acked[lp], known);
     }
 }
 
 void RollbackPeer::OnFrozen(Remote& r, const RbFrozen& f) {
     const uint32_t p = f.player;
-    if (p >= shape_.players) return;
-    if (session_.IsLocal(p)) {
+    if (p >= m_shape.players) return;
+    if (m_session.IsLocal(p)) {
         // This peer is named gone: the others no longer count it. Nothing here can undo
         // that (it will stop hearing them and time them out), but the game learns it now.
-        if (!removed_[p]) {
-            removed_[p] = true;
-            session_.RaiseRemoved(p, f.frame);
+        if (!m_removed[p]) {
+            m_removed[p] = true;
+            m_session.RaiseRemoved(p, f.frame);
         }
         return;
     }
     if (std::find(r.players.begin(), r.players.end(), p) != r.players.end()) return;  // about itself
-    if (session_.CutFrame(p) >= 0) return;                                            // settled here already
+    if (m_session.CutFrame(p) >= 0) return;                                           // settled here already
     // Gossip: one live peer calling p gone is enough, even while p is still heard here (a
     // half-broken link); p's owner then stops counting as live for this peer too.
-    for (Remote& owner : remotes_)
+    for (Remote& owner : m_remotes)
         if (std::find(owner.players.begin(), owner.players.end(), p) != owner.players.end()) DropRemote(owner);
-    session_.FreezePlayer(p);
-    if (session_.CutFrame(p) >= 0) return;  // DropRemote completed it (no one left to wait for)
+    m_session.FreezePlayer(p);
+    if (m_session.CutFrame(p) >= 0) return;  // DropRemote completed it (no one left to wait for)
     // A remote's frozen value never changes; the first one heard is the one.
     if (r.frozenHeard[p] < 0) {
         r.frozenHeard[p] = f.frame;
-        session_.ReportFrozen(p, f.frame);
+        m_session.ReportFrozen(p, f.frame);
     }
     TryAgree();
 }
 
 void RollbackPeer::TryAgree() {
-    for (uint32_t p = 0; p < shape_.players; ++p) {
-        if (session_.FrozenFrame(p) < 0 || session_.CutFrame(p) >= 0) continue;
+    for (uint32_t p = 0; p < m_shape.players; ++p) {
+        if (m_session.FrozenFrame(p) < 0 || m_session.CutFrame(p) >= 0) continue;
         bool all = true;
-        for (const Remote& r : remotes_)
+        for (const Remote& r : m_remotes)
             if (r.alive && r.frozenHeard[p] < 0) all = false;
-        if (all) session_.CompleteDisconnect(p);
+        if (all) m_session.CompleteDisconnect(p);
     }
 }
 
 void RollbackPeer::AddAgreement(size_t limit) {
     RbView view;
-    view.received.resize(shape_.players);
-    for (uint32_t p = 0; p < shape_.players; ++p) view.received[p] = session_.ReceivedFrame(p);
-    writer_.Add(view, shape_, limit);
+    view.received.resize(m_shape.players);
+    for (uint32_t p = 0; p < m_shape.players; ++p) view.received[p] = m_session.ReceivedFrame(p);
+    m_writer.Add(view, m_shape, limit);
     // Every frozen value, every datagram, for the rest of the match: datagrams get lost, and
     // a peer that has not heard it cannot complete its cut.
-    for (uint32_t p = 0; p < shape_.players; ++p) {
-        const int32_t frozen = session_.FrozenFrame(p);
-        if (frozen >= 0) writer_.Add(RbFrozen{static_cast<uint8_t>(p), frozen}, shape_, limit);
+    for (uint32_t p = 0; p < m_shape.players; ++p) {
+        const int32_t frozen = m_session.FrozenFrame(p);
+        if (frozen >= 0) m_writer.Add(RbFrozen{static_cast<uint8_t>(p), frozen}, m_shape, limit);
     }
 }
 

@@ -22,24 +22,24 @@ std::string_view RollbackBudgetGuard::Check(const RollbackBudgetConfig& c) noexc
 }
 
 RollbackBudgetGuard::RollbackBudgetGuard(const RollbackBudgetConfig& config, uint32_t initialDelay)
-    : config_(config), delay_(std::clamp(initialDelay, config.minDelay, config.maxDelay)) {
-    kept_.reserve(config_.rollbacksKept);
-    scratch_.reserve(config_.rollbacksKept);
+    : m_config(config), m_delay(std::clamp(initialDelay, config.minDelay, config.maxDelay)) {
+    m_kept.reserve(m_config.rollbacksKept);
+    m_scratch.reserve(m_config.rollbacksKept);
 }
 
 uint64_t RollbackBudgetGuard::PredictedPercentile(int32_t shift) const {
-    scratch_.clear();
-    for (const Sample& s : kept_) {
-        if (ticks_ - s.tick > config_.sampleTicks) continue;  // the link may have changed since
+    m_scratch.clear();
+    for (const Sample& s : m_kept) {
+        if (m_ticks - s.tick > m_config.sampleTicks) continue;  // the link may have changed since
         const int64_t depth = int64_t{s.depth} - shift;
         if (depth <= 0) continue;  // that rollback no longer happens
         // Cost scales with the steps the tick does: the re-simulated frames and the new one.
-        scratch_.push_back(uint64_t{s.micros} * static_cast<uint64_t>(depth + 1) / (uint64_t{s.depth} + 1));
+        m_scratch.push_back(uint64_t{s.micros} * static_cast<uint64_t>(depth + 1) / (uint64_t{s.depth} + 1));
     }
-    if (scratch_.empty()) return 0;
-    const size_t rank = (scratch_.size() * config_.percentile + 99) / 100 - 1;
-    std::nth_element(scratch_.begin(), scratch_.begin() + static_cast<std::ptrdiff_t>(rank), scratch_.end());
-    return scratch_[rank];
+    if (m_scratch.empty()) return 0;
+    const size_t rank = (m_scratch.size() * m_config.percentile + 99) / 100 - 1;
+    std::nth_element(m_scratch.begin(), m_scratch.begin() + static_cast<std::ptrdiff_t>(rank), m_scratch.end());
+    return m_scratch[rank];
 }
 
 uint32_t RollbackBudgetGuard::CostPercentileMicros() const {
@@ -50,51 +50,52 @@ uint32_t RollbackBudgetGuard::CostPercentileMicros() const {
 void RollbackBudgetGuard::Changed() {
     // Remember what one frame costs (the median over the kept rollbacks) for lowering
     // decisions made before any rollback is seen at the new delay.
-    if (!kept_.empty()) {
-        scratch_.clear();
-        for (const Sample& s : kept_) scratch_.push_back(uint64_t{s.micros} / (uint64_t{s.depth} + 1));
-        const size_t mid = scratch_.size() / 2;
-        std::nth_element(scratch_.begin(), scratch_.begin() + static_cast<std::ptrdiff_t>(mid), scratch_.end());
-        frameMicros_ = scratch_[mid];
+    if (!m_kept.empty()) {
+        m_scratch.clear();
+        for (const Sample& s : m_kept) m_scratch.push_back(uint64_t{s.micros} / (uint64_t{s.depth} + 1));
+        const size_t mid = m_scratch.size() / 2;
+        std::nth_element(m_scratch.begin(), m_scratch.begin() + static_cast<std::ptrdiff_t>(mid), m_scratch.end());
+        m_frameMicros = m_scratch[mid];
     }
     // The old samples describe the old delay.
-    kept_.clear();
-    next_ = 0;
-    sinceChange_ = 0;
+    m_kept.clear();
+    m_next = 0;
+    m_sinceChange = 0;
 }
 
 bool RollbackBudgetGuard::Record(uint32_t depth, uint32_t micros) {
-    ++ticks_;
-    ++sinceChange_;
+    ++m_ticks;
+    ++m_sinceChange;
     if (depth > 0) {
-        const Sample s{ticks_, depth, micros};
-        if (kept_.size() < config_.rollbacksKept) {
-            kept_.push_back(s);
+        const Sample s{m_ticks, depth, micros};
+        if (m_kept.size() < m_config.rollbacksKept) {
+            m_kept.push_back(s);
         } else {
-            kept_[next_] = s;
-            next_ = (next_ + 1) % kept_.size();
+            m_kept[m_next] = s;
+            m_next = (m_next + 1) % m_kept.size();
         }
-        if (!costSeen_) frameMicros_ = uint64_t{micros} / (uint64_t{depth} + 1);
-        costSeen_ = true;
-        if (sinceChange_ >= config_.settleTicks && kept_.size() >= config_.minRollbacks && delay_ < config_.maxDelay &&
-            PredictedPercentile(0) > config_.budgetMicros) {
+        if (!m_costSeen) m_frameMicros = uint64_t{micros} / (uint64_t{depth} + 1);
+        m_costSeen = true;
+        if (m_sinceChange >= m_config.settleTicks && m_kept.size() >= m_config.minRollbacks &&
+            m_delay < m_config.maxDelay && PredictedPercentile(0) > m_config.budgetMicros) {
             // The smallest raise the model says fits; the largest allowed if none does.
             uint32_t k = 1;
-            while (delay_ + k < config_.maxDelay && PredictedPercentile(static_cast<int32_t>(k)) > config_.budgetMicros)
+            while (m_delay + k < m_config.maxDelay &&
+                   PredictedPercentile(static_cast<int32_t>(k)) > m_config.budgetMicros)
                 ++k;
-            delay_ += k;
-            ++raises_;
+            m_delay += k;
+            ++m_raises;
             Changed();
             return true;
         }
     }
-    if (delay_ > config_.minDelay && sinceChange_ >= config_.lowerAfterTicks && costSeen_) {
+    if (m_delay > m_config.minDelay && m_sinceChange >= m_config.lowerAfterTicks && m_costSeen) {
         // One frame less delay: every rollback one frame deeper, and ticks that did not roll
         // back may now re-simulate one frame (two frames' worth of steps).
-        const uint64_t deeper = std::max(PredictedPercentile(-1), 2 * frameMicros_);
-        if (deeper * 100 <= uint64_t{config_.budgetMicros} * config_.lowerMarginPercent) {
-            --delay_;
-            ++lowerings_;
+        const uint64_t deeper = std::max(PredictedPercentile(-1), 2 * m_frameMicros);
+        if (deeper * 100 <= uint64_t{m_config.budgetMicros} * m_config.lowerMarginPercent) {
+            --m_delay;
+            ++m_lowerings;
             Changed();
             return true;
         }

@@ -38,60 +38,60 @@ void Push(std::deque<int32_t>& v, int32_t x) {
 }  // namespace
 
 RollbackPeer::RollbackPeer(RollbackSession& session, Transport& transport, RollbackPeerConfig config)
-    : session_(session), transport_(transport), config_(std::move(config)) {
-    if (config_.tickRate == 0) config_.tickRate = 1;
-    if (config_.waitSpacingTicks == 0) config_.waitSpacingTicks = 1;
-    shape_ = RollbackShape{session_.Config().players, session_.Config().inputBytes};
-    const uint64_t now = transport_.NowMicros();
-    for (const RollbackRemote& rr : config_.remotes) {
+    : m_session(session), m_transport(transport), m_config(std::move(config)) {
+    if (m_config.tickRate == 0) m_config.tickRate = 1;
+    if (m_config.waitSpacingTicks == 0) m_config.waitSpacingTicks = 1;
+    m_shape = RollbackShape{m_session.Config().players, m_session.Config().inputBytes};
+    const uint64_t now = m_transport.NowMicros();
+    for (const RollbackRemote& rr : m_config.remotes) {
         Remote r;
         r.peer = rr.peer;
-        r.index = static_cast<uint32_t>(remotes_.size());
+        r.index = static_cast<uint32_t>(m_remotes.size());
         for (uint32_t p : rr.players)
-            if (p < session_.Config().players && !session_.IsLocal(p)) r.players.push_back(p);
+            if (p < m_session.Config().players && !m_session.IsLocal(p)) r.players.push_back(p);
         r.lastHeard = now;
         // Registered before its first datagram: until this remote reports what it holds,
         // nothing becomes final (it may hold nothing yet).
-        const std::vector<int32_t> nothing(session_.Config().players, 0);
-        session_.SetPeerView(r.index, nothing);
-        remotes_.push_back(std::move(r));
+        const std::vector<int32_t> nothing(m_session.Config().players, 0);
+        m_session.SetPeerView(r.index, nothing);
+        m_remotes.push_back(std::move(r));
     }
-    if (config_.snapshotResendMicros == 0) config_.snapshotResendMicros = 1;
-    if (config_.snapshotChunksPerFlush == 0) config_.snapshotChunksPerFlush = 1;
-    for (PeerId sp : config_.spectators) {
+    if (m_config.snapshotResendMicros == 0) m_config.snapshotResendMicros = 1;
+    if (m_config.snapshotChunksPerFlush == 0) m_config.snapshotChunksPerFlush = 1;
+    for (PeerId sp : m_config.spectators) {
         Spectator s;
         s.peer = sp;
-        spectators_.push_back(std::move(s));
+        m_spectators.push_back(std::move(s));
     }
-    localPlayers_ = session_.Config().localPlayers;
+    m_localPlayers = m_session.Config().localPlayers;
 }
 
 RollbackPeer::~RollbackPeer() = default;
 
 RollbackPeer::Remote* RollbackPeer::Find(PeerId peer) {
-    for (Remote& r : remotes_)
+    for (Remote& r : m_remotes)
         if (r.peer == peer) return &r;
     return nullptr;
 }
 
 void RollbackPeer::Poll() {
-    inbox_.clear();
-    transport_.Poll(inbox_);
-    const uint64_t now = transport_.NowMicros();
-    for (const Datagram& d : inbox_) {
+    m_inbox.clear();
+    m_transport.Poll(m_inbox);
+    const uint64_t now = m_transport.NowMicros();
+    for (const Datagram& d : m_inbox) {
         RollbackHeader header;
-        const DecodeError error = DecodeRollbackDatagram(d.bytes, shape_, header, messages_);
+        const DecodeError error = DecodeRollbackDatagram(d.bytes, m_shape, header, m_messages);
         Remote* r = Find(d.peer);
         Spectator* spec = r == nullptr ? FindSpectator(d.peer) : nullptr;
         // A stranger showing any reason is refused like any bad datagram; a known sender is
         // also named (once) and refused from then on.
         const RollbackIncompatibility why =
-            FindIncompatibility(error, header, messages_, config_.matchId, config_.determinismVersion);
+            FindIncompatibility(error, header, m_messages, m_config.matchId, m_config.determinismVersion);
         if (why != RollbackIncompatibility::e_none) {
             // Named once; refused from now on, so the remote times out as a silent one would.
             if (r != nullptr && r->alive && r->incompatible == RollbackIncompatibility::e_none) {
                 r->incompatible = why;
-                session_.RaiseIncompatible(r->index, why);
+                m_session.RaiseIncompatible(r->index, why);
             }
             if (spec != nullptr) spec->incompatible = true;
         }
@@ -99,99 +99,99 @@ void RollbackPeer::Poll() {
         if (error != DecodeError::e_ok || why != RollbackIncompatibility::e_none ||
             (r != nullptr && r->incompatible != RollbackIncompatibility::e_none) ||
             (spec != nullptr && spec->incompatible)) {
-            ++stats_.refused;
+            ++m_stats.refused;
             continue;
         }
         if (r != nullptr) {
-            ++stats_.datagramsReceived;
+            ++m_stats.datagramsReceived;
             if (!r->alive) continue;
             r->lastHeard = now;
             if (r->interrupted) {
                 r->interrupted = false;
-                session_.RaiseConnectionEvent(RollbackEvent::Kind::e_resumed, r->index);
+                m_session.RaiseConnectionEvent(RollbackEvent::Kind::e_resumed, r->index);
             }
-            for (const RollbackMessage& m : messages_) {
+            for (const RollbackMessage& m : m_messages) {
                 if (!r->alive) break;  // it left (RbDisconnect) or was named gone
                 Handle(*r, m, now);
             }
             continue;
         }
-        if (spec == nullptr && lateSpectators_ < config_.maxLateSpectators &&
-            std::any_of(messages_.begin(), messages_.end(),
+        if (spec == nullptr && m_lateSpectators < m_config.maxLateSpectators &&
+            std::any_of(m_messages.begin(), m_messages.end(),
                         [](const RollbackMessage& m) { return std::holds_alternative<RbJoinRequest>(m); })) {
             // A stranger becomes a spectator only by asking to join, and only up to the limit.
             Spectator s;
             s.peer = d.peer;
-            spectators_.push_back(std::move(s));
-            ++lateSpectators_;
-            spec = &spectators_.back();
+            m_spectators.push_back(std::move(s));
+            ++m_lateSpectators;
+            spec = &m_spectators.back();
         }
         if (spec == nullptr) {
-            ++stats_.refused;
+            ++m_stats.refused;
             continue;
         }
-        ++stats_.datagramsReceived;
-        for (const RollbackMessage& m : messages_) HandleSpectator(*spec, m, now);
+        ++m_stats.datagramsReceived;
+        for (const RollbackMessage& m : m_messages) HandleSpectator(*spec, m, now);
     }
-    for (Remote& r : remotes_) {
+    for (Remote& r : m_remotes) {
         if (!r.alive) continue;
         const uint64_t silence = now - r.lastHeard;
-        if (!r.interrupted && silence > config_.interruptTimeoutMicros) {
+        if (!r.interrupted && silence > m_config.interruptTimeoutMicros) {
             r.interrupted = true;
-            session_.RaiseConnectionEvent(RollbackEvent::Kind::e_interrupted, r.index);
+            m_session.RaiseConnectionEvent(RollbackEvent::Kind::e_interrupted, r.index);
         }
-        if (silence <= config_.disconnectTimeoutMicros) continue;
+        if (silence <= m_config.disconnectTimeoutMicros) continue;
         DropRemote(r);
     }
 }
 
 // A hello goes first in a datagram, before anything that needs the shape to be read.
 void RollbackPeer::BeginDatagram(bool hello, size_t limit) {
-    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
-    if (hello) writer_.Add(HelloFor(config_.determinismVersion, shape_), shape_, limit);
+    m_writer.Begin(RollbackHeader{kRollbackProtocolVersion, m_config.matchId});
+    if (hello) m_writer.Add(HelloFor(m_config.determinismVersion, m_shape), m_shape, limit);
 }
 
 // The remote took one of our inputs, so it read a datagram of ours with a hello and found us
 // compatible: the hello can stop.
 bool RollbackPeer::HelloAcked(const Remote& r) const noexcept {
-    for (uint32_t lp : localPlayers_)
+    for (uint32_t lp : m_localPlayers)
         if (r.acked[lp] > 0) return true;
     return false;
 }
 
 RollbackIncompatibility RollbackPeer::RemoteIncompatibility(size_t index) const noexcept {
-    return index < remotes_.size() ? remotes_[index].incompatible : RollbackIncompatibility::e_none;
+    return index < m_remotes.size() ? m_remotes[index].incompatible : RollbackIncompatibility::e_none;
 }
 
 bool RollbackPeer::RemovedFromMatch() const noexcept {
-    return std::any_of(removed_.begin(), removed_.end(), [](bool r) { return r; });
+    return std::any_of(m_removed.begin(), m_removed.end(), [](bool r) { return r; });
 }
 
 size_t RollbackPeer::IncompatibleSpectators() const noexcept {
     return static_cast<size_t>(
-        std::count_if(spectators_.begin(), spectators_.end(), [](const Spectator& s) { return s.incompatible; }));
+        std::count_if(m_spectators.begin(), m_spectators.end(), [](const Spectator& s) { return s.incompatible; }));
 }
 
 bool RollbackPeer::RemoteInterrupted(size_t index) const noexcept {
-    return index < remotes_.size() && remotes_[index].alive && remotes_[index].interrupted;
+    return index < m_remotes.size() && m_remotes[index].alive && m_remotes[index].interrupted;
 }
 
 void RollbackPeer::Handle(Remote& r, const RollbackMessage& m, uint64_t now) {
     if (const auto* in = std::get_if<RbInputs>(&m)) {
         if (std::find(r.players.begin(), r.players.end(), in->player) == r.players.end()) return;
-        const size_t width = shape_.inputBytes;
+        const size_t width = m_shape.inputBytes;
         const size_t count = in->bytes.size() / width;
         for (size_t i = 0; i < count; ++i) {
             const int64_t f = int64_t{in->firstFrame} + static_cast<int64_t>(i);
             if (f > INT32_MAX) break;
             const std::span<const uint8_t> one(in->bytes.data() + i * width, width);
-            const InputResult res = session_.AddRemoteInput(in->player, static_cast<int32_t>(f), one);
+            const InputResult res = m_session.AddRemoteInput(in->player, static_cast<int32_t>(f), one);
             // A gap or a frame too far ahead: the rest of the run cannot be taken either.
             if (res != InputResult::e_ok && res != InputResult::e_duplicate) break;
         }
     } else if (const auto* ack = std::get_if<RbInputAck>(&m)) {
-        if (ack->player < kRollbackMaxPlayers && session_.IsLocal(ack->player)) {
-            const int32_t known = std::min(ack->nextFrame, session_.ReceivedFrame(ack->player));
+        if (ack->player < kRollbackMaxPlayers && m_session.IsLocal(ack->player)) {
+            const int32_t known = std::min(ack->nextFrame, m_session.ReceivedFrame(ack->player));
             r.acked[ack->player] = std::max(r.acked[ack->player], known);
         }
     } else if (const auto* q = std::get_if<RbQuality>(&m)) {
@@ -208,7 +208,7 @@ void RollbackPeer::Handle(Remote& r, const RollbackMessage& m, uint64_t now) {
             r.rtt.Sample(reply->holdMicros < elapsed ? elapsed - reply->holdMicros : 0);
         }
     } else if (const auto* h = std::get_if<RbHash>(&m)) {
-        session_.AddRemoteHash(r.index, h->frame, h->hash);
+        m_session.AddRemoteHash(r.index, h->frame, h->hash);
     } else if (const auto* v = std::get_if<RbView>(&m)) {
         OnView(r, *v);
     } else if (const auto* fz = std::get_if<RbFrozen>(&m)) {
@@ -225,17 +225,18 @@ int32_t RollbackPeer::LocalAdvantageMilli(const Remote& r, uint64_t now) const {
     // Where the remote should be now: its last reported frame, plus the time since it
     // reported (half an RTT in flight, then the time since arrival) at the tick rate.
     const uint64_t since = now - r.remoteFrameAt + r.rtt.Srtt() / 2;
-    const int64_t sinceMilli = static_cast<int64_t>(std::min<uint64_t>(since, 1000000000ull) * config_.tickRate / 1000);
+    const int64_t sinceMilli =
+        static_cast<int64_t>(std::min<uint64_t>(since, 1000000000ull) * m_config.tickRate / 1000);
     const int64_t estimate = int64_t{r.remoteFrame} * 1000 + sinceMilli;
-    return ClampMilli(int64_t{session_.CurrentFrame()} * 1000 - estimate);
+    return ClampMilli(int64_t{m_session.CurrentFrame()} * 1000 - estimate);
 }
 
 void RollbackPeer::Flush() {
-    if (left_) return;
-    const uint64_t now = transport_.NowMicros();
-    for (Remote& r : remotes_)
+    if (m_left) return;
+    const uint64_t now = m_transport.NowMicros();
+    for (Remote& r : m_remotes)
         if (r.alive) SendTo(r, now);
-    for (Spectator& s : spectators_) {
+    for (Spectator& s : m_spectators) {
         if (s.incompatible) continue;
         if (s.lateJoin && (s.wantsSnapshot || (s.sender.Active() && !s.sender.Done())))
             SendSnapshot(s, now);
@@ -245,25 +246,25 @@ void RollbackPeer::Flush() {
 }
 
 void RollbackPeer::SendTo(Remote& r, uint64_t now) {
-    const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
+    const size_t limit = m_transport.MaxDatagram();  // a relay takes its header from it
     BeginDatagram(!HelloAcked(r), limit);
     const int32_t advantage = LocalAdvantageMilli(r, now);
     if (r.heardFrame) Push(r.localAdvantage, advantage);
-    writer_.Add(RbQuality{session_.CurrentFrame(), advantage, now}, shape_, limit);
-    if (r.echoPending && writer_.Add(RbQualityReply{r.echoTime, now - r.echoReceivedAt}, shape_, limit))
+    m_writer.Add(RbQuality{m_session.CurrentFrame(), advantage, now}, m_shape, limit);
+    if (r.echoPending && m_writer.Add(RbQualityReply{r.echoTime, now - r.echoReceivedAt}, m_shape, limit))
         r.echoPending = false;
     AddAgreement(limit);
-    if (delayWish_ >= 0) writer_.Add(RbDelayWish{static_cast<uint8_t>(delayWish_)}, shape_, limit);
-    const size_t width = shape_.inputBytes;
-    for (uint32_t lp : localPlayers_) {
-        const int32_t end = session_.ReceivedFrame(lp);
+    if (m_delayWish >= 0) m_writer.Add(RbDelayWish{static_cast<uint8_t>(m_delayWish)}, m_shape, limit);
+    const size_t width = m_shape.inputBytes;
+    for (uint32_t lp : m_localPlayers) {
+        const int32_t end = m_session.ReceivedFrame(lp);
         const int32_t from = r.acked[lp];
         int32_t count = std::min<int32_t>(end - from, static_cast<int32_t>(kRollbackMaxRun));
         RbInputs in;
         in.player = static_cast<uint8_t>(lp);
         in.firstFrame = from;
         for (int32_t i = 0; i < count; ++i) {
-            const auto one = session_.ConfirmedInput(lp, from + i);
+            const auto one = m_session.ConfirmedInput(lp, from + i);
             if (one.size() != width) {
                 count = i;
                 break;
@@ -271,41 +272,41 @@ void RollbackPeer::SendTo(Remote& r, uint64_t now) {
             in.bytes.insert(in.bytes.end(), one.begin(), one.end());
         }
         // Halve the run until it fits beside the other messages.
-        while (count > 0 && !writer_.Add(in, shape_, limit)) {
+        while (count > 0 && !m_writer.Add(in, m_shape, limit)) {
             count /= 2;
             in.bytes.resize(static_cast<size_t>(count) * width);
         }
     }
-    const auto& finals = session_.FinalHashes();
+    const auto& finals = m_session.FinalHashes();
     for (const auto& [frame, hash] : finals) {
         uint8_t& copies = r.hashCopies[frame];
-        if (copies < kHashCopies && writer_.Add(RbHash{frame, hash}, shape_, limit)) ++copies;
+        if (copies < kHashCopies && m_writer.Add(RbHash{frame, hash}, m_shape, limit)) ++copies;
     }
     // Forget frames that left the session's list (they are never offered again).
     while (!r.hashCopies.empty() && (finals.empty() || r.hashCopies.begin()->first < finals.front().first))
         r.hashCopies.erase(r.hashCopies.begin());
-    if (transport_.Send(r.peer, writer_.Bytes())) ++stats_.datagramsSent;
+    if (m_transport.Send(r.peer, m_writer.Bytes())) ++m_stats.datagramsSent;
 }
 
 void RollbackPeer::Leave() {
-    const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
-    if (left_) return;
-    writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
-    writer_.Add(RbDisconnect{}, shape_, limit);
+    const size_t limit = m_transport.MaxDatagram();  // a relay takes its header from it
+    if (m_left) return;
+    m_writer.Begin(RollbackHeader{kRollbackProtocolVersion, m_config.matchId});
+    m_writer.Add(RbDisconnect{}, m_shape, limit);
     // Several copies: one of them gets through a lossy link; the remote times out otherwise.
     // Spectators hear it too: theirs is the only host, so they lose it now (e_hostLost).
     for (int copy = 0; copy < 3; ++copy) {
-        for (Remote& r : remotes_)
-            if (r.alive && transport_.Send(r.peer, writer_.Bytes())) ++stats_.datagramsSent;
-        for (const Spectator& sp : spectators_)
-            if (!sp.incompatible && transport_.Send(sp.peer, writer_.Bytes())) ++stats_.datagramsSent;
+        for (Remote& r : m_remotes)
+            if (r.alive && m_transport.Send(r.peer, m_writer.Bytes())) ++m_stats.datagramsSent;
+        for (const Spectator& sp : m_spectators)
+            if (!sp.incompatible && m_transport.Send(sp.peer, m_writer.Bytes())) ++m_stats.datagramsSent;
     }
-    left_ = true;
+    m_left = true;
 }
 
 int32_t RollbackPeer::RecommendedWaitMilli() const noexcept {
     int32_t wait = 0;
-    for (const Remote& r : remotes_) {
+    for (const Remote& r : m_remotes) {
         if (!r.alive || r.localAdvantage.empty() || r.remoteAdvantage.empty()) continue;
         const int64_t w = (int64_t{Average(r.localAdvantage)} - int64_t{Average(r.remoteAdvantage)}) / 2;
         wait = std::max(wait, ClampMilli(w));
@@ -316,29 +317,31 @@ int32_t RollbackPeer::RecommendedWaitMilli() const noexcept {
 int32_t RollbackPeer::RecommendedWaitFrames() const noexcept { return RecommendedWaitMilli() / 1000; }
 
 bool RollbackPeer::WaitThisTick() {
-    if (ticksSinceWait_ < UINT32_MAX) ++ticksSinceWait_;
-    if (ticksSinceWait_ < config_.waitSpacingTicks || RecommendedWaitMilli() < 1000) return false;
-    ticksSinceWait_ = 0;
-    ++stats_.waitsRecommended;
+    if (m_ticksSinceWait < UINT32_MAX) ++m_ticksSinceWait;
+    if (m_ticksSinceWait < m_config.waitSpacingTicks || RecommendedWaitMilli() < 1000) return false;
+    m_ticksSinceWait = 0;
+    ++m_stats.waitsRecommended;
     // Samples taken before the wait describe a lead this tick just gave back.
-    for (Remote& r : remotes_) r.localAdvantage.clear();
+    for (Remote& r : m_remotes) r.localAdvantage.clear();
     return true;
 }
 
 void RollbackPeer::AskInputDelay(uint32_t frames) noexcept {
-    delayWish_ = static_cast<int32_t>(std::min(frames, kRollbackMaxInputDelay));
+    m_delayWish = static_cast<int32_t>(std::min(frames, kRollbackMaxInputDelay));
 }
 
 uint32_t RollbackPeer::RemoteDelayWish() const noexcept {
     uint32_t wish = 0;
-    for (const Remote& r : remotes_)
+    for (const Remote& r : m_remotes)
         if (r.alive) wish = std::max<uint32_t>(wish, r.delayWish);
     return wish;
 }
 
 uint64_t RollbackPeer::RttMicros(size_t index) const noexcept {
-    return index < remotes_.size() ? remotes_[index].rtt.Srtt() : 0;
+    return index < m_remotes.size() ? m_remotes[index].rtt.Srtt() : 0;
 }
-bool RollbackPeer::RemoteAlive(size_t index) const noexcept { return index < remotes_.size() && remotes_[index].alive; }
+bool RollbackPeer::RemoteAlive(size_t index) const noexcept {
+    return index < m_remotes.size() && m_remotes[index].alive;
+}
 
 }  // namespace lockbox::net

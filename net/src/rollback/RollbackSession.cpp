@@ -13,7 +13,7 @@ using rbsession::kRemotePendingMax;
 using rbsession::Slot;
 
 std::string_view RollbackSessionBuilder::Check() const noexcept {
-    const RollbackConfig& c = config_;
+    const RollbackConfig& c = m_config;
     if (c.players < 1 || c.players > kRollbackMaxPlayers) return "players must be in 1..8";
     if (c.inputBytes < 1 || c.inputBytes > kRollbackMaxInputBytes) return "input bytes must be in 1..64";
     if (c.predictionWindow < 1 || c.predictionWindow > kRollbackMaxWindow) return "prediction window must be in 1..64";
@@ -29,7 +29,7 @@ std::string_view RollbackSessionBuilder::Check() const noexcept {
 
 std::unique_ptr<RollbackSession> RollbackSessionBuilder::Build() const {
     if (!Check().empty()) return nullptr;
-    return std::make_unique<RollbackSession>(config_);
+    return std::make_unique<RollbackSession>(m_config);
 }
 
 InputStatus RollbackSession::Impl::InputFor(uint32_t index, int32_t frame, uint8_t* out) {
@@ -115,8 +115,8 @@ void RollbackSession::Impl::FinalizeHashes() {
     nextFinal = std::max(nextFinal, limit + 1);
 }
 
-RollbackSession::RollbackSession(RollbackConfig config) : impl_(std::make_unique<Impl>()) {
-    Impl& m = *impl_;
+RollbackSession::RollbackSession(RollbackConfig config) : m_impl(std::make_unique<Impl>()) {
+    Impl& m = *m_impl;
     m.config = std::move(config);
     m.players.resize(m.config.players);
     for (Impl::Player& p : m.players) {
@@ -139,7 +139,7 @@ RollbackSession::RollbackSession(RollbackConfig config) : impl_(std::make_unique
 RollbackSession::~RollbackSession() = default;
 
 InputResult RollbackSession::AddLocalInput(uint32_t player, std::span<const uint8_t> input) {
-    Impl& m = *impl_;
+    Impl& m = *m_impl;
     if (player >= m.config.players || !m.players[player].local) return InputResult::e_badPlayer;
     if (input.size() != m.Bytes()) return InputResult::e_badSize;
     Impl::Player& p = m.players[player];
@@ -163,7 +163,7 @@ InputResult RollbackSession::AddLocalInput(uint32_t player, std::span<const uint
 }
 
 bool RollbackSession::SetInputDelay(uint32_t frames) {
-    Impl& m = *impl_;
+    Impl& m = *m_impl;
     if (frames > kRollbackMaxInputDelay) return false;
     const int32_t change = static_cast<int32_t>(frames) - static_cast<int32_t>(m.config.inputDelay);
     m.config.inputDelay = frames;
@@ -188,10 +188,10 @@ bool RollbackSession::SetInputDelay(uint32_t frames) {
     return true;
 }
 
-uint32_t RollbackSession::InputDelay() const noexcept { return impl_->config.inputDelay; }
+uint32_t RollbackSession::InputDelay() const noexcept { return m_impl->config.inputDelay; }
 
 std::vector<RollbackRequest> RollbackSession::AdvanceFrame() {
-    Impl& m = *impl_;
+    Impl& m = *m_impl;
     std::vector<RollbackRequest> out;
     if (!m.started) {
         m.started = true;
@@ -242,7 +242,7 @@ std::vector<RollbackRequest> RollbackSession::AdvanceFrame() {
 }
 
 void RollbackSession::ReportHash(int32_t frame, uint64_t hash) {
-    Impl& m = *impl_;
+    Impl& m = *m_impl;
     if (frame < 0) return;
     Impl::SaveSlot& s = m.saves[static_cast<size_t>(Slot(frame, static_cast<int32_t>(m.saves.size())))];
     if (s.frame != frame) return;
@@ -251,7 +251,7 @@ void RollbackSession::ReportHash(int32_t frame, uint64_t hash) {
 }
 
 InputResult RollbackSession::AddRemoteInput(uint32_t player, int32_t frame, std::span<const uint8_t> input) {
-    Impl& m = *impl_;
+    Impl& m = *m_impl;
     if (player >= m.config.players || m.players[player].local) return InputResult::e_badPlayer;
     if (input.size() != m.Bytes()) return InputResult::e_badSize;
     Impl::Player& p = m.players[player];
@@ -269,7 +269,7 @@ InputResult RollbackSession::AddRemoteInput(uint32_t player, int32_t frame, std:
 }
 
 void RollbackSession::AddRemoteHash(uint32_t peerTag, int32_t frame, uint64_t hash) {
-    Impl& m = *impl_;
+    Impl& m = *m_impl;
     if (frame < 0) return;
     if (std::find(m.desyncedPeers.begin(), m.desyncedPeers.end(), peerTag) != m.desyncedPeers.end()) return;
     if (auto it = m.finals.find(frame); it != m.finals.end()) {
@@ -286,18 +286,18 @@ void RollbackSession::RaiseConnectionEvent(RollbackEvent::Kind kind, uint32_t pe
     if (kind != RollbackEvent::Kind::e_interrupted && kind != RollbackEvent::Kind::e_resumed) return;
     RollbackEvent e;
     e.kind = kind;
-    e.frame = impl_->current;
+    e.frame = m_impl->current;
     e.player = peerTag;
-    impl_->events.push_back(e);
+    m_impl->events.push_back(e);
 }
 
 void RollbackSession::RaiseIncompatible(uint32_t peerTag, RollbackIncompatibility why) {
     RollbackEvent e;
     e.kind = RollbackEvent::Kind::e_incompatible;
-    e.frame = impl_->current;
+    e.frame = m_impl->current;
     e.player = peerTag;
     e.incompatibility = why;
-    impl_->events.push_back(e);
+    m_impl->events.push_back(e);
 }
 
 void RollbackSession::RaiseRemoved(uint32_t player, int32_t frame) {
@@ -305,34 +305,36 @@ void RollbackSession::RaiseRemoved(uint32_t player, int32_t frame) {
     e.kind = RollbackEvent::Kind::e_removed;
     e.frame = frame;
     e.player = player;
-    impl_->events.push_back(e);
+    m_impl->events.push_back(e);
 }
 
-int32_t RollbackSession::CurrentFrame() const noexcept { return impl_->current; }
-int32_t RollbackSession::ConfirmedFrame() const noexcept { return impl_->Final(); }
-int32_t RollbackSession::HeldFrame() const noexcept { return impl_->Held(); }
+int32_t RollbackSession::CurrentFrame() const noexcept { return m_impl->current; }
+int32_t RollbackSession::ConfirmedFrame() const noexcept { return m_impl->Final(); }
+int32_t RollbackSession::HeldFrame() const noexcept { return m_impl->Held(); }
 
 int32_t RollbackSession::ReceivedFrame(uint32_t player) const noexcept {
-    return player < impl_->config.players ? impl_->players[player].received : 0;
+    return player < m_impl->config.players ? m_impl->players[player].received : 0;
 }
 
 std::span<const uint8_t> RollbackSession::ConfirmedInput(uint32_t player, int32_t frame) const noexcept {
-    const Impl& m = *impl_;
+    const Impl& m = *m_impl;
     if (player >= m.config.players || frame < 0) return {};
     const Impl::Player& p = m.players[player];
     if (frame >= p.received || p.ringFrame[static_cast<size_t>(Slot(frame, kInputRing))] != frame) return {};
     return {p.ring.data() + static_cast<size_t>(Slot(frame, kInputRing)) * m.Bytes(), m.Bytes()};
 }
 
-const std::deque<std::pair<int32_t, uint64_t>>& RollbackSession::FinalHashes() const noexcept { return impl_->offered; }
+const std::deque<std::pair<int32_t, uint64_t>>& RollbackSession::FinalHashes() const noexcept {
+    return m_impl->offered;
+}
 bool RollbackSession::IsLocal(uint32_t player) const noexcept {
-    return player < impl_->config.players && impl_->players[player].local;
+    return player < m_impl->config.players && m_impl->players[player].local;
 }
 bool RollbackSession::IsDisconnected(uint32_t player) const noexcept {
-    return player < impl_->config.players && impl_->players[player].disconnected;
+    return player < m_impl->config.players && m_impl->players[player].disconnected;
 }
-std::vector<RollbackEvent> RollbackSession::TakeEvents() { return std::exchange(impl_->events, {}); }
-const RollbackStats& RollbackSession::Stats() const noexcept { return impl_->stats; }
-const RollbackConfig& RollbackSession::Config() const noexcept { return impl_->config; }
+std::vector<RollbackEvent> RollbackSession::TakeEvents() { return std::exchange(m_impl->events, {}); }
+const RollbackStats& RollbackSession::Stats() const noexcept { return m_impl->stats; }
+const RollbackConfig& RollbackSession::Config() const noexcept { return m_impl->config; }
 
 }  // namespace lockbox::net

@@ -57,7 +57,7 @@ void RollbackSession::DisconnectPlayer(uint32_t player) {
 }
 
 int32_t RollbackSession::FreezePlayer(uint32_t player) {
-    Impl& m = *impl_;
+    Impl& m = *m_impl;
     if (player >= m.config.players) return -1;
     Impl::Player& p = m.players[player];
     if (p.disconnected) return -1;
@@ -70,7 +70,7 @@ int32_t RollbackSession::FreezePlayer(uint32_t player) {
 }
 
 bool RollbackSession::ReportFrozen(uint32_t player, int32_t frame) {
-    Impl& m = *impl_;
+    Impl& m = *m_impl;
     if (player >= m.config.players || frame < 0) return false;
     Impl::Player& p = m.players[player];
     if (!p.frozen || p.disconnected) return false;
@@ -85,7 +85,7 @@ bool RollbackSession::ReportFrozen(uint32_t player, int32_t frame) {
 }
 
 int32_t RollbackSession::CompleteDisconnect(uint32_t player) {
-    Impl& m = *impl_;
+    Impl& m = *m_impl;
     if (player >= m.config.players) return -1;
     Impl::Player& p = m.players[player];
     if (!p.frozen || p.disconnected) return -1;
@@ -95,7 +95,7 @@ int32_t RollbackSession::CompleteDisconnect(uint32_t player) {
 }
 
 void RollbackSession::SetPeerView(uint32_t peerTag, std::span<const int32_t> received) {
-    Impl& m = *impl_;
+    Impl& m = *m_impl;
     if (received.size() != m.config.players) return;
     for (int32_t v : received)
         if (v < 0) return;
@@ -104,15 +104,15 @@ void RollbackSession::SetPeerView(uint32_t peerTag, std::span<const int32_t> rec
     for (size_t i = 0; i < received.size(); ++i) it->second[i] = std::max(it->second[i], received[i]);
 }
 
-void RollbackSession::DropPeer(uint32_t peerTag) { impl_->views.erase(peerTag); }
+void RollbackSession::DropPeer(uint32_t peerTag) { m_impl->views.erase(peerTag); }
 
 int32_t RollbackSession::FrozenFrame(uint32_t player) const noexcept {
-    return player < impl_->config.players ? impl_->players[player].frozenFrame : -1;
+    return player < m_impl->config.players ? m_impl->players[player].frozenFrame : -1;
 }
 
 int32_t RollbackSession::CutFrame(uint32_t player) const noexcept {
-    if (player >= impl_->config.players || !impl_->players[player].disconnected) return -1;
-    return impl_->players[player].disconnectFrame;
+    if (player >= m_impl->config.players || !m_impl->players[player].disconnected) return -1;
+    return m_impl->players[player].disconnectFrame;
 }
 
 }  // namespace lockbox::net

@@ -19,14 +19,14 @@ constexpr size_t kSpectatorRunBytes = 960;
 }  // namespace
 
 RollbackPeer::Spectator* RollbackPeer::FindSpectator(PeerId peer) {
-    for (Spectator& s : spectators_)
+    for (Spectator& s : m_spectators)
         if (s.peer == peer) return &s;
     return nullptr;
 }
 
 void RollbackPeer::HandleSpectator(Spectator& s, const RollbackMessage& m, uint64_t now) {
     if (const auto* ack = std::get_if<RbConfirmedAck>(&m)) {
-        s.acked = std::max(s.acked, std::min(ack->nextFrame, session_.ConfirmedFrame()));
+        s.acked = std::max(s.acked, std::min(ack->nextFrame, m_session.ConfirmedFrame()));
     } else if (const auto* join = std::get_if<RbJoinRequest>(&m)) {
         // Each new attempt (the spectator refused the last snapshot) gets a fresh snapshot;
         // repeats of the same attempt are the spectator resending its request.
@@ -41,84 +41,84 @@ void RollbackPeer::HandleSpectator(Spectator& s, const RollbackMessage& m, uint6
 }
 
 bool RollbackPeer::SnapshotWanted() const noexcept {
-    return std::any_of(spectators_.begin(), spectators_.end(), [](const Spectator& s) { return s.wantsSnapshot; });
+    return std::any_of(m_spectators.begin(), m_spectators.end(), [](const Spectator& s) { return s.wantsSnapshot; });
 }
 
-size_t RollbackPeer::SpectatorCount() const noexcept { return spectators_.size(); }
+size_t RollbackPeer::SpectatorCount() const noexcept { return m_spectators.size(); }
 
 bool RollbackPeer::InputsKept(int32_t frame) const {
-    for (uint32_t p = 0; p < shape_.players; ++p) {
-        if (frame >= session_.ReceivedFrame(p)) continue;  // not arrived yet: comes in order later
-        if (session_.ConfirmedInput(p, frame).size() != shape_.inputBytes) return false;
+    for (uint32_t p = 0; p < m_shape.players; ++p) {
+        if (frame >= m_session.ReceivedFrame(p)) continue;  // not arrived yet: comes in order later
+        if (m_session.ConfirmedInput(p, frame).size() != m_shape.inputBytes) return false;
     }
     return true;
 }
 
 SnapshotOfferResult RollbackPeer::OfferSnapshot(int32_t frame, std::span<const uint8_t> state) {
     if (!SnapshotWanted()) return SnapshotOfferResult::e_notWanted;
-    if (frame < 0 || frame > std::min(session_.ConfirmedFrame(), session_.CurrentFrame()))
+    if (frame < 0 || frame > std::min(m_session.ConfirmedFrame(), m_session.CurrentFrame()))
         return SnapshotOfferResult::e_notConfirmed;
     if (state.empty() || state.size() > kRbMaxSnapshotBytes) return SnapshotOfferResult::e_badSize;
     if (!InputsKept(frame)) return SnapshotOfferResult::e_inputsGone;
     const uint64_t checksum = XXH3_64bits(state.data(), state.size());
     // Compressed once for every spectator that waits for it.
     const CompressedSnapshot compressed = SnapshotSender::Compress(state);
-    for (Spectator& s : spectators_) {
+    for (Spectator& s : m_spectators) {
         if (!s.wantsSnapshot) continue;
         s.wantsSnapshot = false;
         s.checksum = checksum;
         s.acked = frame;
         s.sender.Start(frame, compressed);
     }
-    ++stats_.snapshotsOffered;
+    ++m_stats.snapshotsOffered;
     return SnapshotOfferResult::e_ok;
 }
 
 void RollbackPeer::SendSnapshot(Spectator& s, uint64_t now) {
-    const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
+    const size_t limit = m_transport.MaxDatagram();  // a relay takes its header from it
     size_t sent = 0;
     if (s.sender.Active()) {
         static_assert(kSnapshotChunkBytes == kRbSnapshotChunkBytes, "SnapshotSender chunks must match the wire");
         RbSnapshotChunk chunk;
-        sent = s.sender.Pump(now, config_.snapshotResendMicros, config_.snapshotChunksPerFlush,
-                             [&](const SnapshotChunk& c) {
-                                 chunk.frame = c.frame;
-                                 chunk.totalSize = c.totalSize;
-                                 chunk.checksum = s.checksum;
-                                 chunk.index = c.index;
-                                 chunk.bytes = c.bytes;
-                                 writer_.Begin(RollbackHeader{kRollbackProtocolVersion, config_.matchId});
-                                 if (writer_.Add(chunk, shape_, limit) && transport_.Send(s.peer, writer_.Bytes())) {
-                                     ++stats_.datagramsSent;
-                                     ++stats_.snapshotChunksSent;
-                                 }
-                             });
+        sent = s.sender.Pump(
+            now, m_config.snapshotResendMicros, m_config.snapshotChunksPerFlush, [&](const SnapshotChunk& c) {
+                chunk.frame = c.frame;
+                chunk.totalSize = c.totalSize;
+                chunk.checksum = s.checksum;
+                chunk.index = c.index;
+                chunk.bytes = c.bytes;
+                m_writer.Begin(RollbackHeader{kRollbackProtocolVersion, m_config.matchId});
+                if (m_writer.Add(chunk, m_shape, limit) && m_transport.Send(s.peer, m_writer.Bytes())) {
+                    ++m_stats.datagramsSent;
+                    ++m_stats.snapshotChunksSent;
+                }
+            });
     }
     if (sent > 0) return;
     // Waiting for the game's offer or for acks: the spectator still hears from its host (and
     // its hello, which the full chunk datagrams have no room for).
     BeginDatagram(true, limit);
-    writer_.Add(RbKeepAlive{}, shape_, limit);
-    if (transport_.Send(s.peer, writer_.Bytes())) ++stats_.datagramsSent;
+    m_writer.Add(RbKeepAlive{}, m_shape, limit);
+    if (m_transport.Send(s.peer, m_writer.Bytes())) ++m_stats.datagramsSent;
 }
 
 void RollbackPeer::SendSpectator(Spectator& s) {
-    const size_t limit = transport_.MaxDatagram();  // a relay takes its header from it
+    const size_t limit = m_transport.MaxDatagram();  // a relay takes its header from it
     BeginDatagram(true, limit);
-    const size_t width = shape_.inputBytes;
-    const size_t row = width * shape_.players;
-    const int32_t confirmed = session_.ConfirmedFrame();
+    const size_t width = m_shape.inputBytes;
+    const size_t row = width * m_shape.players;
+    const int32_t confirmed = m_session.ConfirmedFrame();
     const int32_t maxRun = static_cast<int32_t>(std::min<size_t>(kRollbackMaxRun, kSpectatorRunBytes / row));
     RbConfirmed c;
     c.firstFrame = s.acked;
     int32_t count = 0;
     for (int32_t f = s.acked; f < confirmed && count < maxRun; ++f, ++count) {
         bool kept = true;
-        for (uint32_t p = 0; p < shape_.players && kept; ++p) {
-            const auto one = session_.ConfirmedInput(p, f);
+        for (uint32_t p = 0; p < m_shape.players && kept; ++p) {
+            const auto one = m_session.ConfirmedInput(p, f);
             if (one.size() == width) {
                 c.bytes.insert(c.bytes.end(), one.begin(), one.end());
-            } else if (session_.IsDisconnected(p) && f >= session_.ReceivedFrame(p)) {
+            } else if (m_session.IsDisconnected(p) && f >= m_session.ReceivedFrame(p)) {
                 c.bytes.insert(c.bytes.end(), width, 0);
             } else {
                 kept = false;
@@ -130,14 +130,14 @@ void RollbackPeer::SendSpectator(Spectator& s) {
         }
     }
     if (count > 0) {
-        writer_.Add(c, shape_, limit);
+        m_writer.Add(c, m_shape, limit);
     } else {
         // A late joiner whose next frame's inputs the session dropped (it took too long to
         // fetch its snapshot) can never catch up from here: it needs a newer snapshot.
         if (s.lateJoin && s.acked < confirmed && !InputsKept(s.acked)) s.wantsSnapshot = true;
-        writer_.Add(RbKeepAlive{}, shape_, limit);
+        m_writer.Add(RbKeepAlive{}, m_shape, limit);
     }
-    if (transport_.Send(s.peer, writer_.Bytes())) ++stats_.datagramsSent;
+    if (m_transport.Send(s.peer, m_writer.Bytes())) ++m_stats.datagramsSent;
 }
 
 }  // namespace lockbox::net

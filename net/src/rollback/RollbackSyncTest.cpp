@@ -41,8 +41,8 @@ struct SyncTestSession::Impl : SyncTestGame {
 
 SyncTestSession::SyncTestSession(b2World& world, replay::Game& game, SyncTestInputSource inputs,
                                  SyncTestSessionConfig config)
-    : impl_(std::make_unique<Impl>(world, game, std::move(inputs), config)) {
-    SyncTestSessionConfig& c = impl_->config;
+    : m_impl(std::make_unique<Impl>(world, game, std::move(inputs), config)) {
+    SyncTestSessionConfig& c = m_impl->config;
     c.players = std::clamp<uint32_t>(c.players, 1, kRollbackMaxPlayers);
     c.inputBytes = std::clamp<uint32_t>(c.inputBytes, 1, kRollbackMaxInputBytes);
     c.checkDistance = std::clamp<uint32_t>(c.checkDistance, 1, kRollbackMaxWindow);
@@ -62,10 +62,10 @@ SyncTestSessionConfig SyncTestConfigFrom(const RollbackConfig& config, WorldStep
 
 SyncTestResult SyncTestSession::Run(int32_t frames) {
     SyncTestConfig c;
-    c.checkDistance = static_cast<int32>(impl_->config.checkDistance);
-    c.mispredict = impl_->config.mispredict;
-    c.seed = impl_->config.seed;
-    SyncTest test(impl_->world, *impl_, c);
+    c.checkDistance = static_cast<int32>(m_impl->config.checkDistance);
+    c.mispredict = m_impl->config.mispredict;
+    c.seed = m_impl->config.seed;
+    SyncTest test(m_impl->world, *m_impl, c);
     return test.Run(frames);
 }
 

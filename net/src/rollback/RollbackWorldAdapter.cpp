@@ -14,25 +14,25 @@
 namespace lockbox::net {
 
 WorldGameAdapter::WorldGameAdapter(b2World& world, replay::Game& game, WorldStepSettings settings, uint32_t slots)
-    : world_(world), game_(game), settings_(settings), slots_(slots < 3 ? 3 : slots) {
-    if (settings_.tickRate == 0) settings_.tickRate = 1;
+    : m_world(world), m_game(game), m_settings(settings), m_slots(slots < 3 ? 3 : slots) {
+    if (m_settings.tickRate == 0) m_settings.tickRate = 1;
 }
 
-uint64_t WorldGameAdapter::StateHash() const { return FoldedStateHash(world_, game_); }
+uint64_t WorldGameAdapter::StateHash() const { return FoldedStateHash(m_world, m_game); }
 
 bool WorldGameAdapter::ConfirmedSnapshot(const RollbackSession& session, int32_t& frame,
                                          std::vector<uint8_t>& out) const {
     const int32_t f = std::min(session.ConfirmedFrame(), session.CurrentFrame());
     if (f < 0) return false;
-    const Slot& s = slots_[static_cast<size_t>(f) % slots_.size()];
+    const Slot& s = m_slots[static_cast<size_t>(f) % m_slots.size()];
     if (s.frame != f || s.user.size() > UINT32_MAX) return false;
     // Slots hold rollback frames, which only their world can read: the world visits frame F
     // for a portable image and comes back (restore then step gives the same bits as step).
-    world_.SaveFrame(scratch_);
-    if (!world_.RestoreFrame(s.state).ok()) return false;
+    m_world.SaveFrame(m_scratch);
+    if (!m_world.RestoreFrame(s.state).ok()) return false;
     std::vector<uint8_t> image;
-    world_.Save(image);
-    const bool back = world_.RestoreFrame(scratch_).ok();
+    m_world.Save(image);
+    const bool back = m_world.RestoreFrame(m_scratch).ok();
     if (!back || image.size() > UINT32_MAX) return false;
     frame = f;
     PackStateBlob(image, s.user, out);
@@ -48,25 +48,25 @@ bool WorldGameAdapter::Execute(RollbackSession& session, std::span<const Rollbac
     for (const RollbackRequest& r : requests) {
         if (const auto* save = std::get_if<SaveState>(&r)) {
             if (save->frame < 0) return false;
-            Slot& s = slots_[static_cast<size_t>(save->frame) % slots_.size()];
+            Slot& s = m_slots[static_cast<size_t>(save->frame) % m_slots.size()];
             s.frame = save->frame;
-            world_.SaveFrame(s.state);
-            game_.SaveUserState(s.user);
+            m_world.SaveFrame(s.state);
+            m_game.SaveUserState(s.user);
             // The session asks for hashes of the frames it compares (every desyncInterval-th):
             // a walk of the world, a few percent of a step, on those frames only.
-            if (save->wantHash) session.ReportHash(save->frame, FoldUserState(b2WorldHash(world_), s.user));
+            if (save->wantHash) session.ReportHash(save->frame, FoldUserState(b2WorldHash(m_world), s.user));
         } else if (const auto* load = std::get_if<LoadState>(&r)) {
             if (load->frame < 0) return false;
-            Slot& s = slots_[static_cast<size_t>(load->frame) % slots_.size()];
+            Slot& s = m_slots[static_cast<size_t>(load->frame) % m_slots.size()];
             if (s.frame != load->frame) return false;
-            if (!world_.RestoreFrame(s.state).ok()) return false;
-            game_.LoadUserState(s.user);
+            if (!m_world.RestoreFrame(s.state).ok()) return false;
+            m_game.LoadUserState(s.user);
             rollingBack = true;
         } else if (const auto* adv = std::get_if<AdvanceRequest>(&r)) {
-            StepConfirmedFrame(world_, game_, adv->frame, adv->inputs, settings_.tickRate, settings_.velocityIterations,
-                               settings_.positionIterations);
-            lastAdvanced_ = adv->frame;
-            if (rollingBack) ++resimulated_;
+            StepConfirmedFrame(m_world, m_game, adv->frame, adv->inputs, m_settings.tickRate,
+                               m_settings.velocityIterations, m_settings.positionIterations);
+            m_lastAdvanced = adv->frame;
+            if (rollingBack) ++m_resimulated;
         }
     }
     return true;

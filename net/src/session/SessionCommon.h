@@ -22,23 +22,23 @@ namespace lockbox::net {
 class RttEstimator {
 public:
     void Sample(uint64_t micros) noexcept {
-        if (samples_ == 0) {
-            srtt_ = micros;
-            var_ = micros / 2;
+        if (m_samples == 0) {
+            m_srtt = micros;
+            m_var = micros / 2;
         } else {
-            const uint64_t dev = micros > srtt_ ? micros - srtt_ : srtt_ - micros;
-            var_ = var_ - var_ / 4 + dev / 4;
-            srtt_ = srtt_ - srtt_ / 8 + micros / 8;
+            const uint64_t dev = micros > m_srtt ? micros - m_srtt : m_srtt - micros;
+            m_var = m_var - m_var / 4 + dev / 4;
+            m_srtt = m_srtt - m_srtt / 8 + micros / 8;
         }
-        ++samples_;
+        ++m_samples;
     }
-    uint64_t Srtt() const noexcept { return srtt_; }
-    uint64_t Var() const noexcept { return var_; }
-    uint32_t Samples() const noexcept { return samples_; }
+    uint64_t Srtt() const noexcept { return m_srtt; }
+    uint64_t Var() const noexcept { return m_var; }
+    uint32_t Samples() const noexcept { return m_samples; }
 
 private:
-    uint64_t srtt_ = 0, var_ = 0;
-    uint32_t samples_ = 0;
+    uint64_t m_srtt = 0, m_var = 0;
+    uint32_t m_samples = 0;
 };
 
 /// Microseconds per frame, rounded down (tickRate >= 1).

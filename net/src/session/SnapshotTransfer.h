@@ -35,12 +35,12 @@ public:
     void Start(int32_t frame, CompressedSnapshot compressed);
     /// Forgets the current snapshot.
     void Stop() noexcept;
-    bool Active() const noexcept { return blob_ != nullptr; }
+    bool Active() const noexcept { return m_blob != nullptr; }
     /// True when every chunk was acknowledged.
-    bool Done() const noexcept { return Active() && acked_ == chunkCount_; }
-    int32_t Frame() const noexcept { return frame_; }
+    bool Done() const noexcept { return Active() && m_acked == m_chunkCount; }
+    int32_t Frame() const noexcept { return m_frame; }
     /// Chunks of the current snapshot (of its compressed bytes).
-    uint32_t ChunkCount() const noexcept { return chunkCount_; }
+    uint32_t ChunkCount() const noexcept { return m_chunkCount; }
     /// Marks a chunk delivered (acks of another frame or out of range are ignored); `now` (the
     /// clock Pump is given) samples the round trip of a chunk that was sent once.
     void OnAck(const SnapshotAck& ack, uint64_t now) noexcept;
@@ -53,51 +53,51 @@ public:
     uint64_t ResendMicros(uint64_t floor) const noexcept;
 
 private:
-    int32_t frame_ = 0;
-    CompressedSnapshot blob_;  ///< the compressed snapshot (shared, never modified); null: inactive
-    uint32_t chunkCount_ = 0, acked_ = 0;
-    std::vector<uint8_t> ackedFlags_;
-    std::vector<uint64_t> sentAt_;  ///< 0: never sent
-    std::vector<uint8_t> sends_;    ///< sends per chunk, saturating at 2 (only 1 gives a sample)
-    RttEstimator rtt_;              ///< kept across snapshots to the same receiver
-    uint32_t cursor_ = 0;           ///< round-robin start, so resends do not starve later chunks
-    SnapshotChunk chunk_;
+    int32_t m_frame = 0;
+    CompressedSnapshot m_blob;  ///< the compressed snapshot (shared, never modified); null: inactive
+    uint32_t m_chunkCount = 0, m_acked = 0;
+    std::vector<uint8_t> m_ackedFlags;
+    std::vector<uint64_t> m_sentAt;  ///< 0: never sent
+    std::vector<uint8_t> m_sends;    ///< sends per chunk, saturating at 2 (only 1 gives a sample)
+    RttEstimator m_rtt;              ///< kept across snapshots to the same receiver
+    uint32_t m_cursor = 0;           ///< round-robin start, so resends do not starve later chunks
+    SnapshotChunk m_chunk;
 };
 
 /// Reassembles one snapshot and decompresses it.
 class SnapshotReceiver {
 public:
     /// `maxBytes`: the largest decompressed snapshot accepted (at most kMaxSnapshotBytes).
-    explicit SnapshotReceiver(uint32_t maxBytes = kMaxSnapshotBytes) noexcept : maxBytes_(maxBytes) {}
+    explicit SnapshotReceiver(uint32_t maxBytes = kMaxSnapshotBytes) noexcept : m_maxBytes(maxBytes) {}
 
     /// Takes a chunk. A chunk of a newer frame (or a different size) restarts the assembly; one
     /// of an older frame is ignored. Returns true when the chunk belongs to the current
     /// snapshot (the caller acks it). The last chunk decompresses the snapshot.
     bool Accept(const SnapshotChunk& chunk);
-    bool Active() const noexcept { return active_; }
+    bool Active() const noexcept { return m_active; }
     /// Every chunk arrived: Blob() is the snapshot, or Failed().
-    bool Complete() const noexcept { return active_ && received_ == chunkCount_; }
+    bool Complete() const noexcept { return m_active && m_received == m_chunkCount; }
     /// Complete, but the bytes are not one whole zstd frame of 1 .. maxBytes bytes (a corrupt
     /// or hostile sender): Blob() is empty. Reset, then ask for the snapshot again.
-    bool Failed() const noexcept { return Complete() && failed_; }
+    bool Failed() const noexcept { return Complete() && m_failed; }
     /// Distinct chunks of the current snapshot received so far.
-    uint32_t Received() const noexcept { return received_; }
-    int32_t Frame() const noexcept { return frame_; }
+    uint32_t Received() const noexcept { return m_received; }
+    int32_t Frame() const noexcept { return m_frame; }
     /// The decompressed snapshot once Complete() (empty before, and when Failed()).
-    std::span<const uint8_t> Blob() const noexcept { return plain_; }
+    std::span<const uint8_t> Blob() const noexcept { return m_plain; }
     void Reset() noexcept;
 
 private:
     void Decompress();
 
-    uint32_t maxBytes_;
-    bool active_ = false;
-    bool failed_ = false;
-    int32_t frame_ = 0;
-    uint32_t total_ = 0, chunkCount_ = 0, received_ = 0;
-    std::vector<uint8_t> blob_;   ///< compressed, as the chunks arrive
-    std::vector<uint8_t> plain_;  ///< decompressed, once complete
-    std::vector<uint8_t> have_;
+    uint32_t m_maxBytes;
+    bool m_active = false;
+    bool m_failed = false;
+    int32_t m_frame = 0;
+    uint32_t m_total = 0, m_chunkCount = 0, m_received = 0;
+    std::vector<uint8_t> m_blob;   ///< compressed, as the chunks arrive
+    std::vector<uint8_t> m_plain;  ///< decompressed, once complete
+    std::vector<uint8_t> m_have;
 };
 
 }  // namespace lockbox::net

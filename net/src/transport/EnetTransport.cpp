@@ -87,48 +87,48 @@ std::unique_ptr<EnetTransport> EnetTransport::Client(std::string* error, size_t 
     return std::unique_ptr<EnetTransport>(new EnetTransport(host, maxPeers));
 }
 
-EnetTransport::EnetTransport(ENetHost* host, size_t maxPeers) : host_(host), slots_(maxPeers) {}
+EnetTransport::EnetTransport(ENetHost* host, size_t maxPeers) : m_host(host), m_slots(maxPeers) {}
 
 EnetTransport::~EnetTransport() {
     // Tell every peer now (one unreliable disconnect each) rather than let them time out.
-    for (Slot& slot : slots_) {
+    for (Slot& slot : m_slots) {
         if (slot.peer == nullptr) continue;
         slot.peer->data = nullptr;
         enet_peer_disconnect_now(slot.peer, 0);
     }
-    enet_host_destroy(host_);
+    enet_host_destroy(m_host);
 }
 
 PeerId EnetTransport::FreeSlot() const noexcept {
-    for (size_t i = 0; i < slots_.size(); ++i)
-        if (slots_[i].peer == nullptr) return static_cast<PeerId>(i);
+    for (size_t i = 0; i < m_slots.size(); ++i)
+        if (m_slots[i].peer == nullptr) return static_cast<PeerId>(i);
     return kNoPeer;
 }
 
 void EnetTransport::Bind(PeerId id, ENetPeer* peer) {
-    slots_[id] = Slot{};
-    slots_[id].peer = peer;
+    m_slots[id] = Slot{};
+    m_slots[id].peer = peer;
     peer->data = SlotTag(id);
 }
 
 void EnetTransport::Release(PeerId id) {
-    if (slots_[id].peer != nullptr) slots_[id].peer->data = nullptr;
-    slots_[id] = Slot{};
+    if (m_slots[id].peer != nullptr) m_slots[id].peer->data = nullptr;
+    m_slots[id] = Slot{};
 }
 
 void EnetTransport::OnConnected(PeerId id) {
-    Slot& slot = slots_[id];
+    Slot& slot = m_slots[id];
     slot.connected = true;
     // Keep the unreliable throttle pinned at the scale on this end; the call also sends the
     // same parameters to the remote end, so its side of the connection never throttles either.
     // The throttle starts at the scale (enet_peer_reset), so pinning the steps is enough.
     enet_peer_throttle_configure(slot.peer, ENET_PEER_PACKET_THROTTLE_INTERVAL, ENET_PEER_PACKET_THROTTLE_SCALE, 0);
     for (auto& [delivery, bytes] : slot.pending) {
-        if (!SendNow(slot.peer, bytes, delivery)) ++stats_.sendFailures;
+        if (!SendNow(slot.peer, bytes, delivery)) ++m_stats.sendFailures;
     }
     slot.pending.clear();
-    enet_host_flush(host_);
-    connected_.push_back(id);
+    enet_host_flush(m_host);
+    m_connected.push_back(id);
 }
 
 PeerId EnetTransport::Connect(const std::string& host, uint16_t port, std::string* error) {
@@ -143,37 +143,37 @@ PeerId EnetTransport::Connect(const std::string& host, uint16_t port, std::strin
         SetError(error, "peer table full");
         return kNoPeer;
     }
-    ENetPeer* peer = enet_host_connect(host_, &address, kChannels, 0);
+    ENetPeer* peer = enet_host_connect(m_host, &address, kChannels, 0);
     if (peer == nullptr) {
         SetError(error, "enet_host_connect failed (no free ENet peer)");
         return kNoPeer;
     }
     Bind(id, peer);
-    enet_host_flush(host_);
+    enet_host_flush(m_host);
     return id;
 }
 
 uint16_t EnetTransport::LocalPort() const noexcept {
     ENetAddress address{};
-    if (enet_socket_get_address(host_->socket, &address) != 0) return 0;
+    if (enet_socket_get_address(m_host->socket, &address) != 0) return 0;
     return address.port;
 }
 
 bool EnetTransport::IsConnected(PeerId peer) const noexcept {
-    return peer < slots_.size() && slots_[peer].peer != nullptr && slots_[peer].connected;
+    return peer < m_slots.size() && m_slots[peer].peer != nullptr && m_slots[peer].connected;
 }
 
 uint32_t EnetTransport::RoundTripMillis(PeerId peer) const noexcept {
-    return IsConnected(peer) ? slots_[peer].peer->roundTripTime : 0;
+    return IsConnected(peer) ? m_slots[peer].peer->roundTripTime : 0;
 }
 
 uint32_t EnetTransport::PacketThrottle(PeerId peer) const noexcept {
-    return IsConnected(peer) ? slots_[peer].peer->packetThrottle : 0;
+    return IsConnected(peer) ? m_slots[peer].peer->packetThrottle : 0;
 }
 
-std::vector<PeerId> EnetTransport::TakeConnected() { return std::exchange(connected_, {}); }
+std::vector<PeerId> EnetTransport::TakeConnected() { return std::exchange(m_connected, {}); }
 
-std::vector<PeerId> EnetTransport::TakeDisconnected() { return std::exchange(disconnected_, {}); }
+std::vector<PeerId> EnetTransport::TakeDisconnected() { return std::exchange(m_disconnected, {}); }
 
 bool EnetTransport::SendNow(ENetPeer* peer, std::span<const uint8_t> bytes, Delivery delivery) {
     const bool reliable = delivery == Delivery::e_reliable;
@@ -188,28 +188,28 @@ bool EnetTransport::SendNow(ENetPeer* peer, std::span<const uint8_t> bytes, Deli
 }
 
 bool EnetTransport::Send(PeerId peer, std::span<const uint8_t> bytes, Delivery delivery) {
-    if (peer >= slots_.size() || slots_[peer].peer == nullptr || bytes.empty() || bytes.size() > MaxDatagram()) {
-        ++stats_.sendFailures;
+    if (peer >= m_slots.size() || m_slots[peer].peer == nullptr || bytes.empty() || bytes.size() > MaxDatagram()) {
+        ++m_stats.sendFailures;
         return false;
     }
-    Slot& slot = slots_[peer];
+    Slot& slot = m_slots[peer];
     if (!slot.connected) {
         if (slot.pending.size() >= kMaxPendingPerPeer) {
-            ++stats_.sendFailures;
+            ++m_stats.sendFailures;
             return false;
         }
         slot.pending.emplace_back(delivery, std::vector<uint8_t>(bytes.begin(), bytes.end()));
     } else {
         if (!SendNow(slot.peer, bytes, delivery)) {
-            ++stats_.sendFailures;
+            ++m_stats.sendFailures;
             return false;
         }
         // Out now rather than at the next Poll: an input waiting a tick is latency.
-        enet_host_flush(host_);
+        enet_host_flush(m_host);
     }
-    stats_.datagramsSent += 1;
-    stats_.payloadBytesSent += bytes.size();
-    stats_.wireBytesSent += bytes.size() + kWireOverhead;
+    m_stats.datagramsSent += 1;
+    m_stats.payloadBytesSent += bytes.size();
+    m_stats.wireBytesSent += bytes.size() + kWireOverhead;
     return true;
 }
 
@@ -217,7 +217,7 @@ size_t EnetTransport::Poll(std::vector<Datagram>& out) {
     size_t count = 0;
     ENetEvent event{};
     for (size_t handled = 0; handled < kMaxEventsPerPoll; ++handled) {
-        if (enet_host_service(host_, &event, 0) <= 0) break;
+        if (enet_host_service(m_host, &event, 0) <= 0) break;
         const PeerId id = SlotOf(event.peer);
         switch (event.type) {
             case ENET_EVENT_TYPE_CONNECT:
@@ -229,20 +229,20 @@ size_t EnetTransport::Poll(std::vector<Datagram>& out) {
                     Bind(free, event.peer);
                     OnConnected(free);
                 } else {
-                    ++stats_.droppedUnknown;
+                    ++m_stats.droppedUnknown;
                     enet_peer_disconnect_now(event.peer, 0);
                 }
                 break;
             case ENET_EVENT_TYPE_RECEIVE: {
                 ENetPacket* packet = event.packet;
                 if (id == kNoPeer) {
-                    ++stats_.droppedUnknown;
+                    ++m_stats.droppedUnknown;
                 } else if (packet->dataLength == 0 || packet->dataLength > MaxDatagram()) {
-                    ++droppedMalformed_;
+                    ++m_droppedMalformed;
                 } else {
                     out.push_back(Datagram{id, std::vector<uint8_t>(packet->data, packet->data + packet->dataLength)});
-                    stats_.datagramsReceived += 1;
-                    stats_.payloadBytesReceived += packet->dataLength;
+                    m_stats.datagramsReceived += 1;
+                    m_stats.payloadBytesReceived += packet->dataLength;
                     ++count;
                 }
                 enet_packet_destroy(packet);
@@ -251,7 +251,7 @@ size_t EnetTransport::Poll(std::vector<Datagram>& out) {
             case ENET_EVENT_TYPE_DISCONNECT:
                 if (id != kNoPeer) {
                     Release(id);
-                    disconnected_.push_back(id);
+                    m_disconnected.push_back(id);
                 }
                 break;
             case ENET_EVENT_TYPE_NONE: break;
@@ -268,17 +268,17 @@ uint64_t EnetTransport::NowMicros() const {
 }
 
 void EnetTransport::Disconnect(PeerId peer) {
-    if (peer >= slots_.size() || slots_[peer].peer == nullptr) return;
-    ENetPeer* enetPeer = slots_[peer].peer;
+    if (peer >= m_slots.size() || m_slots[peer].peer == nullptr) return;
+    ENetPeer* enetPeer = m_slots[peer].peer;
     Release(peer);
     enet_peer_disconnect(enetPeer, 0);
-    enet_host_flush(host_);
+    enet_host_flush(m_host);
 }
 
 bool EnetTransport::WaitReadable(int timeoutMillis) const {
     const int timeout = timeoutMillis < 0 ? 0 : (timeoutMillis > 60000 ? 60000 : timeoutMillis);
     enet_uint32 condition = ENET_SOCKET_WAIT_RECEIVE;
-    if (enet_socket_wait(host_->socket, &condition, static_cast<enet_uint32>(timeout)) != 0) return false;
+    if (enet_socket_wait(m_host->socket, &condition, static_cast<enet_uint32>(timeout)) != 0) return false;
     return (condition & ENET_SOCKET_WAIT_RECEIVE) != 0;
 }
 

@@ -6,73 +6,73 @@
 namespace lockbox::net {
 
 RelayServer::RelayServer(Transport& transport, RelayServerConfig config)
-    : transport_(transport), config_(std::move(config)) {
-    if (config_.tokens.size() < 2 || config_.tokens.size() > kRelayMaxSlots)
+    : m_transport(transport), m_config(std::move(config)) {
+    if (m_config.tokens.size() < 2 || m_config.tokens.size() > kRelayMaxSlots)
         throw std::invalid_argument("RelayServer: the slot count (tokens) must be in 2 .. 32");
-    slotPeer_.assign(config_.tokens.size(), kNoPeer);
+    m_slotPeer.assign(m_config.tokens.size(), kNoPeer);
 }
 
 PeerId RelayServer::SlotPeer(uint32_t slot) const noexcept {
-    return slot < slotPeer_.size() ? slotPeer_[slot] : kNoPeer;
+    return slot < m_slotPeer.size() ? m_slotPeer[slot] : kNoPeer;
 }
 
 int RelayServer::SlotOf(PeerId peer) const noexcept {
     // A handful of slots: a linear scan in slot order.
-    for (size_t s = 0; s < slotPeer_.size(); ++s)
-        if (slotPeer_[s] == peer) return static_cast<int>(s);
+    for (size_t s = 0; s < m_slotPeer.size(); ++s)
+        if (m_slotPeer[s] == peer) return static_cast<int>(s);
     return -1;
 }
 
 void RelayServer::Poll() {
-    inbox_.clear();
-    transport_.Poll(inbox_);
-    for (const Datagram& d : inbox_) Handle(d);
+    m_inbox.clear();
+    m_transport.Poll(m_inbox);
+    for (const Datagram& d : m_inbox) Handle(d);
 }
 
 void RelayServer::Handle(const Datagram& d) {
     const std::optional<RelayFrame> f = ParseRelayFrame(d.bytes);
-    if (!f || f->matchId != config_.matchId || f->slot >= slotPeer_.size()) {
-        ++stats_.refused;
+    if (!f || f->matchId != m_config.matchId || f->slot >= m_slotPeer.size()) {
+        ++m_stats.refused;
         return;
     }
     if (f->kind == RelayKind::e_join) {
-        if (f->token != config_.tokens[f->slot]) {
-            ++stats_.refused;
+        if (f->token != m_config.tokens[f->slot]) {
+            ++m_stats.refused;
             return;
         }
         const int held = SlotOf(d.peer);
         if (held >= 0 && held != f->slot) {
             // One address, one slot: a member cannot hold two seats.
-            ++stats_.refused;
+            ++m_stats.refused;
             return;
         }
-        if (slotPeer_[f->slot] != d.peer) {
-            if (slotPeer_[f->slot] != kNoPeer) ++stats_.rebinds;
-            slotPeer_[f->slot] = d.peer;
+        if (m_slotPeer[f->slot] != d.peer) {
+            if (m_slotPeer[f->slot] != kNoPeer) ++m_stats.rebinds;
+            m_slotPeer[f->slot] = d.peer;
         }
-        ++stats_.joins;
+        ++m_stats.joins;
         // Answer every join: the member repeats it until a welcome gets through.
-        WriteRelayFrame(out_, RelayKind::e_welcome, config_.matchId, f->slot);
-        if (!transport_.Send(d.peer, out_, Delivery::e_reliable)) ++stats_.sendFailures;
+        WriteRelayFrame(m_out, RelayKind::e_welcome, m_config.matchId, f->slot);
+        if (!m_transport.Send(d.peer, m_out, Delivery::e_reliable)) ++m_stats.sendFailures;
         return;
     }
     if (f->kind != RelayKind::e_toSlot) {
-        ++stats_.refused;  // welcome and from-slot only travel relay -> member
+        ++m_stats.refused;  // welcome and from-slot only travel relay -> member
         return;
     }
     const int from = SlotOf(d.peer);
-    const PeerId to = slotPeer_[f->slot];
+    const PeerId to = m_slotPeer[f->slot];
     if (from < 0 || to == kNoPeer || static_cast<int>(f->slot) == from) {
-        ++stats_.refused;
+        ++m_stats.refused;
         return;
     }
-    WriteRelayFrame(out_, RelayKind::e_fromSlot, config_.matchId, static_cast<uint8_t>(from), 0, f->payload);
-    if (!transport_.Send(to, out_)) {
-        ++stats_.sendFailures;
+    WriteRelayFrame(m_out, RelayKind::e_fromSlot, m_config.matchId, static_cast<uint8_t>(from), 0, f->payload);
+    if (!m_transport.Send(to, m_out)) {
+        ++m_stats.sendFailures;
         return;
     }
-    ++stats_.forwarded;
-    stats_.forwardedBytes += f->payload.size();
+    ++m_stats.forwarded;
+    m_stats.forwardedBytes += f->payload.size();
 }
 
 }  // namespace lockbox::net

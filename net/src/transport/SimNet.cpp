@@ -30,17 +30,17 @@ uint64_t SatAdd(uint64_t a, uint64_t b) {
 class Rng {
 public:
     explicit Rng(uint64_t seed = 0) {
-        for (uint64_t& word : s_) word = SplitMix(seed);
+        for (uint64_t& word : m_s) word = SplitMix(seed);
     }
     uint64_t Next() {
-        const uint64_t result = Rotl(s_[1] * 5, 7) * 9;
-        const uint64_t t = s_[1] << 17;
-        s_[2] ^= s_[0];
-        s_[3] ^= s_[1];
-        s_[1] ^= s_[2];
-        s_[0] ^= s_[3];
-        s_[2] ^= t;
-        s_[3] = Rotl(s_[3], 45);
+        const uint64_t result = Rotl(m_s[1] * 5, 7) * 9;
+        const uint64_t t = m_s[1] << 17;
+        m_s[2] ^= m_s[0];
+        m_s[3] ^= m_s[1];
+        m_s[1] ^= m_s[2];
+        m_s[0] ^= m_s[3];
+        m_s[2] ^= t;
+        m_s[3] = Rotl(m_s[3], 45);
         return result;
     }
     // True with probability ppm / 1e6. The modulo bias (2^64 mod 1e6 out of 2^64) is negligible.
@@ -54,7 +54,7 @@ public:
 
 private:
     static uint64_t Rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-    uint64_t s_[4];
+    uint64_t m_s[4];
 };
 
 struct Window {
@@ -165,19 +165,19 @@ struct SimNet::Impl {
     }
 
     bool Send(SimEndpoint& sender, PeerId to, std::span<const uint8_t> bytes) {
-        const PeerId from = sender.index_;
+        const PeerId from = sender.m_index;
         if (to >= endpoints.size() || to == from || bytes.empty() || bytes.size() > sender.MaxDatagram()) {
-            ++sender.stats_.sendFailures;
+            ++sender.m_stats.sendFailures;
             return false;
         }
         const uint64_t wire = bytes.size() + kWireOverhead;
-        sender.stats_.datagramsSent += 1;
-        sender.stats_.payloadBytesSent += bytes.size();
-        sender.stats_.wireBytesSent += wire;
+        sender.m_stats.datagramsSent += 1;
+        sender.m_stats.payloadBytesSent += bytes.size();
+        sender.m_stats.wireBytesSent += wire;
         LinkState& link = LinkFor(from, to);
         link.stats.sent += 1;
         link.stats.wireBytes += wire;
-        if (sender.down_) {
+        if (sender.m_down) {
             ++link.stats.downDropped;
             return true;
         }
@@ -222,8 +222,8 @@ struct SimNet::Impl {
     }
 
     size_t Poll(SimEndpoint& receiver, std::vector<Datagram>& out) {
-        const PeerId to = receiver.index_;
-        if (receiver.down_) {
+        const PeerId to = receiver.m_index;
+        if (receiver.m_down) {
             DropDue(to);
             return 0;
         }
@@ -233,8 +233,8 @@ struct SimNet::Impl {
             std::pop_heap(heap.begin(), heap.end(), Later{});
             Packet& item = heap.back();
             ++item.link->stats.delivered;
-            receiver.stats_.datagramsReceived += 1;
-            receiver.stats_.payloadBytesReceived += item.bytes.size();
+            receiver.m_stats.datagramsReceived += 1;
+            receiver.m_stats.payloadBytesReceived += item.bytes.size();
             out.push_back(Datagram{item.from, std::move(item.bytes)});
             heap.pop_back();
             --inFlight;
@@ -244,73 +244,73 @@ struct SimNet::Impl {
     }
 };
 
-SimNet::SimNet(uint64_t seed) : impl_(std::make_unique<Impl>(seed)) {}
+SimNet::SimNet(uint64_t seed) : m_impl(std::make_unique<Impl>(seed)) {}
 SimNet::~SimNet() = default;
 
 SimEndpoint& SimNet::AddEndpoint() {
-    const auto index = static_cast<PeerId>(impl_->endpoints.size());
+    const auto index = static_cast<PeerId>(m_impl->endpoints.size());
     if (index == kNoPeer) throw std::length_error("SimNet: too many endpoints");
-    impl_->endpoints.push_back(std::unique_ptr<SimEndpoint>(new SimEndpoint(*impl_, index)));
-    impl_->inboxes.emplace_back();
-    return *impl_->endpoints.back();
+    m_impl->endpoints.push_back(std::unique_ptr<SimEndpoint>(new SimEndpoint(*m_impl, index)));
+    m_impl->inboxes.emplace_back();
+    return *m_impl->endpoints.back();
 }
 
-SimEndpoint& SimNet::Endpoint(PeerId index) { return *impl_->endpoints.at(index); }
+SimEndpoint& SimNet::Endpoint(PeerId index) { return *m_impl->endpoints.at(index); }
 
-size_t SimNet::EndpointCount() const noexcept { return impl_->endpoints.size(); }
+size_t SimNet::EndpointCount() const noexcept { return m_impl->endpoints.size(); }
 
 void SimNet::SetLink(PeerId from, PeerId to, const LinkProfile& profile) {
-    impl_->CheckPair(from, to);
-    impl_->LinkFor(from, to).profile = profile;
+    m_impl->CheckPair(from, to);
+    m_impl->LinkFor(from, to).profile = profile;
 }
 
 void SimNet::SetAllLinks(const LinkProfile& profile) {
-    impl_->defaultProfile = profile;
-    for (auto& entry : impl_->links) entry.second.profile = profile;
+    m_impl->defaultProfile = profile;
+    for (auto& entry : m_impl->links) entry.second.profile = profile;
 }
 
 void SimNet::Blackout(PeerId from, PeerId to, uint64_t startMicros, uint64_t endMicros) {
-    impl_->CheckPair(from, to);
-    if (endMicros > startMicros) impl_->LinkFor(from, to).blackouts.push_back(Window{startMicros, endMicros});
+    m_impl->CheckPair(from, to);
+    if (endMicros > startMicros) m_impl->LinkFor(from, to).blackouts.push_back(Window{startMicros, endMicros});
 }
 
-uint64_t SimNet::NowMicros() const noexcept { return impl_->now; }
+uint64_t SimNet::NowMicros() const noexcept { return m_impl->now; }
 
 void SimNet::Advance(uint64_t micros) {
-    impl_->now = SatAdd(impl_->now, micros);
-    for (const auto& endpoint : impl_->endpoints)
-        if (endpoint->down_) impl_->DropDue(endpoint->index_);
+    m_impl->now = SatAdd(m_impl->now, micros);
+    for (const auto& endpoint : m_impl->endpoints)
+        if (endpoint->m_down) m_impl->DropDue(endpoint->m_index);
 }
 
 uint64_t SimNet::NextDueMicros() const noexcept {
     uint64_t next = std::numeric_limits<uint64_t>::max();
-    for (const auto& heap : impl_->inboxes)
+    for (const auto& heap : m_impl->inboxes)
         if (!heap.empty()) next = std::min(next, heap.front().due);
     return next;
 }
 
-size_t SimNet::InFlight() const noexcept { return impl_->inFlight; }
+size_t SimNet::InFlight() const noexcept { return m_impl->inFlight; }
 
 const LinkStats& SimNet::Link(PeerId from, PeerId to) const {
     static const LinkStats kNone{};
-    auto it = impl_->links.find(std::make_pair(from, to));
-    return it == impl_->links.end() ? kNone : it->second.stats;
+    auto it = m_impl->links.find(std::make_pair(from, to));
+    return it == m_impl->links.end() ? kNone : it->second.stats;
 }
 
-uint64_t SimNet::Seed() const noexcept { return impl_->seed; }
+uint64_t SimNet::Seed() const noexcept { return m_impl->seed; }
 
 bool SimEndpoint::Send(PeerId peer, std::span<const uint8_t> bytes, Delivery delivery) {
     (void)delivery;  // SimNet has no reliable channel: sessions resend what matters
-    return net_->Send(*this, peer, bytes);
+    return m_net->Send(*this, peer, bytes);
 }
 
-size_t SimEndpoint::Poll(std::vector<Datagram>& out) { return net_->Poll(*this, out); }
+size_t SimEndpoint::Poll(std::vector<Datagram>& out) { return m_net->Poll(*this, out); }
 
-uint64_t SimEndpoint::NowMicros() const { return net_->now; }
+uint64_t SimEndpoint::NowMicros() const { return m_net->now; }
 
 void SimEndpoint::SetDown(bool down) noexcept {
-    down_ = down;
-    if (down) net_->DropDue(index_);
+    m_down = down;
+    if (down) m_net->DropDue(m_index);
 }
 
 }  // namespace lockbox::net

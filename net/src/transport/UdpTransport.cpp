@@ -137,10 +137,10 @@ std::unique_ptr<UdpTransport> UdpTransport::Open(const std::string& bindHost, ui
 }
 
 UdpTransport::UdpTransport(int fd, bool ipv6, uint16_t localPort, size_t maxPeers)
-    : fd_(fd), ipv6_(ipv6), localPort_(localPort), slots_(maxPeers), buffer_(65536) {}
+    : m_fd(fd), m_ipv6(ipv6), m_localPort(localPort), m_slots(maxPeers), m_buffer(65536) {}
 
 UdpTransport::~UdpTransport() {
-    if (fd_ >= 0) ::close(fd_);
+    if (m_fd >= 0) ::close(m_fd);
 }
 
 PeerId UdpTransport::Admit(const void* addr, uint32_t len) {
@@ -149,17 +149,17 @@ PeerId UdpTransport::Admit(const void* addr, uint32_t len) {
     std::memcpy(&storage, addr, len);
     std::string key = AddressKey(storage);
     if (key.empty()) return kNoPeer;
-    auto it = byAddress_.find(key);
-    if (it != byAddress_.end()) return it->second;
+    auto it = m_byAddress.find(key);
+    if (it != m_byAddress.end()) return it->second;
     // The lowest free slot, so ids depend only on the order peers appeared.
-    for (size_t i = 0; i < slots_.size(); ++i) {
-        Slot& slot = slots_[i];
+    for (size_t i = 0; i < m_slots.size(); ++i) {
+        Slot& slot = m_slots[i];
         if (slot.used) continue;
         slot.used = true;
         slot.addr = storage;
         slot.len = static_cast<socklen_t>(len);
         slot.key = key;
-        byAddress_.emplace(std::move(key), static_cast<PeerId>(i));
+        m_byAddress.emplace(std::move(key), static_cast<PeerId>(i));
         return static_cast<PeerId>(i);
     }
     return kNoPeer;
@@ -176,13 +176,13 @@ PeerId UdpTransport::AddPeer(const std::string& host, uint16_t port, std::string
         if (host.empty()) SetError(error, "empty peer address");
         return kNoPeer;
     }
-    if (addr.ss_family == AF_INET && ipv6_) {
+    if (addr.ss_family == AF_INET && m_ipv6) {
         sockaddr_in6 mapped{};
         MapToV6(reinterpret_cast<const sockaddr_in&>(addr), mapped);
         std::memset(&addr, 0, sizeof(addr));
         std::memcpy(&addr, &mapped, sizeof(mapped));
         len = sizeof(mapped);
-    } else if (addr.ss_family == AF_INET6 && !ipv6_) {
+    } else if (addr.ss_family == AF_INET6 && !m_ipv6) {
         SetError(error, "IPv6 peer '" + host + "' on an IPv4 socket");
         return kNoPeer;
     }
@@ -192,8 +192,8 @@ PeerId UdpTransport::AddPeer(const std::string& host, uint16_t port, std::string
 }
 
 std::string UdpTransport::PeerAddress(PeerId peer) const {
-    if (peer >= slots_.size() || !slots_[peer].used) return {};
-    const Slot& slot = slots_[peer];
+    if (peer >= m_slots.size() || !m_slots[peer].used) return {};
+    const Slot& slot = m_slots[peer];
     char text[INET6_ADDRSTRLEN] = {};
     if (slot.addr.ss_family == AF_INET) {
         const auto& a = reinterpret_cast<const sockaddr_in&>(slot.addr);
@@ -212,23 +212,23 @@ std::string UdpTransport::PeerAddress(PeerId peer) const {
 
 bool UdpTransport::Send(PeerId peer, std::span<const uint8_t> bytes, Delivery delivery) {
     (void)delivery;  // plain UDP has one kind of delivery
-    if (peer >= slots_.size() || !slots_[peer].used || bytes.empty() || bytes.size() > MaxDatagram()) {
-        ++stats_.sendFailures;
+    if (peer >= m_slots.size() || !m_slots[peer].used || bytes.empty() || bytes.size() > MaxDatagram()) {
+        ++m_stats.sendFailures;
         return false;
     }
-    const Slot& slot = slots_[peer];
+    const Slot& slot = m_slots[peer];
     ssize_t sent;
     do {
-        sent = ::sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&slot.addr), slot.len);
+        sent = ::sendto(m_fd, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&slot.addr), slot.len);
     } while (sent < 0 && errno == EINTR);
     if (sent < 0 || static_cast<size_t>(sent) != bytes.size()) {
-        ++stats_.sendFailures;
+        ++m_stats.sendFailures;
         return false;
     }
     const bool v4OnWire = slot.addr.ss_family == AF_INET || IsMappedV4(slot.addr);
-    stats_.datagramsSent += 1;
-    stats_.payloadBytesSent += bytes.size();
-    stats_.wireBytesSent += bytes.size() + (v4OnWire ? kIpv4Overhead : kIpv6Overhead);
+    m_stats.datagramsSent += 1;
+    m_stats.payloadBytesSent += bytes.size();
+    m_stats.wireBytesSent += bytes.size() + (v4OnWire ? kIpv4Overhead : kIpv6Overhead);
     return true;
 }
 
@@ -239,7 +239,7 @@ size_t UdpTransport::Poll(std::vector<Datagram>& out) {
         sockaddr_storage from{};
         socklen_t fromLen = sizeof(from);
         const ssize_t n =
-            ::recvfrom(fd_, buffer_.data(), buffer_.size(), 0, reinterpret_cast<sockaddr*>(&from), &fromLen);
+            ::recvfrom(m_fd, m_buffer.data(), m_buffer.size(), 0, reinterpret_cast<sockaddr*>(&from), &fromLen);
         if (n < 0) {
             if (errno == EINTR) continue;
             // EAGAIN: drained. ECONNREFUSED and the like: an ICMP error from an earlier send,
@@ -249,19 +249,19 @@ size_t UdpTransport::Poll(std::vector<Datagram>& out) {
             break;
         }
         if (n == 0 || static_cast<size_t>(n) > MaxDatagram()) {
-            ++droppedMalformed_;
+            ++m_droppedMalformed;
             continue;
         }
         if (fromLen > sizeof(from)) continue;
         const PeerId peer = Admit(&from, fromLen);
         if (peer == kNoPeer) {
-            ++stats_.droppedUnknown;
+            ++m_stats.droppedUnknown;
             continue;
         }
         const auto size = static_cast<size_t>(n);
-        out.push_back(Datagram{peer, std::vector<uint8_t>(buffer_.begin(), buffer_.begin() + n)});
-        stats_.datagramsReceived += 1;
-        stats_.payloadBytesReceived += size;
+        out.push_back(Datagram{peer, std::vector<uint8_t>(m_buffer.begin(), m_buffer.begin() + n)});
+        m_stats.datagramsReceived += 1;
+        m_stats.payloadBytesReceived += size;
         ++count;
     }
     return count;
@@ -275,14 +275,14 @@ uint64_t UdpTransport::NowMicros() const {
 }
 
 void UdpTransport::Disconnect(PeerId peer) {
-    if (peer >= slots_.size() || !slots_[peer].used) return;
-    byAddress_.erase(slots_[peer].key);
-    slots_[peer] = Slot{};
+    if (peer >= m_slots.size() || !m_slots[peer].used) return;
+    m_byAddress.erase(m_slots[peer].key);
+    m_slots[peer] = Slot{};
 }
 
 bool UdpTransport::WaitReadable(int timeoutMillis) const {
     pollfd p{};
-    p.fd = fd_;
+    p.fd = m_fd;
     p.events = POLLIN;
     const int timeout = timeoutMillis < 0 ? 0 : (timeoutMillis > 60000 ? 60000 : timeoutMillis);
     int rc;

@@ -102,7 +102,7 @@ public:
     /// The steady clock in microseconds.
     uint64_t NowMicros() const override;
     /// Counters; wireBytesSent adds kWireOverhead per datagram.
-    const TransportStats& Stats() const noexcept override { return stats_; }
+    const TransportStats& Stats() const noexcept override { return m_stats; }
     /// Starts a graceful disconnect of `peer` and frees its id at once; the remote sees a
     /// disconnect event. Unknown ids are ignored.
     void Disconnect(PeerId peer) override;
@@ -111,7 +111,7 @@ public:
     /// true when it does. For loops that would rather sleep than spin.
     bool WaitReadable(int timeoutMillis) const;
     /// Received packets dropped because they were empty or larger than MaxDatagram().
-    uint64_t DroppedMalformed() const noexcept { return droppedMalformed_; }
+    uint64_t DroppedMalformed() const noexcept { return m_droppedMalformed; }
 
 private:
     struct Slot;
@@ -122,11 +122,11 @@ private:
     void OnConnected(PeerId id);
     bool SendNow(ENetPeer* peer, std::span<const uint8_t> bytes, Delivery delivery);
 
-    ENetHost* host_;
-    std::vector<Slot> slots_;
-    std::vector<PeerId> connected_, disconnected_;
-    TransportStats stats_;
-    uint64_t droppedMalformed_ = 0;
+    ENetHost* m_host;
+    std::vector<Slot> m_slots;
+    std::vector<PeerId> m_connected, m_disconnected;
+    TransportStats m_stats;
+    uint64_t m_droppedMalformed = 0;
 };
 
 }  // namespace lockbox::net

@@ -270,15 +270,15 @@ public:
     /// Encoded size of a message (0 when out of range).
     static size_t SizeOf(const Message& message, const SessionShape& shape);
     /// Number of messages appended since Begin.
-    size_t MessageCount() const noexcept { return messages_; }
+    size_t MessageCount() const noexcept { return m_messages; }
     /// The datagram so far.
-    std::span<const uint8_t> Bytes() const noexcept { return bytes_; }
-    size_t Size() const noexcept { return bytes_.size(); }
+    std::span<const uint8_t> Bytes() const noexcept { return m_bytes; }
+    size_t Size() const noexcept { return m_bytes.size(); }
 
 private:
-    std::vector<uint8_t> bytes_;
-    std::vector<uint8_t> scratch_;
-    size_t messages_ = 0;
+    std::vector<uint8_t> m_bytes;
+    std::vector<uint8_t> m_scratch;
+    size_t m_messages = 0;
 };
 
 /// Counts of refused datagrams by DecodeError (index = error value; e_ok unused).

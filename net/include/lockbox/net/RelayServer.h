@@ -49,19 +49,19 @@ public:
 
     /// The PeerId holding slot `slot`, or kNoPeer.
     PeerId SlotPeer(uint32_t slot) const noexcept;
-    const RelayServerStats& Stats() const noexcept { return stats_; }
+    const RelayServerStats& Stats() const noexcept { return m_stats; }
 
 private:
     /// The slot bound to `peer`, or -1.
     int SlotOf(PeerId peer) const noexcept;
     void Handle(const Datagram& d);
 
-    Transport& transport_;
-    RelayServerConfig config_;
-    std::vector<PeerId> slotPeer_;  // slot -> PeerId (kNoPeer when free)
-    std::vector<Datagram> inbox_;
-    std::vector<uint8_t> out_;
-    RelayServerStats stats_;
+    Transport& m_transport;
+    RelayServerConfig m_config;
+    std::vector<PeerId> m_slotPeer;  // slot -> PeerId (kNoPeer when free)
+    std::vector<Datagram> m_inbox;
+    std::vector<uint8_t> m_out;
+    RelayServerStats m_stats;
 };
 
 }  // namespace lockbox::net

@@ -39,26 +39,26 @@ public:
     /// Datagrams forwarded by the relay, each with peer = the sender's slot. Anything else
     /// (other senders, other matches, malformed) is dropped and counted in droppedUnknown.
     size_t Poll(std::vector<Datagram>& out) override;
-    uint64_t NowMicros() const override { return inner_.NowMicros(); }
-    size_t MaxDatagram() const noexcept override { return inner_.MaxDatagram() - kRelayHeaderBytes; }
+    uint64_t NowMicros() const override { return m_inner.NowMicros(); }
+    size_t MaxDatagram() const noexcept override { return m_inner.MaxDatagram() - kRelayHeaderBytes; }
     /// Payload counters of the relayed links; wireBytesSent adds the relay header (the inner
     /// transport's own counters add the medium's).
-    const TransportStats& Stats() const noexcept override { return stats_; }
+    const TransportStats& Stats() const noexcept override { return m_stats; }
 
     /// True once the relay has welcomed this member.
-    bool Joined() const noexcept { return joined_; }
+    bool Joined() const noexcept { return m_joined; }
 
 private:
     void MaybeJoin();
 
-    Transport& inner_;
-    RelayedTransportConfig config_;
-    bool joined_ = false;
-    bool joinSent_ = false;
-    uint64_t lastJoin_ = 0;
-    std::vector<uint8_t> out_;
-    std::vector<Datagram> inbox_;
-    TransportStats stats_;
+    Transport& m_inner;
+    RelayedTransportConfig m_config;
+    bool m_joined = false;
+    bool m_joinSent = false;
+    uint64_t m_lastJoin = 0;
+    std::vector<uint8_t> m_out;
+    std::vector<Datagram> m_inbox;
+    TransportStats m_stats;
 };
 
 }  // namespace lockbox::net

@@ -60,15 +60,15 @@ public:
     bool Record(uint32_t depth, uint32_t micros);
 
     /// The input delay the session should use.
-    uint32_t Delay() const noexcept { return delay_; }
+    uint32_t Delay() const noexcept { return m_delay; }
     /// The chosen percentile of the cost of the rollbacks kept since the last change and not
     /// older than sampleTicks (0 with none).
     uint32_t CostPercentileMicros() const;
     /// Rollbacks kept since the last change.
-    uint32_t RollbacksKept() const noexcept { return static_cast<uint32_t>(kept_.size()); }
+    uint32_t RollbacksKept() const noexcept { return static_cast<uint32_t>(m_kept.size()); }
     /// Delay changes so far, up and down.
-    uint32_t Raises() const noexcept { return raises_; }
-    uint32_t Lowerings() const noexcept { return lowerings_; }
+    uint32_t Raises() const noexcept { return m_raises; }
+    uint32_t Lowerings() const noexcept { return m_lowerings; }
 
 private:
     struct Sample {
@@ -82,17 +82,17 @@ private:
     uint64_t PredictedPercentile(int32_t shift) const;
     void Changed();
 
-    RollbackBudgetConfig config_;
-    uint32_t delay_ = 0;
-    std::vector<Sample> kept_;  // a ring once full
-    size_t next_ = 0;           // ring position of the oldest sample when full
-    uint64_t ticks_ = 0;        // Record calls so far
-    uint64_t sinceChange_ = 0;  // ticks
-    uint64_t frameMicros_ = 0;  // the latest per-frame cost seen (0 also when under 1 us)
-    bool costSeen_ = false;     // any rollback recorded: lowering is never blind
-    uint32_t raises_ = 0;
-    uint32_t lowerings_ = 0;
-    mutable std::vector<uint64_t> scratch_;
+    RollbackBudgetConfig m_config;
+    uint32_t m_delay = 0;
+    std::vector<Sample> m_kept;  // a ring once full
+    size_t m_next = 0;           // ring position of the oldest sample when full
+    uint64_t m_ticks = 0;        // Record calls so far
+    uint64_t m_sinceChange = 0;  // ticks
+    uint64_t m_frameMicros = 0;  // the latest per-frame cost seen (0 also when under 1 us)
+    bool m_costSeen = false;     // any rollback recorded: lowering is never blind
+    uint32_t m_raises = 0;
+    uint32_t m_lowerings = 0;
+    mutable std::vector<uint64_t> m_scratch;
 };
 
 }  // namespace lockbox::net

@@ -153,7 +153,7 @@ public:
     /// the others are cutting this peer out of the match.
     bool RemovedFromMatch() const noexcept;
     /// Counters since construction.
-    const RollbackPeerStats& Stats() const noexcept { return stats_; }
+    const RollbackPeerStats& Stats() const noexcept { return m_stats; }
 
 private:
     struct Remote;
@@ -176,22 +176,22 @@ private:
     bool HelloAcked(const Remote& r) const noexcept;
     int32_t LocalAdvantageMilli(const Remote& r, uint64_t now) const;
 
-    RollbackSession& session_;
-    Transport& transport_;
-    RollbackPeerConfig config_;
-    RollbackShape shape_;
-    std::vector<Remote> remotes_;
-    std::vector<Spectator> spectators_;
-    uint32_t lateSpectators_ = 0;
-    std::vector<uint32_t> localPlayers_;
-    RollbackDatagramWriter writer_;
-    std::vector<Datagram> inbox_;
-    std::vector<RollbackMessage> messages_;
-    RollbackPeerStats stats_;
-    uint32_t ticksSinceWait_ = 0;
-    bool left_ = false;
-    int32_t delayWish_ = -1;                           // what AskInputDelay set; -1: never asked, nothing sent
-    std::array<bool, kRollbackMaxPlayers> removed_{};  // local players a remote named gone
+    RollbackSession& m_session;
+    Transport& m_transport;
+    RollbackPeerConfig m_config;
+    RollbackShape m_shape;
+    std::vector<Remote> m_remotes;
+    std::vector<Spectator> m_spectators;
+    uint32_t m_lateSpectators = 0;
+    std::vector<uint32_t> m_localPlayers;
+    RollbackDatagramWriter m_writer;
+    std::vector<Datagram> m_inbox;
+    std::vector<RollbackMessage> m_messages;
+    RollbackPeerStats m_stats;
+    uint32_t m_ticksSinceWait = 0;
+    bool m_left = false;
+    int32_t m_delayWish = -1;                           // what AskInputDelay set; -1: never asked, nothing sent
+    std::array<bool, kRollbackMaxPlayers> m_removed{};  // local players a remote named gone
 };
 
 }  // namespace lockbox::net

@@ -239,14 +239,14 @@ public:
     /// Appends a message whose fields are in range; false (datagram unchanged) when a field is
     /// out of range or the datagram would exceed `limit` bytes.
     bool Add(const RollbackMessage& message, const RollbackShape& shape, size_t limit = 1200);
-    size_t MessageCount() const noexcept { return messages_; }
-    std::span<const uint8_t> Bytes() const noexcept { return bytes_; }
-    size_t Size() const noexcept { return bytes_.size(); }
+    size_t MessageCount() const noexcept { return m_messages; }
+    std::span<const uint8_t> Bytes() const noexcept { return m_bytes; }
+    size_t Size() const noexcept { return m_bytes.size(); }
 
 private:
-    std::vector<uint8_t> bytes_;
-    std::vector<uint8_t> scratch_;
-    size_t messages_ = 0;
+    std::vector<uint8_t> m_bytes;
+    std::vector<uint8_t> m_scratch;
+    size_t m_messages = 0;
 };
 
 }  // namespace lockbox::net

@@ -185,48 +185,48 @@ class RollbackSessionBuilder {
 public:
     /// Number of players, 1 .. kRollbackMaxPlayers (default 2).
     RollbackSessionBuilder& Players(uint32_t players) {
-        config_.players = players;
+        m_config.players = players;
         return *this;
     }
     /// Bytes of one player's input per frame, 1 .. kRollbackMaxInputBytes (default 8).
     RollbackSessionBuilder& InputBytes(uint32_t bytes) {
-        config_.inputBytes = bytes;
+        m_config.inputBytes = bytes;
         return *this;
     }
     /// Marks `player` as local (its inputs come from AddLocalInput). Call once per local player.
     RollbackSessionBuilder& LocalPlayer(uint32_t player) {
-        config_.localPlayers.push_back(player);
+        m_config.localPlayers.push_back(player);
         return *this;
     }
     /// Frames the session may run ahead of HeldFrame(), the first frame it lacks an input of (default 8).
     RollbackSessionBuilder& PredictionWindow(uint32_t frames) {
-        config_.predictionWindow = frames;
+        m_config.predictionWindow = frames;
         return *this;
     }
     /// Frames between adding a local input and the frame it is applied in (default 0).
     RollbackSessionBuilder& InputDelay(uint32_t frames) {
-        config_.inputDelay = frames;
+        m_config.inputDelay = frames;
         return *this;
     }
     /// Sync test check distance (default 8).
     RollbackSessionBuilder& CheckDistance(uint32_t frames) {
-        config_.checkDistance = frames;
+        m_config.checkDistance = frames;
         return *this;
     }
     /// Hash comparison interval in frames (default 10; 0 turns desync detection off).
     RollbackSessionBuilder& DesyncInterval(uint32_t frames) {
-        config_.desyncInterval = frames;
+        m_config.desyncInterval = frames;
         return *this;
     }
     /// A custom predictor (default: repeat the last confirmed input).
     RollbackSessionBuilder& Predictor(InputPredictor predictor) {
-        config_.predictor = std::move(predictor);
+        m_config.predictor = std::move(predictor);
         return *this;
     }
     /// What counts as a repeated local input while a lowered input delay catches up (default:
     /// equal bytes). See InputRepeatTest.
     RollbackSessionBuilder& RepeatTest(InputRepeatTest test) {
-        config_.repeatTest = std::move(test);
+        m_config.repeatTest = std::move(test);
         return *this;
     }
 
@@ -235,10 +235,10 @@ public:
     /// A new session; nullptr when Check() is not empty.
     std::unique_ptr<RollbackSession> Build() const;
     /// The settings collected so far.
-    const RollbackConfig& Config() const noexcept { return config_; }
+    const RollbackConfig& Config() const noexcept { return m_config; }
 
 private:
-    RollbackConfig config_;
+    RollbackConfig m_config;
 };
 
 class RollbackSession {
@@ -359,7 +359,7 @@ public:
 
 private:
     struct Impl;
-    std::unique_ptr<Impl> impl_;
+    std::unique_ptr<Impl> m_impl;
 };
 
 }  // namespace lockbox::net

@@ -86,70 +86,70 @@ public:
     /// offered), handed out once; false while none is ready. Load it before calling Next.
     bool TakeSnapshot(int32_t& frame, std::vector<uint8_t>& bytes);
     /// Where the spectator stands (e_joining until a checked snapshot arrives in a late join).
-    SpectatorState State() const noexcept { return state_; }
+    SpectatorState State() const noexcept { return m_state; }
     /// Assembled snapshots dropped because their checksum did not match.
-    uint64_t SnapshotsRefused() const noexcept { return snapshotsRefused_; }
+    uint64_t SnapshotsRefused() const noexcept { return m_snapshotsRefused; }
     /// Snapshot chunks taken into an assembly (duplicates not counted).
-    uint64_t SnapshotChunks() const noexcept { return snapshotChunks_; }
+    uint64_t SnapshotChunks() const noexcept { return m_snapshotChunks; }
     /// Snapshot bytes of the last snapshot handed out (0 before).
-    uint64_t SnapshotBytes() const noexcept { return snapshotBytes_; }
+    uint64_t SnapshotBytes() const noexcept { return m_snapshotBytes; }
 
     /// Frames before this have arrived.
-    int32_t ReceivedFrame() const noexcept { return received_; }
+    int32_t ReceivedFrame() const noexcept { return m_received; }
     /// Frames handed out by Next.
-    int32_t ConsumedFrame() const noexcept { return consumed_; }
+    int32_t ConsumedFrame() const noexcept { return m_consumed; }
     /// False after timeoutMicros of silence (true again when heard), and for good after the
     /// host's RbDisconnect.
-    bool HostAlive() const noexcept { return alive_; }
+    bool HostAlive() const noexcept { return m_alive; }
     /// True from interruptTimeoutMicros of silence until the host is heard again.
-    bool HostInterrupted() const noexcept { return interrupted_; }
+    bool HostInterrupted() const noexcept { return m_interrupted; }
     /// The link events since the last call, oldest first (each outage: e_interrupted, then
     /// e_resumed, or e_hostLost and e_resumed if the host comes back).
     std::vector<SpectatorEvent> TakeEvents();
     /// Datagrams refused (malformed, another match, not from the host, incompatible).
-    uint64_t Refused() const noexcept { return refused_; }
+    uint64_t Refused() const noexcept { return m_refused; }
     /// Why the host cannot be followed (e_none unless State() is e_incompatible).
-    RollbackIncompatibility Incompatibility() const noexcept { return incompatibility_; }
+    RollbackIncompatibility Incompatibility() const noexcept { return m_incompatibility; }
 
 private:
     void TakeChunk(const RbSnapshotChunk& c);
-    void HostLost();  // alive_ false; e_hostLost once per outage
+    void HostLost();  // m_alive false; e_hostLost once per outage
 
-    Transport& transport_;
-    RollbackSpectatorConfig config_;
-    RollbackShape shape_;
-    std::deque<std::vector<uint8_t>> frames_;  // frames [consumed_, received_)
-    int32_t received_ = 0;
-    int32_t consumed_ = 0;
-    uint64_t lastHeard_ = 0;
-    bool alive_ = true;
-    bool interrupted_ = false;
-    bool lostReported_ = false;  // e_hostLost queued for the current outage
-    bool hostLeft_ = false;      // the host's RbDisconnect: gone for good
-    std::vector<SpectatorEvent> events_;
-    uint64_t refused_ = 0;
-    SpectatorState state_ = SpectatorState::e_following;
-    RollbackIncompatibility incompatibility_ = RollbackIncompatibility::e_none;
+    Transport& m_transport;
+    RollbackSpectatorConfig m_config;
+    RollbackShape m_shape;
+    std::deque<std::vector<uint8_t>> m_frames;  // frames [m_consumed, m_received)
+    int32_t m_received = 0;
+    int32_t m_consumed = 0;
+    uint64_t m_lastHeard = 0;
+    bool m_alive = true;
+    bool m_interrupted = false;
+    bool m_lostReported = false;  // e_hostLost queued for the current outage
+    bool m_hostLeft = false;      // the host's RbDisconnect: gone for good
+    std::vector<SpectatorEvent> m_events;
+    uint64_t m_refused = 0;
+    SpectatorState m_state = SpectatorState::e_following;
+    RollbackIncompatibility m_incompatibility = RollbackIncompatibility::e_none;
     static constexpr uint32_t kIncompatibleNotices = 5;  // hello-only datagrams sent once incompatible
-    uint32_t incompatibleNotices_ = 0;
-    uint32_t attempt_ = 1;
+    uint32_t m_incompatibleNotices = 0;
+    uint32_t m_attempt = 1;
     // The assembly (the lockstep late join's chunk reassembly) and the checksum its chunks carry.
-    std::unique_ptr<SnapshotReceiver> receiver_;
-    uint64_t asmChecksum_ = 0;
+    std::unique_ptr<SnapshotReceiver> m_receiver;
+    uint64_t m_asmChecksum = 0;
     // The last refused snapshot: its stragglers are ignored instead of assembled again.
-    bool hasBad_ = false;
-    int32_t badFrame_ = 0;
-    uint64_t badChecksum_ = 0;
-    std::vector<RbSnapshotAck> pendingAcks_;
-    int32_t snapshotFrame_ = 0;
-    uint64_t snapshotChecksum_ = 0;
-    std::vector<uint8_t> snapshot_;
-    uint64_t snapshotsRefused_ = 0;
-    uint64_t snapshotChunks_ = 0;
-    uint64_t snapshotBytes_ = 0;
-    std::vector<Datagram> inbox_;
-    std::vector<RollbackMessage> messages_;
-    RollbackDatagramWriter writer_;
+    bool m_hasBad = false;
+    int32_t m_badFrame = 0;
+    uint64_t m_badChecksum = 0;
+    std::vector<RbSnapshotAck> m_pendingAcks;
+    int32_t m_snapshotFrame = 0;
+    uint64_t m_snapshotChecksum = 0;
+    std::vector<uint8_t> m_snapshot;
+    uint64_t m_snapshotsRefused = 0;
+    uint64_t m_snapshotChunks = 0;
+    uint64_t m_snapshotBytes = 0;
+    std::vector<Datagram> m_inbox;
+    std::vector<RollbackMessage> m_messages;
+    RollbackDatagramWriter m_writer;
 };
 
 }  // namespace lockbox::net

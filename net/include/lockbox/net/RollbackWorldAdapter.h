@@ -55,9 +55,9 @@ public:
     /// The world hash folded with the game's user state (what ReportHash gets).
     uint64_t StateHash() const;
     /// Advance requests executed inside rollbacks (after a LoadState in the same batch).
-    uint64_t FramesResimulated() const noexcept { return resimulated_; }
+    uint64_t FramesResimulated() const noexcept { return m_resimulated; }
     /// Frame of the last Advance executed (-1 before any).
-    int32_t LastAdvanced() const noexcept { return lastAdvanced_; }
+    int32_t LastAdvanced() const noexcept { return m_lastAdvanced; }
 
 private:
     struct Slot {
@@ -65,13 +65,13 @@ private:
         b2WorldFrame state;  ///< a rollback frame (b2World::SaveFrame), not a portable image
         std::vector<uint8_t> user;
     };
-    b2World& world_;
-    replay::Game& game_;
-    WorldStepSettings settings_;
-    std::vector<Slot> slots_;
-    mutable b2WorldFrame scratch_;  ///< the current state while ConfirmedSnapshot visits a slot
-    uint64_t resimulated_ = 0;
-    int32_t lastAdvanced_ = -1;
+    b2World& m_world;
+    replay::Game& m_game;
+    WorldStepSettings m_settings;
+    std::vector<Slot> m_slots;
+    mutable b2WorldFrame m_scratch;  ///< the current state while ConfirmedSnapshot visits a slot
+    uint64_t m_resimulated = 0;
+    int32_t m_lastAdvanced = -1;
 };
 
 }  // namespace lockbox::net

@@ -121,7 +121,7 @@ public:
 private:
     friend class SimEndpoint;
     struct Impl;
-    std::unique_ptr<Impl> impl_;
+    std::unique_ptr<Impl> m_impl;
 };
 
 /// One endpoint of a SimNet: a Transport whose clock is the net's virtual clock.
@@ -136,23 +136,23 @@ public:
     /// The net's virtual clock (microseconds since the net was made).
     uint64_t NowMicros() const override;
     /// This endpoint's counters; wireBytesSent adds kWireOverhead per datagram.
-    const TransportStats& Stats() const noexcept override { return stats_; }
+    const TransportStats& Stats() const noexcept override { return m_stats; }
     /// The PeerId other endpoints use for this one.
-    PeerId Index() const noexcept { return index_; }
+    PeerId Index() const noexcept { return m_index; }
     /// While down, the endpoint neither sends nor receives (a crashed or unplugged machine).
     /// Going down also drops what had arrived and was not polled yet.
     void SetDown(bool down) noexcept;
     /// True while SetDown(true) is in force.
-    bool IsDown() const noexcept { return down_; }
+    bool IsDown() const noexcept { return m_down; }
 
 private:
     friend class SimNet;
     friend struct SimNet::Impl;
-    SimEndpoint(SimNet::Impl& net, PeerId index) : net_(&net), index_(index) {}
-    SimNet::Impl* net_;
-    PeerId index_;
-    bool down_ = false;
-    TransportStats stats_;
+    SimEndpoint(SimNet::Impl& net, PeerId index) : m_net(&net), m_index(index) {}
+    SimNet::Impl* m_net;
+    PeerId m_index;
+    bool m_down = false;
+    TransportStats m_stats;
 };
 
 }  // namespace lockbox::net

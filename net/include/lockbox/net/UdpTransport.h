@@ -41,9 +41,9 @@ public:
     UdpTransport& operator=(const UdpTransport&) = delete;
 
     /// The port the socket is bound to (the chosen one when Open was given 0).
-    uint16_t LocalPort() const noexcept { return localPort_; }
+    uint16_t LocalPort() const noexcept { return m_localPort; }
     /// True for an IPv6 socket.
-    bool IsIpv6() const noexcept { return ipv6_; }
+    bool IsIpv6() const noexcept { return m_ipv6; }
 
     /// Registers the numeric address `host` ("127.0.0.1", "::1") and `port` (1 .. 65535) as a
     /// peer and returns its PeerId; an address already known returns its existing PeerId.
@@ -54,7 +54,7 @@ public:
     /// "host:port" ("[host]:port" for IPv6) of a known peer, or an empty string.
     std::string PeerAddress(PeerId peer) const;
     /// Number of peers in the table.
-    size_t PeerCount() const noexcept { return byAddress_.size(); }
+    size_t PeerCount() const noexcept { return m_byAddress.size(); }
 
     /// Sends one datagram with sendto. False (counted in sendFailures) for an unknown peer, a
     /// size outside [1, MaxDatagram()], or when the kernel refuses it (full buffer included).
@@ -68,7 +68,7 @@ public:
     uint64_t NowMicros() const override;
     /// Counters; wireBytesSent adds kIpv4Overhead or kIpv6Overhead per datagram, by the family
     /// on the wire (an IPv4-mapped peer counts as IPv4).
-    const TransportStats& Stats() const noexcept override { return stats_; }
+    const TransportStats& Stats() const noexcept override { return m_stats; }
     /// Frees the peer's slot; its next datagram makes it a new peer (maybe with another id).
     void Disconnect(PeerId peer) override;
 
@@ -76,21 +76,21 @@ public:
     /// is. For loops that would rather sleep than spin; never needed for correctness.
     bool WaitReadable(int timeoutMillis) const;
     /// Received datagrams dropped because they were empty or larger than MaxDatagram().
-    uint64_t DroppedMalformed() const noexcept { return droppedMalformed_; }
+    uint64_t DroppedMalformed() const noexcept { return m_droppedMalformed; }
 
 private:
     struct Slot;
     UdpTransport(int fd, bool ipv6, uint16_t localPort, size_t maxPeers);
     PeerId Admit(const void* addr, uint32_t len);
 
-    int fd_;
-    bool ipv6_;
-    uint16_t localPort_;
-    std::vector<Slot> slots_;
-    std::map<std::string, PeerId> byAddress_;  // key: family, port and address bytes
-    std::vector<uint8_t> buffer_;
-    TransportStats stats_;
-    uint64_t droppedMalformed_ = 0;
+    int m_fd;
+    bool m_ipv6;
+    uint16_t m_localPort;
+    std::vector<Slot> m_slots;
+    std::map<std::string, PeerId> m_byAddress;  // key: family, port and address bytes
+    std::vector<uint8_t> m_buffer;
+    TransportStats m_stats;
+    uint64_t m_droppedMalformed = 0;
 };
 
 }  // namespace lockbox::net

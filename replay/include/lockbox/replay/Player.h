@@ -46,43 +46,43 @@ public:
     /// Plays one frame (Apply, Step). Returns false at the end of the replay.
     bool Step();
     /// Frames played since the seed (the next frame to play).
-    int32 Frame() const noexcept { return frame_; }
-    bool AtEnd() const noexcept { return frame_ >= file_.frameCount; }
+    int32 Frame() const noexcept { return m_frame; }
+    bool AtEnd() const noexcept { return m_frame >= m_file.frameCount; }
     /// The world being played, and the replay.
-    b2World& world() noexcept { return world_; }
-    const b2World& world() const noexcept { return world_; }
-    const ReplayFile& file() const noexcept { return file_; }
+    b2World& world() noexcept { return m_world; }
+    const b2World& world() const noexcept { return m_world; }
+    const ReplayFile& file() const noexcept { return m_file; }
 
     /// Plays the whole replay from the seed, checking every stored hash; stops at the first
     /// mismatch.
     VerifyResult Verify();
 
     /// A hook called at every fencepost before it is hashed (nullptr: none).
-    void SetStageHook(StageHook* hook) noexcept { hook_ = hook; }
+    void SetStageHook(StageHook* hook) noexcept { m_hook = hook; }
     /// Hash every fencepost of each step (slower; for bisect). Off by default.
-    void SetStageHashing(bool on) noexcept { stageHashing_ = on; }
+    void SetStageHashing(bool on) noexcept { m_stageHashing = on; }
     /// The fencepost hashes of the last frame played with stage hashing on.
-    const uint64* LastStages() const noexcept { return lastStages_; }
+    const uint64* LastStages() const noexcept { return m_lastStages; }
     /// The solve-phase hashes of the last frame played with stage hashing on.
-    const uint64* LastSolvePhases() const noexcept { return lastSolve_; }
+    const uint64* LastSolvePhases() const noexcept { return m_lastSolve; }
 
     /// Snapshots restored so far (seed included).
-    int32 Restores() const noexcept { return restores_; }
+    int32 Restores() const noexcept { return m_restores; }
     /// Frames played so far (all Step calls).
-    int64_t FramesPlayed() const noexcept { return framesPlayed_; }
+    int64_t FramesPlayed() const noexcept { return m_framesPlayed; }
 
 private:
-    const ReplayFile& file_;
-    b2World& world_;
-    Game& game_;
-    StageHook* hook_ = nullptr;
-    bool stageHashing_ = false;
-    uint64 lastStages_[kStagesPerFrame] = {};
-    uint64 lastSolve_[kSolvePhasesPerFrame] = {};
-    int32 frame_ = 0;
-    int32 restores_ = 0;
-    int64_t framesPlayed_ = 0;
-    bool restored_ = false;
+    const ReplayFile& m_file;
+    b2World& m_world;
+    Game& m_game;
+    StageHook* m_hook = nullptr;
+    bool m_stageHashing = false;
+    uint64 m_lastStages[kStagesPerFrame] = {};
+    uint64 m_lastSolve[kSolvePhasesPerFrame] = {};
+    int32 m_frame = 0;
+    int32 m_restores = 0;
+    int64_t m_framesPlayed = 0;
+    bool m_restored = false;
 };
 
 }  // namespace lockbox::replay

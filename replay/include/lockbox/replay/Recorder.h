@@ -27,14 +27,14 @@ public:
 class MemorySink : public Sink {
 public:
     bool Write(std::span<const uint8> bytes) override {
-        bytes_.insert(bytes_.end(), bytes.begin(), bytes.end());
+        m_bytes.insert(m_bytes.end(), bytes.begin(), bytes.end());
         return true;
     }
-    const std::vector<uint8>& bytes() const noexcept { return bytes_; }
-    std::vector<uint8>& bytes() noexcept { return bytes_; }
+    const std::vector<uint8>& bytes() const noexcept { return m_bytes; }
+    std::vector<uint8>& bytes() noexcept { return m_bytes; }
 
 private:
-    std::vector<uint8> bytes_;
+    std::vector<uint8> m_bytes;
 };
 
 /// A replay streamed to a file (created or truncated).
@@ -45,13 +45,13 @@ public:
     FileSink(const FileSink&) = delete;
     FileSink& operator=(const FileSink&) = delete;
     /// False when the file could not be opened.
-    bool ok() const noexcept { return file_ != nullptr; }
+    bool ok() const noexcept { return m_file != nullptr; }
     bool Write(std::span<const uint8> bytes) override;
     /// Flushes and closes; false on a write error.
     bool Close();
 
 private:
-    std::FILE* file_ = nullptr;
+    std::FILE* m_file = nullptr;
 };
 
 /// Recording settings.
@@ -94,9 +94,9 @@ public:
     /// Writes the pending block and the END record. Further calls do nothing.
     Error Finish();
     /// Frames recorded so far.
-    int32 Frames() const noexcept { return frames_; }
+    int32 Frames() const noexcept { return m_frames; }
     /// The first write error (e_ok while all writes succeeded).
-    const Error& WriteError() const noexcept { return writeError_; }
+    const Error& WriteError() const noexcept { return m_writeError; }
 
 private:
     void Flush();
@@ -105,21 +105,21 @@ private:
     void Emit(uint32 type, std::span<const uint8> payload);
     void EmitFrameHashes(uint32 type, int32 count, uint32 per, const std::vector<uint64>& block);
 
-    b2World& world_;
-    Game& game_;
-    Sink& sink_;
-    RecorderConfig config_;
-    Header header_;
-    bool begun_ = false, finished_ = false;
-    int32 frames_ = 0;
-    int32 blockStart_ = 0;  ///< first frame of the pending block
-    std::vector<uint8> inputBlock_;
-    std::vector<uint64> hashBlock_;
-    int32 hashBlockStart_ = -1;  ///< frame of the first pending hash
-    std::vector<uint64> stageBlock_;
-    std::vector<uint64> solveBlock_;
-    std::vector<uint8> scratch_, chunk_, user_;
-    Error writeError_;
+    b2World& m_world;
+    Game& m_game;
+    Sink& m_sink;
+    RecorderConfig m_config;
+    Header m_header;
+    bool m_begun = false, m_finished = false;
+    int32 m_frames = 0;
+    int32 m_blockStart = 0;  ///< first frame of the pending block
+    std::vector<uint8> m_inputBlock;
+    std::vector<uint64> m_hashBlock;
+    int32 m_hashBlockStart = -1;  ///< frame of the first pending hash
+    std::vector<uint64> m_stageBlock;
+    std::vector<uint64> m_solveBlock;
+    std::vector<uint8> m_scratch, m_chunk, m_user;
+    Error m_writeError;
 };
 
 }  // namespace lockbox::replay

@@ -57,16 +57,16 @@ struct SceneInput {
 class SceneGame : public Game {
 public:
     /// Builds the scene (check ok()). The world switches follow the scene's defaults.
-    explicit SceneGame(std::string_view sceneName) : scene_(scenes::MakeLockboxScene(sceneName)) {
-        if (!scene_) return;
-        engine_ = std::make_unique<scenes::LockboxEngine>();
-        scenes::ConfigureWorld(*engine_, scene_->Info(), scenes::RunSettings{});
-        scene_->Prepare(scenes::Resolve(scene_->Info(), scenes::RunSettings{}));
-        scene_->Build(*engine_);
+    explicit SceneGame(std::string_view sceneName) : m_scene(scenes::MakeLockboxScene(sceneName)) {
+        if (!m_scene) return;
+        m_engine = std::make_unique<scenes::LockboxEngine>();
+        scenes::ConfigureWorld(*m_engine, m_scene->Info(), scenes::RunSettings{});
+        m_scene->Prepare(scenes::Resolve(m_scene->Info(), scenes::RunSettings{}));
+        m_scene->Build(*m_engine);
     }
-    bool ok() const noexcept { return scene_ != nullptr; }
-    b2World& world() noexcept { return engine_->world(); }
-    const scenes::SceneInfo& info() const noexcept { return scene_->Info(); }
+    bool ok() const noexcept { return m_scene != nullptr; }
+    b2World& world() noexcept { return m_engine->world(); }
+    const scenes::SceneInfo& info() const noexcept { return m_scene->Info(); }
 
     /// The recorder settings of this scene with `players` players (game name "scene:NAME").
     RecorderConfig Config(uint16 players) const {
@@ -85,7 +85,7 @@ public:
     }
 
     void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {
-        scene_->BeforeStep(*engine_, frame);
+        m_scene->BeforeStep(*m_engine, frame);
         for (size_t at = 0; at + SceneInput::kBytes <= inputs.size(); at += SceneInput::kBytes)
             ApplyOne(world, SceneInput::Decode(inputs.data() + at));
     }
@@ -147,19 +147,19 @@ private:
         }
     }
 
-    std::unique_ptr<scenes::LockboxScene> scene_;
-    std::unique_ptr<scenes::LockboxEngine> engine_;
+    std::unique_ptr<scenes::LockboxScene> m_scene;
+    std::unique_ptr<scenes::LockboxEngine> m_engine;
 };
 
 /// Seeded random scene inputs: per player per frame 2.5% impulses, 0.6% boxes, 0.6% circles,
 /// 0.4% destroys, otherwise nothing (SplitMix64; the same seed gives the same inputs anywhere).
 class ScriptedInputs {
 public:
-    ScriptedInputs(uint64 seed, uint16 players) : state_(seed), players_(players) {}
+    ScriptedInputs(uint64 seed, uint16 players) : m_state(seed), m_players(players) {}
     /// The next frame's inputs (players * 8 bytes).
     void Next(std::vector<uint8>& out) {
-        out.assign(static_cast<size_t>(players_) * SceneInput::kBytes, 0);
-        for (uint16 p = 0; p < players_; ++p) {
+        out.assign(static_cast<size_t>(m_players) * SceneInput::kBytes, 0);
+        for (uint16 p = 0; p < m_players; ++p) {
             SceneInput in;
             const uint64 roll = Rand() % 1000;
             if (roll < 25) {
@@ -182,13 +182,13 @@ public:
 
 private:
     uint64 Rand() {
-        uint64 z = (state_ += 0x9E3779B97F4A7C15ull);
+        uint64 z = (m_state += 0x9E3779B97F4A7C15ull);
         z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
         z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
         return z ^ (z >> 31);
     }
-    uint64 state_;
-    uint16 players_;
+    uint64 m_state;
+    uint16 m_players;
 };
 
 }  // namespace lockbox::replay
