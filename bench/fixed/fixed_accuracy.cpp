@@ -269,13 +269,14 @@ Row SqrtRow(int n, const TimingConfig& cfg) {
         // Half uniform raws, half log-uniform (small values matter for lengths).
         const int32_t x =
             (i & 1) ? static_cast<int32_t>(rng() >> 33) : static_cast<int32_t>(LogUniform(rng, 31, 2147483647, false));
-        const int32_t r = lockbox::Sqrt(Fixed::FromRaw(x)).Raw();
+        const int32_t r = lockbox::math::Sqrt(Fixed::FromRaw(x)).Raw();
         st.Add(r - std::sqrt(static_cast<long double>(x) * kQ16));
         if (in.size() < kBatch) in.push_back(x);
     }
     std::vector<float> fin;
     for (int32_t x : in) fin.push_back(ToF(x));
-    const double nf = TimeLoop<int32_t>(cfg, in, [](int32_t x) { return lockbox::Sqrt(Fixed::FromRaw(x)).Raw(); });
+    const double nf =
+        TimeLoop<int32_t>(cfg, in, [](int32_t x) { return lockbox::math::Sqrt(Fixed::FromRaw(x)).Raw(); });
     const double ff = TimeLoop<float>(cfg, fin, [](float x) { return std::sqrt(x); });
     return {"sqrt", st.count, st.max, st.Mean(), nf, ff};
 }
@@ -303,7 +304,7 @@ Row SinCosRows(int n, const TimingConfig& cfg, Row* sin_row, Row* cos_row) {
     const std::vector<int32_t> angles = Angles(n, 4);
     ErrStats ss, cs, both;
     for (int32_t x : angles) {
-        const lockbox::SinCosResult r = lockbox::SinCos(Fixed::FromRaw(x));
+        const lockbox::math::SinCosResult r = lockbox::math::SinCos(Fixed::FromRaw(x));
         const long double a = static_cast<long double>(x) / kQ16;
         const long double es = r.sin.Raw() - std::sin(a) * kQ16;
         const long double ec = r.cos.Raw() - std::cos(a) * kQ16;
@@ -315,12 +316,14 @@ Row SinCosRows(int n, const TimingConfig& cfg, Row* sin_row, Row* cos_row) {
     const std::vector<int32_t> in = TimingAngles();
     std::vector<float> fin;
     for (int32_t x : in) fin.push_back(ToF(x));
-    const double n_sin = TimeLoop<int32_t>(cfg, in, [](int32_t x) { return lockbox::Sin(Fixed::FromRaw(x)).Raw(); });
+    const double n_sin =
+        TimeLoop<int32_t>(cfg, in, [](int32_t x) { return lockbox::math::Sin(Fixed::FromRaw(x)).Raw(); });
     const double f_sin = TimeLoop<float>(cfg, fin, [](float x) { return std::sin(x); });
-    const double n_cos = TimeLoop<int32_t>(cfg, in, [](int32_t x) { return lockbox::Cos(Fixed::FromRaw(x)).Raw(); });
+    const double n_cos =
+        TimeLoop<int32_t>(cfg, in, [](int32_t x) { return lockbox::math::Cos(Fixed::FromRaw(x)).Raw(); });
     const double f_cos = TimeLoop<float>(cfg, fin, [](float x) { return std::cos(x); });
     const double n_sc = TimeLoop<int32_t>(cfg, in, [](int32_t x) {
-        const lockbox::SinCosResult r = lockbox::SinCos(Fixed::FromRaw(x));
+        const lockbox::math::SinCosResult r = lockbox::math::SinCos(Fixed::FromRaw(x));
         return r.sin.Raw() + r.cos.Raw();
     });
     const double f_sc = TimeLoop<float>(cfg, fin, [](float x) { return std::sin(x) + std::cos(x); });
@@ -335,14 +338,14 @@ Row Atan2Row(int n, const TimingConfig& cfg) {
     std::vector<Pair32> in;
     for (int i = 0; i < n; ++i) {
         const int32_t y = LogUniformRaw(rng), x = LogUniformRaw(rng);
-        const int32_t r = lockbox::Atan2(Fixed::FromRaw(y), Fixed::FromRaw(x)).Raw();
+        const int32_t r = lockbox::math::Atan2(Fixed::FromRaw(y), Fixed::FromRaw(x)).Raw();
         st.Add(r - std::atan2(static_cast<long double>(y), static_cast<long double>(x)) * kQ16);
         if (in.size() < kBatch) in.push_back({y, x});
     }
     std::vector<FPair> fin;
     for (const Pair32& p : in) fin.push_back({ToF(p.a), ToF(p.b)});
     const double nf = TimeLoop<int32_t>(
-        cfg, in, [](Pair32 p) { return lockbox::Atan2(Fixed::FromRaw(p.a), Fixed::FromRaw(p.b)).Raw(); });
+        cfg, in, [](Pair32 p) { return lockbox::math::Atan2(Fixed::FromRaw(p.a), Fixed::FromRaw(p.b)).Raw(); });
     const double ff = TimeLoop<float>(cfg, fin, [](FPair p) { return std::atan2(p.a, p.b); });
     return {"atan2", st.count, st.max, st.Mean(), nf, ff};
 }

@@ -91,26 +91,26 @@ void BM_Div_Float(benchmark::State& s) {
     Run<float>(s, [](int i) { return In().fa[i] / In().fb[i]; });
 }
 void BM_Sqrt_Fixed(benchmark::State& s) {
-    Run<int32_t>(s, [](int i) { return lockbox::Sqrt(Fixed::FromRaw(In().positive[i])).Raw(); });
+    Run<int32_t>(s, [](int i) { return lockbox::math::Sqrt(Fixed::FromRaw(In().positive[i])).Raw(); });
 }
 void BM_Sqrt_Float(benchmark::State& s) {
     Run<float>(s, [](int i) { return std::sqrt(In().fpositive[i]); });
 }
 void BM_Sin_Fixed(benchmark::State& s) {
-    Run<int32_t>(s, [](int i) { return lockbox::Sin(Fixed::FromRaw(In().angles[i])).Raw(); });
+    Run<int32_t>(s, [](int i) { return lockbox::math::Sin(Fixed::FromRaw(In().angles[i])).Raw(); });
 }
 void BM_Sin_Float(benchmark::State& s) {
     Run<float>(s, [](int i) { return std::sin(In().fangles[i]); });
 }
 void BM_Cos_Fixed(benchmark::State& s) {
-    Run<int32_t>(s, [](int i) { return lockbox::Cos(Fixed::FromRaw(In().angles[i])).Raw(); });
+    Run<int32_t>(s, [](int i) { return lockbox::math::Cos(Fixed::FromRaw(In().angles[i])).Raw(); });
 }
 void BM_Cos_Float(benchmark::State& s) {
     Run<float>(s, [](int i) { return std::cos(In().fangles[i]); });
 }
 void BM_SinCos_Fixed(benchmark::State& s) {
     Run<int32_t>(s, [](int i) {
-        const lockbox::SinCosResult r = lockbox::SinCos(Fixed::FromRaw(In().angles[i]));
+        const lockbox::math::SinCosResult r = lockbox::math::SinCos(Fixed::FromRaw(In().angles[i]));
         return r.sin.Raw() + r.cos.Raw();
     });
 }
@@ -118,13 +118,14 @@ void BM_SinCos_Float(benchmark::State& s) {
     Run<float>(s, [](int i) { return std::sin(In().fangles[i]) + std::cos(In().fangles[i]); });
 }
 void BM_Atan2_Fixed(benchmark::State& s) {
-    Run<int32_t>(s, [](int i) { return lockbox::Atan2(Fixed::FromRaw(In().a[i]), Fixed::FromRaw(In().b[i])).Raw(); });
+    Run<int32_t>(
+        s, [](int i) { return lockbox::math::Atan2(Fixed::FromRaw(In().a[i]), Fixed::FromRaw(In().b[i])).Raw(); });
 }
 void BM_Atan2_Float(benchmark::State& s) {
     Run<float>(s, [](int i) { return std::atan2(In().fa[i], In().fb[i]); });
 }
 void BM_WrapAngle_Fixed(benchmark::State& s) {
-    Run<int32_t>(s, [](int i) { return lockbox::WrapAngle(Fixed::FromRaw(In().a[i] * 64)).Raw(); });
+    Run<int32_t>(s, [](int i) { return lockbox::math::WrapAngle(Fixed::FromRaw(In().a[i] * 64)).Raw(); });
 }
 void BM_WrapAngle_Float(benchmark::State& s) {
     // Box2D-style float wrap: a - 2pi * floor((a + pi) / 2pi).

@@ -124,8 +124,8 @@ TEST(Atan2, OddSymmetryAndRange) {
 }
 
 TEST(Atan2, PublicWrapper) {
-    EXPECT_EQ(lockbox::Atan2(Fixed(1), Fixed(1)).Raw(), 51472);
-    EXPECT_EQ(lockbox::Atan2(Fixed(0), Fixed(-1)), lockbox::kPi);
-    EXPECT_EQ(lockbox::Atan2(Fixed(0), Fixed(0)), Fixed(0));
-    EXPECT_EQ(lockbox::Atan2(Fixed(-5), Fixed(0)), -lockbox::kHalfPi);
+    EXPECT_EQ(lockbox::math::Atan2(Fixed(1), Fixed(1)).Raw(), 51472);
+    EXPECT_EQ(lockbox::math::Atan2(Fixed(0), Fixed(-1)), lockbox::math::kPi);
+    EXPECT_EQ(lockbox::math::Atan2(Fixed(0), Fixed(0)), Fixed(0));
+    EXPECT_EQ(lockbox::math::Atan2(Fixed(-5), Fixed(0)), -lockbox::math::kHalfPi);
 }

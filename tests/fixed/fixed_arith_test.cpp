@@ -112,18 +112,18 @@ TEST(FixedArith, SaturatesAndCounts) {
 }
 
 TEST(FixedArith, HelpersAndLimits) {
-    EXPECT_EQ(lockbox::Floor(Fixed(1.75)), Fixed(1));
-    EXPECT_EQ(lockbox::Floor(Fixed(-1.25)), Fixed(-2));
-    EXPECT_EQ(lockbox::Ceil(Fixed(1.25)), Fixed(2));
-    EXPECT_EQ(lockbox::Ceil(Fixed(-1.75)), Fixed(-1));
-    EXPECT_EQ(lockbox::Round(Fixed(2.5)), Fixed(3));
-    EXPECT_EQ(lockbox::Round(Fixed(-2.5)), Fixed(-3));
-    EXPECT_EQ(lockbox::Round(Fixed(-2.25)), Fixed(-2));
-    EXPECT_EQ(lockbox::Abs(Fixed(-3)), Fixed(3));
-    EXPECT_EQ(lockbox::Min(Fixed(1), Fixed(2)), Fixed(1));
-    EXPECT_EQ(lockbox::Max(Fixed(1), Fixed(2)), Fixed(2));
-    EXPECT_EQ(lockbox::Clamp(Fixed(5), Fixed(-1), Fixed(1)), Fixed(1));
-    EXPECT_EQ(lockbox::Sign(Fixed(-0.5)), -1);
+    EXPECT_EQ(lockbox::math::Floor(Fixed(1.75)), Fixed(1));
+    EXPECT_EQ(lockbox::math::Floor(Fixed(-1.25)), Fixed(-2));
+    EXPECT_EQ(lockbox::math::Ceil(Fixed(1.25)), Fixed(2));
+    EXPECT_EQ(lockbox::math::Ceil(Fixed(-1.75)), Fixed(-1));
+    EXPECT_EQ(lockbox::math::Round(Fixed(2.5)), Fixed(3));
+    EXPECT_EQ(lockbox::math::Round(Fixed(-2.5)), Fixed(-3));
+    EXPECT_EQ(lockbox::math::Round(Fixed(-2.25)), Fixed(-2));
+    EXPECT_EQ(lockbox::math::Abs(Fixed(-3)), Fixed(3));
+    EXPECT_EQ(lockbox::math::Min(Fixed(1), Fixed(2)), Fixed(1));
+    EXPECT_EQ(lockbox::math::Max(Fixed(1), Fixed(2)), Fixed(2));
+    EXPECT_EQ(lockbox::math::Clamp(Fixed(5), Fixed(-1), Fixed(1)), Fixed(1));
+    EXPECT_EQ(lockbox::math::Sign(Fixed(-0.5)), -1);
     EXPECT_EQ(std::numeric_limits<Fixed>::max().Raw(), INT32_MAX);
     EXPECT_EQ(std::numeric_limits<Fixed>::lowest().Raw(), -INT32_MAX);
     EXPECT_EQ(std::numeric_limits<Fixed>::epsilon().Raw(), 1);

@@ -70,12 +70,12 @@ TEST(Mat33, Solve33AndSymInverseMatchReference) {
     int checked = 0;
     for (int i = 0; i < 20000; ++i) {
         // Symmetric positive-definite-ish matrices like the joints' K (diagonal dominant).
-        const Fixed d1 = Abs(RandomFixed(rng, 1e-2, 1e3)) + Fixed(0.01),
-                    d2 = Abs(RandomFixed(rng, 1e-2, 1e3)) + Fixed(0.01),
-                    d3 = Abs(RandomFixed(rng, 1e-2, 1e3)) + Fixed(0.01);
-        const Fixed o12 = RandomFixed(rng, 1e-3, 1.0) * Min(d1, d2),
-                    o13 = RandomFixed(rng, 1e-3, 1.0) * Min(d1, d3) * Fixed(0.5),
-                    o23 = RandomFixed(rng, 1e-3, 1.0) * Min(d2, d3) * Fixed(0.5);
+        const Fixed d1 = lockbox::math::Abs(RandomFixed(rng, 1e-2, 1e3)) + Fixed(0.01),
+                    d2 = lockbox::math::Abs(RandomFixed(rng, 1e-2, 1e3)) + Fixed(0.01),
+                    d3 = lockbox::math::Abs(RandomFixed(rng, 1e-2, 1e3)) + Fixed(0.01);
+        const Fixed o12 = RandomFixed(rng, 1e-3, 1.0) * lockbox::math::Min(d1, d2),
+                    o13 = RandomFixed(rng, 1e-3, 1.0) * lockbox::math::Min(d1, d3) * Fixed(0.5),
+                    o23 = RandomFixed(rng, 1e-3, 1.0) * lockbox::math::Min(d2, d3) * Fixed(0.5);
         b2Mat33 K(b2Vec3(d1, o12, o13), b2Vec3(o12, d2, o23), b2Vec3(o13, o23, d3));
         const b2Vec3 b(RandomFixed(rng, 1e-3, 10), RandomFixed(rng, 1e-3, 10), RandomFixed(rng, 1e-3, 10));
         long double m[3][3] = {{D(d1), D(o12), D(o13)}, {D(o12), D(d2), D(o23)}, {D(o13), D(o23), D(d3)}};

@@ -150,10 +150,10 @@ TEST(SqrtRaw, NegativeIsDomainErrorReturningZero) {
 }
 
 TEST(FixedSqrt, WrapsTheKernel) {
-    EXPECT_EQ(lockbox::Sqrt(Fixed(4)), Fixed(2));
-    EXPECT_EQ(lockbox::Sqrt(Fixed(0)), Fixed(0));
-    EXPECT_EQ(lockbox::Sqrt(Fixed::FromRaw(2 * 65536)).Raw(), 92682);  // sqrt(2) = 1.41421356
+    EXPECT_EQ(lockbox::math::Sqrt(Fixed(4)), Fixed(2));
+    EXPECT_EQ(lockbox::math::Sqrt(Fixed(0)), Fixed(0));
+    EXPECT_EQ(lockbox::math::Sqrt(Fixed::FromRaw(2 * 65536)).Raw(), 92682);  // sqrt(2) = 1.41421356
     for (int32_t x = 0; x < 100000; x += 7) {
-        EXPECT_EQ(lockbox::Sqrt(Fixed::FromRaw(x)).Raw(), SqrtRaw(x));
+        EXPECT_EQ(lockbox::math::Sqrt(Fixed::FromRaw(x)).Raw(), SqrtRaw(x));
     }
 }

@@ -16,12 +16,12 @@ TEST(Rot, IdentityAndAxes) {
     EXPECT_EQ(q.s, Fixed());
     EXPECT_EQ(q.c, Fixed(1));
     EXPECT_EQ(q.GetAngle(), Fixed());
-    const b2Rot r(kHalfPi);
+    const b2Rot r(math::kHalfPi);
     EXPECT_EQ(r.s, Fixed(1));
     EXPECT_LE(std::abs(r.c.Raw()), 1);
     EXPECT_EQ(r.GetXAxis(), b2Vec2(r.c, r.s));
     EXPECT_EQ(r.GetYAxis(), b2Vec2(-r.s, r.c));
-    EXPECT_EQ(r.GetAngle(), kHalfPi);
+    EXPECT_EQ(r.GetAngle(), math::kHalfPi);
 }
 
 TEST(Rot, MulAndMulTRoundTrip) {

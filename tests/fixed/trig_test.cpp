@@ -132,28 +132,28 @@ TEST(SinCos, PublicWrappersAgreeWithKernel) {
         int32_t s = 0, c = 0;
         SinCosRaw(x, &s, &c);
         Fixed fs, fc;
-        lockbox::SinCos(Fixed::FromRaw(x), fs, fc);
-        const lockbox::SinCosResult r = lockbox::SinCos(Fixed::FromRaw(x));
+        lockbox::math::SinCos(Fixed::FromRaw(x), fs, fc);
+        const lockbox::math::SinCosResult r = lockbox::math::SinCos(Fixed::FromRaw(x));
         ASSERT_EQ(fs.Raw(), s);
         ASSERT_EQ(fc.Raw(), c);
         ASSERT_EQ(r.sin.Raw(), s);
         ASSERT_EQ(r.cos.Raw(), c);
-        ASSERT_EQ(lockbox::Sin(Fixed::FromRaw(x)).Raw(), s);
-        ASSERT_EQ(lockbox::Cos(Fixed::FromRaw(x)).Raw(), c);
+        ASSERT_EQ(lockbox::math::Sin(Fixed::FromRaw(x)).Raw(), s);
+        ASSERT_EQ(lockbox::math::Cos(Fixed::FromRaw(x)).Raw(), c);
     }
-    EXPECT_EQ(lockbox::Sin(Fixed(0)), Fixed(0));
-    EXPECT_EQ(lockbox::Cos(Fixed(0)), Fixed(1));
+    EXPECT_EQ(lockbox::math::Sin(Fixed(0)), Fixed(0));
+    EXPECT_EQ(lockbox::math::Cos(Fixed(0)), Fixed(1));
 }
 
 TEST(AngleConstants, AreCorrectlyRounded) {
-    EXPECT_EQ(lockbox::kPi.Raw(), 205887);
-    EXPECT_EQ(lockbox::kTwoPi.Raw(), 411775);
-    EXPECT_EQ(lockbox::kHalfPi.Raw(), 102944);
+    EXPECT_EQ(lockbox::math::kPi.Raw(), 205887);
+    EXPECT_EQ(lockbox::math::kTwoPi.Raw(), 411775);
+    EXPECT_EQ(lockbox::math::kHalfPi.Raw(), 102944);
     EXPECT_EQ(lockbox::detail::kQuarterPiRaw, 51472);
     EXPECT_EQ(lockbox::detail::kTwoPiQ48, 2 * lockbox::detail::kPiQ48);
     // Against long double pi (64-bit mantissa is ample for 17 + 32 bits).
     const long double pi = 3.14159265358979323846264338327950288L;
-    EXPECT_LT(std::fabs(lockbox::kPi.Raw() - pi * 65536.0L), 0.5L);
-    EXPECT_LT(std::fabs(lockbox::kTwoPi.Raw() - 2 * pi * 65536.0L), 0.5L);
-    EXPECT_LT(std::fabs(lockbox::kHalfPi.Raw() - pi / 2 * 65536.0L), 0.5L);
+    EXPECT_LT(std::fabs(lockbox::math::kPi.Raw() - pi * 65536.0L), 0.5L);
+    EXPECT_LT(std::fabs(lockbox::math::kTwoPi.Raw() - 2 * pi * 65536.0L), 0.5L);
+    EXPECT_LT(std::fabs(lockbox::math::kHalfPi.Raw() - pi / 2 * 65536.0L), 0.5L);
 }

@@ -117,10 +117,10 @@ TEST(WrapAngle, NoDriftWhenSpinning) {
 }
 
 TEST(WrapAngle, PublicWrappers) {
-    EXPECT_EQ(lockbox::WrapAngle(lockbox::kPi), lockbox::kPi);
-    EXPECT_EQ(lockbox::WrapAngle(-lockbox::kPi), -lockbox::kPi);
-    EXPECT_EQ(lockbox::WrapAngle(lockbox::kTwoPi), Fixed(0));
+    EXPECT_EQ(lockbox::math::WrapAngle(lockbox::math::kPi), lockbox::math::kPi);
+    EXPECT_EQ(lockbox::math::WrapAngle(-lockbox::math::kPi), -lockbox::math::kPi);
+    EXPECT_EQ(lockbox::math::WrapAngle(lockbox::math::kTwoPi), Fixed(0));
     int32_t turns = 0;
-    EXPECT_EQ(lockbox::WrapAngle(Fixed(100), turns).Raw(), WrapAngleRaw(100 * 65536));
+    EXPECT_EQ(lockbox::math::WrapAngle(Fixed(100), turns).Raw(), WrapAngleRaw(100 * 65536));
     EXPECT_EQ(turns, 16);  // 100 rad = 15.9 turns -> 16 turns removed, rest -0.53 rad
 }

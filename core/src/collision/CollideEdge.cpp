@@ -476,7 +476,7 @@ b2EPAxis b2EPCollider::ComputePolygonSeparation() const {
 
         const Wide s1 = b2DotWide(n, m_polygonB.vertices[i] - m_v1);
         const Wide s2 = b2DotWide(n, m_polygonB.vertices[i] - m_v2);
-        const Wide s = Min(s1, s2);
+        const Wide s = b2Min(s1, s2);
 
         if (s > Wide(m_radius)) {
             // No collision

@@ -195,7 +195,7 @@ void b2TimeOfImpact(b2TOIOutput* output, const b2TOIInput* input) {
 
     const Fixed tMax = input->tMax;
     const Fixed totalRadius = proxyA->m_radius + proxyB->m_radius;
-    const Fixed target = Max(b2_linearSlop, totalRadius - Fixed(3) * b2_linearSlop);
+    const Fixed target = b2Max(b2_linearSlop, totalRadius - Fixed(3) * b2_linearSlop);
     const Fixed tolerance = kTolerance;
 
     Fixed t1;
@@ -289,7 +289,7 @@ void b2TimeOfImpact(b2TOIOutput* output, const b2TOIInput* input) {
                 const Fixed t = NextTime(rootIterCount, a1, a2, s1, s2, target);
                 const Fixed s = fcn.Evaluate(indexA, indexB, t);
                 ++rootIterCount;
-                if (Abs(s - target) < tolerance) {
+                if (b2Abs(s - target) < tolerance) {
                     t2 = t;  // tentative new t1
                     break;
                 }

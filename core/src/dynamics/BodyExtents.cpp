@@ -17,7 +17,7 @@ Fixed MinExtent(const b2Shape* shape) {
             Fixed minExtent = Fixed::FromRaw(Fixed::kMaxRaw);
             for (int32 i = 0; i < poly->m_vertexCount; ++i) {
                 const Fixed d = b2Dot(poly->m_normals[i], poly->m_vertices[i] - poly->m_centroid);
-                minExtent = Min(minExtent, d);
+                minExtent = b2Min(minExtent, d);
             }
             return minExtent + poly->m_radius;
         }
@@ -30,7 +30,7 @@ Fixed MinExtent(const b2Shape* shape) {
 // Largest distance from a body-frame point to any point of the shape.
 Fixed MaxExtent(const b2Shape* shape, const b2Vec2& center) {
     Fixed maxDist;
-    auto visit = [&](const b2Vec2& v) { maxDist = Max(maxDist, b2Distance(v, center)); };
+    auto visit = [&](const b2Vec2& v) { maxDist = b2Max(maxDist, b2Distance(v, center)); };
     switch (shape->GetType()) {
         case b2Shape::e_circle: visit(static_cast<const b2CircleShape*>(shape)->m_p); break;
         case b2Shape::e_polygon: {
@@ -59,8 +59,8 @@ void b2Body::UpdateExtents() {
     m_minExtent = Fixed::FromRaw(Fixed::kMaxRaw);
     m_maxExtent = Fixed();
     for (const b2Fixture* f = m_fixtureList; f; f = f->m_next) {
-        m_minExtent = Min(m_minExtent, MinExtent(f->m_shape.get()));
-        m_maxExtent = Max(m_maxExtent, MaxExtent(f->m_shape.get(), m_sweep.localCenter));
+        m_minExtent = b2Min(m_minExtent, MinExtent(f->m_shape.get()));
+        m_maxExtent = b2Max(m_maxExtent, MaxExtent(f->m_shape.get(), m_sweep.localCenter));
     }
     if (m_fixtureList == nullptr) m_minExtent = Fixed();
 }
@@ -69,7 +69,7 @@ bool b2Body::IsFastThisStep() const noexcept {
     // The bound on how far any point of the body moved this step: |dc| + |da| * maxExtent.
     // Formed in Q32.32 so that a huge body (a long chain) cannot overflow the bound.
     const Wide linear = Wide((m_sweep.c - m_sweep.c0).Length());
-    const Wide angular = MulWide(Abs(m_sweep.a - m_sweep.a0), m_maxExtent);
+    const Wide angular = MulWide(b2Abs(m_sweep.a - m_sweep.a0), m_maxExtent);
     const Wide motion = linear + angular;
     // Two thresholds, the smaller wins:
     // - half the thinnest extent (Box2D v3): below it the centre cannot cross a surface in
@@ -79,7 +79,7 @@ bool b2Body::IsFastThisStep() const noexcept {
     //   at -linearSlop, so a body moving less than 1.75 linearSlop cannot produce an event
     //   from rest; linearSlop keeps a margin. Skipping such bodies keeps 2.2.1's results
     //   and makes TOI free for resting and slow scenes.
-    const Fixed threshold = Min(b2_linearSlop, Fixed::FromRaw(m_minExtent.Raw() / 2));
+    const Fixed threshold = b2Min(b2_linearSlop, Fixed::FromRaw(m_minExtent.Raw() / 2));
     return motion > Wide(threshold);
 }
 

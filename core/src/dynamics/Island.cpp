@@ -28,7 +28,7 @@ void IntegratePosition(Fixed h, b2Vec2& c, Fixed& a, b2Vec2& v, Fixed& w) {
     }
     const Fixed rotation = h * w;
     if (MulWide(rotation, rotation) > Wide(b2_maxRotationSquared)) {
-        const Fixed ratio = b2_maxRotation / Abs(rotation);
+        const Fixed ratio = b2_maxRotation / b2Abs(rotation);
         w *= ratio;
     }
     c += h * v;

@@ -207,7 +207,7 @@ void b2World::SolveTOI(const b2TimeStep& step) {
                 // beta is the fraction of the remaining portion of the step.
                 const Fixed beta = output.t;
                 if (output.state == b2TOIOutput::e_touching) {
-                    alpha = Min(alpha0 + (Fixed(1) - alpha0) * beta, Fixed(1));
+                    alpha = b2Min(alpha0 + (Fixed(1) - alpha0) * beta, Fixed(1));
                 } else {
                     alpha = 1;
                 }

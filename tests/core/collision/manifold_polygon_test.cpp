@@ -118,7 +118,7 @@ TEST(ManifoldPolygons, ReferenceFaceOnBSwapsFeatures) {
     xfA.q.Set(0.1_fx);
     // Lowest corner of A: rotated (-0.5,-0.5) or (0.5,-0.5); place it at y = 1 - 0.005.
     const b2Vec2 c0 = b2Mul(xfA.q, b2Vec2(-0.5_fx, -0.5_fx)), c1 = b2Mul(xfA.q, b2Vec2(0.5_fx, -0.5_fx));
-    const Fixed lowest = Min(c0.y, c1.y);
+    const Fixed lowest = b2Min(c0.y, c1.y);
     xfA.p = b2Vec2(0.3_fx, 1 - b2_linearSlop - lowest);
     b2Manifold m;
     b2CollidePolygons(&m, &a, xfA, &b, At(0, 0));

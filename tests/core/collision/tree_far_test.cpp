@@ -150,7 +150,7 @@ TEST(TreeFar, WorldCornersWithHugeBoxesDoNotOverflow) {
             const b2AABB& fat = tree.GetFatAABB(ids[i]);
             const b2Vec2 c = fat.GetCenter();
             const b2Vec2 d(c.x > Fixed() ? -k : k, c.y > Fixed() ? Fixed(-8000) : Fixed(8000));
-            const b2Vec2 nc = b2Vec2(Clamp(c.x + d.x, -k, k), Clamp(c.y + d.y, -k, k));
+            const b2Vec2 nc = b2Vec2(b2Clamp(c.x + d.x, -k, k), b2Clamp(c.y + d.y, -k, k));
             tree.MoveProxy(ids[i], b2AABB{nc - b2Vec2(1, 1), nc + b2Vec2(1, 1)}, d);
             ASSERT_TRUE(tree.Validate());
         }

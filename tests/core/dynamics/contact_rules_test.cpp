@@ -195,7 +195,7 @@ TEST(ContactRules, PreSolveDisablingMakesAOneSidedPlatform) {
     Fixed maxY;
     for (int n = 0; n < 300; ++n) {
         world.Step(kDt, 8, 3);
-        maxY = Max(maxY, ball->GetPosition().y);
+        maxY = b2Max(maxY, ball->GetPosition().y);
     }
     EXPECT_GT(maxY, Fixed(6));                                 // went through from below
     EXPECT_NEAR(ball->GetPosition().y.ToDouble(), 5.5, 0.03);  // resting on top

@@ -36,7 +36,7 @@ TEST(JointAnalytic, RevolutePendulumPeriod) {
     b2Body* ground = Ground(world);
     const Fixed L = 1;
     const Fixed theta0 = Fixed(0.05);
-    b2Body* ball = Ball(world, L * Sin(theta0), Fixed(10) - L * Cos(theta0), Fixed(0.02), 10);
+    b2Body* ball = Ball(world, L * math::Sin(theta0), Fixed(10) - L * math::Cos(theta0), Fixed(0.02), 10);
     b2RevoluteJointDef rd;
     rd.Initialize(ground, ball, b2Vec2(0, 10));
     world.CreateJoint(&rd);

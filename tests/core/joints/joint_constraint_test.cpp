@@ -132,7 +132,7 @@ TEST_P(JointError, Weld) {
     auto* j = static_cast<b2WeldJoint*>(world.CreateJoint(&wd));
     double worstAngle = 0;
     const double worst = RunWorst(world, [&] {
-        worstAngle = std::max(worstAngle, std::abs(D(WrapAngle(b->GetAngle() - a->GetAngle()))));
+        worstAngle = std::max(worstAngle, std::abs(D(math::WrapAngle(b->GetAngle() - a->GetAngle()))));
         return Dist(j->GetAnchorA(), j->GetAnchorB());
     });
     std::printf("[joints] weld %s: max anchor separation %.5f m, angle %.5f rad\n", GetParam().name, worst, worstAngle);

@@ -76,7 +76,7 @@ TEST(JointStress, WreckingBall) {
     // 10x one link (the testbed's ratio): 3 kg, a 0.5 m disc.
     const Fixed linkMass = links[0]->GetMass().ToFixed();
     const Fixed r = Fixed(0.5);
-    const Fixed density = Fixed(10) * linkMass / (kPi * r * r);
+    const Fixed density = Fixed(10) * linkMass / (b2_pi * r * r);
     b2Body* ball = Ball(world, Fixed(n) + r, 25, r, density);
     b2RevoluteJointDef jd;
     jd.Initialize(links.back(), ball, b2Vec2(Fixed(n), 25));
@@ -106,7 +106,7 @@ TEST(JointStress, SpringEnvelope) {
             b2World world(b2Vec2(0, 0));
             b2Body* ground = Ground(world);
             const Fixed r = Fixed(0.1);
-            b2Body* ball = Ball(world, 0, Fixed(-2.1), r, mass / (kPi * r * r));
+            b2Body* ball = Ball(world, 0, Fixed(-2.1), r, mass / (b2_pi * r * r));
             b2DistanceJointDef dd;
             dd.Initialize(ground, ball, b2Vec2(0, 0), ball->GetPosition());
             dd.length = 2;
@@ -128,7 +128,7 @@ TEST(JointStress, SpringEnvelope) {
             b2World world(b2Vec2(0, -10));
             b2Body* ground = Ground(world);
             const Fixed r = Fixed(0.1);
-            b2Body* ball = Ball(world, 0, Fixed(-2), r, mass / (kPi * r * r));
+            b2Body* ball = Ball(world, 0, Fixed(-2), r, mass / (b2_pi * r * r));
             b2DistanceJointDef dd;
             dd.Initialize(ground, ball, b2Vec2(0, 0), ball->GetPosition());
             dd.frequencyHz = Fixed(29);
@@ -179,7 +179,7 @@ TEST(JointStress, RevoluteLimitTenTurns) {
     b2RevoluteJointDef rd;
     rd.Initialize(ground, wheel, wheel->GetPosition());
     rd.enableLimit = true;
-    const Fixed tenTurns = Fixed(10) * kTwoPi;
+    const Fixed tenTurns = Fixed(10) * math::kTwoPi;
     rd.lowerAngle = -tenTurns;
     rd.upperAngle = tenTurns;
     rd.enableMotor = true;
@@ -190,8 +190,8 @@ TEST(JointStress, RevoluteLimitTenTurns) {
     for (int i = 0; i < 900; ++i) {
         Step(world);
         maxAngle = std::max(maxAngle, D(j->GetJointAngle()));
-        ASSERT_GE(wheel->GetAngle(), -kPi);
-        ASSERT_LE(wheel->GetAngle(), kPi);
+        ASSERT_GE(wheel->GetAngle(), -b2_pi);
+        ASSERT_LE(wheel->GetAngle(), b2_pi);
     }
     std::printf("[joints] revolute +10 turns: max angle %.5f rad (limit %.5f), final %.5f\n", maxAngle, D(tenTurns),
                 D(j->GetJointAngle()));

@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "lockbox/fixed/Fixed.h"
+#include "lockbox/fixed/Functions.h"
 #include "lockbox/fixed/Wide.h"
 
 namespace lockbox {
@@ -20,8 +21,7 @@ using uint16 = uint16_t;
 using uint32 = uint32_t;
 using uint64 = uint64_t;
 
-/// pi in Q16.16 (raw 205887, correctly rounded).
-inline constexpr Fixed b2_pi = Fixed::FromRaw(205887);
+// b2_pi (raw 205887) is defined with the other scalar math in lockbox/fixed/Functions.h.
 
 // ---- Collision --------------------------------------------------------------------------
 

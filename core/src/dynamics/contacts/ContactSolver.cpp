@@ -245,7 +245,7 @@ void b2ContactSolver::SolveVelocityConstraints() {
             const Wide vt = solver::SpeedAlong(vA, wA, vcp->rtA, vB, wB, vcp->rtB, tangent);
             Wide lambda = -(vcp->tangentMass * vt);
             const Wide maxFriction = vcp->normalImpulse * vc->friction;
-            const Wide newImpulse = Clamp(vcp->tangentImpulse + lambda, -maxFriction, maxFriction);
+            const Wide newImpulse = b2Clamp(vcp->tangentImpulse + lambda, -maxFriction, maxFriction);
             lambda = newImpulse - vcp->tangentImpulse;
             vcp->tangentImpulse = newImpulse;
             solver::ApplyAlong(vA, wA, vB, wB, lambda, pushTA, pushTB, same, vcp->turnTA, vcp->turnTB);
@@ -255,7 +255,7 @@ void b2ContactSolver::SolveVelocityConstraints() {
             b2VelocityConstraintPoint* vcp = vc->points;
             const Wide vn = solver::SpeedAlong(vA, wA, vcp->rnA, vB, wB, vcp->rnB, normal);
             Wide lambda = -(vcp->normalMass * (vn - Wide(vcp->velocityBias)));
-            const Wide newImpulse = Max(vcp->normalImpulse + lambda, Wide());
+            const Wide newImpulse = b2Max(vcp->normalImpulse + lambda, Wide());
             lambda = newImpulse - vcp->normalImpulse;
             vcp->normalImpulse = newImpulse;
             solver::ApplyAlong(vA, wA, vB, wB, lambda, pushNA, pushNB, same, vcp->turnNA, vcp->turnNB);

@@ -92,10 +92,10 @@ Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 count, b2P
             const b2Vec2 normal = psm.normal;
             const b2Vec2 rA = psm.point - cA;
             const b2Vec2 rB = psm.point - cB;
-            minSeparation = Min(minSeparation, psm.separation);
+            minSeparation = b2Min(minSeparation, psm.separation);
 
             // Prevent large corrections and allow slop.
-            const Fixed C = Clamp(baumgarte * (psm.separation + b2_linearSlop), -b2_maxLinearCorrection, Fixed());
+            const Fixed C = b2Clamp(baumgarte * (psm.separation + b2_linearSlop), -b2_maxLinearCorrection, Fixed());
             const Fixed rnA = b2Cross(rA, normal);
             const Fixed rnB = b2Cross(rB, normal);
             const Wide K = solver::EffectiveInverseMass(mA, mB, iA, iB, rnA, rnB);

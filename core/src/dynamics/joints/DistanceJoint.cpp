@@ -130,7 +130,7 @@ bool b2DistanceJoint::SolvePositionConstraints(const b2SolverData& data) {
     b2Vec2 u = cB + rB - cA - rA;
 
     const Fixed length = u.Normalize();
-    const Fixed C = Clamp(length - m_length, -b2_maxLinearCorrection, b2_maxLinearCorrection);
+    const Fixed C = b2Clamp(length - m_length, -b2_maxLinearCorrection, b2_maxLinearCorrection);
 
     const Wide impulse = -(m_mass * C);
     const b2WideVec2 P = impulse * u;
@@ -144,7 +144,7 @@ bool b2DistanceJoint::SolvePositionConstraints(const b2SolverData& data) {
     data.positions[m_indexB].c = cB;
     data.positions[m_indexB].a = aB;
 
-    return Abs(C) < b2_linearSlop;
+    return b2Abs(C) < b2_linearSlop;
 }
 
 b2Vec2 b2DistanceJoint::GetAnchorA() const { return m_bodyA->GetWorldPoint(m_localAnchorA); }

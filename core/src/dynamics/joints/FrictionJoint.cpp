@@ -91,7 +91,7 @@ void b2FrictionJoint::SolveVelocityConstraints(const b2SolverData& data) {
         Wide impulse = -(m_angularMass * Cdot);
         const Wide oldImpulse = m_angularImpulse;
         const Wide maxImpulse = MulWide(h, m_maxTorque);
-        m_angularImpulse = Clamp(m_angularImpulse + impulse, -maxImpulse, maxImpulse);
+        m_angularImpulse = b2Clamp(m_angularImpulse + impulse, -maxImpulse, maxImpulse);
         impulse = m_angularImpulse - oldImpulse;
         wA -= MulToFixed(iA, impulse);
         wB += MulToFixed(iB, impulse);

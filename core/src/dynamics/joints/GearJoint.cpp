@@ -23,7 +23,7 @@ b2GearJoint::Side b2GearJoint::MakeSide(b2Joint* joint) {
         s.localAnchorGround = revolute->GetLocalAnchorA();
         s.localAnchorBody = revolute->GetLocalAnchorB();
         s.referenceAngle = revolute->GetReferenceAngle();
-        s.angleBase = WrapAngle(s.body->m_sweep.a - s.ground->m_sweep.a - s.referenceAngle);
+        s.angleBase = math::WrapAngle(s.body->m_sweep.a - s.ground->m_sweep.a - s.referenceAngle);
     } else {
         const auto* prismatic = static_cast<const b2PrismaticJoint*>(joint);
         s.localAnchorGround = prismatic->m_localAnchorA;
@@ -38,7 +38,7 @@ Fixed b2GearJoint::Coordinate(const Side& s, const b2Vec2& cG, Fixed aG, const b
                               const b2Vec2& lc) {
     if (s.type == e_revoluteJoint) {
         // Continuous angle: the branch nearest the last one (body angles wrap each step).
-        return s.angleBase + WrapAngle(a - aG - s.referenceAngle - s.angleBase);
+        return s.angleBase + math::WrapAngle(a - aG - s.referenceAngle - s.angleBase);
     }
     const b2Rot qG(aG), q(a);
     const b2Vec2 pG = s.localAnchorGround - lcG;
@@ -104,13 +104,13 @@ void b2GearJoint::InitVelocityConstraints(const b2SolverData& data) {
     // B side), so C is unchanged and nothing saturates however long the gears spin.
     if (m_sideA.type == e_revoluteJoint) {
         const Fixed angle = Coordinate(m_sideA, pC.c, pC.a, pA.c, pA.a, m_lcC, m_lcA);
-        const Fixed shift = Abs(angle) > kMaxContinuousAngle ? angle - WrapAngle(angle) : Fixed();
+        const Fixed shift = b2Abs(angle) > kMaxContinuousAngle ? angle - math::WrapAngle(angle) : Fixed();
         m_sideA.angleBase = angle - shift;
         m_constant -= shift;
     }
     if (m_sideB.type == e_revoluteJoint) {
         const Fixed angle = Coordinate(m_sideB, pD.c, pD.a, pB.c, pB.a, m_lcD, m_lcB);
-        const Fixed shift = Abs(angle) > kMaxContinuousAngle ? angle - WrapAngle(angle) : Fixed();
+        const Fixed shift = b2Abs(angle) > kMaxContinuousAngle ? angle - math::WrapAngle(angle) : Fixed();
         m_sideB.angleBase = angle - shift;
         m_constant -= m_ratio * shift;
     }

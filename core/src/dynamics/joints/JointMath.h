@@ -5,8 +5,8 @@
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/TimeStep.h"
 #include "lockbox/dynamics/joints/Joint.h"
-#include "lockbox/dynamics/joints/WideMatrix.h"
 #include "lockbox/fixed/Math.h"
+#include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox::jointmath {
 
@@ -63,7 +63,7 @@ struct Soft {
 
 inline Soft SoftCoefficients(Wide mass, Fixed frequencyHz, Fixed dampingRatio, Fixed h) noexcept {
     Soft s;
-    const Fixed omega = kTwoPi * frequencyHz;                       // rad/s (<= 188 for 30 Hz)
+    const Fixed omega = math::kTwoPi * frequencyHz;                 // rad/s (<= 188 for 30 Hz)
     const Wide d = mass * MulWide(Fixed(2) * dampingRatio, omega);  // N*s/m
     const Wide k = mass * MulWide(omega, omega);                    // N/m
     const Wide hk = k * h;                                          // N*s/m

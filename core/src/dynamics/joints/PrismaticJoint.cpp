@@ -122,12 +122,12 @@ void b2PrismaticJoint::InitVelocityConstraints(const b2SolverData& data) {
     m_motorMass = Invert(mA + mB + iA * MulWide(m_a1, m_a1) + iB * MulWide(m_a2, m_a2));
     m_K = MakeK(mA, mB, iA, iB, m_s1, m_s2, m_a1, m_a2);
     m_pointSolver = m_K.Upper22();
-    m_pointMass = Inverse(m_pointSolver);
+    m_pointMass = math::Inverse(m_pointSolver);
 
     if (m_enableLimit) {
         const Fixed jointTranslation = b2Dot(m_axis, f.d);
         // Limits closer than 2 linearSlop (1 cm) act as a fixed translation.
-        if (Abs(m_upperTranslation - m_lowerTranslation) < Fixed(2) * b2_linearSlop) {
+        if (b2Abs(m_upperTranslation - m_lowerTranslation) < Fixed(2) * b2_linearSlop) {
             m_limitState = e_equalLimits;
         } else if (jointTranslation <= m_lowerTranslation) {
             if (m_limitState != e_atLowerLimit) {
@@ -186,7 +186,7 @@ void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
         Wide impulse = m_motorMass * (Wide(m_motorSpeed) - Cdot);
         const Wide oldImpulse = m_motorImpulse;
         const Wide maxImpulse = MulWide(data.step.dt, m_maxMotorForce);
-        m_motorImpulse = Clamp(m_motorImpulse + impulse, -maxImpulse, maxImpulse);
+        m_motorImpulse = b2Clamp(m_motorImpulse + impulse, -maxImpulse, maxImpulse);
         impulse = m_motorImpulse - oldImpulse;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, Wide(), Wide(), impulse);
     }
@@ -201,9 +201,9 @@ void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
         m_impulse += df;
 
         if (m_limitState == e_atLowerLimit) {
-            m_impulse.z = Max(m_impulse.z, Wide());
+            m_impulse.z = b2Max(m_impulse.z, Wide());
         } else if (m_limitState == e_atUpperLimit) {
-            m_impulse.z = Min(m_impulse.z, Wide());
+            m_impulse.z = b2Min(m_impulse.z, Wide());
         }
 
         // f2(1:2) = invK(1:2,1:2) * (-Cdot(1:2) - K(1:2,3) * (f2(3) - f1(3))) + f1(1:2)
@@ -217,7 +217,7 @@ void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, d.x, d.y, d.z);
     } else {
         // Limit is inactive: just solve the prismatic constraint in block form.
-        const b2WideVec2 df = -Mul(m_pointMass, Cdot1);
+        const b2WideVec2 df = -math::Mul(m_pointMass, Cdot1);
         m_impulse.x += df.x;
         m_impulse.y += df.y;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, df.x, df.y, Wide());
@@ -240,28 +240,28 @@ bool b2PrismaticJoint::SolvePositionConstraints(const b2SolverData& data) {
                               m_localXAxisA, m_localYAxisA);
 
     // Body angles are wrapped to [-pi, pi) independently, so the relative angle is wrapped too.
-    const b2Vec2 C1(b2Dot(f.perp, f.d), WrapAngle(aB - aA - m_referenceAngle));
-    Fixed linearError = Abs(C1.x);
-    const Fixed angularError = Abs(C1.y);
+    const b2Vec2 C1(b2Dot(f.perp, f.d), math::WrapAngle(aB - aA - m_referenceAngle));
+    Fixed linearError = b2Abs(C1.x);
+    const Fixed angularError = b2Abs(C1.y);
 
     bool active = false;
     Fixed C2;
     if (m_enableLimit) {
         const Fixed translation = b2Dot(f.axis, f.d);
-        if (Abs(m_upperTranslation - m_lowerTranslation) < Fixed(2) * b2_linearSlop) {
+        if (b2Abs(m_upperTranslation - m_lowerTranslation) < Fixed(2) * b2_linearSlop) {
             // Prevent large linear corrections. (2.2.1 clamps the raw translation here; the
             // error is measured from the common limit value.)
-            C2 = Clamp(translation - m_lowerTranslation, -b2_maxLinearCorrection, b2_maxLinearCorrection);
-            linearError = Max(linearError, Abs(translation - m_lowerTranslation));
+            C2 = b2Clamp(translation - m_lowerTranslation, -b2_maxLinearCorrection, b2_maxLinearCorrection);
+            linearError = b2Max(linearError, b2Abs(translation - m_lowerTranslation));
             active = true;
         } else if (translation <= m_lowerTranslation) {
             // Prevent large linear corrections and allow some slop.
-            C2 = Clamp(translation - m_lowerTranslation + b2_linearSlop, -b2_maxLinearCorrection, Fixed());
-            linearError = Max(linearError, m_lowerTranslation - translation);
+            C2 = b2Clamp(translation - m_lowerTranslation + b2_linearSlop, -b2_maxLinearCorrection, Fixed());
+            linearError = b2Max(linearError, m_lowerTranslation - translation);
             active = true;
         } else if (translation >= m_upperTranslation) {
-            C2 = Clamp(translation - m_upperTranslation - b2_linearSlop, Fixed(), b2_maxLinearCorrection);
-            linearError = Max(linearError, translation - m_upperTranslation);
+            C2 = b2Clamp(translation - m_upperTranslation - b2_linearSlop, Fixed(), b2_maxLinearCorrection);
+            linearError = b2Max(linearError, translation - m_upperTranslation);
             active = true;
         }
     }

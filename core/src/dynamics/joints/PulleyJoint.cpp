@@ -150,7 +150,7 @@ bool b2PulleyJoint::SolvePositionConstraints(const b2SolverData& data) {
     const Wide mass = Invert(mA + mB * MulWide(m_ratio, m_ratio));
 
     const Fixed C = m_constant - lengthA - m_ratio * lengthB;
-    const Fixed linearError = Abs(C);
+    const Fixed linearError = b2Abs(C);
 
     const Wide impulse = -(mass * C);
     const b2WideVec2 PA = -(impulse * uA);

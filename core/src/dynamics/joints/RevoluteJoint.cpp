@@ -29,13 +29,13 @@ b2RevoluteJoint::b2RevoluteJoint(const b2RevoluteJointDef* def) : b2Joint(def) {
     m_motorSpeed = def->motorSpeed;
     m_enableLimit = def->enableLimit;
     m_enableMotor = def->enableMotor;
-    m_angleBase = WrapAngle(m_bodyB->GetAngle() - m_bodyA->GetAngle() - m_referenceAngle);
+    m_angleBase = math::WrapAngle(m_bodyB->GetAngle() - m_bodyA->GetAngle() - m_referenceAngle);
 }
 
 Fixed b2RevoluteJoint::ContinuousAngle(Fixed aA, Fixed aB) const noexcept {
     // aB - aA - ref differs from the continuous angle by whole turns; WrapAngle picks the
     // turn count that puts it within pi of the last value (exact 2 pi, 0.5 ULP, no drift).
-    return m_angleBase + WrapAngle(aB - aA - m_referenceAngle - m_angleBase);
+    return m_angleBase + math::WrapAngle(aB - aA - m_referenceAngle - m_angleBase);
 }
 
 namespace {
@@ -81,7 +81,7 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
     const bool fixedRotation = (iA + iB == Wide());
     m_mass = PointAngleK(m_invMassA, m_invMassB, iA, iB, m_rA, m_rB);
     m_pointSolver = m_mass.Upper22();
-    m_pointMass = Inverse(m_pointSolver);
+    m_pointMass = math::Inverse(m_pointSolver);
     m_motorMass = Invert(iA + iB);
 
     if (!m_enableMotor || fixedRotation) m_motorImpulse = Wide();
@@ -90,11 +90,11 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
     // Without a limit, beyond kMaxContinuousAngle the turn count restarts from the wrapped
     // angle, so a joint that spins freely for hours never saturates Q16.16. With a limit the
     // angle is held near the limits (|limit| <= 16000 rad) and is never reset.
-    if (!m_enableLimit && Abs(jointAngle) > kMaxContinuousAngle) jointAngle = WrapAngle(jointAngle);
+    if (!m_enableLimit && b2Abs(jointAngle) > kMaxContinuousAngle) jointAngle = math::WrapAngle(jointAngle);
     m_angleBase = jointAngle;
     if (m_enableLimit && !fixedRotation) {
         // Equal limits within 2 angularSlop (4 degrees) are solved as a fixed angle.
-        if (Abs(m_upperAngle - m_lowerAngle) < Fixed(2) * b2_angularSlop) {
+        if (b2Abs(m_upperAngle - m_lowerAngle) < Fixed(2) * b2_angularSlop) {
             m_limitState = e_equalLimits;
         } else if (jointAngle <= m_lowerAngle) {
             if (m_limitState != e_atLowerLimit) m_impulse.z = Wide();
@@ -152,7 +152,7 @@ void b2RevoluteJoint::SolveVelocityConstraints(const b2SolverData& data) {
         Wide impulse = -(m_motorMass * Cdot);
         const Wide oldImpulse = m_motorImpulse;
         const Wide maxImpulse = MulWide(data.step.dt, m_maxMotorTorque);
-        m_motorImpulse = Clamp(m_motorImpulse + impulse, -maxImpulse, maxImpulse);
+        m_motorImpulse = b2Clamp(m_motorImpulse + impulse, -maxImpulse, maxImpulse);
         impulse = m_motorImpulse - oldImpulse;
         wA -= MulToFixed(iA, impulse);
         wB += MulToFixed(iB, impulse);
@@ -195,7 +195,7 @@ void b2RevoluteJoint::SolveVelocityConstraints(const b2SolverData& data) {
         wB += MulToFixed(iB, b2Cross(m_rB, P) + impulse.z);
     } else {
         // Solve the point-to-point constraint.
-        const b2WideVec2 impulse = -Mul(m_pointMass, Cdot1);
+        const b2WideVec2 impulse = -math::Mul(m_pointMass, Cdot1);
         m_impulse.x += impulse.x;
         m_impulse.y += impulse.y;
         const BodyData A{m_indexA, m_localCenterA, mA, iA};
@@ -226,17 +226,17 @@ bool b2RevoluteJoint::SolvePositionConstraints(const b2SolverData& data) {
         Fixed C;
         if (m_limitState == e_equalLimits) {
             // Prevent large angular corrections.
-            C = Clamp(angle - m_lowerAngle, -b2_maxAngularCorrection, b2_maxAngularCorrection);
-            angularError = Abs(C);
+            C = b2Clamp(angle - m_lowerAngle, -b2_maxAngularCorrection, b2_maxAngularCorrection);
+            angularError = b2Abs(C);
         } else if (m_limitState == e_atLowerLimit) {
             C = angle - m_lowerAngle;
             angularError = -C;
             // Prevent large angular corrections and allow some slop.
-            C = Clamp(C + b2_angularSlop, -b2_maxAngularCorrection, Fixed());
+            C = b2Clamp(C + b2_angularSlop, -b2_maxAngularCorrection, Fixed());
         } else {
             C = angle - m_upperAngle;
             angularError = C;
-            C = Clamp(C - b2_angularSlop, Fixed(), b2_maxAngularCorrection);
+            C = b2Clamp(C - b2_angularSlop, Fixed(), b2_maxAngularCorrection);
         }
         const Wide limitImpulse = -(m_motorMass * C);
         aA -= MulToFixed(iA, limitImpulse);

@@ -88,7 +88,7 @@ void b2RopeJoint::SolveVelocityConstraints(const b2SolverData& data) {
 
     Wide impulse = -(m_mass * Cdot);
     const Wide oldImpulse = m_impulse;
-    m_impulse = Min(Wide(), m_impulse + impulse);
+    m_impulse = b2Min(Wide(), m_impulse + impulse);
     impulse = m_impulse - oldImpulse;
 
     const b2WideVec2 P = impulse * m_u;
@@ -115,7 +115,7 @@ bool b2RopeJoint::SolvePositionConstraints(const b2SolverData& data) {
     b2Vec2 u = cB + rB - cA - rA;
 
     const Fixed length = u.Normalize();
-    const Fixed C = Clamp(length - m_maxLength, Fixed(), b2_maxLinearCorrection);
+    const Fixed C = b2Clamp(length - m_maxLength, Fixed(), b2_maxLinearCorrection);
 
     const Wide impulse = -(m_mass * C);
     const b2WideVec2 P = impulse * u;

@@ -81,14 +81,14 @@ void b2WeldJoint::InitVelocityConstraints(const b2SolverData& data) {
         Wide invM = iA + iB;
         const Wide m = Invert(invM);
         // Body angles are wrapped independently: wrap the relative angle too.
-        const Fixed C = WrapAngle(aB - aA - m_referenceAngle);
+        const Fixed C = math::WrapAngle(aB - aA - m_referenceAngle);
         const Soft soft = SoftCoefficients(m, m_frequencyHz, m_dampingRatio, data.step.dt);
         m_gamma = soft.gamma;
         m_bias = soft.biasRate * C;
         invM += m_gamma;
         m_angularMass = Invert(invM);
         m_pointSolver = m_K.Upper22();
-        m_pointMass = Inverse(m_pointSolver);
+        m_pointMass = math::Inverse(m_pointSolver);
     } else {
         m_gamma = Wide();
         m_bias = Wide();
@@ -125,7 +125,7 @@ void b2WeldJoint::SolveVelocityConstraints(const b2SolverData& data) {
         wB += MulToFixed(iB, impulse2);
 
         const b2Vec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
-        const b2WideVec2 impulse1 = -Mul(m_pointMass, Cdot1);
+        const b2WideVec2 impulse1 = -math::Mul(m_pointMass, Cdot1);
         m_impulse.x += impulse1.x;
         m_impulse.y += impulse1.y;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, impulse1, Wide());
@@ -163,8 +163,8 @@ bool b2WeldJoint::SolvePositionConstraints(const b2SolverData& data) {
         const b2WideVec2 P = -K.Solve22(C1);
         Apply(cA, aA, cB, aB, mA, mB, iA, iB, rA, rB, P, Wide());
     } else {
-        const Fixed C2 = WrapAngle(aB - aA - m_referenceAngle);
-        angularError = Abs(C2);
+        const Fixed C2 = math::WrapAngle(aB - aA - m_referenceAngle);
+        angularError = b2Abs(C2);
         const b2WideVec3 impulse = -K.Solve33(b2Vec3(C1.x, C1.y, C2));
         Apply(cA, aA, cB, aB, mA, mB, iA, iB, rA, rB, b2WideVec2(impulse.x, impulse.y), impulse.z);
     }

@@ -146,7 +146,7 @@ void b2WheelJoint::SolveVelocityConstraints(const b2SolverData& data) {
         Wide impulse = -(m_motorMass * Cdot);
         const Wide oldImpulse = m_motorImpulse;
         const Wide maxImpulse = MulWide(data.step.dt, m_maxMotorTorque);
-        m_motorImpulse = Clamp(m_motorImpulse + impulse, -maxImpulse, maxImpulse);
+        m_motorImpulse = b2Clamp(m_motorImpulse + impulse, -maxImpulse, maxImpulse);
         impulse = m_motorImpulse - oldImpulse;
         wA -= MulToFixed(iA, impulse);
         wB += MulToFixed(iB, impulse);
@@ -192,7 +192,7 @@ bool b2WheelJoint::SolvePositionConstraints(const b2SolverData& data) {
     data.positions[m_indexB].c = cB;
     data.positions[m_indexB].a = aB;
 
-    return Abs(C) <= b2_linearSlop;
+    return b2Abs(C) <= b2_linearSlop;
 }
 
 b2Vec2 b2WheelJoint::GetAnchorA() const { return m_bodyA->GetWorldPoint(m_localAnchorA); }

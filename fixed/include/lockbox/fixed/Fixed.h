@@ -203,9 +203,16 @@ constexpr Fixed Fixed::FromRatio(int64_t num, int64_t den) noexcept {
     return FromRaw(q.negative ? -m : m);
 }
 
+/// Scalar helpers on Fixed and Wide (and the angle functions of Functions.h). They live in a
+/// namespace of their own so that `using namespace lockbox;` does not bring names as common as
+/// Min, Max or Round into a game's code; the manual's b2Min, b2Max, b2Abs... call them.
+namespace math {
+
 /// |a|; |min raw| saturates.
 constexpr Fixed Abs(Fixed a) noexcept { return a < Fixed() ? -a : a; }
+/// The smaller of a and b.
 constexpr Fixed Min(Fixed a, Fixed b) noexcept { return b < a ? b : a; }
+/// The larger of a and b.
 constexpr Fixed Max(Fixed a, Fixed b) noexcept { return a < b ? b : a; }
 /// Clamps a into [lo, hi]; lo must not exceed hi.
 constexpr Fixed Clamp(Fixed a, Fixed lo, Fixed hi) noexcept { return Max(lo, Min(a, hi)); }
@@ -223,6 +230,8 @@ constexpr Fixed Round(Fixed a) noexcept {
 }
 /// Sign as -1, 0 or +1.
 constexpr int Sign(Fixed a) noexcept { return (a.Raw() > 0) - (a.Raw() < 0); }
+
+}  // namespace math
 
 namespace literals {
 /// Exact decimal literal: `12.375_fx`, `1e-3_fx`. Rounded to nearest, ties away from zero.

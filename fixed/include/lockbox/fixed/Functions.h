@@ -2,14 +2,23 @@
 /// Scalar math functions on lockbox::Fixed (Q16.16): square root, sine/cosine, atan2 and angle
 /// wrapping, plus the angle constants. All are integer-only and bit-identical on every platform.
 /// Accuracy is given in ULP = 2^-16 (1.53e-5); "correctly rounded" means <= 0.5 ULP.
+///
+/// The functions live in lockbox::math, out of the way of `using namespace lockbox;`; the
+/// manual's names for them (b2_pi, b2Sqrt, b2Atan2, b2Abs, b2Min, b2Max, b2Clamp, ...) are in
+/// lockbox, at the end of this file.
 
+#include <bit>
 #include <cstdint>
+#include <type_traits>
 
 #include "lockbox/fixed/Fixed.h"
+#include "lockbox/fixed/Wide.h"
 #include "lockbox/fixed/detail/Sqrt.h"
 #include "lockbox/fixed/detail/Trig.h"
 
 namespace lockbox {
+
+namespace math {
 
 /// pi, correctly rounded: raw 205887 (3.1415863; 0.42 ULP below pi).
 inline constexpr Fixed kPi = Fixed::FromRaw(detail::kPiRaw);
@@ -78,5 +87,79 @@ inline Fixed WrapAngle(Fixed angle) noexcept { return Fixed::FromRaw(detail::Wra
 inline Fixed WrapAngle(Fixed angle, int32_t& turns) noexcept {
     return Fixed::FromRaw(detail::WrapAngleTurnsRaw(angle.Raw(), &turns));
 }
+
+}  // namespace math
+
+// ---- The manual's scalar names (Box2D 2.2.1's b2Settings.h and b2Math.h) -----------------
+
+/// pi (rad), correctly rounded: raw 205887, as math::kPi.
+inline constexpr Fixed b2_pi = math::kPi;
+
+/// Always true: a Fixed cannot be NaN or infinite. Kept for API parity.
+constexpr bool b2IsValid(Fixed) noexcept { return true; }
+
+/// Square root of x >= 0, correctly rounded (math::Sqrt).
+constexpr Fixed b2Sqrt(Fixed x) noexcept { return math::Sqrt(x); }
+/// Angle of (x, y) in radians, in [-pi, pi], within 1 ULP (math::Atan2).
+inline Fixed b2Atan2(Fixed y, Fixed x) noexcept { return math::Atan2(y, x); }
+
+/// |a|; the most negative raw saturates.
+constexpr Fixed b2Abs(Fixed a) noexcept { return math::Abs(a); }
+/// |a|; the most negative raw saturates.
+constexpr Wide b2Abs(Wide a) noexcept { return math::Abs(a); }
+/// |a| of an integer (as Box2D's template); a must not be the type's most negative value.
+template <FixedIntegral T>
+constexpr T b2Abs(T a) noexcept {
+    if constexpr (std::is_signed_v<T>) {
+        return a < 0 ? static_cast<T>(-a) : a;
+    } else {
+        return a;
+    }
+}
+
+/// The smaller of a and b.
+constexpr Fixed b2Min(Fixed a, Fixed b) noexcept { return math::Min(a, b); }
+/// The smaller of a and b.
+constexpr Wide b2Min(Wide a, Wide b) noexcept { return math::Min(a, b); }
+/// The smaller of two integers of one type (as Box2D's template).
+template <FixedIntegral T>
+constexpr T b2Min(T a, T b) noexcept {
+    return a < b ? a : b;
+}
+
+/// The larger of a and b.
+constexpr Fixed b2Max(Fixed a, Fixed b) noexcept { return math::Max(a, b); }
+/// The larger of a and b.
+constexpr Wide b2Max(Wide a, Wide b) noexcept { return math::Max(a, b); }
+/// The larger of two integers of one type (as Box2D's template).
+template <FixedIntegral T>
+constexpr T b2Max(T a, T b) noexcept {
+    return a > b ? a : b;
+}
+
+/// a clamped into [low, high]; low must not exceed high.
+constexpr Fixed b2Clamp(Fixed a, Fixed low, Fixed high) noexcept { return math::Clamp(a, low, high); }
+/// a clamped into [low, high]; low must not exceed high.
+constexpr Wide b2Clamp(Wide a, Wide low, Wide high) noexcept { return math::Clamp(a, low, high); }
+/// An integer clamped into [low, high] (as Box2D's template).
+template <FixedIntegral T>
+constexpr T b2Clamp(T a, T low, T high) noexcept {
+    return b2Max(low, b2Min(a, high));
+}
+
+/// Exchanges a and b.
+template <typename T>
+constexpr void b2Swap(T& a, T& b) noexcept {
+    T tmp = a;
+    a = b;
+    b = tmp;
+}
+
+/// The smallest power of two greater than x, for x < 2^31; 0 for larger x (none fits 32 bits;
+/// Box2D's bit trick gives 0 there too).
+constexpr uint32_t b2NextPowerOfTwo(uint32_t x) noexcept { return x >= 0x80000000u ? 0u : std::bit_ceil(x + 1u); }
+
+/// True when x is a power of two (x > 0).
+constexpr bool b2IsPowerOfTwo(uint32_t x) noexcept { return x > 0 && (x & (x - 1)) == 0; }
 
 }  // namespace lockbox

@@ -15,13 +15,13 @@ struct b2Rot {
     /// From an angle in radians (any value; sin and cos are within 1 ULP).
     explicit b2Rot(Fixed angle) noexcept { Set(angle); }
 
-    void Set(Fixed angle) noexcept { SinCos(angle, s, c); }
+    void Set(Fixed angle) noexcept { math::SinCos(angle, s, c); }
     constexpr void SetIdentity() noexcept {
         s = 0;
         c = 1;
     }
     /// The angle in radians, in [-pi, pi].
-    Fixed GetAngle() const noexcept { return Atan2(s, c); }
+    Fixed GetAngle() const noexcept { return math::Atan2(s, c); }
     constexpr b2Vec2 GetXAxis() const noexcept { return {c, s}; }
     constexpr b2Vec2 GetYAxis() const noexcept { return {-s, c}; }
 };

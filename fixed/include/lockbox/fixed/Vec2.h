@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "lockbox/fixed/Fixed.h"
+#include "lockbox/fixed/Functions.h"
 #include "lockbox/fixed/Wide.h"
 #include "lockbox/fixed/detail/Sqrt.h"
 
@@ -160,17 +161,16 @@ constexpr Wide b2DistanceSquaredWide(const b2Vec2& a, const b2Vec2& b) noexcept 
 /// Squared distance rounded to Q16.16 (saturates beyond 181 m).
 constexpr Fixed b2DistanceSquared(const b2Vec2& a, const b2Vec2& b) noexcept { return (a - b).LengthSquared(); }
 
-constexpr b2Vec2 b2Abs(const b2Vec2& a) noexcept { return {Abs(a.x), Abs(a.y)}; }
-constexpr b2Vec2 b2Min(const b2Vec2& a, const b2Vec2& b) noexcept { return {Min(a.x, b.x), Min(a.y, b.y)}; }
-constexpr b2Vec2 b2Max(const b2Vec2& a, const b2Vec2& b) noexcept { return {Max(a.x, b.x), Max(a.y, b.y)}; }
+/// Component-wise |a|.
+constexpr b2Vec2 b2Abs(const b2Vec2& a) noexcept { return {math::Abs(a.x), math::Abs(a.y)}; }
+/// Component-wise minimum.
+constexpr b2Vec2 b2Min(const b2Vec2& a, const b2Vec2& b) noexcept { return {math::Min(a.x, b.x), math::Min(a.y, b.y)}; }
+/// Component-wise maximum.
+constexpr b2Vec2 b2Max(const b2Vec2& a, const b2Vec2& b) noexcept { return {math::Max(a.x, b.x), math::Max(a.y, b.y)}; }
+/// Component-wise clamp of a into [lo, hi].
 constexpr b2Vec2 b2Clamp(const b2Vec2& a, const b2Vec2& lo, const b2Vec2& hi) noexcept {
     return b2Max(lo, b2Min(a, hi));
 }
-
-constexpr Fixed b2Abs(Fixed a) noexcept { return Abs(a); }
-constexpr Fixed b2Min(Fixed a, Fixed b) noexcept { return Min(a, b); }
-constexpr Fixed b2Max(Fixed a, Fixed b) noexcept { return Max(a, b); }
-constexpr Fixed b2Clamp(Fixed a, Fixed lo, Fixed hi) noexcept { return Clamp(a, lo, hi); }
 
 /// The zero vector.
 inline constexpr b2Vec2 b2Vec2_zero{};

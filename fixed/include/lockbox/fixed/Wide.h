@@ -7,6 +7,7 @@
 /// rounds (ties away from zero) and saturates. Products use a 64x64->128 multiply (native or
 /// the portable limb version, which gives the same bits).
 
+#include <concepts>
 #include <cstdint>
 #include <limits>
 #include <type_traits>
@@ -247,10 +248,20 @@ private:
 constexpr Wide MulWide(Fixed a, Fixed b) noexcept { return Wide::FromRaw(int64_t{a.Raw()} * b.Raw()); }
 
 /// Wide * Fixed -> Wide, one rounding.
-[[gnu::always_inline]] constexpr Wide operator*(Wide a, Fixed b) noexcept {
+///
+/// Only for operands that are exactly a Wide and a Fixed (hence the templates): an integer or a
+/// literal converts to both types, so as plain overloads these would compete with Fixed * Fixed
+/// and Wide * Wide and make `2 * x` or `0.5 * w` ambiguous. With them constrained, a number
+/// mixed with a Fixed is a Fixed, and mixed with a Wide is a Wide.
+template <std::same_as<Wide> W, std::same_as<Fixed> F>
+[[gnu::always_inline]] constexpr Wide operator*(W a, F b) noexcept {
     return Wide::FromRaw(detail::MulShiftRound64(a.Raw(), b.Raw(), Fixed::kFractionBits, "Wide*Fixed"));
 }
-[[gnu::always_inline]] constexpr Wide operator*(Fixed a, Wide b) noexcept { return b * a; }
+/// Fixed * Wide -> Wide, one rounding (the same product as Wide * Fixed).
+template <std::same_as<Fixed> F, std::same_as<Wide> W>
+[[gnu::always_inline]] constexpr Wide operator*(F a, W b) noexcept {
+    return b * a;
+}
 
 /// Wide * Fixed rounded straight to Fixed (one rounding): impulse * inverse mass -> velocity.
 [[gnu::always_inline]] constexpr Fixed MulToFixed(Wide a, Fixed b) noexcept {
@@ -268,9 +279,15 @@ constexpr Fixed DivToFixed(Fixed a, Wide b) noexcept {
     return Fixed::FromRaw(detail::NarrowRaw(r, "DivToFixed", a.Raw(), b.Raw()));
 }
 
+namespace math {
+/// |a|; |min raw| saturates.
 constexpr Wide Abs(Wide a) noexcept { return a < Wide() ? -a : a; }
+/// The smaller of a and b.
 constexpr Wide Min(Wide a, Wide b) noexcept { return b < a ? b : a; }
+/// The larger of a and b.
 constexpr Wide Max(Wide a, Wide b) noexcept { return a < b ? b : a; }
+/// Clamps a into [lo, hi]; lo must not exceed hi.
 constexpr Wide Clamp(Wide a, Wide lo, Wide hi) noexcept { return Max(lo, Min(a, hi)); }
+}  // namespace math
 
 }  // namespace lockbox

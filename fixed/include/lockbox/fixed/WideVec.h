@@ -2,6 +2,8 @@
 /// Q32.32 vectors: impulses (N*s) and wide velocities (m/s), for the contact and joint solvers,
 /// whose accumulated impulses and inverse-mass responses do not fit Q16.16 (NUMERICS Table 1).
 
+#include <concepts>
+
 #include "lockbox/fixed/Vec2.h"
 #include "lockbox/fixed/Vec3.h"
 #include "lockbox/fixed/Wide.h"
@@ -50,12 +52,23 @@ struct b2WideVec2 {
 constexpr b2WideVec2 operator+(const b2WideVec2& a, const b2WideVec2& b) noexcept { return {a.x + b.x, a.y + b.y}; }
 /// Component-wise arithmetic (saturating Wide operations).
 constexpr b2WideVec2 operator-(const b2WideVec2& a, const b2WideVec2& b) noexcept { return {a.x - b.x, a.y - b.y}; }
+// The scalar of a product takes the type of the vector's components when it is a plain number:
+// `2 * v` is Fixed(2) * v for a b2Vec2 and Wide(2) * v for a b2WideVec2. The mixed overloads
+// below are templates so that a number, which converts to both Fixed and Wide, never selects
+// them (as Wide * Fixed in Wide.h).
+
 /// s * v with a Q16.16 scalar, one rounding per component.
-constexpr b2WideVec2 operator*(Fixed s, const b2WideVec2& v) noexcept { return {v.x * s, v.y * s}; }
+template <std::same_as<Fixed> F>
+constexpr b2WideVec2 operator*(F s, const b2WideVec2& v) noexcept {
+    return {v.x * s, v.y * s};
+}
 /// s * v with a Q32.32 scalar, one rounding per component.
 constexpr b2WideVec2 operator*(Wide s, const b2WideVec2& v) noexcept { return {s * v.x, s * v.y}; }
 /// s * d for a Q16.16 vector d (an impulse along a direction), one rounding per component.
-constexpr b2WideVec2 operator*(Wide s, const b2Vec2& d) noexcept { return {s * d.x, s * d.y}; }
+template <std::same_as<Wide> W>
+constexpr b2WideVec2 operator*(W s, const b2Vec2& d) noexcept {
+    return {s * d.x, s * d.y};
+}
 
 /// A 3D vector in Q32.32 (point impulse plus angular impulse).
 struct b2WideVec3 {

@@ -37,8 +37,8 @@ TEST(JointSpin, ThirtyMinutesAt94RadPerSecond) {
     double worstGear = 0;
     for (int i = 0; i < 108000; ++i) {
         Step(world);
-        ASSERT_GE(wheel->GetAngle(), -kPi);
-        ASSERT_LE(wheel->GetAngle(), kPi);
+        ASSERT_GE(wheel->GetAngle(), -b2_pi);
+        ASSERT_LE(wheel->GetAngle(), b2_pi);
         // The gear keeps wheel2 turning the other way: wB - wA relation on speeds.
         if (i % 100 == 0) worstGear = std::max(worstGear, std::abs(D(j->GetJointSpeed()) + D(j2->GetJointSpeed())));
     }
@@ -51,7 +51,7 @@ TEST(JointSpin, ThirtyMinutesAt94RadPerSecond) {
 
     // Limit of +-10 turns around the current angle, then wind into it at 10 rad/s.
     const Fixed a0 = j->GetJointAngle();
-    const Fixed tenTurns = Fixed(10) * kTwoPi;
+    const Fixed tenTurns = Fixed(10) * math::kTwoPi;
     j->SetLimits(a0 - tenTurns, a0 + tenTurns);
     j->EnableLimit(true);
     j->SetMotorSpeed(10);

@@ -3,7 +3,7 @@
 /// through a soft spring (frequencyHz > 0).
 
 #include "lockbox/dynamics/joints/Joint.h"
-#include "lockbox/dynamics/joints/WideMatrix.h"
+#include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 

@@ -11,7 +11,7 @@
 /// follows the branch of each angle nearest to its previous value, as b2RevoluteJoint does.
 
 #include "lockbox/dynamics/joints/Joint.h"
-#include "lockbox/dynamics/joints/WideMatrix.h"
+#include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 

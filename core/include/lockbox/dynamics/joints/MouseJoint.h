@@ -6,7 +6,7 @@
 /// Q16.16 (NUMERICS Table 1).
 
 #include "lockbox/dynamics/joints/Joint.h"
-#include "lockbox/dynamics/joints/WideMatrix.h"
+#include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 

@@ -3,7 +3,7 @@
 /// body A, no relative rotation, with an optional translation limit and motor.
 
 #include "lockbox/dynamics/joints/Joint.h"
-#include "lockbox/dynamics/joints/WideMatrix.h"
+#include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 

@@ -4,7 +4,7 @@
 /// is undefined: that side then contributes nothing (finite, no division), as in 2.2.1.
 
 #include "lockbox/dynamics/joints/Joint.h"
-#include "lockbox/dynamics/joints/WideMatrix.h"
+#include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 

@@ -7,7 +7,7 @@
 /// span many turns (keep them within +-16000 rad, half the Q16.16 range).
 
 #include "lockbox/dynamics/joints/Joint.h"
-#include "lockbox/dynamics/joints/WideMatrix.h"
+#include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 

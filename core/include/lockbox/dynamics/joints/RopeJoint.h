@@ -3,7 +3,7 @@
 /// chains and ragdolls from stretching under large mass ratios.
 
 #include "lockbox/dynamics/joints/Joint.h"
-#include "lockbox/dynamics/joints/WideMatrix.h"
+#include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 

@@ -3,7 +3,7 @@
 /// with a spring along it, and B rotates freely with an optional motor. For vehicles.
 
 #include "lockbox/dynamics/joints/Joint.h"
-#include "lockbox/dynamics/joints/WideMatrix.h"
+#include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 

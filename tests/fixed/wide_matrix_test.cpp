@@ -10,8 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "lockbox/dynamics/joints/WideMatrix.h"
 #include "lockbox/fixed/Overflow.h"
+#include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 namespace {
@@ -200,7 +200,7 @@ TEST(WideMatrixInverse, EntriesAreTheInverseRounded) {
         const double k11 = m + inertia * ry * ry, k12 = -inertia * rx * ry, k22 = m + inertia * rx * rx;
         auto w = [](double v) { return Wide::FromRaw(static_cast<int64_t>(v * 4294967296.0)); };
         const b2WideMat22 K{{w(k11), w(k12)}, {w(k12), w(k22)}};
-        const b2WideMat22 M = Inverse(K.Prepared());
+        const b2WideMat22 M = math::Inverse(K.Prepared());
         // The exact inverse of the matrix as rounded into Q32.32.
         const double a = K.ex.x.ToDouble(), b = K.ey.x.ToDouble(), c = K.ex.y.ToDouble(), d = K.ey.y.ToDouble();
         const double det = a * d - b * c;
@@ -219,7 +219,7 @@ TEST(WideMatrixInverse, EntriesAreTheInverseRounded) {
 
 TEST(WideMatrixInverse, SingularMatrixGivesZero) {
     const b2WideMat22 K{{Wide(2), Wide(4)}, {Wide(1), Wide(2)}};  // columns parallel: det 0
-    const b2WideMat22 M = Inverse(K.Prepared());
+    const b2WideMat22 M = math::Inverse(K.Prepared());
     EXPECT_EQ(M.ex.x, Wide());
     EXPECT_EQ(M.ex.y, Wide());
     EXPECT_EQ(M.ey.x, Wide());
@@ -229,11 +229,11 @@ TEST(WideMatrixInverse, SingularMatrixGivesZero) {
 TEST(WideMatrixInverse, ProductAppliesTheInverse) {
     // K = diag(2, 4) (1/kg): its inverse halves and quarters, exactly.
     const b2WideMat22 K{{Wide(2), Wide()}, {Wide(), Wide(4)}};
-    const b2WideMat22 M = Inverse(K.Prepared());
-    const b2WideVec2 x = Mul(M, b2Vec2(Fixed(3), Fixed(-1)));
+    const b2WideMat22 M = math::Inverse(K.Prepared());
+    const b2WideVec2 x = math::Mul(M, b2Vec2(Fixed(3), Fixed(-1)));
     EXPECT_EQ(x.x, Wide(1.5));
     EXPECT_EQ(x.y, Wide(-0.25));
-    const b2WideVec2 y = Mul(M, b2WideVec2(Wide(-3), Wide(1)));
+    const b2WideVec2 y = math::Mul(M, b2WideVec2(Wide(-3), Wide(1)));
     EXPECT_EQ(y.x, Wide(-1.5));
     EXPECT_EQ(y.y, Wide(0.25));
 }

@@ -337,6 +337,7 @@ struct b2WideMat22 {
     constexpr b2WideSolver22 Prepared() const noexcept { return b2WideSolver22(ex, ey); }
 };
 
+namespace math {
 /// K^-1 of a prepared K, column by column, each entry exactly rounded (a singular K gives the
 /// zero matrix). For a K applied many times per step: a product per iteration instead of a
 /// solve with its two 128-bit divisions.
@@ -350,6 +351,7 @@ template <class Vec>
 constexpr b2WideVec2 Mul(const b2WideMat22& m, const Vec& v) noexcept {
     return {m.ex.x * v.x + m.ey.x * v.y, m.ex.y * v.x + m.ey.y * v.y};
 }
+}  // namespace math
 
 /// 3x3 matrix of Q32.32 entries, column-major (the point-plus-angle K of revolute, prismatic
 /// and weld joints).
