@@ -20,6 +20,8 @@
 
 include_guard(GLOBAL)
 
+include(LockboxFindLibrary)
+
 set(LOCKBOX_DEPS_HINT "(or run scripts/install-deps.sh)")
 
 # Stop configuration because a dependency is missing.
@@ -81,26 +83,12 @@ function(lockbox_require_package)
         target_link_libraries(${arg_TARGET} INTERFACE ${arg_LINK})
         message(STATUS "Found ${arg_NAME}: ${${arg_PACKAGE}_DIR} -> ${arg_TARGET}")
     elseif(arg_HEADER)
-        string(MAKE_C_IDENTIFIER "${arg_TARGET}" var)
-        string(TOUPPER "${var}" var)
-        find_path(${var}_INCLUDE_DIR NAMES ${arg_HEADER}
-            DOC "Directory holding ${arg_HEADER} (${arg_DEBIAN})")
-        if(NOT ${var}_INCLUDE_DIR)
+        lockbox_find_library(${arg_TARGET} NAME "${arg_NAME}" DEBIAN ${arg_DEBIAN} HEADER ${arg_HEADER}
+                             LIBRARY ${arg_LIBRARY} GLOBAL RESULT found)
+        if(NOT found)
             _lockbox_missing("${arg_NAME}" "${arg_DEBIAN}")
         endif()
-        add_library(${arg_TARGET} INTERFACE IMPORTED GLOBAL)
-        target_include_directories(${arg_TARGET} INTERFACE "${${var}_INCLUDE_DIR}")
-        set(found "${${var}_INCLUDE_DIR}/${arg_HEADER}")
-        if(arg_LIBRARY)
-            find_library(${var}_LIBRARY NAMES ${arg_LIBRARY}
-                DOC "lib${arg_LIBRARY} (${arg_DEBIAN})")
-            if(NOT ${var}_LIBRARY)
-                _lockbox_missing("${arg_NAME}" "${arg_DEBIAN}")
-            endif()
-            target_link_libraries(${arg_TARGET} INTERFACE "${${var}_LIBRARY}")
-            set(found "${${var}_LIBRARY}")
-        endif()
-        message(STATUS "Found ${arg_NAME}: ${found} -> ${arg_TARGET}")
+        message(STATUS "Found ${arg_NAME}: ${arg_HEADER} ${arg_LIBRARY} -> ${arg_TARGET}")
     else()
         message(FATAL_ERROR "lockbox_require_package(${arg_TARGET}): give PACKAGE or HEADER")
     endif()

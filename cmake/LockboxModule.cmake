@@ -10,6 +10,7 @@ include(GNUInstallDirs)
 # Creates lockbox_<name> (alias lockbox::<name>, exported as lockbox::<name>) from the listed
 # sources, which are relative to the calling folder: its public headers are <folder>/include
 # (installed as they are), its own headers <folder>/src. STATIC unless BUILD_SHARED_LIBS is ON.
+# With LOCKBOX_INSTALL, the library, its headers and its exported targets are installed.
 # PUBLIC_DEPS are lockbox modules whose headers the public headers include. PRIVATE_DEPS are
 # third-party libraries used by the sources only; a static library still passes their link
 # step on to consumers, a shared one does not. A header-only dependency goes in as
@@ -26,7 +27,10 @@ function(lockbox_add_module)
         EXPORT_NAME ${arg_NAME}
         VERSION ${PROJECT_VERSION}
         # Before 1.0 a minor release may change the ABI.
-        SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
+        SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}
+        # A shared lockbox library finds the others it needs in its own folder, wherever the
+        # prefix is.
+        INSTALL_RPATH "$ORIGIN")
     target_compile_features(${target} PUBLIC cxx_std_20)
     target_include_directories(${target}
         PUBLIC "$<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>"
@@ -36,6 +40,17 @@ function(lockbox_add_module)
         PUBLIC ${arg_PUBLIC_DEPS}
         PRIVATE ${arg_PRIVATE_DEPS} "$<BUILD_INTERFACE:lockbox_compile_options>")
     set_property(GLOBAL APPEND PROPERTY LOCKBOX_MODULES ${arg_NAME})
+    if(LOCKBOX_INSTALL)
+        # One export set per module, so that the package config loads only the components asked
+        # for and a consumer of core never looks for zstd or ENet.
+        install(TARGETS ${target} EXPORT lockbox-${arg_NAME}-targets
+            ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}"
+            LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}"
+            RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}")
+        # The include tree is the public surface: headers only the engine needs live in src/.
+        install(DIRECTORY "${CMAKE_CURRENT_SOURCE_DIR}/include/" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
+        install(EXPORT lockbox-${arg_NAME}-targets NAMESPACE lockbox:: DESTINATION "${LOCKBOX_INSTALL_CMAKEDIR}")
+    endif()
 endfunction()
 
 # lockbox_add_test_suite(NAME <exe> DIR <folder> LIBS <targets>... [LABELS <labels>...])

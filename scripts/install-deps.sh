@@ -20,6 +20,7 @@ PACKAGES=(
     libgtest-dev        # GTest::gtest, GTest::gtest_main (tests/)
     libgmock-dev        # GTest::gmock (tests/)
     libbenchmark-dev    # benchmark::benchmark (bench/)
+    pkg-config          # scripts/check-consumer.sh builds the consumer sample through lockbox.pc
     libxxhash-dev       # lockbox_dep::xxhash: state hashing in core/
     libcereal-dev       # lockbox_dep::cereal: snapshot serialization in core/
     libzstd-dev         # lockbox_dep::zstd: replay file compression

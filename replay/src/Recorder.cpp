@@ -67,9 +67,9 @@ void Recorder::Emit(uint32 type, std::span<const uint8> payload) {
 Error Recorder::Begin() {
     if (m_begun) return m_writeError;
     m_begun = true;
-    m_header.engineMajor = lockbox_versionMajor;
-    m_header.engineMinor = lockbox_versionMinor;
-    m_header.enginePatch = lockbox_versionPatch;
+    m_header.engineMajor = b2_snapshotEngineMajor;
+    m_header.engineMinor = b2_snapshotEngineMinor;
+    m_header.enginePatch = b2_snapshotEnginePatch;
     m_header.determinismVersion = b2_determinismVersion;
     m_header.snapshotFormatVersion = b2_snapshotFormatVersion;
     m_header.tickRate = m_config.tickRate;

@@ -118,6 +118,16 @@ fi
 mkdir -p "$work/include"
 cp /usr/include/xxhash.h "$work/include/" || { echo "run.sh: /usr/include/xxhash.h missing (libxxhash-dev)" >&2; exit 2; }
 [ -d /usr/include/cereal ] && cp -r /usr/include/cereal "$work/include/"
+# lockbox/Version.h, which CMake generates from cmake/Version.h.in with the version of the
+# top-level project() line; the same here (from the working tree also with --rev: the library
+# version changes no bits).
+version=$(sed -n 's/^project(lockbox VERSION \([0-9]*\)\.\([0-9]*\)\.\([0-9]*\).*/\1 \2 \3/p' "$root/CMakeLists.txt")
+[ -n "$version" ] || { echo "run.sh: no project(lockbox VERSION x.y.z) line in CMakeLists.txt" >&2; exit 2; }
+read -r vmajor vminor vpatch <<< "$version"
+mkdir -p "$work/include/lockbox"
+sed -e "s/@PROJECT_VERSION_MAJOR@/$vmajor/g" -e "s/@PROJECT_VERSION_MINOR@/$vminor/g" \
+    -e "s/@PROJECT_VERSION_PATCH@/$vpatch/g" "$root/cmake/Version.h.in" > "$work/include/lockbox/Version.h" ||
+    { echo "run.sh: cannot generate lockbox/Version.h from cmake/Version.h.in" >&2; exit 2; }
 
 sources=$(cd "$src" && find fixed/src core/src samples/scenes/src -name '*.cpp' | LC_ALL=C sort)
 incdirs="fixed/include core/include samples/scenes/include tests/cross"

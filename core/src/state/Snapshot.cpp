@@ -89,8 +89,8 @@ void state_detail::SaveImage(const b2World& world, std::vector<uint8>& out, bool
         std::ostream stream(&sink);
         cereal::PortableBinaryOutputArchive archive(stream,
                                                     cereal::PortableBinaryOutputArchive::Options::LittleEndian());
-        archive(b2_snapshotMagic, b2_snapshotFormatVersion, lockbox_versionMajor, lockbox_versionMinor,
-                lockbox_versionPatch, b2_determinismVersion, payload, uint64{0});
+        archive(b2_snapshotMagic, b2_snapshotFormatVersion, b2_snapshotEngineMajor, b2_snapshotEngineMinor,
+                b2_snapshotEnginePatch, b2_determinismVersion, payload, uint64{0});
     }
     const uint64 sum = SnapshotChecksum(out, static_cast<size_t>(payload));
     for (size_t i = 0; i < 8; ++i) out[kChecksumOffset + i] = static_cast<uint8>(sum >> (8 * i));

@@ -14,14 +14,19 @@
 #include <span>
 #include <string>
 
+#include "lockbox/Version.h"
 #include "lockbox/common/Settings.h"
 
 namespace lockbox {
 
-/// The engine version written into every snapshot header (major.minor.patch).
-inline constexpr uint16 lockbox_versionMajor = 0;
-inline constexpr uint16 lockbox_versionMinor = 7;
-inline constexpr uint16 lockbox_versionPatch = 0;
+/// The "engine version" field of every snapshot header (and of every replay header): 0.7.0 in
+/// every image, whatever the library's version (lockbox/Version.h). The field is informative
+/// (Restore ignores it) and part of the bytes that the checksum and the image hash cover, so
+/// writing the library's version there would change every snapshot and replay at each release;
+/// the format and determinism versions below are what a reader checks.
+inline constexpr uint16 b2_snapshotEngineMajor = 0;
+inline constexpr uint16 b2_snapshotEngineMinor = 7;
+inline constexpr uint16 b2_snapshotEnginePatch = 0;
 
 /// Version of the snapshot layout; bump on any change to docs/determinism.md's format table.
 /// History: 1 the six state sections; 2 adds a seventh, the joints' reaction directions (so a

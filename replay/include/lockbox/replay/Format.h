@@ -76,7 +76,7 @@ const char* SolvePhaseName(uint32 phase) noexcept;
 /// The fixed header.
 struct Header {
     uint16 formatVersion = kFormatVersion;
-    uint16 engineMajor = 0, engineMinor = 0, enginePatch = 0;  ///< engine that recorded it
+    uint16 engineMajor = 0, engineMinor = 0, enginePatch = 0;  ///< the snapshot's engine field (0.7.0)
     uint32 determinismVersion = 0;                             ///< b2_determinismVersion of the recording engine
     uint16 snapshotFormatVersion = 0;                          ///< b2_snapshotFormatVersion of its snapshots
     uint16 tickRate = 60;                                      ///< frames per second (display and speed reports)
