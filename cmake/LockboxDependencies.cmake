@@ -9,6 +9,7 @@
 #   lockbox_dep::cereal            found on include: serialization in core (header-only)
 #   lockbox_find_zstd()         -> lockbox_dep::zstd         replay compression
 #   lockbox_find_enet()         -> lockbox_dep::enet         UDP transport
+#   lockbox_find_rapidjson()    -> lockbox_dep::rapidjson    scene files (header only)
 #   lockbox_find_test_deps()    -> GTest::gtest, GTest::gtest_main, GTest::gmock (+ GoogleTest module)
 #   lockbox_find_bench_deps()   -> benchmark::benchmark
 #   lockbox_find_box2d_float()  -> lockbox_dep::box2d_float  float Box2D 2.4.1, for differential
@@ -115,6 +116,14 @@ endfunction()
 function(lockbox_find_enet)
     lockbox_require_package(TARGET lockbox_dep::enet NAME ENet DEBIAN libenet-dev
         HEADER enet/enet.h LIBRARY enet)
+endfunction()
+
+# Scene files (scenefile/): RapidJSON's SAX reader, which hands over each number's text
+# (kParseNumbersAsStringsFlag), and its writer. Header only; Debian's rapidjson-dev also ships a
+# CMake config, but it carries nothing beyond this include directory.
+function(lockbox_find_rapidjson)
+    lockbox_require_package(TARGET lockbox_dep::rapidjson NAME RapidJSON DEBIAN rapidjson-dev
+        HEADER rapidjson/reader.h)
 endfunction()
 
 # Float Box2D 2.4.1, only for differential tests and side-by-side benchmarks. Debian's

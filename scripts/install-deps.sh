@@ -25,6 +25,7 @@ PACKAGES=(
     libcereal-dev       # lockbox_dep::cereal: snapshot serialization in core/
     libzstd-dev         # lockbox_dep::zstd: replay file compression
     libenet-dev         # lockbox_dep::enet: UDP transport for netcode samples
+    rapidjson-dev       # lockbox_dep::rapidjson: JSON reading and writing of scene files (scenefile/)
     libbox2d-dev        # lockbox_dep::box2d_float: float Box2D, differential tests and benchmarks only
     python3-matplotlib  # plotting benchmark / drift results
     valgrind            # memcheck and callgrind instruction counts

@@ -117,6 +117,7 @@ public:
     const b2Body* GetBodyList() const noexcept { return m_bodyList; }
     /// Joints, newest first (always empty until joints exist).
     b2Joint* GetJointList() noexcept { return m_jointList; }
+    const b2Joint* GetJointList() const noexcept { return m_jointList; }
     /// Contacts, newest first; use IsTouching to find touching ones.
     b2Contact* GetContactList() noexcept { return m_contactManager.m_contactList; }
     const b2Contact* GetContactList() const noexcept { return m_contactManager.m_contactList; }

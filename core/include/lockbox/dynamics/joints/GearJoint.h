@@ -43,8 +43,10 @@ public:
 
     /// The first coupled joint.
     b2Joint* GetJoint1() noexcept { return m_joint1; }
+    const b2Joint* GetJoint1() const noexcept { return m_joint1; }
     /// The second coupled joint.
     b2Joint* GetJoint2() noexcept { return m_joint2; }
+    const b2Joint* GetJoint2() const noexcept { return m_joint2; }
     /// Gear ratio.
     void SetRatio(Fixed ratio) noexcept { m_ratio = ratio; }
     /// Gear or pulley ratio.

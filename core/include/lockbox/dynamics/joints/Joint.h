@@ -58,8 +58,10 @@ public:
     b2JointType GetType() const noexcept { return m_type; }
     /// First attached body.
     b2Body* GetBodyA() noexcept { return m_bodyA; }
+    const b2Body* GetBodyA() const noexcept { return m_bodyA; }
     /// Second attached body.
     b2Body* GetBodyB() noexcept { return m_bodyB; }
+    const b2Body* GetBodyB() const noexcept { return m_bodyB; }
     /// Anchor on body A in world coordinates (m).
     virtual b2Vec2 GetAnchorA() const = 0;
     /// Anchor on body B in world coordinates (m).

@@ -52,6 +52,12 @@ public:
     b2Vec2 GetGroundAnchorA() const noexcept { return m_groundAnchorA; }
     /// Ground anchor of side B (world), m.
     b2Vec2 GetGroundAnchorB() const noexcept { return m_groundAnchorB; }
+    /// Anchor on body A in A's frame, m.
+    const b2Vec2& GetLocalAnchorA() const noexcept { return m_localAnchorA; }
+    /// Anchor on body B in B's frame, m.
+    const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
+    /// The rope length the joint keeps: lengthA + ratio * lengthB of the definition, m.
+    Fixed GetTotalLength() const noexcept { return m_constant; }
     /// Current length of side A, m.
     Fixed GetLengthA() const;
     /// Current length of side B, m.

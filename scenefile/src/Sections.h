@@ -1,0 +1,31 @@
+#pragma once
+// The section loaders of ReadScene: each reads one kind of entry of the file into the
+// document, validating as it goes (types, number ranges, the engine's shape checks), and
+// returns false after recording the first error in the SceneReader.
+
+#include "SceneReader.h"
+#include "lockbox/scenefile/SceneDocument.h"
+
+namespace lockbox::scenefile::detail {
+
+/// One entry of "body", with its fixtures. `fixtureBudget` is what remains of
+/// SceneLimits::maxFixtures; the body's fixtures are taken from it.
+bool LoadBody(SceneReader& r, const JsonNode& n, const Path& path, int32& fixtureBudget, BodyDesc& out);
+
+/// One entry of a body's "fixture": material, filter and exactly one shape.
+bool LoadFixture(SceneReader& r, const JsonNode& n, const Path& path, FixtureDesc& out);
+
+/// One entry of "joint". Body indices are checked against `bodyCount`; a gear joint's joint
+/// indices are checked once every joint is read (CheckGearJoints).
+bool LoadJoint(SceneReader& r, const JsonNode& n, const Path& path, int32 bodyCount, JointDesc& out);
+
+/// Checks that every gear joint of `joints` names two revolute or prismatic joints of the list.
+bool CheckGearJoints(SceneReader& r, const Path& jointsPath, const std::vector<JointDesc>& joints);
+
+/// One entry of "image"; its body index is checked against `bodyCount` (-1: no body).
+bool LoadImage(SceneReader& r, const JsonNode& n, const Path& path, int32 bodyCount, ImageDesc& out);
+
+/// "<what> index <i>, the file has <count> <plural>" (the reference error of the style).
+std::string IndexMessage(int64_t index, int64_t count, const char* plural);
+
+}  // namespace lockbox::scenefile::detail
