@@ -64,6 +64,25 @@ BodyDesc DescribeBody(const b2Body& body, const SceneMetadata* meta) {
     return out;
 }
 
+// The mouse joint's grab point in world coordinates, as the format stores it, chosen so that
+// taking it back into the body's frame (what b2MouseJoint's constructor does) gives the joint's
+// local anchor exactly: the rounded world point usually does; when rotation rounding moves it,
+// the nearest point within 3 raw units that does is taken.
+b2Vec2 GrabPoint(const b2Body& body, const b2Vec2& local) {
+    const b2Transform& xf = body.GetTransform();
+    const b2Vec2 w0 = b2Mul(xf, local);
+    for (int32 ring = 0; ring <= 3; ++ring) {
+        for (int32 dy = -ring; dy <= ring; ++dy) {
+            for (int32 dx = -ring; dx <= ring; ++dx) {
+                if (dx != -ring && dx != ring && dy != -ring && dy != ring) continue;  // the ring only
+                const b2Vec2 w(Fixed::FromRaw(w0.x.Raw() + dx), Fixed::FromRaw(w0.y.Raw() + dy));
+                if (b2MulT(xf, w) == local) return w;
+            }
+        }
+    }
+    return w0;
+}
+
 // The definition that recreates `joint` (bodies and geared joints are filled in by index).
 JointDefDesc DescribeJointDef(const b2Joint& joint, b2Vec2& mouseTarget) {
     switch (joint.GetType()) {
@@ -124,7 +143,7 @@ JointDefDesc DescribeJointDef(const b2Joint& joint, b2Vec2& mouseTarget) {
         case e_mouseJoint: {
             const auto& j = static_cast<const b2MouseJoint&>(joint);
             b2MouseJointDef d;
-            d.target = j.GetAnchorB();
+            d.target = GrabPoint(*joint.GetBodyB(), j.GetLocalAnchorB());
             mouseTarget = j.GetTarget();
             d.maxForce = j.GetMaxForce();
             d.frequencyHz = j.GetFrequency();

@@ -2,6 +2,7 @@
 // definition's 0.2), and exactly one shape, built with the engine's own validating setters so
 // that a file is refused for the same reasons b2PolygonShape::Set and friends refuse a shape.
 #include "Sections.h"
+#include "lockbox/scenefile/NumberText.h"
 
 namespace lockbox::scenefile::detail {
 
@@ -101,9 +102,30 @@ bool LoadChain(SceneReader& r, const JsonNode& n, const Path& path, bool loop, S
     return true;
 }
 
+// How far a polygon's stored normals and centroid may be from those b2PolygonShape::Set
+// computes from its vertices (1/64 in each coordinate). A box made by SetAsBox with an angle
+// rotates its normals instead of deriving them from the rounded vertices, which can differ by
+// up to about 400 raw units (an edge of the 164-unit weld distance, half a unit off at each
+// end); lockbox writes such a polygon's own normals and centroid so that it loads back exactly.
+constexpr int32 kDerivedTolerance = Fixed::kOneRaw / 64;
+
+bool Near(const b2Vec2& a, const b2Vec2& b) {
+    const int64_t dx = int64_t{a.x.Raw()} - b.x.Raw(), dy = int64_t{a.y.Raw()} - b.y.Raw();
+    return dx <= kDerivedTolerance && dx >= -kDerivedTolerance && dy <= kDerivedTolerance && dy >= -kDerivedTolerance;
+}
+
+std::string VecText(const b2Vec2& v) {
+    std::string s(1, '(');
+    s += FormatFixed(v.x);
+    s += ", ";
+    s += FormatFixed(v.y);
+    s += ')';
+    return s;
+}
+
 bool LoadPolygon(SceneReader& r, const JsonNode& n, const Path& path, ShapeDesc& out) {
-    static constexpr std::array<std::string_view, 1> kNames{"vertices"};
-    std::array<const JsonNode*, 1> m;
+    static constexpr std::array<std::string_view, 3> kNames{"vertices", "normals", "centroid"};
+    std::array<const JsonNode*, 3> m;
     if (!r.Members(n, path, kNames, m)) return false;
     const Path vp = path.Member("vertices");
     std::vector<b2Vec2> vertices;
@@ -124,6 +146,36 @@ bool LoadPolygon(SceneReader& r, const JsonNode& n, const Path& path, ShapeDesc&
     b2PolygonShape polygon;
     const b2ShapeError e = polygon.Set(vertices.data(), count);
     if (e != b2ShapeError::ok) return ShapeFail(r, vp, e);
+    // lockbox's own optional fields (other loaders ignore them): the normals and centroid the
+    // polygon had, when they differ slightly from what Set derives.
+    if (!SceneReader::Absent(m[1])) {
+        const Path np = path.Member("normals");
+        std::vector<b2Vec2> normals;
+        if (!r.ReadVecArray(m[1], np, b2_maxPolygonVertices, "normals", normals)) return false;
+        if (static_cast<int32>(normals.size()) != count) {
+            return r.Fail(np, SceneError::e_shape,
+                          std::to_string(normals.size()) + " normals for " + std::to_string(count) + " vertices");
+        }
+        for (int32 i = 0; i < count; ++i) {
+            if (!Near(normals[static_cast<size_t>(i)], polygon.m_normals[i])) {
+                return r.Fail(np.Index(i), SceneError::e_shape,
+                              VecText(normals[static_cast<size_t>(i)]) + " is more than 1/64 from the normal " +
+                                  VecText(polygon.m_normals[i]) + " of the edge");
+            }
+        }
+        for (int32 i = 0; i < count; ++i) polygon.m_normals[i] = normals[static_cast<size_t>(i)];
+    }
+    if (!SceneReader::Absent(m[2])) {
+        const Path cp = path.Member("centroid");
+        b2Vec2 centroid;
+        if (!r.ReadVec(m[2], cp, centroid)) return false;
+        if (!Near(centroid, polygon.m_centroid)) {
+            return r.Fail(cp, SceneError::e_shape,
+                          VecText(centroid) + " is more than 1/64 m from the centroid " + VecText(polygon.m_centroid) +
+                              " of the vertices");
+        }
+        polygon.m_centroid = centroid;
+    }
     out = polygon;
     return true;
 }

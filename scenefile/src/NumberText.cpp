@@ -204,35 +204,37 @@ std::string Trim(std::string s) {
     return s;
 }
 
-bool ReadsBackAs(const std::string& text, int fracBits, int64_t maxRaw, uint64_t magnitude) noexcept {
-    const detail::DecimalResult r = detail::ParseDecimal(text, fracBits, maxRaw);
-    return r.error == detail::DecimalError::None && static_cast<uint64_t>(r.raw) == magnitude;
-}
-
-// The shortest decimal whose value rounds to raw: for k = 1, 2, ... fraction digits, the two
-// k-digit decimals around the exact value are tried with the parser itself (so the answer is
-// right by construction); the nearer one that reads back wins. The exact value has at most
-// fracBits fraction digits, so the loop ends.
+// The shortest decimal whose value rounds to raw. With x the exact value, M its magnitude in
+// units of 2^-f, and the first k fraction digits of x written out (lo, the truncation), the
+// remainder r = (x's fraction * 10^k) mod 2^f gives both neighbours' rounding exactly:
+//   lo * 2^f        = M - r / 10^k        -> rounds to M iff 2r <= 10^k (a tie rounds away
+//                                             from zero, i.e. up to M)
+//   (lo + 10^-k) 2^f = M + (2^f - r) / 10^k -> rounds to M iff 2 (2^f - r) < 10^k
+// The first k where one of them reads back wins (the nearer if both), so the text is the
+// shortest; at most 5 fraction digits for Q16.16 and 10 for Q32.32.
 std::string FormatRaw(int64_t raw, int fracBits, int64_t maxRaw) {
     const bool negative = raw < 0;
     const uint64_t magnitude = negative ? uint64_t{0} - static_cast<uint64_t>(raw) : static_cast<uint64_t>(raw);
-    const uint64_t mask = (uint64_t{1} << fracBits) - 1;
+    const uint64_t one = uint64_t{1} << fracBits;
     const std::string sign = negative ? "-" : "";
     std::string text = std::to_string(magnitude >> fracBits);
-    uint64_t rem = magnitude & mask;
+    uint64_t rem = magnitude & (one - 1);
     if (rem == 0) return raw == 0 ? "0" : sign + text;
+    // A magnitude beyond the format (only a hand-made raw can have one) reads back as nothing;
+    // its exact decimal is written.
+    const bool readable = magnitude <= static_cast<uint64_t>(maxRaw);
     text += '.';
     for (int k = 1; k <= fracBits; ++k) {
         rem *= 10;
         text += static_cast<char>('0' + (rem >> fracBits));
-        rem &= mask;
+        rem &= one - 1;
         if (rem == 0) return sign + Trim(text);
-        const bool lo = ReadsBackAs(text, fracBits, maxRaw, magnitude);
-        const std::string up = Increment(text);
-        const bool hi = ReadsBackAs(up, fracBits, maxRaw, magnitude);
-        // Distances to the exact value, in units of 10^-k / 2^fracBits: rem below, 2^f - rem above.
-        if (lo && (!hi || rem <= (mask + 1) - rem)) return sign + Trim(text);
-        if (hi) return sign + Trim(up);
+        if (!readable || k > 19) continue;
+        const uint64_t scale = kPow10[k];
+        const bool lo = 2 * rem <= scale;
+        const bool hi = 2 * (one - rem) < scale;
+        if (lo && (!hi || rem <= one - rem)) return sign + Trim(text);
+        if (hi) return sign + Trim(Increment(text));
     }
     return sign + Trim(text);
 }

@@ -182,6 +182,15 @@ Out Shape(const ShapeDesc& shape, std::string& key) {
         key = "polygon";
         std::vector<b2Vec2> vs(p->m_vertices, p->m_vertices + p->m_vertexCount);
         o.Add("vertices", Out::VecArray(vs));
+        // Normals and centroid that differ from what the vertices give (a box rotated by
+        // SetAsBox) are written too, so the polygon loads back exactly; other loaders ignore them.
+        b2PolygonShape derived;
+        if (derived.Set(vs.data(), p->m_vertexCount) == b2ShapeError::ok) {
+            if (!std::equal(p->m_normals, p->m_normals + p->m_vertexCount, derived.m_normals)) {
+                o.Add("normals", Out::VecArray(std::vector<b2Vec2>(p->m_normals, p->m_normals + p->m_vertexCount)));
+            }
+            if (derived.m_centroid != p->m_centroid) o.Add("centroid", Out::Vec(p->m_centroid));
+        }
     } else {
         const auto& ch = std::get<b2ChainShape>(shape);
         key = "chain";

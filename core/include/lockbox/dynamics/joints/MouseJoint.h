@@ -40,6 +40,8 @@ public:
     void SetTarget(const b2Vec2& target);
     /// The target point, m.
     const b2Vec2& GetTarget() const noexcept { return m_targetA; }
+    /// The grab point in body B's frame, m (the definition's target, taken into B's frame).
+    const b2Vec2& GetLocalAnchorB() const noexcept { return m_localAnchorB; }
     /// Maximum force, N.
     void SetMaxForce(Wide force) noexcept { m_maxForce = force; }
     /// Maximum force, N.
