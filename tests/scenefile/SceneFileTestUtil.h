@@ -30,12 +30,12 @@ inline std::unique_ptr<BuiltScene> BuildLibraryScene(std::string_view name) {
     return out;
 }
 
-/// `relative` against this file's folder (tests/scenefile).
-inline std::string TestPath(const char* relative) {
-    std::string dir = __FILE__;
-    dir = dir.substr(0, dir.find_last_of("/\\"));
-    return dir + "/" + relative;
-}
+/// `relative` against the source tree's root (LOCKBOX_SOURCE_DIR, set by tests/CMakeLists.txt:
+/// __FILE__ may be relative to the build folder, e.g. under ccache).
+inline std::string SourcePath(const std::string& relative) { return std::string(LOCKBOX_SOURCE_DIR) + "/" + relative; }
+
+/// `relative` against this suite's folder (tests/scenefile).
+inline std::string TestPath(const std::string& relative) { return SourcePath("tests/scenefile/" + relative); }
 
 /// Reads a whole file ("" when it cannot be read).
 inline std::string ReadText(const std::string& path) {
