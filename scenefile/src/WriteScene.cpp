@@ -81,8 +81,9 @@ void AppendString(std::string& out, const std::string& text) {
 
 bool Scalar(const Out& v) { return v.kind != Out::e_array && v.kind != Out::e_object; }
 
-// Two-space indentation; an array of scalars stays on one line (vertex coordinates read as
-// rows), arrays of objects and objects put one element per line.
+// Two-space indentation; an array of scalars and an object of scalars stay on one line (vertex
+// coordinates read as rows, a vector as {"x": 1, "y": 2}), other arrays and objects put one
+// element per line.
 void Emit(std::string& out, Out& v, int depth) {
     const std::string indent(static_cast<size_t>(2 * (depth + 1)), ' ');
     const std::string close(static_cast<size_t>(2 * depth), ' ');
@@ -113,6 +114,18 @@ void Emit(std::string& out, Out& v, int depth) {
             }
             std::stable_sort(v.members.begin(), v.members.end(),
                              [](const auto& a, const auto& b) { return a.first < b.first; });
+            if (std::all_of(v.members.begin(), v.members.end(), [](const auto& m) { return Scalar(m.second); })) {
+                // A small all-scalar object ({"x": 1, "y": 2}) stays on one line.
+                out += '{';
+                for (size_t i = 0; i < v.members.size(); ++i) {
+                    AppendString(out, v.members[i].first);
+                    out += ": ";
+                    Emit(out, v.members[i].second, depth + 1);
+                    if (i + 1 < v.members.size()) out += ", ";
+                }
+                out += '}';
+                break;
+            }
             out += "{\n";
             for (size_t i = 0; i < v.members.size(); ++i) {
                 out += indent;

@@ -4,6 +4,8 @@
 // recorded, how a scene is run for them, and the line format of tests/golden/hashes.txt:
 //   <scene> step1=0x<16 hex> step60=0x<16 hex> step600=0x<16 hex>
 // (step120 instead of step600 for the heavy scenes). Lines starting with '#' are comments.
+// Besides the scene library, the hand-written scene files (samples/scenes/files/handmade) are
+// recorded as `file/<name>`: loaded with the scene-file loader, stepped at their own settings.
 
 #include <cstdint>
 #include <cstdio>
@@ -15,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "lockbox/scenefile/SceneFile.h"
 #include "lockbox/scenes/LockboxScenes.h"
 #include "lockbox/state/WorldHash.h"
 
@@ -32,7 +35,20 @@ inline bool IsHeavyScene(std::string_view name) {
     return name == "large_pyramid" || name == "many_pyramids" || name == "joint_grid" || name == "rain";
 }
 
-/// Every scene of the library (registry order) that lockbox can build, with its steps.
+/// The hand-written scene files recorded as `file/<name>` (samples/scenes/files/handmade).
+inline const std::vector<std::string>& GoldenSceneFiles() {
+    static const std::vector<std::string> kFiles{"bodies", "shapes", "joints", "rube_bridge"};
+    return kFiles;
+}
+
+/// The folder holding those files; the golden test and the cross driver set it.
+inline std::string& SceneFileDir() {
+    static std::string dir;
+    return dir;
+}
+
+/// Every scene of the library (registry order) that lockbox can build, with its steps, then
+/// the scene files.
 inline std::vector<ScenePlan> GoldenPlan() {
     std::vector<ScenePlan> plan;
     for (std::string_view name : scenes::AllSceneNames()) {
@@ -40,12 +56,35 @@ inline std::vector<ScenePlan> GoldenPlan() {
         const bool heavy = IsHeavyScene(name);
         plan.push_back({std::string(name), heavy ? std::vector<int>{1, 60, 120} : std::vector<int>{1, 60, 600}, heavy});
     }
+    for (const std::string& file : GoldenSceneFiles()) plan.push_back({"file/" + file, {1, 60, 600}, false});
     return plan;
+}
+
+/// Loads scene file `file/<name>` into a new world and returns b2WorldHash after each step count
+/// in `steps`, stepping at the file's rate and iterations. Empty when the file cannot be loaded.
+inline std::vector<uint64_t> RunSceneFileHashes(const std::string& name, const std::vector<int>& steps) {
+    std::vector<uint64_t> out;
+    std::string bytes;
+    if (!scenefile::ReadSceneFileBytes(SceneFileDir() + "/" + name + ".json", bytes)) return out;
+    scenefile::SceneMetadata meta;
+    auto world = scenefile::LoadSceneWorld(bytes, nullptr, &meta);
+    if (!world || steps.empty()) return out;
+    const Fixed dt = meta.step.TimeStep();
+    size_t next = 0;
+    for (int i = 0; i < steps.back() && next < steps.size(); ++i) {
+        world->Step(dt, meta.step.VelocityIterationsOr(), meta.step.PositionIterationsOr());
+        if (i + 1 == steps[next]) {
+            out.push_back(b2WorldHash(*world));
+            ++next;
+        }
+    }
+    return out;
 }
 
 /// Runs the scene from a fresh world with its default settings (as RunScene does, without
 /// metrics) and returns b2WorldHash after each step count in `steps`.
 inline std::vector<uint64_t> RunSceneHashes(std::string_view name, const std::vector<int>& steps) {
+    if (name.substr(0, 5) == "file/") return RunSceneFileHashes(std::string(name.substr(5)), steps);
     std::vector<uint64_t> out;
     auto scene = scenes::MakeLockboxScene(name);
     if (!scene || steps.empty()) return out;

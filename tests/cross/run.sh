@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Cross-compiler / cross-architecture determinism check (issue 7, docs/determinism.md).
 #
-# Builds tests/cross/cross_driver.cpp together with the fixed/, core/ and scene-library sources
-# (no CMake; a jumbo build planned by tests/cross/unity.py; xxHash header-only through
-# -DXXH_INLINE_ALL) for every configuration ("cell") of
+# Builds tests/cross/cross_driver.cpp together with the fixed/, core/, scenefile/ and
+# scene-library sources (no CMake; a jumbo build planned by tests/cross/unity.py; xxHash
+# header-only through -DXXH_INLINE_ALL) for every configuration ("cell") of
 #   {g++, clang++} x {-O0, -O2, -O3 (+ -march=native -ffast-math natively, -ffast-math cross)}
 #   x {x86-64 native, i686 (static; natively, or under qemu-i386 on a kernel without 32-bit
 #      support), aarch64 and s390x (qemu-user)}
@@ -100,21 +100,24 @@ fi
 # A private copy of the sources: a run takes minutes to hours, and the working tree may change
 # meanwhile; every cell must build the same code.
 src="$work/src"
-mkdir -p "$src/tests" "$src/samples/scenes"
+mkdir -p "$src/tests" "$src/samples/scenes/files"
 if [ -n "$rev" ]; then
-    git -C "$root" archive "$rev" fixed core replay samples/scenes/include samples/scenes/src tests/golden |
+    git -C "$root" archive "$rev" fixed core replay scenefile samples/scenes/include samples/scenes/src \
+        samples/scenes/files/handmade tests/golden |
         tar -x -C "$src" && cp -r "$root/tests/cross" "$src/tests/" ||
         { echo "run.sh: cannot extract the sources of $rev" >&2; exit 2; }
     echo "[cross] sources: $(git -C "$root" rev-parse --short "$rev") ($rev), tests/cross from the working tree"
 else
-    cp -r "$root/fixed" "$root/core" "$root/replay" "$src/" &&
+    cp -r "$root/fixed" "$root/core" "$root/replay" "$root/scenefile" "$src/" &&
         cp -r "$root/samples/scenes/include" "$root/samples/scenes/src" "$src/samples/scenes/" &&
+        cp -r "$root/samples/scenes/files/handmade" "$src/samples/scenes/files/" &&
         cp -r "$root/tests/cross" "$root/tests/golden" "$src/tests/" ||
         { echo "run.sh: cannot copy the sources" >&2; exit 2; }
 fi
 
 # The cross compilers do not search /usr/include (x86 packages): give them the header-only
-# dependencies of core/ (xxHash, Cereal for snapshots) alone.
+# dependencies of core/ (xxHash, Cereal for snapshots) and of scenefile/ (RapidJSON, through a
+# symbolic link to its folder) alone.
 mkdir -p "$work/include"
 cp /usr/include/xxhash.h "$work/include/" || { echo "run.sh: /usr/include/xxhash.h missing (libxxhash-dev)" >&2; exit 2; }
 [ -d /usr/include/cereal ] && cp -r /usr/include/cereal "$work/include/"
@@ -128,9 +131,12 @@ mkdir -p "$work/include/lockbox"
 sed -e "s/@PROJECT_VERSION_MAJOR@/$vmajor/g" -e "s/@PROJECT_VERSION_MINOR@/$vminor/g" \
     -e "s/@PROJECT_VERSION_PATCH@/$vpatch/g" "$root/cmake/Version.h.in" > "$work/include/lockbox/Version.h" ||
     { echo "run.sh: cannot generate lockbox/Version.h from cmake/Version.h.in" >&2; exit 2; }
+[ -f /usr/include/rapidjson/reader.h ] || { echo "run.sh: /usr/include/rapidjson missing (rapidjson-dev)" >&2; exit 2; }
+ln -s /usr/include/rapidjson "$work/include/rapidjson"
 
-sources=$(cd "$src" && find fixed/src core/src samples/scenes/src -name '*.cpp' | LC_ALL=C sort)
-incdirs="fixed/include core/include samples/scenes/include tests/cross"
+# scenefile/ loads the hand-written scene files of the golden plan (file/<name> lines).
+sources=$(cd "$src" && find fixed/src core/src scenefile/src samples/scenes/src -name '*.cpp' | LC_ALL=C sort)
+incdirs="fixed/include core/include scenefile/include samples/scenes/include tests/cross"
 # The golden replays recorded uncompressed (the cross toolchains have no zstd: replay/ is built
 # with LOCKBOX_REPLAY_ZSTD=0) are verified in every cell (tests/cross/ReplayVerify.h).
 replay_files=""

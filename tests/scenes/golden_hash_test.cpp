@@ -24,6 +24,9 @@ constexpr int kMaxStep = 60;
 /// tests/golden/hashes.txt, found relative to this source file.
 std::string GoldenPath() { return GoldenPathFrom(__FILE__, "/../golden/hashes.txt"); }
 
+// The hand-written scene files of the plan live in the source tree.
+const bool kSceneFileDirSet = (SceneFileDir() = GoldenPathFrom(__FILE__, "/../../samples/scenes/files/handmade"), true);
+
 TEST(GoldenHash, EverySceneMatchesTheGoldenFile) {
     const std::vector<ScenePlan> plan = GoldenPlan();
     ASSERT_FALSE(plan.empty());

@@ -44,6 +44,19 @@ struct StepSettings {
     int32 velocityIterations = 0;  ///< "velocityIterations"
     int32 positionIterations = 0;  ///< "positionIterations"
     friend bool operator==(const StepSettings&, const StepSettings&) = default;
+
+    /// The step length for b2World::Step, s: 1 / stepsPerSecond rounded to Q16.16 (1/60 s is
+    /// raw 1092, as Fixed::FromRatio(1, 60)), or 1/60 s when the file gives no rate.
+    Fixed TimeStep() const noexcept {
+        return stepsPerSecond > Fixed() ? Fixed(1) / stepsPerSecond : Fixed::FromRatio(1, 60);
+    }
+    /// The file's iteration counts, or the manual's 8 and 3 when not given.
+    int32 VelocityIterationsOr(int32 fallback = 8) const noexcept {
+        return velocityIterations > 0 ? velocityIterations : fallback;
+    }
+    int32 PositionIterationsOr(int32 fallback = 3) const noexcept {
+        return positionIterations > 0 ? positionIterations : fallback;
+    }
 };
 
 /// The world's own settings. An absent switch is false, as R.U.B.E. defines it.
