@@ -10,6 +10,11 @@ namespace lockbox::scenefile {
 
 namespace {
 
+// lockbox::detail by its full name: inside lockbox::scenefile, `detail` alone could mean
+// lockbox::scenefile::detail when this file is compiled together with the loader's (the cross
+// build's jumbo translation units do).
+namespace fixed_detail = ::lockbox::detail;
+
 constexpr uint64_t kPow10[20] = {1ull,
                                  10ull,
                                  100ull,
@@ -31,10 +36,10 @@ constexpr uint64_t kPow10[20] = {1ull,
                                  1000000000000000000ull,
                                  10000000000000000000ull};
 
-NumberError FromDecimalError(detail::DecimalError e) noexcept {
+NumberError FromDecimalError(fixed_detail::DecimalError e) noexcept {
     switch (e) {
-        case detail::DecimalError::None: return NumberError::e_ok;
-        case detail::DecimalError::OutOfRange: return NumberError::e_outOfRange;
+        case fixed_detail::DecimalError::None: return NumberError::e_ok;
+        case fixed_detail::DecimalError::OutOfRange: return NumberError::e_outOfRange;
         default: return NumberError::e_malformed;
     }
 }
@@ -114,8 +119,8 @@ bool ParseShort(std::string_view text, int fracBits, int64_t maxRaw, int64_t& ra
         } else {
             // mantissa < 10^18 < 2^60, so mantissa * 2^fracBits < 2^92: a 128-bit numerator
             // whose quotient must still fit 64 bits to be in range.
-            const detail::DivModU128Result qr =
-                detail::DivModU128(detail::MulU64(mantissa, uint64_t{1} << fracBits), detail::U128{0, den});
+            const fixed_detail::DivModU128Result qr = fixed_detail::DivModU128(
+                fixed_detail::MulU64(mantissa, uint64_t{1} << fracBits), fixed_detail::U128{0, den});
             if (qr.quot.hi != 0) {
                 error = NumberError::e_outOfRange;
                 return true;
@@ -137,8 +142,8 @@ bool ParseShort(std::string_view text, int fracBits, int64_t maxRaw, int64_t& ra
 NumberError ParseRaw(std::string_view text, int fracBits, int64_t maxRaw, int64_t& raw) noexcept {
     NumberError error = NumberError::e_ok;
     if (ParseShort(text, fracBits, maxRaw, raw, error)) return error;
-    const detail::DecimalResult r = detail::ParseDecimal(text, fracBits, maxRaw);
-    if (r.error != detail::DecimalError::None) return FromDecimalError(r.error);
+    const fixed_detail::DecimalResult r = fixed_detail::ParseDecimal(text, fracBits, maxRaw);
+    if (r.error != fixed_detail::DecimalError::None) return FromDecimalError(r.error);
     raw = r.raw;
     return NumberError::e_ok;
 }
