@@ -75,10 +75,9 @@ inline void AddProfile(Box2DFloatEngine& e, std::map<std::string, double>& acc) 
 inline uint64_t EngineHash(LockboxEngine& e) { return HashWorld(e.world()); }
 inline uint64_t EngineHash(Box2DFloatEngine&) { return 0; }
 
-/// Runs the named scene once on engine E; false when the scene is unknown or unavailable.
+/// Runs a scene once on engine E (`name` is what the result reports); false for no scene.
 template <class E>
-bool RunOnce(std::string_view name, const RunSettings& s, RunResult& out) {
-    auto scene = MakeScene<E>(name);
+bool RunSceneOnce(std::unique_ptr<Scene<E>> scene, std::string_view name, const RunSettings& s, RunResult& out) {
     if (!scene) return false;
     E e;
     const Resolved r = Resolve(scene->Info(), s);
@@ -117,6 +116,12 @@ bool RunOnce(std::string_view name, const RunSettings& s, RunResult& out) {
     for (const auto& [k, v] : acc) out.profile.emplace_back(k, r.steps > 0 ? v / r.steps : 0);
     scene->Report(e, out.metrics);
     return true;
+}
+
+/// Runs the named scene once on engine E; false when the scene is unknown or unavailable.
+template <class E>
+bool RunOnce(std::string_view name, const RunSettings& s, RunResult& out) {
+    return RunSceneOnce<E>(MakeScene<E>(name), name, s, out);
 }
 
 /// Median of a list (0 when empty).

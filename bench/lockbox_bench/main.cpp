@@ -7,6 +7,9 @@
 //                 docs/benchmarks.md)
 //   lockbox_bench --all --compare --scenes a,b [--repeat R]   (re-measure some scenes, keep
 //                 the other rows of compare.csv)
+//   lockbox_bench --scene-file FILE [--steps N] [--repeat R] [--metrics]   (a b2dJson scene
+//                 file on lockbox at the file's own rate and iterations unless given; also
+//                 prints how long the file takes to load, median over the repeats)
 //   lockbox_bench --list
 //   lockbox_bench --scene NAME --headroom   (after the timed runs, one untimed lockbox run with
 //                 headroom telemetry on: per quantity class, the largest magnitude as a
@@ -16,6 +19,7 @@
 //   scene=NAME engine=E steps=N ms_per_step=M p95_ms=Q bodies=B awake=A contacts=C hash=0x...
 // followed by the per-stage profile (per-step averages, medians over repeats). Only the world's
 // Step is timed. Scene "bullet" expands to its six variants.
+#include <chrono>
 #include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
@@ -26,6 +30,7 @@
 #include "BenchReport.h"
 #include "BenchRunner.h"
 #include "Compare.h"
+#include "lockbox/scenes/SceneFileScene.h"
 
 using namespace lockbox::scenes;
 
@@ -37,6 +42,7 @@ void Usage() {
                  "         [--position-iterations P] [--hz H] [--engine lockbox|box2d-float]\n"
                  "         [--repeat R] [--metrics] [--no-profile] [--headroom]\n"
                  "       lockbox_bench --all --compare [--scenes a,b,...] [--repeat R]\n"
+                 "       lockbox_bench --scene-file FILE.json [--steps N] [--repeat R] [--metrics]\n"
                  "       lockbox_bench --list\n");
 }
 
@@ -90,10 +96,47 @@ void PrintHeadroom(std::string_view name, const RunSettings& s) {
                 lockbox::b2HeadroomClassName(h.Tightest()));
 }
 
+/// Runs a scene file `repeat` times (each run loads it into a new world); prints the median
+/// line and profile, and the median time of the load (parse, validation and build).
+bool RunSceneFile(const std::string& path, const RunSettings& s, int repeat, bool profile) {
+    std::string bytes;
+    if (lockbox::scenefile::SceneResult r = lockbox::scenefile::ReadSceneFileBytes(path, bytes); !r) {
+        std::fprintf(stderr, "%s: %s\n", path.c_str(), r.Describe().c_str());
+        return false;
+    }
+    const std::string name = SceneFileScene::StemOf(path);
+    std::vector<RunResult> runs;
+    std::vector<double> loads;
+    for (int i = 0; i < repeat; ++i) {
+        lockbox::scenefile::SceneResult error;
+        const auto t0 = std::chrono::steady_clock::now();
+        auto scene = SceneFileScene::FromText(name, bytes, &error);
+        loads.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        if (!scene) {
+            std::fprintf(stderr, "%s: %s\n", path.c_str(), error.Describe().c_str());
+            return false;
+        }
+        RunResult r;
+        RunSceneOnce<LockboxEngine>(std::move(scene), name, s, r);
+        runs.push_back(std::move(r));
+    }
+    const RunResult m = MedianOf(runs);
+    PrintLine(m);
+    if (profile) PrintProfile(m);
+    // FromText reads, checks and builds the file once on a scratch world: a load's full cost.
+    std::printf("  load: median %.3f ms over %d runs (%zu bytes)\n", Median(loads), repeat, bytes.size());
+    if (!m.metrics.empty()) {
+        std::printf("  metrics:");
+        for (const Metric& x : m.metrics) std::printf(" %s=%.6g", x.name.c_str(), x.value);
+        std::printf("\n");
+    }
+    return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string scene, engine = "lockbox";
+    std::string scene, engine = "lockbox", sceneFile;
     RunSettings s;
     s.trackMetrics = false;
     int repeat = 1;
@@ -110,6 +153,8 @@ int main(int argc, char** argv) {
         };
         if (a == "--scene" && i + 1 < argc)
             scene = argv[++i];
+        else if (a == "--scene-file" && i + 1 < argc)
+            sceneFile = argv[++i];
         else if (a == "--engine" && i + 1 < argc)
             engine = argv[++i];
         else if (a == "--steps")
@@ -158,6 +203,7 @@ int main(int argc, char** argv) {
         return 0;
     }
     if (all && compare) return RunCompare(repeat, only) ? 0 : 1;
+    if (!sceneFile.empty()) return RunSceneFile(sceneFile, s, repeat, profile) ? 0 : 1;
     if (scene.empty()) {
         Usage();
         return 2;

@@ -106,7 +106,7 @@ int ShowReplay(Testbed& testbed, const HeadlessOptions& options) {
 }  // namespace
 
 int RunHeadless(const HeadlessOptions& options) {
-    if (options.replay.empty() && CatalogIndex(options.scene) < 0) {
+    if (options.replay.empty() && CatalogIndex(options.scene) < 0 && !IsSceneFileName(options.scene)) {
         std::fprintf(stderr, "unknown scene '%s' (--list shows them)\n", options.scene.c_str());
         return 2;
     }

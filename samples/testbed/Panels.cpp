@@ -1,8 +1,11 @@
 // The testbed's ImGui panels: scenes, controls, draw options, text, replays, side by side.
 #include <imgui.h>
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
+#include <filesystem>
+#include <system_error>
 
 #include "SceneCatalog.h"
 #include "Testbed.h"
@@ -51,8 +54,9 @@ void Testbed::ScenePanel() {
     const auto& catalog = SceneCatalog();
     if (catalog.empty()) return;
     const CatalogEntry& current = catalog[static_cast<size_t>(sceneIndex_)];
+    const bool fromFile = primary_.SceneFile() != nullptr;
     ImGui::SetNextItemWidth(-1.0f);
-    if (ImGui::BeginCombo("##scene", current.name.c_str())) {
+    if (ImGui::BeginCombo("##scene", fromFile ? primary_.SceneName().c_str() : current.name.c_str())) {
         bool libraryDone = false;
         for (size_t i = 0; i < catalog.size(); ++i) {
             if (!catalog[i].library && !libraryDone) {
@@ -65,7 +69,47 @@ void Testbed::ScenePanel() {
         }
         ImGui::EndCombo();
     }
-    ImGui::TextWrapped("%s%s", current.summary.c_str(), current.library ? "" : " (testbed-only)");
+    if (fromFile) {
+        ImGui::TextWrapped("scene file, %d bodies, %d joints", primary_.World().GetBodyCount(),
+                           primary_.World().GetJointCount());
+    } else {
+        ImGui::TextWrapped("%s%s", current.summary.c_str(), current.library ? "" : " (testbed-only)");
+    }
+    SceneFilePanel();
+}
+
+void Testbed::SceneFilePanel() {
+    if (mode_ != ViewMode::live) return;
+    if (!ImGui::CollapsingHeader("Scene files (b2dJson)")) return;
+    ImGui::InputText("File", sceneFilePath_, sizeof sceneFilePath_);
+    ImGui::SameLine();
+    if (ImGui::Button("Open")) OpenSceneFile(sceneFilePath_);
+    // The picker: the .json files in the folder of the path above, listed again when it changes.
+    const std::filesystem::path folder = std::filesystem::path(sceneFilePath_).parent_path();
+    if (folder.string() != listedFolder_) {
+        listedFolder_ = folder.string();
+        folderFiles_.clear();
+        std::error_code ec;
+        for (const auto& entry : std::filesystem::directory_iterator(folder.empty() ? "." : folder, ec)) {
+            if (entry.path().extension() == ".json") folderFiles_.push_back(entry.path().filename().string());
+        }
+        std::sort(folderFiles_.begin(), folderFiles_.end());
+    }
+    if (!folderFiles_.empty() &&
+        ImGui::BeginListBox("##files", ImVec2(-1.0f, 6 * ImGui::GetTextLineHeightWithSpacing()))) {
+        for (const std::string& name : folderFiles_) {
+            const std::string full = (folder / name).string();
+            if (ImGui::Selectable(name.c_str(), primary_.SceneName() == std::string(kSceneFilePrefix) + full)) {
+                std::snprintf(sceneFilePath_, sizeof sceneFilePath_, "%s", full.c_str());
+                OpenSceneFile(full);
+            }
+        }
+        ImGui::EndListBox();
+    }
+    ImGui::InputText("Save as", savePath_, sizeof savePath_);
+    ImGui::SameLine();
+    if (ImGui::Button("Save")) SaveWorld(savePath_);
+    if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
 }
 
 void Testbed::SettingsEditor(StepSettings& s, bool locked, const char* id) {

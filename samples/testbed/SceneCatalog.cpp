@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "lockbox/scenes/SceneFileScene.h"
+
 namespace lockbox::testbed {
 
 namespace {
@@ -47,6 +49,9 @@ const std::vector<CatalogEntry>& SceneCatalog() {
 }
 
 std::unique_ptr<scenes::LockboxScene> MakeCatalogScene(std::string_view name) {
+    if (IsSceneFileName(name)) {
+        return scenes::SceneFileScene::Open(std::string(name.substr(kSceneFilePrefix.size())), nullptr);
+    }
     if (auto scene = scenes::MakeLockboxScene(name)) return scene;
     for (const Registered& r : Registry())
         if (r.name == name) return r.make();

@@ -1,6 +1,7 @@
 #pragma once
 /// The testbed's list of scenes: every scene of the scene library (samples/scenes), then the
-/// testbed-only scenes in samples/testbed/scenes/.
+/// testbed-only scenes in samples/testbed/scenes/. A b2dJson scene file opens by the name
+/// "file:PATH" (not in the list).
 ///
 /// Adding a testbed-only scene takes one file: write a scenes::LockboxScene subclass in
 /// samples/testbed/scenes/<name>.cpp and register it there with a namespace-scope
@@ -34,8 +35,16 @@ struct CatalogEntry {
 /// Every scene: library scenes in library order, then testbed-only scenes by name.
 const std::vector<CatalogEntry>& SceneCatalog();
 
-/// A new scene by name from either source; nullptr when unknown.
+/// A new scene by name from either source, or a scene file ("file:PATH"); nullptr when unknown
+/// or when the file does not load.
 std::unique_ptr<scenes::LockboxScene> MakeCatalogScene(std::string_view name);
+
+/// The name prefix of scene files.
+inline constexpr std::string_view kSceneFilePrefix = "file:";
+/// True for "file:PATH".
+inline bool IsSceneFileName(std::string_view name) {
+    return name.substr(0, kSceneFilePrefix.size()) == kSceneFilePrefix;
+}
 
 /// True when `name` is a scene of the scene library (replays of it use "scene:NAME", which
 /// lockbox_replay can play too).

@@ -49,6 +49,11 @@ StepSettings Simulation::DefaultsFor(std::string_view name, const StepSettings& 
         s.velocityIterations = info.velocityIterations;
         s.positionIterations = info.positionIterations;
         s.sleep = info.allowSleep;
+        if (const auto* file = dynamic_cast<const scenes::SceneFileScene*>(scene.get())) {
+            s.warmStarting = file->FileWorld().warmStarting;
+            s.continuous = file->FileWorld().continuousPhysics;
+            s.subStepping = file->FileWorld().subStepping;
+        }
     }
     return s;
 }

@@ -17,6 +17,7 @@
 #include "lockbox/dynamics/joints/MouseJoint.h"
 #include "lockbox/lockbox.h"
 #include "lockbox/replay/Recorder.h"
+#include "lockbox/scenes/SceneFileScene.h"
 
 namespace lockbox::testbed {
 
@@ -42,8 +43,13 @@ public:
 
     /// Builds scene `name` with `settings`; false (nothing changes) for an unknown name.
     bool Load(std::string_view name, const StepSettings& settings);
-    /// The defaults of a scene (its Hz, iterations and sleep flag; the other switches as given).
+    /// The defaults of a scene (its Hz, iterations and sleep flag; the other switches as given,
+    /// except for a scene file, whose switches are the file's).
     static StepSettings DefaultsFor(std::string_view name, const StepSettings& base);
+    /// The loaded scene when it is a scene file, else nullptr.
+    const scenes::SceneFileScene* SceneFile() const noexcept {
+        return game_ ? dynamic_cast<const scenes::SceneFileScene*>(&game_->scene()) : nullptr;
+    }
     /// Rebuilds the current scene from scratch with the current settings (stops a recording).
     void Restart();
     /// True once a scene is loaded.

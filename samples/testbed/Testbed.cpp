@@ -10,6 +10,7 @@
 #include <GLFW/glfw3.h>
 
 #include "SceneCatalog.h"
+#include "lockbox/scenefile/SceneFile.h"
 
 namespace lockbox::testbed {
 
@@ -26,6 +27,7 @@ constexpr double kKeyPan = 8.0;
 }  // namespace
 
 Testbed::Testbed(std::string_view name) {
+    if (IsSceneFileName(name) && SelectScene(name)) return;
     const auto& catalog = SceneCatalog();
     const int index = CatalogIndex(name);
     sceneIndex_ = index >= 0 ? index : 0;
@@ -34,15 +36,41 @@ Testbed::Testbed(std::string_view name) {
 
 bool Testbed::SelectScene(std::string_view name) {
     const int index = CatalogIndex(name);
-    if (index < 0) return false;
+    if (index < 0 && !IsSceneFileName(name)) return false;
     const StepSettings s = Simulation::DefaultsFor(name, base_);
     if (!primary_.Load(name, s)) return false;
-    sceneIndex_ = index;
+    if (index >= 0) sceneIndex_ = index;
     if (mode_ == ViewMode::replay) CloseReplay();
     dragging_ = false;
     SyncSecondary();
     FitView();
     return true;
+}
+
+bool Testbed::OpenSceneFile(const std::string& path) {
+    scenefile::SceneResult error;
+    // Checked here for its message; SelectScene then opens it again as a scene.
+    if (!scenes::SceneFileScene::Open(path, &error)) {
+        status_ = path + ": " + error.Describe();
+        return false;
+    }
+    if (!SelectScene(std::string(kSceneFilePrefix) + path)) {
+        status_ = "cannot open " + path;
+        return false;
+    }
+    status_ = "opened " + path;
+    return true;
+}
+
+bool Testbed::SaveWorld(const std::string& path) {
+    if (!primary_.Loaded()) return false;
+    const scenes::SceneFileScene* file = primary_.SceneFile();
+    const scenefile::SceneResult r =
+        scenefile::SaveSceneFile(path, primary_.World(), file ? &file->Metadata() : nullptr);
+    char frame[48];
+    std::snprintf(frame, sizeof frame, " (frame %d)", primary_.Frame());
+    status_ = r ? "saved the world to " + path + frame : r.Describe();
+    return r.ok();
 }
 
 void Testbed::SyncSecondary() {

@@ -38,8 +38,15 @@ public:
     /// Starts with scene `name` (the first catalog scene when unknown or empty).
     explicit Testbed(std::string_view name);
 
-    /// Switches to a catalog scene with its default settings (keeps the world switches).
+    /// Switches to a catalog scene with its default settings (keeps the world switches), or to a
+    /// scene file ("file:PATH", with the file's switches).
     bool SelectScene(std::string_view name);
+    /// Opens a b2dJson scene file; a file that does not load leaves the scene as it was and
+    /// puts the error in Status().
+    bool OpenSceneFile(const std::string& path);
+    /// Saves the live world (with the scene file's names, properties and images, when it came
+    /// from one) as a b2dJson file; the outcome goes to Status().
+    bool SaveWorld(const std::string& path);
     /// Mouse and keyboard through ImGui's io (call after ImGui::NewFrame); ignores input that
     /// ImGui wants (a click on a panel).
     void HandleInput();
@@ -108,6 +115,7 @@ private:
 
     // Panels.cpp
     void ScenePanel();
+    void SceneFilePanel();
     void ControlPanel();
     void DrawPanel();
     void StatsPanel();
@@ -138,8 +146,12 @@ private:
     bool dragging_ = false;
     size_t dragView_ = 0;
     char replayPath_[512] = "testbed.lbr";
-    std::string status_;     ///< last message (recording, opening, errors)
-    std::string checkText_;  ///< last Verify / Bisect result
+    char sceneFilePath_[512] = "samples/scenes/files/handmade/joints.json";
+    char savePath_[512] = "testbed_world.json";
+    std::vector<std::string> folderFiles_;  ///< .json files beside sceneFilePath_ (the picker's list)
+    std::string listedFolder_;              ///< the folder folderFiles_ lists
+    std::string status_;                    ///< last message (recording, opening, errors)
+    std::string checkText_;                 ///< last Verify / Bisect result
 };
 
 }  // namespace lockbox::testbed

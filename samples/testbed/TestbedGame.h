@@ -30,6 +30,8 @@ public:
     b2World& world() noexcept { return engine_->world(); }
     /// The scene's defaults.
     const scenes::SceneInfo& info() const noexcept { return scene_->Info(); }
+    /// The scene (valid when ok()).
+    const scenes::LockboxScene& scene() const noexcept { return *scene_; }
     /// The game name a replay of this scene carries ("scene:NAME" or "testbed:NAME").
     std::string GameName() const;
 

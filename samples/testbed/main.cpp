@@ -1,7 +1,7 @@
 // lockbox_testbed: the interactive viewer of the manual's "The Testbed" (issue 12), with
 // lockbox's own tools: state hash, headroom, replays and side-by-side accuracy.
 //
-//   lockbox_testbed [--scene NAME] [--steps N] [--side-by-side] [--paused]
+//   lockbox_testbed [--scene NAME | --scene-file FILE.json] [--steps N] [--side-by-side] [--paused]
 //   lockbox_testbed --scene NAME --steps N --screenshot FILE.png [--size WxH] [--no-panel]
 //                   [--side-by-side]
 //   lockbox_testbed ... --screenshot FILE.png --record FILE.lbr         (record the N steps)
@@ -18,6 +18,7 @@
 #include "App.h"
 #include "Headless.h"
 #include "SceneCatalog.h"
+#include "lockbox/scenes/SceneFileScene.h"
 
 using namespace lockbox::testbed;
 
@@ -25,7 +26,8 @@ namespace {
 
 int Usage() {
     std::fprintf(stderr,
-                 "usage: lockbox_testbed [--scene NAME] [--steps N] [--side-by-side] [--paused]\n"
+                 "usage: lockbox_testbed [--scene NAME | --scene-file FILE.json] [--steps N] [--side-by-side]\n"
+                 "                       [--paused]\n"
                  "       lockbox_testbed --scene NAME --steps N --screenshot FILE.png [--size WxH] [--no-panel]\n"
                  "                       [--side-by-side] [--record FILE.lbr]\n"
                  "       lockbox_testbed --replay FILE.lbr [--frame F] [--inject FRAME:STAGE] [--verify] [--bisect]\n"
@@ -61,6 +63,15 @@ int main(int argc, char** argv) {
         const bool more = i + 1 < argc;
         if (a == "--scene" && more) {
             app.scene = headless.scene = argv[++i];
+        } else if (a == "--scene-file" && more) {
+            // A b2dJson file, checked here so that a bad one is reported with its error.
+            const std::string path = argv[++i];
+            lockbox::scenefile::SceneResult error;
+            if (!lockbox::scenes::SceneFileScene::Open(path, &error)) {
+                std::fprintf(stderr, "%s: %s\n", path.c_str(), error.Describe().c_str());
+                return 2;
+            }
+            app.scene = headless.scene = std::string(kSceneFilePrefix) + path;
         } else if (a == "--steps" && more) {
             if (!ParseCount(argv[++i], app.steps)) return Usage();
             headless.steps = app.steps;
@@ -103,7 +114,7 @@ int main(int argc, char** argv) {
         if (headless.scene.empty() && headless.replay.empty()) return Usage();
         return RunHeadless(headless);
     }
-    if (!app.scene.empty() && CatalogIndex(app.scene) < 0) {
+    if (!app.scene.empty() && CatalogIndex(app.scene) < 0 && !IsSceneFileName(app.scene)) {
         std::fprintf(stderr, "unknown scene '%s' (--list shows them)\n", app.scene.c_str());
         return 2;
     }

@@ -69,6 +69,20 @@ SceneResult Check(const SceneDocument& doc, const b2World& world) {
                         "index " + std::to_string(body) + ", the file has " + std::to_string(bodyCount) + " bodies"};
             }
         }
+        // Points given in world coordinates lie in the world, as body positions do.
+        const auto outside = [&](const b2Vec2& p, const char* field) -> SceneResult {
+            return {SceneError::e_range, JointPath(i) + "." + field,
+                    VecText(p) + " is outside the world bounds " + VecText(bounds.lowerBound) + " to " +
+                        VecText(bounds.upperBound)};
+        };
+        if (const auto* pulley = std::get_if<b2PulleyJointDef>(&j.def)) {
+            if (!Inside(bounds, pulley->groundAnchorA)) return outside(pulley->groundAnchorA, "groundAnchorA");
+            if (!Inside(bounds, pulley->groundAnchorB)) return outside(pulley->groundAnchorB, "groundAnchorB");
+        }
+        if (const auto* mouse = std::get_if<b2MouseJointDef>(&j.def)) {
+            if (!Inside(bounds, mouse->target)) return outside(mouse->target, "anchorB");
+            if (!Inside(bounds, j.mouseTarget)) return outside(j.mouseTarget, "target");
+        }
         if (!std::holds_alternative<b2GearJointDef>(j.def)) {
             if (j.bodyA == j.bodyB) {
                 return {SceneError::e_reference, JointPath(i) + ".bodyB",

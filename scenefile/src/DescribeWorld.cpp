@@ -135,9 +135,17 @@ JointDefDesc DescribeJointDef(const b2Joint& joint, b2Vec2& mouseTarget) {
             d.ratio = j.GetRatio();
             // Side B's current length, and side A's as the rest of the total: the joint keeps
             // lengthA + ratio * lengthB, and (total - ratio * lengthB) + ratio * lengthB gives
-            // the total back exactly, whatever rounding ratio * lengthB had.
+            // the total back exactly, whatever rounding ratio * lengthB had. Should side B be
+            // longer than the total allows (a stretched pulley), lengthB 0 keeps it exact.
+            const Fixed total = j.GetTotalLength();
             d.lengthB = j.GetLengthB();
-            d.lengthA = j.GetTotalLength() - d.ratio * d.lengthB;
+            const Fixed part = d.ratio * d.lengthB;
+            if (part > total) {
+                d.lengthB = Fixed();
+                d.lengthA = total;
+            } else {
+                d.lengthA = total - part;
+            }
             return d;
         }
         case e_mouseJoint: {

@@ -48,6 +48,7 @@ bool LoadBody(SceneReader& r, const JsonNode& n, const Path& path, int32& fixtur
         return false;
     }
     def.type = static_cast<b2BodyType>(type);
+    if (!r.Within(def.angle, kMaxFileAngle, m[4], at(4), "rad", kAngleWhy)) return false;
 
     out.massData.reset();
     if (!SceneReader::Absent(m[15]) || !SceneReader::Absent(m[16]) || !SceneReader::Absent(m[17])) {
@@ -57,6 +58,7 @@ bool LoadBody(SceneReader& r, const JsonNode& n, const Path& path, int32& fixtur
             return false;
         }
         if (mass.mass < Wide()) return r.Fail(at(15), SceneError::e_range, r.Quote(*m[15]) + " is negative");
+        if (!r.WithinVec(mass.center, b2_maxShapeCoordinate, at(16), "m", kLocalWhy)) return false;
         if (mass.I < Wide()) return r.Fail(at(17), SceneError::e_range, r.Quote(*m[17]) + " is negative");
         out.massData = mass;
     }

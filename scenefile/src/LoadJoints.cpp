@@ -96,6 +96,14 @@ public:
     bool Fixed_(Field f, Fixed& v) { return r.ReadFixed(m[f], At(f), v); }
     bool NonNegative(Field f, Fixed& v) { return Fixed_(f, v) && r.NonNegative(v, m[f], At(f)); }
     bool Vec(Field f, b2Vec2& v) { return r.ReadVec(m[f], At(f), v); }
+    /// A point in a body's frame (an anchor): within the shapes' coordinate range.
+    bool Local(Field f, b2Vec2& v) { return Vec(f, v) && r.WithinVec(v, b2_maxShapeCoordinate, At(f), "m", kLocalWhy); }
+    /// A reference angle, rad.
+    bool Angle(Field f, Fixed& v) { return Fixed_(f, v) && r.Within(v, kMaxFileAngle, m[f], At(f), "rad", kAngleWhy); }
+    /// A revolute limit, rad (RevoluteJoint.h: |value| <= 16000).
+    bool AngleLimit(Field f, Fixed& v) {
+        return Fixed_(f, v) && r.Within(v, Fixed(16000), m[f], At(f), "rad", "the revolute joint's limit range");
+    }
     bool Bool(Field f, bool& v) { return r.ReadBool(m[f], At(f), v); }
     bool Frequency(Field f, Fixed& v, bool positive) {
         if (!Fixed_(f, v)) return false;
@@ -126,9 +134,9 @@ public:
 bool LoadTyped(JointFields& f, std::string_view type, JointDesc& out) {
     if (type == "revolute") {
         b2RevoluteJointDef d;
-        if (!f.Vec(kAnchorA, d.localAnchorA) || !f.Vec(kAnchorB, d.localAnchorB) ||
-            !f.Fixed_(kRefAngle, d.referenceAngle) || !f.Bool(kEnableLimit, d.enableLimit) ||
-            !f.Fixed_(kLower, d.lowerAngle) || !f.Fixed_(kUpper, d.upperAngle) ||
+        if (!f.Local(kAnchorA, d.localAnchorA) || !f.Local(kAnchorB, d.localAnchorB) ||
+            !f.Angle(kRefAngle, d.referenceAngle) || !f.Bool(kEnableLimit, d.enableLimit) ||
+            !f.AngleLimit(kLower, d.lowerAngle) || !f.AngleLimit(kUpper, d.upperAngle) ||
             !f.Bool(kEnableMotor, d.enableMotor) || !f.Fixed_(kMotorSpeed, d.motorSpeed) ||
             !f.NonNegative(kMaxMotorTorque, d.maxMotorTorque) || !f.Limits(d.enableLimit, d.lowerAngle, d.upperAngle)) {
             return false;
@@ -136,8 +144,8 @@ bool LoadTyped(JointFields& f, std::string_view type, JointDesc& out) {
         out.def = d;
     } else if (type == "prismatic") {
         b2PrismaticJointDef d;
-        if (!f.Vec(kAnchorA, d.localAnchorA) || !f.Vec(kAnchorB, d.localAnchorB) || !f.Axis(d.localAxisA) ||
-            !f.Fixed_(kRefAngle, d.referenceAngle) || !f.Bool(kEnableLimit, d.enableLimit) ||
+        if (!f.Local(kAnchorA, d.localAnchorA) || !f.Local(kAnchorB, d.localAnchorB) || !f.Axis(d.localAxisA) ||
+            !f.Angle(kRefAngle, d.referenceAngle) || !f.Bool(kEnableLimit, d.enableLimit) ||
             !f.Fixed_(kLower, d.lowerTranslation) || !f.Fixed_(kUpper, d.upperTranslation) ||
             !f.Bool(kEnableMotor, d.enableMotor) || !f.Fixed_(kMotorSpeed, d.motorSpeed) ||
             !f.NonNegative(kMaxMotorForce, d.maxMotorForce) ||
@@ -148,8 +156,9 @@ bool LoadTyped(JointFields& f, std::string_view type, JointDesc& out) {
     } else if (type == "distance") {
         b2DistanceJointDef d;
         d.length = 0;
-        if (!f.Vec(kAnchorA, d.localAnchorA) || !f.Vec(kAnchorB, d.localAnchorB) || !f.NonNegative(kLength, d.length) ||
-            !f.Frequency(kFrequency, d.frequencyHz, false) || !f.NonNegative(kDamping, d.dampingRatio)) {
+        if (!f.Local(kAnchorA, d.localAnchorA) || !f.Local(kAnchorB, d.localAnchorB) ||
+            !f.NonNegative(kLength, d.length) || !f.Frequency(kFrequency, d.frequencyHz, false) ||
+            !f.NonNegative(kDamping, d.dampingRatio)) {
             return false;
         }
         out.def = d;
@@ -158,11 +167,18 @@ bool LoadTyped(JointFields& f, std::string_view type, JointDesc& out) {
         d.collideConnected = false;
         d.ratio = 0;
         if (!f.Vec(kGroundA, d.groundAnchorA) || !f.Vec(kGroundB, d.groundAnchorB) ||
-            !f.Vec(kAnchorA, d.localAnchorA) || !f.Vec(kAnchorB, d.localAnchorB) || !f.Fixed_(kLengthA, d.lengthA) ||
-            !f.Fixed_(kLengthB, d.lengthB) || !f.Fixed_(kRatio, d.ratio)) {
+            !f.Local(kAnchorA, d.localAnchorA) || !f.Local(kAnchorB, d.localAnchorB) ||
+            !f.NonNegative(kLengthA, d.lengthA) || !f.NonNegative(kLengthB, d.lengthB) || !f.Fixed_(kRatio, d.ratio)) {
             return false;
         }
         if (d.ratio <= Fixed()) return f.r.Fail(f.At(kRatio), SceneError::e_range, "a pulley ratio must be positive");
+        // The joint keeps lengthA + ratio * lengthB as one Q16.16 value: it must fit.
+        const int64_t total = int64_t{d.lengthA.Raw()} +
+                              ((int64_t{d.ratio.Raw()} * d.lengthB.Raw() + (int64_t{1} << 15)) >> Fixed::kFractionBits);
+        if (total > Fixed::kMaxRaw) {
+            return f.r.Fail(f.path, SceneError::e_range,
+                            "lengthA + ratio * lengthB does not fit Q16.16 (32767.99998 m)");
+        }
         out.def = d;
     } else if (type == "mouse") {
         b2MouseJointDef d;
@@ -188,7 +204,7 @@ bool LoadTyped(JointFields& f, std::string_view type, JointDesc& out) {
         b2WheelJointDef d;
         d.frequencyHz = 0;
         d.dampingRatio = 0;
-        if (!f.Vec(kAnchorA, d.localAnchorA) || !f.Vec(kAnchorB, d.localAnchorB) || !f.Axis(d.localAxisA) ||
+        if (!f.Local(kAnchorA, d.localAnchorA) || !f.Local(kAnchorB, d.localAnchorB) || !f.Axis(d.localAxisA) ||
             !f.Bool(kEnableMotor, d.enableMotor) || !f.Fixed_(kMotorSpeed, d.motorSpeed) ||
             !f.NonNegative(kMaxMotorTorque, d.maxMotorTorque) || !f.Frequency(kSpringFrequency, d.frequencyHz, false) ||
             !f.NonNegative(kSpringDamping, d.dampingRatio)) {
@@ -197,15 +213,15 @@ bool LoadTyped(JointFields& f, std::string_view type, JointDesc& out) {
         out.def = d;
     } else if (type == "weld") {
         b2WeldJointDef d;
-        if (!f.Vec(kAnchorA, d.localAnchorA) || !f.Vec(kAnchorB, d.localAnchorB) ||
-            !f.Fixed_(kRefAngle, d.referenceAngle) || !f.Frequency(kFrequency, d.frequencyHz, false) ||
+        if (!f.Local(kAnchorA, d.localAnchorA) || !f.Local(kAnchorB, d.localAnchorB) ||
+            !f.Angle(kRefAngle, d.referenceAngle) || !f.Frequency(kFrequency, d.frequencyHz, false) ||
             !f.NonNegative(kDamping, d.dampingRatio)) {
             return false;
         }
         out.def = d;
     } else if (type == "friction") {
         b2FrictionJointDef d;
-        if (!f.Vec(kAnchorA, d.localAnchorA) || !f.Vec(kAnchorB, d.localAnchorB) ||
+        if (!f.Local(kAnchorA, d.localAnchorA) || !f.Local(kAnchorB, d.localAnchorB) ||
             !f.NonNegative(kMaxForce, d.maxForce) || !f.NonNegative(kMaxTorque, d.maxTorque)) {
             return false;
         }
@@ -214,7 +230,7 @@ bool LoadTyped(JointFields& f, std::string_view type, JointDesc& out) {
         b2RopeJointDef d;
         d.localAnchorA.SetZero();
         d.localAnchorB.SetZero();
-        if (!f.Vec(kAnchorA, d.localAnchorA) || !f.Vec(kAnchorB, d.localAnchorB) ||
+        if (!f.Local(kAnchorA, d.localAnchorA) || !f.Local(kAnchorB, d.localAnchorB) ||
             !f.NonNegative(kMaxLength, d.maxLength)) {
             return false;
         }

@@ -323,6 +323,23 @@ bool SceneReader::ReadInfo(const JsonNode* name, const JsonNode* objectPath, con
            ReadProperties(properties, path.Member("customProperties"), out.properties);
 }
 
+bool SceneReader::Within(Fixed v, Fixed limit, const JsonNode* n, const Path& path, const char* unit, const char* why) {
+    if (v <= limit && v >= -limit) return true;
+    return Fail(
+        path, SceneError::e_range,
+        (n ? Quote(*n) : FormatFixed(v)) + " is beyond +-" + FormatFixed(limit) + " " + unit + " (" + why + ")");
+}
+
+bool SceneReader::WithinVec(const b2Vec2& v, Fixed limit, const Path& path, const char* unit, const char* why) {
+    if (v.x <= limit && v.x >= -limit && v.y <= limit && v.y >= -limit) return true;
+    std::string text(1, '(');
+    text += FormatFixed(v.x);
+    text += ", ";
+    text += FormatFixed(v.y);
+    text += ')';
+    return Fail(path, SceneError::e_range, text + " is beyond +-" + FormatFixed(limit) + " " + unit + " (" + why + ")");
+}
+
 bool SceneReader::NonNegative(Fixed v, const JsonNode* n, const Path& path) {
     if (v >= Fixed()) return true;
     return Fail(path, SceneError::e_range, (n ? Quote(*n) : FormatFixed(v)) + " is negative");

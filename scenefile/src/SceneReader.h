@@ -96,8 +96,12 @@ public:
     /// A name, a path and custom properties (any of them absent).
     bool ReadInfo(const JsonNode* name, const JsonNode* objectPath, const JsonNode* properties, const Path& path,
                   ObjectInfo& out);
-    /// Fails with "<what> <text> is negative" unless v >= 0.
+    /// Fails with "<text> is negative" unless v >= 0.
     bool NonNegative(Fixed v, const JsonNode* n, const Path& path);
+    /// Fails unless |v| <= limit: "<text> is beyond +-<limit> <unit> (<why>)".
+    bool Within(Fixed v, Fixed limit, const JsonNode* n, const Path& path, const char* unit, const char* why);
+    /// Fails unless both coordinates are within +-limit.
+    bool WithinVec(const b2Vec2& v, Fixed limit, const Path& path, const char* unit, const char* why);
 
     /// The text of a number or string node, cut to a readable length for messages.
     std::string Quote(const JsonNode& n) const;

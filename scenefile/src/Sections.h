@@ -25,7 +25,15 @@ bool CheckGearJoints(SceneReader& r, const Path& jointsPath, const std::vector<J
 /// One entry of "image"; its body index is checked against `bodyCount` (-1: no body).
 bool LoadImage(SceneReader& r, const JsonNode& n, const Path& path, int32 bodyCount, ImageDesc& out);
 
-/// "<what> index <i>, the file has <count> <plural>" (the reference error of the style).
+/// "index <i>, the file has <count> <plural>" (a reference error).
 std::string IndexMessage(int64_t index, int64_t count, const char* plural);
+
+/// Largest |angle| of a body or a joint's reference angle, rad: the revolute joint's continuous
+/// angle range (kMaxContinuousAngle), so that differences of angles the joints form still fit.
+inline constexpr Fixed kMaxFileAngle = 8192;
+inline constexpr const char* kAngleWhy = "kMaxContinuousAngle";
+/// Largest coordinate of a point given in a body's frame (joint anchors, the mass centre), m:
+/// the shapes' own bound, so that a joint cannot reach farther from its body than a shape can.
+inline constexpr const char* kLocalWhy = "b2_maxShapeCoordinate, in the body's frame";
 
 }  // namespace lockbox::scenefile::detail

@@ -21,8 +21,11 @@ struct Out {
     enum Kind : uint8 { e_number, e_string, e_bool, e_array, e_object } kind = e_object;
     std::string text;  // number text or string
     bool flag = false;
-    std::vector<Out> items;                            // array elements
-    std::vector<std::pair<std::string, Out>> members;  // object members
+    std::vector<Out> items;  // array elements
+    // Object members as parallel lists (a vector of an incomplete type is allowed, a pair of
+    // one is not).
+    std::vector<std::string> keys;
+    std::vector<Out> values;
 
     static Out Number(std::string t) {
         Out o;
@@ -68,7 +71,10 @@ struct Out {
         o.Add("y", std::move(ys));
         return o;
     }
-    void Add(std::string key, Out value) { members.emplace_back(std::move(key), std::move(value)); }
+    void Add(std::string key, Out value) {
+        keys.push_back(std::move(key));
+        values.push_back(std::move(value));
+    }
 };
 
 // A string as a JSON string literal (RapidJSON's writer escapes it).
@@ -108,34 +114,26 @@ void Emit(std::string& out, Out& v, int depth) {
             break;
         }
         case Out::e_object: {
-            if (v.members.empty()) {
+            if (v.keys.empty()) {
                 out += "{}";
                 break;
             }
-            std::stable_sort(v.members.begin(), v.members.end(),
-                             [](const auto& a, const auto& b) { return a.first < b.first; });
-            if (std::all_of(v.members.begin(), v.members.end(), [](const auto& m) { return Scalar(m.second); })) {
-                // A small all-scalar object ({"x": 1, "y": 2}) stays on one line.
-                out += '{';
-                for (size_t i = 0; i < v.members.size(); ++i) {
-                    AppendString(out, v.members[i].first);
-                    out += ": ";
-                    Emit(out, v.members[i].second, depth + 1);
-                    if (i + 1 < v.members.size()) out += ", ";
-                }
-                out += '}';
-                break;
-            }
-            out += "{\n";
-            for (size_t i = 0; i < v.members.size(); ++i) {
-                out += indent;
-                AppendString(out, v.members[i].first);
+            std::vector<size_t> order(v.keys.size());
+            for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+            std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return v.keys[a] < v.keys[b]; });
+            // A small all-scalar object ({"x": 1, "y": 2}) stays on one line.
+            const bool flat = std::all_of(v.values.begin(), v.values.end(), Scalar);
+            out += flat ? "{" : "{\n";
+            for (size_t k = 0; k < order.size(); ++k) {
+                const size_t i = order[k];
+                if (!flat) out += indent;
+                AppendString(out, v.keys[i]);
                 out += ": ";
-                Emit(out, v.members[i].second, depth + 1);
-                if (i + 1 < v.members.size()) out += ',';
-                out += '\n';
+                Emit(out, v.values[i], depth + 1);
+                if (k + 1 < order.size()) out += flat ? ", " : ",\n";
             }
-            out += close + "}";
+            if (!flat) out += "\n" + close;
+            out += '}';
             break;
         }
     }

@@ -75,6 +75,12 @@ const BadFile kBadFiles[] = {
     {"property_not_integer", SceneError::e_number, "body[0].customProperties[0].int: 1.5 is not an integer"},
     {"property_colour", SceneError::e_type, "customProperties[0].color: 3 channels, a colour has 4"},
     {"image_body_index", SceneError::e_reference, "image[0].body: index 2, the file has 2 bodies"},
+    {"body_angle", SceneError::e_range, "body[0].angle: 9000 is beyond +-8192 rad (kMaxContinuousAngle)"},
+    {"joint_anchor", SceneError::e_range,
+     "joint[0].anchorA: (5000, 0) is beyond +-4096 m (b2_maxShapeCoordinate, in the body's frame)"},
+    {"pulley_total", SceneError::e_range, "joint[0]: lengthA + ratio * lengthB does not fit Q16.16 (32767.99998 m)"},
+    {"mouse_outside", SceneError::e_range,
+     "joint[0].target: (20000, 0) is outside the world bounds (-16000, -16000) to (16000, 16000)"},
 };
 
 class BadFiles : public ::testing::TestWithParam<BadFile> {};
