@@ -119,8 +119,8 @@ function(lockbox_find_enet)
 endfunction()
 
 # Scene files (scenefile/): RapidJSON's SAX reader, which hands over each number's text
-# (kParseNumbersAsStringsFlag), and its writer. Header only; Debian's rapidjson-dev also ships a
-# CMake config, but it carries nothing beyond this include directory.
+# (kParseNumbersAsStringsFlag). Header only; Debian's rapidjson-dev also ships a CMake config,
+# but it carries nothing beyond this include directory.
 function(lockbox_find_rapidjson)
     lockbox_require_package(TARGET lockbox_dep::rapidjson NAME RapidJSON DEBIAN rapidjson-dev
         HEADER rapidjson/reader.h)

@@ -1,13 +1,9 @@
 // WriteScene: a document as b2dJson text. Fields follow b2dJson's writer (names, which values
 // are left out at their defaults, zero vectors as 0, vertices as {"x": [...], "y": [...]}),
 // keys in byte order within each object (as the JSON library R.U.B.E. and b2dJson use writes
-// them), numbers as the shortest decimal that reads back to the same value. RapidJSON's
-// writer escapes the strings.
+// them), numbers as the shortest decimal that reads back to the same value.
 #include <algorithm>
 #include <memory>
-
-#include <rapidjson/stringbuffer.h>
-#include <rapidjson/writer.h>
 
 #include "lockbox/scenefile/NumberText.h"
 #include "lockbox/scenefile/SceneFile.h"
@@ -77,12 +73,34 @@ struct Out {
     }
 };
 
-// A string as a JSON string literal (RapidJSON's writer escapes it).
+// A string as a JSON string literal: quotes, backslashes and control characters escaped, every
+// other byte as it is (strings are UTF-8; those read from a file were checked to be). Written
+// here rather than with RapidJSON's writer, whose buffer does arithmetic on a null pointer
+// before its first allocation (undefined behaviour, reported by UBSan).
 void AppendString(std::string& out, const std::string& text) {
-    rapidjson::StringBuffer buffer;
-    rapidjson::Writer<rapidjson::StringBuffer> writer(buffer);
-    writer.String(text.data(), static_cast<rapidjson::SizeType>(text.size()));
-    out.append(buffer.GetString(), buffer.GetSize());
+    static constexpr char kHex[] = "0123456789abcdef";
+    out += '"';
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        switch (c) {
+            case '"': out += "\\\""; break;
+            case '\\': out += "\\\\"; break;
+            case '\n': out += "\\n"; break;
+            case '\r': out += "\\r"; break;
+            case '\t': out += "\\t"; break;
+            case '\b': out += "\\b"; break;
+            case '\f': out += "\\f"; break;
+            default:
+                if (u < 0x20) {
+                    out += "\\u00";
+                    out += kHex[u >> 4];
+                    out += kHex[u & 15];
+                } else {
+                    out += c;
+                }
+        }
+    }
+    out += '"';
 }
 
 bool Scalar(const Out& v) { return v.kind != Out::e_array && v.kind != Out::e_object; }

@@ -110,6 +110,7 @@ std::unique_ptr<b2World> MakeEverything(SceneMetadata& meta) {
     meta.Body(*a).properties.Set("boss", false);
     meta.Body(*a).properties.Set("tint", CustomColor{10, 20, 30, 40});
     meta.Body(*b).path = "enemies/";
+    meta.Body(*c).name = "tab\there, new\nline, bell\x07, slash\\ and \"quotes\" in UTF-8: \xc3\xa9t\xc3\xa9";
     meta.worldInfo.properties.Set("level", 4);
     meta.step = {60, 8, 3};
 
