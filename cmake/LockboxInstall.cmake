@@ -20,6 +20,7 @@ install(FILES "${PROJECT_BINARY_DIR}/include/lockbox/Version.h" DESTINATION "${C
 # Third-party libraries that a component's static archive needs at link time (none for a
 # shared build: the shared libraries carry their own dependencies).
 set(LOCKBOX_LINK_DEPS_core xxhash)
+set(LOCKBOX_LINK_DEPS_scenefile xxhash)
 set(LOCKBOX_LINK_DEPS_replay xxhash zstd)
 set(LOCKBOX_LINK_DEPS_net xxhash zstd enet)
 get_target_property(_lockbox_fixed_type lockbox_fixed TYPE)
@@ -70,6 +71,7 @@ set(_lockbox_pc_xxhash libxxhash)
 set(_lockbox_pc_zstd libzstd)
 set(_lockbox_pc_enet libenet)
 set(_lockbox_pc_base_core lockbox-fixed)
+set(_lockbox_pc_base_scenefile lockbox-core)
 set(_lockbox_pc_base_replay lockbox-core)
 set(_lockbox_pc_base_net lockbox-replay)
 

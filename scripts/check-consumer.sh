@@ -8,7 +8,8 @@
 #           through pkg-config (lockbox-core)
 #   shared  the same with BUILD_SHARED_LIBS=ON (hidden visibility, LOCKBOX_API)
 #   subdir  add_subdirectory of the source tree, physics only (LOCKBOX_BUILD_REPLAY=OFF,
-#           LOCKBOX_BUILD_NET=OFF), configured with zstd and ENet hidden from every find_* call
+#           LOCKBOX_BUILD_NET=OFF, LOCKBOX_BUILD_SCENEFILE=OFF), configured with zstd, ENet and
+#           RapidJSON hidden from every find_* call
 #           (CMAKE_FIND_ROOT_PATH on a folder that holds only xxHash and Cereal); as a control,
 #           the same configuration with replay on must fail naming libzstd-dev
 #   fetch   FetchContent from a source archive of the tree (configure only: it builds what
@@ -177,13 +178,13 @@ for step in $steps; do
                 -DCMAKE_FIND_ROOT_PATH_MODE_PROGRAM=NEVER)
             # Control: with replay on, the same configuration must fail for want of zstd.
             if cmake -S samples/consumer -B "$work/control" "${generator[@]}" "${hide[@]}" \
-                -DLOCKBOX_CONSUMER_SOURCE_DIR="$repo_root" > "$work/control.log" 2>&1; then
+                -DLOCKBOX_CONSUMER_SOURCE_DIR="$repo_root" -DLOCKBOX_BUILD_SCENEFILE=OFF > "$work/control.log" 2>&1; then
                 fail "subdir: zstd was found although it should be out of reach"
             fi
             grep -q 'libzstd-dev' "$work/control.log" || { cat "$work/control.log"; fail "subdir: the control failed for another reason"; }
             echo "control: with LOCKBOX_BUILD_REPLAY on, configuring fails: $(grep -o 'zstd not found[^(]*' "$work/control.log")"
             build_consumer subdir "${hide[@]}" -DLOCKBOX_CONSUMER_SOURCE_DIR="$repo_root" \
-                -DLOCKBOX_BUILD_REPLAY=OFF -DLOCKBOX_BUILD_NET=OFF
+                -DLOCKBOX_BUILD_REPLAY=OFF -DLOCKBOX_BUILD_NET=OFF -DLOCKBOX_BUILD_SCENEFILE=OFF
             if grep -Eqi 'zstd|enet' "$work/consumer-subdir/build.ninja"; then
                 fail "subdir: the physics-only build mentions zstd or ENet"
             fi
