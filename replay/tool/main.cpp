@@ -25,12 +25,14 @@ int Usage() {
     std::fprintf(
         stderr,
         "usage:\n"
-        "  lockbox_replay record --scene NAME --out FILE [--frames N] [--players P] [--seed S]\n"
-        "                        [--keyframe-interval K] [--hash-interval H] [--stage-hashes] [--level L]\n"
+        "  lockbox_replay record (--scene NAME | --scene-file FILE.json) --out FILE [--frames N] [--players P]\n"
+        "                        [--seed S] [--keyframe-interval K] [--hash-interval H] [--stage-hashes] [--level L]\n"
         "  lockbox_replay info FILE\n"
-        "  lockbox_replay verify FILE\n"
-        "  lockbox_replay diff A B\n"
-        "  lockbox_replay bisect FILE [--inject FRAME:STAGE]   (STAGE 0..4: inputs collide solve broadphase toi)\n");
+        "  lockbox_replay verify FILE [--scene-file FILE.json]\n"
+        "  lockbox_replay diff A B [--scene-file FILE.json]\n"
+        "  lockbox_replay bisect FILE [--inject FRAME:STAGE] [--scene-file FILE.json]\n"
+        "      (STAGE 0..4: inputs collide solve broadphase toi; --scene-file: the scene file a replay\n"
+        "       was recorded on, refused when it is not that file; without it the seed is enough)\n");
     return 2;
 }
 
@@ -40,10 +42,42 @@ std::string Hex(uint64 v) {
     return buf;
 }
 
+// The game of a replay recorded on a scene file. With `sceneFile` given it must be the file the
+// replay carries the hash of; without it the replay plays from its seed snapshot alone (the
+// seed holds the world, and a scene file has no pre-step action), on an empty scene.
+bool OpenSceneFileGame(const char* path, const std::string& sceneFile, const ReplayFile& file, uint64 recorded,
+                       std::unique_ptr<SceneGame>& game) {
+    const std::string stem = file.gameName.substr(kSceneFileGamePrefix.size());
+    std::unique_ptr<scenes::SceneFileScene> scene;
+    if (sceneFile.empty()) {
+        scene = scenes::SceneFileScene::FromText(stem, "{}", nullptr);
+    } else {
+        scenefile::SceneResult error;
+        scene = scenes::SceneFileScene::Open(sceneFile, &error);
+        if (!scene) {
+            std::printf("%s: %s\n", sceneFile.c_str(), error.Describe().c_str());
+            return false;
+        }
+        if (scene->FileHash() != recorded) {
+            std::printf("%s was recorded on scene file \"%s\" with hash %s; %s has hash %s: not the same file\n", path,
+                        stem.c_str(), Hex(recorded).c_str(), sceneFile.c_str(), Hex(scene->FileHash()).c_str());
+            return false;
+        }
+    }
+    game = SceneGame::ForSceneFile(std::move(scene));
+    return game && game->ok();
+}
+
 // Parses a file and builds its scene game; prints the error and returns false on failure.
-bool Open(const char* path, ReplayFile& file, std::unique_ptr<SceneGame>& game) {
+bool Open(const char* path, ReplayFile& file, std::unique_ptr<SceneGame>& game, const std::string& sceneFile = {}) {
     if (Error e = LoadReplay(path, file)) {
         std::printf("%s: %s\n", path, e.Describe().c_str());
+        return false;
+    }
+    uint64 recorded = 0;
+    if (SceneFileHashOf(file, recorded)) return OpenSceneFileGame(path, sceneFile, file, recorded, game);
+    if (!sceneFile.empty()) {
+        std::printf("%s was not recorded on a scene file (game \"%s\")\n", path, file.gameName.c_str());
         return false;
     }
     const std::string scene = SceneGame::SceneName(file.gameName);
@@ -56,7 +90,7 @@ bool Open(const char* path, ReplayFile& file, std::unique_ptr<SceneGame>& game) 
 }
 
 int Record(int argc, char** argv) {
-    std::string scene, out;
+    std::string scene, sceneFile, out;
     long frames = 600, players = 2, keyframe = 600, hashInterval = 1, level = 3;
     unsigned long long seed = 1;
     bool stageHashes = false;
@@ -65,6 +99,8 @@ int Record(int argc, char** argv) {
         const bool more = i + 1 < argc;
         if (a == "--scene" && more)
             scene = argv[++i];
+        else if (a == "--scene-file" && more)
+            sceneFile = argv[++i];
         else if (a == "--out" && more)
             out = argv[++i];
         else if (a == "--frames" && more)
@@ -84,13 +120,26 @@ int Record(int argc, char** argv) {
         else
             return Usage();
     }
-    if (scene.empty() || out.empty() || frames < 0 || players < 1 || players > 64 || keyframe < 0 || hashInterval < 1)
+    if (scene.empty() == sceneFile.empty() || out.empty() || frames < 0 || players < 1 || players > 64 ||
+        keyframe < 0 || hashInterval < 1)
         return Usage();
-    SceneGame game(scene);
-    if (!game.ok()) {
-        std::fprintf(stderr, "unknown scene %s\n", scene.c_str());
-        return 2;
+    std::unique_ptr<SceneGame> made;
+    if (!sceneFile.empty()) {
+        scenefile::SceneResult error;
+        made = SceneGame::ForSceneFile(scenes::SceneFileScene::Open(sceneFile, &error));
+        if (!made) {
+            std::fprintf(stderr, "%s: %s\n", sceneFile.c_str(), error.Describe().c_str());
+            return 2;
+        }
+        scene = std::string(made->info().name);
+    } else {
+        made = std::make_unique<SceneGame>(scene);
+        if (!made->ok()) {
+            std::fprintf(stderr, "unknown scene %s\n", scene.c_str());
+            return 2;
+        }
     }
+    SceneGame& game = *made;
     FileSink sink(out);
     if (!sink.ok()) {
         std::fprintf(stderr, "cannot create %s\n", out.c_str());
@@ -115,7 +164,8 @@ int Record(int argc, char** argv) {
         std::fprintf(stderr, "write failed: %s\n", e.Describe().c_str());
         return 2;
     }
-    std::printf("recorded %s: scene=%s frames=%ld players=%ld hash=%s\n", out.c_str(), scene.c_str(), frames, players,
+    std::printf("recorded %s: %s=%s frames=%ld players=%ld hash=%s\n", out.c_str(),
+                sceneFile.empty() ? "scene" : "scene-file", scene.c_str(), frames, players,
                 Hex(game.world().Hash()).c_str());
     return 0;
 }
@@ -131,6 +181,8 @@ int Info(const char* path) {
     std::printf("format         %u, engine %u.%u.%u, determinism 0x%08x, snapshot format %u\n", h.formatVersion,
                 h.engineMajor, h.engineMinor, h.enginePatch, h.determinismVersion, h.snapshotFormatVersion);
     std::printf("game           %s\n", f.gameName.c_str());
+    if (uint64 fileHash = 0; SceneFileHashOf(f, fileHash))
+        std::printf("scene file     hash %s (give the file with --scene-file to check it)\n", Hex(fileHash).c_str());
     std::printf("tick rate      %u Hz (dt raw %d), iterations %u/%u, world flags 0x%x\n", h.tickRate, h.timeStepRaw,
                 h.velocityIterations, h.positionIterations, h.worldFlags);
     std::printf("players        %u x %u input bytes\n", h.playerCount, h.inputBytes);
@@ -152,10 +204,10 @@ int Info(const char* path) {
     return 0;
 }
 
-int Verify(const char* path) {
+int Verify(const char* path, const std::string& sceneFile) {
     ReplayFile file;
     std::unique_ptr<SceneGame> game;
-    if (!Open(path, file, game)) return 2;
+    if (!Open(path, file, game, sceneFile)) return 2;
     Player player(file, game->world(), *game);
     const auto t0 = std::chrono::steady_clock::now();
     const VerifyResult r = player.Verify();
@@ -173,10 +225,10 @@ int Verify(const char* path) {
     return 0;
 }
 
-int Diff(const char* pathA, const char* pathB) {
+int Diff(const char* pathA, const char* pathB, const std::string& sceneFile) {
     ReplayFile fa, fb;
     std::unique_ptr<SceneGame> ga, gb;
-    if (!Open(pathA, fa, ga) || !Open(pathB, fb, gb)) return 2;
+    if (!Open(pathA, fa, ga, sceneFile) || !Open(pathB, fb, gb, sceneFile)) return 2;
     Player a(fa, ga->world(), *ga), b(fb, gb->world(), *gb);
     const DiffResult d = DiffReplays(a, b, fa, fb);
     std::printf("%s", d.Describe().c_str());
@@ -203,11 +255,11 @@ private:
     uint32 m_stage;
 };
 
-int BisectCommand(int argc, char** argv) {
+int BisectCommand(int argc, char** argv, const std::string& sceneFile) {
     if (argc < 1) return Usage();
     ReplayFile file;
     std::unique_ptr<SceneGame> game;
-    if (!Open(argv[0], file, game)) return 2;
+    if (!Open(argv[0], file, game, sceneFile)) return 2;
     std::unique_ptr<Nudge> nudge;
     for (int i = 1; i < argc; ++i) {
         long frame = 0, stage = 0;
@@ -233,9 +285,19 @@ int main(int argc, char** argv) {
     if (argc < 2) return Usage();
     const std::string cmd = argv[1];
     if (cmd == "record") return Record(argc - 2, argv + 2);
-    if (cmd == "info" && argc == 3) return Info(argv[2]);
-    if (cmd == "verify" && argc == 3) return Verify(argv[2]);
-    if (cmd == "diff" && argc == 4) return Diff(argv[2], argv[3]);
-    if (cmd == "bisect") return BisectCommand(argc - 2, argv + 2);
+    // `--scene-file FILE.json` may follow the file arguments of the other commands.
+    std::string sceneFile;
+    std::vector<char*> args(argv + 2, argv + argc);
+    for (size_t i = 0; i + 1 < args.size(); ++i) {
+        if (std::strcmp(args[i], "--scene-file") != 0) continue;
+        sceneFile = args[i + 1];
+        args.erase(args.begin() + static_cast<std::ptrdiff_t>(i), args.begin() + static_cast<std::ptrdiff_t>(i) + 2);
+        break;
+    }
+    const int n = static_cast<int>(args.size());
+    if (cmd == "info" && n == 1) return Info(args[0]);
+    if (cmd == "verify" && n == 1) return Verify(args[0], sceneFile);
+    if (cmd == "diff" && n == 2) return Diff(args[0], args[1], sceneFile);
+    if (cmd == "bisect") return BisectCommand(n, args.data(), sceneFile);
     return Usage();
 }

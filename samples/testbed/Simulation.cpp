@@ -165,6 +165,7 @@ bool Simulation::StartRecording(const std::string& path, std::string& message) {
     }
     replay::RecorderConfig config;
     config.gameName = game_->GameName();
+    config.gameParams = game_->GameParams();
     config.tickRate = static_cast<uint16>(settings_.hz);
     config.velocityIterations = static_cast<uint16>(settings_.velocityIterations);
     config.positionIterations = static_cast<uint16>(settings_.positionIterations);

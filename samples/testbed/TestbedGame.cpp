@@ -21,7 +21,17 @@ TestbedGame::TestbedGame(std::string_view name, const scenes::RunSettings& setti
 
 std::string TestbedGame::GameName() const {
     const std::string name(info().name);
+    if (dynamic_cast<const scenes::SceneFileScene*>(scene_.get())) {
+        return std::string(replay::kSceneFileGamePrefix) + name;
+    }
     return IsLibraryScene(name) ? "scene:" + name : std::string(kTestbedPrefix) + name;
+}
+
+std::vector<uint8> TestbedGame::GameParams() const {
+    if (const auto* file = dynamic_cast<const scenes::SceneFileScene*>(scene_.get())) {
+        return replay::SceneFileParams(file->FileHash());
+    }
+    return {};
 }
 
 void TestbedGame::Apply(b2World& world, int32 frame, std::span<const uint8> inputs) {
@@ -32,6 +42,15 @@ void TestbedGame::Apply(b2World& world, int32 frame, std::span<const uint8> inpu
 
 ReplayGame MakeReplayGame(const std::string& gameName) {
     ReplayGame out;
+    if (gameName.rfind(replay::kSceneFileGamePrefix, 0) == 0) {
+        // The seed snapshot holds the world: an empty scene file gives the game.
+        auto game = replay::SceneGame::ForSceneFile(
+            scenes::SceneFileScene::FromText(gameName.substr(replay::kSceneFileGamePrefix.size()), "{}", nullptr));
+        if (!game || !game->ok()) return out;
+        out.world = &game->world();
+        out.game = std::move(game);
+        return out;
+    }
     const std::string sceneName = replay::SceneGame::SceneName(gameName);
     if (!sceneName.empty()) {
         auto game = std::make_unique<replay::SceneGame>(sceneName);

@@ -3,7 +3,13 @@
 /// runs the scene's own pre-step action, then every player's 8-byte input: an impulse on a
 /// dynamic body, a box or circle spawned, or a spawned body destroyed. ScriptedInputs makes
 /// such inputs from a seed, so any scene can make a replay with bodies coming and going.
+///
+/// A b2dJson scene file is a game too (`lockbox_replay record --scene-file`): its game name is
+/// "scenefile:STEM" and META's game parameters carry the file's hash (SceneFileParams), so a
+/// player given another file can refuse it. The replay itself needs no file: the seed snapshot
+/// holds the world, and a scene file has no pre-step action.
 
+#include <algorithm>
 #include <memory>
 #include <span>
 #include <string>
@@ -13,7 +19,9 @@
 #include "lockbox/lockbox.h"
 #include "lockbox/replay/Game.h"
 #include "lockbox/replay/Recorder.h"
+#include "lockbox/replay/ReplayFile.h"
 #include "lockbox/scenes/LockboxScenes.h"
+#include "lockbox/scenes/SceneFileScene.h"
 
 namespace lockbox::replay {
 
@@ -53,25 +61,63 @@ struct SceneInput {
     }
 };
 
+/// The game-name prefix of a replay recorded on a scene file ("scenefile:level1").
+inline constexpr std::string_view kSceneFileGamePrefix = "scenefile:";
+/// The tag that opens the game parameters of such a replay, before the file's hash.
+inline constexpr uint8 kSceneFileParamsTag[4] = {'S', 'F', 'H', '1'};
+
+/// META game parameters of a replay recorded on a scene file: the tag "SFH1", then the file's
+/// scenefile::SceneFileHash as 8 bytes, least significant first (12 bytes).
+inline std::vector<uint8> SceneFileParams(uint64 fileHash) {
+    std::vector<uint8> out(kSceneFileParamsTag, kSceneFileParamsTag + 4);
+    for (int i = 0; i < 8; ++i) out.push_back(static_cast<uint8>(fileHash >> (8 * i)));
+    return out;
+}
+
+/// The scene-file hash a replay carries; false when the replay was not recorded on a scene file
+/// (or its parameters are not in the SceneFileParams layout).
+inline bool SceneFileHashOf(const ReplayFile& file, uint64& hash) {
+    if (file.gameName.rfind(kSceneFileGamePrefix, 0) != 0 || file.gameParams.size() != 12) return false;
+    if (!std::equal(kSceneFileParamsTag, kSceneFileParamsTag + 4, file.gameParams.begin())) return false;
+    hash = 0;
+    for (int i = 7; i >= 0; --i) hash = (hash << 8) | file.gameParams[static_cast<size_t>(4 + i)];
+    return true;
+}
+
 /// A built scene driven by replay inputs.
 class SceneGame : public Game {
 public:
     /// Builds the scene (check ok()). The world switches follow the scene's defaults.
-    explicit SceneGame(std::string_view sceneName) : m_scene(scenes::MakeLockboxScene(sceneName)) {
+    explicit SceneGame(std::string_view sceneName) : SceneGame(scenes::MakeLockboxScene(sceneName)) {}
+    /// The same for a scene made elsewhere (a scene file), recorded under `gameName` with
+    /// `gameParams` ("scene:NAME" and none when the name is empty).
+    explicit SceneGame(std::unique_ptr<scenes::LockboxScene> scene, std::string gameName = {},
+                       std::vector<uint8> gameParams = {})
+        : m_scene(std::move(scene)), m_gameName(std::move(gameName)), m_gameParams(std::move(gameParams)) {
         if (!m_scene) return;
+        if (m_gameName.empty()) m_gameName = "scene:" + std::string(m_scene->Info().name);
         m_engine = std::make_unique<scenes::LockboxEngine>();
         scenes::ConfigureWorld(*m_engine, m_scene->Info(), scenes::RunSettings{});
         m_scene->Prepare(scenes::Resolve(m_scene->Info(), scenes::RunSettings{}));
         m_scene->Build(*m_engine);
     }
+    /// A game for a scene file: "scenefile:STEM", the file's hash in the parameters.
+    static std::unique_ptr<SceneGame> ForSceneFile(std::unique_ptr<scenes::SceneFileScene> scene) {
+        if (!scene) return nullptr;
+        std::string name = std::string(kSceneFileGamePrefix) + std::string(scene->Info().name);
+        std::vector<uint8> params = SceneFileParams(scene->FileHash());
+        return std::make_unique<SceneGame>(std::move(scene), std::move(name), std::move(params));
+    }
     bool ok() const noexcept { return m_scene != nullptr; }
     b2World& world() noexcept { return m_engine->world(); }
     const scenes::SceneInfo& info() const noexcept { return m_scene->Info(); }
 
-    /// The recorder settings of this scene with `players` players (game name "scene:NAME").
+    /// The recorder settings of this scene with `players` players (game name "scene:NAME", or
+    /// the name and parameters given at construction).
     RecorderConfig Config(uint16 players) const {
         RecorderConfig c;
-        c.gameName = "scene:" + std::string(info().name);
+        c.gameName = m_gameName;
+        c.gameParams = m_gameParams;
         c.tickRate = static_cast<uint16>(info().hz);
         c.velocityIterations = static_cast<uint16>(info().velocityIterations);
         c.positionIterations = static_cast<uint16>(info().positionIterations);
@@ -148,6 +194,8 @@ private:
     }
 
     std::unique_ptr<scenes::LockboxScene> m_scene;
+    std::string m_gameName;
+    std::vector<uint8> m_gameParams;
     std::unique_ptr<scenes::LockboxEngine> m_engine;
 };
 
