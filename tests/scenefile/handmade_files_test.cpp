@@ -92,6 +92,7 @@ TEST(HandmadeFiles, JointsInFileOrderWithTheGearLast) {
     EXPECT_EQ(newest->GetId(), 10);
     EXPECT_EQ(meta.GetJointByName(*w, "rail (older axis name)")->GetType(), e_prismaticJoint);
     EXPECT_EQ(meta.GetJointByName(*w, "shoulder")->GetId(), 0);
+    EXPECT_EQ(meta.FindJoint(*meta.GetJointByName(*w, "shoulder"))->path, "robot/arm/");
 }
 
 }  // namespace
