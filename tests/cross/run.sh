@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
-# Cross-compiler / cross-architecture determinism check (issue 7, docs/determinism.md).
+# Cross-compiler / cross-architecture determinism check (docs/determinism.md).
 #
-# Builds tests/cross/cross_driver.cpp together with the fixed/, core/, scenefile/ and
+# Builds tests/cross/cross_driver.cpp together with the fixed/, core/, replay/, scenefile/ and
 # scene-library sources (no CMake; a jumbo build planned by tests/cross/unity.py; xxHash
 # header-only through -DXXH_INLINE_ALL) for every configuration ("cell") of
-#   {g++, clang++} x {-O0, -O2, -O3 (+ -march=native -ffast-math natively, -ffast-math cross)}
-#   x {x86-64 native, i686 (static; natively, or under qemu-i386 on a kernel without 32-bit
-#      support), aarch64 and s390x (qemu-user)}
+#   {compiler} x {-O0, -O2, -O3 (+ -march=native -ffast-math natively, -ffast-math elsewhere)}
+#   x {x86-64 native (g++, clang++, and clang++ with libc++), i686 (static; natively, or under
+#      qemu-i386 on a kernel without 32-bit support), aarch64, s390x (big-endian), riscv64,
+#      armhf (32-bit ARM) and ppc64el under qemu-user (g++ and clang++ each), wasm32 (em++,
+#      Emscripten's clang and libc++, run by node)}
 # runs each one against tests/golden/hashes.txt, the fixed-function golden values and
 # tests/cross/snapshot_golden.txt, checks that all cells printed the same values, prints a
 # pass/fail matrix with per-cell times, and exits non-zero on any mismatch, build failure or
@@ -16,19 +18,19 @@
 #                           [--no-unity] [--keep DIR] [--rev REV]
 #   --ci          the CI mode (.ci/run): every architecture and compiler, one flag set each,
 #                 rotating by day of year; tumbler stops at step 1 in emulated cells and at
-#                 step 60 in native -O0 and i686 cells (see $qemu_ci_limits below);
+#                 step 60 in native -O0, i686 and wasm32 cells (see $qemu_ci_limits below);
 #                 LOCKBOX_CROSS_CLANG_CROSS=0 is ignored (every cell must build and run).
 #   --quick       like --ci but without the tumbler limits.
 #   --no-install  skip scripts/install-deps.sh --cross (toolchains already present)
 #   --jobs N      cells built and run at the same time (default 2: on a 2-core machine one
 #                 cell compiles while another runs)
-#   --only LIST   only these cells, e.g. "s390x/gcc/1 x86_64/clang/2" (arch/compiler/flag index:
-#                 0 = -O0, 1 = -O2, 2 = -O3 fast)
+#   --only LIST   only these cells, e.g. "s390x/gcc/1 x86_64/libcxx/2 wasm32/emcc/0"
+#                 (arch/compiler/flag index: 0 = -O0, 1 = -O2, 2 = -O3 fast)
 #   --no-unity    compile one object per source instead of the jumbo TUs (for comparison)
 #   --keep DIR    keep the work directory (logs, unity TUs, executables) in DIR
-#   --rev REV     take fixed/, core/, samples/scenes/ and tests/golden/ from git revision REV
-#                 (e.g. HEAD) instead of the working tree; tests/cross/ always comes from the
-#                 working tree (for a long run while the tree is being edited)
+#   --rev REV     take fixed/, core/, replay/, samples/scenes/ and tests/golden/ from git
+#                 revision REV (e.g. HEAD) instead of the working tree; tests/cross/ always
+#                 comes from the working tree (for a long run while the tree is being edited)
 # Environment: LOCKBOX_CROSS_CLANG_CROSS=0 skips clang for the non-native architectures
 #   (not in --ci); LOCKBOX_CROSS_QEMU_O0_MAX_STEP (default 60) limits the steps checked by
 #   emulated -O0 builds; LOCKBOX_CROSS_SCENES (driver --scenes syntax, "a,b:N") limits every
@@ -65,9 +67,10 @@ done
 # scenes' time: about 370 s to step 600 under qemu at -O2 (aarch64), 200 s to step 60 under
 # qemu at -O0 (s390x), 500 s to step 600 natively at -O0 (x86-64), and i686 (no native 128-bit
 # integers) is about four times slower than x86-64 at any level (figures from a loaded
-# machine; docs/determinism.md). So emulated cells check its step 1 only, native -O0 cells and
-# every i686 cell its steps 1 and 60; x86-64 -O2/-O3 cells run it in full, and every other
-# light scene runs to step 600 everywhere (60 in emulated -O0 cells).
+# machine; docs/determinism.md). So emulated cells check its step 1 only, native -O0 cells,
+# every i686 cell and every wasm32 cell (node runs -O2 WebAssembly at about the speed of
+# native -O0) its steps 1 and 60; x86-64 -O2/-O3 cells run it in full, and every other light
+# scene runs to step 600 everywhere (60 in emulated -O0 cells and wasm32 -O0 cells).
 qemu_ci_limits="tumbler:1"
 native_slow_ci_limits="tumbler:60"
 
@@ -83,6 +86,10 @@ else
     work=$(mktemp -d /tmp/lockbox-cross.XXXXXX)
     trap 'rm -rf "$work"' EXIT
 fi
+
+# em++ (the wasm32 cells) needs a module path for its optimizer, and a cache it may use.
+# shellcheck source=scripts/emscripten-env.sh
+. "$root/scripts/emscripten-env.sh" "$work/emcache"
 
 # i686 binaries run natively where the kernel can run 32-bit programs. Some kernels (VMs built
 # without IA-32 emulation) cannot: there the i686 cells run under qemu-i386 like the other
@@ -179,37 +186,81 @@ flagset() {  # $1 arch, $2 index
 }
 flaglabel() { case "$1" in 0) echo "-O0" ;; 1) echo "-O2" ;; 2) echo "-O3fast" ;; esac; }
 
+# The architectures, and the compiler families built for each: g++ and clang++ everywhere
+# Linux runs, clang++ with LLVM's libc++ instead of libstdc++ natively, and Emscripten's em++
+# (clang 14 with libc++, the only compiler for wasm32).
+arches="x86_64 i686 aarch64 s390x riscv64 armhf ppc64el wasm32"
+families() {  # $1 arch
+    case "$1" in
+        x86_64) echo "gcc clang libcxx" ;;
+        wasm32) echo "emcc" ;;
+        *) echo "gcc clang" ;;
+    esac
+}
+
+triple() {  # $1 arch -> GNU target triple (the cross compiler's prefix and sysroot /usr/<triple>)
+    case "$1" in
+        armhf) echo "arm-linux-gnueabihf" ;;
+        ppc64el) echo "powerpc64le-linux-gnu" ;;
+        *) echo "$1-linux-gnu" ;;
+    esac
+}
+
 compiler() {  # $1 arch, $2 family -> compiler command (empty: switched off)
     case "$1/$2" in
         x86_64/gcc) echo "g++" ;;
         x86_64/clang) echo "clang++" ;;
+        x86_64/libcxx) echo "clang++ -stdlib=libc++" ;;
+        # -fexceptions: as the wasm preset (cmake/EmscriptenToolchain.cmake), so that a snapshot
+        # refused by Restore is caught instead of aborting.
+        wasm32/emcc) echo "em++ -fexceptions" ;;
         i686/gcc) echo "i686-linux-gnu-g++ -static" ;;
-        aarch64/gcc) echo "aarch64-linux-gnu-g++" ;;
-        s390x/gcc) echo "s390x-linux-gnu-g++" ;;
+        */gcc) echo "$(triple "$1")-g++" ;;
         */clang)
             if [ "${LOCKBOX_CROSS_CLANG_CROSS:-1}" = 1 ] || [ "$mode" = ci ]; then
                 local extra=""
                 [ "$1" = i686 ] && extra=" -static"
-                echo "clang++ --target=$1-linux-gnu$extra"
+                echo "clang++ --target=$(triple "$1")$extra"
             fi ;;
+    esac
+}
+
+# Extra link flags: node's view of the host file system (the driver reads the golden files
+# and replays by path) and a heap that grows (tumbler's 2,025 bodies).
+linkflags() {  # $1 arch
+    case "$1" in
+        wasm32) echo "-sNODERAWFS=1 -sALLOW_MEMORY_GROWTH=1" ;;
     esac
 }
 
 runner() {  # $1 arch
     case "$1" in
-        aarch64) echo "qemu-aarch64 -L /usr/aarch64-linux-gnu" ;;
-        s390x) echo "qemu-s390x -L /usr/s390x-linux-gnu" ;;
         i686) echo "$i686_runner" ;;
-        *) echo "" ;;
+        x86_64) echo "" ;;
+        # Without --no-experimental-fetch, node 18 and 20 make Emscripten's loader fetch() the
+        # .wasm, which fails for a file path; the flag makes it read the file.
+        wasm32) echo "node --no-experimental-fetch" ;;
+        armhf) echo "qemu-arm -L /usr/$(triple "$1")" ;;
+        ppc64el) echo "qemu-ppc64le -L /usr/$(triple "$1")" ;;
+        *) echo "qemu-$1 -L /usr/$(triple "$1")" ;;
     esac
+}
+emulated() {  # $1 arch: true when its cells run under qemu-user
+    case "$(runner "$1")" in qemu-*) return 0 ;; *) return 1 ;; esac
 }
 
 # Missing pieces of a cell's toolchain, empty when complete.
-missing_tools() {  # $1 arch, $2 compiler command, $3 runner command
+missing_tools() {  # $1 arch, $2 compiler command, $3 runner command, $4 family
     local m=""
     command -v "${2%% *}" > /dev/null 2>&1 || m="$m ${2%% *}"
     [ -n "$3" ] && { command -v "${3%% *}" > /dev/null 2>&1 || m="$m ${3%% *}"; }
-    [ "$1" != x86_64 ] && [ ! -d "/usr/$1-linux-gnu" ] && m="$m /usr/$1-linux-gnu"
+    case "$1" in
+        x86_64 | wasm32) ;;
+        *) [ -d "/usr/$(triple "$1")" ] || m="$m /usr/$(triple "$1")" ;;
+    esac
+    if [ "$4" = libcxx ] && ! echo '#include <vector>' | clang++ -stdlib=libc++ -x c++ -fsyntax-only - > /dev/null 2>&1; then
+        m="$m libc++-dev"
+    fi
     echo "$m"
 }
 
@@ -237,12 +288,12 @@ run_cell() {
 
 build_and_run() {  # $1 arch, $2 family, $3 flag index
     local arch=$1 fam=$2 idx=$3
-    local dir="$work/$arch-$fam-$idx" cxx flags run t0 t1 t2 miss
+    local dir="$work/$arch-$fam-$idx" cxx flags run t0 t1 t2 miss exe
     mkdir -p "$dir"
     cxx=$(compiler "$arch" "$fam")
     run=$(runner "$arch")
     [ -z "$cxx" ] && { echo "SKIP 0 0" > "$dir/result"; return; }
-    miss=$(missing_tools "$arch" "$cxx" "$run")
+    miss=$(missing_tools "$arch" "$cxx" "$run" "$fam")
     if [ -n "$miss" ]; then
         echo "missing:$miss" > "$dir/build.log"
         echo "NO-TOOLCHAIN 0 0" > "$dir/result"; return
@@ -258,26 +309,32 @@ build_and_run() {  # $1 arch, $2 family, $3 flag index
         objs="$objs $dir/$n.o"
         n=$((n + 1))
     done
+    # Emscripten writes the program as a loader (.js) beside its module (.wasm).
+    exe="$dir/cross_driver"
+    [ "$arch" = wasm32 ] && exe="$dir/cross_driver.js"
     # shellcheck disable=SC2086
-    if ! $cxx -std=c++20 $flags $objs -o "$dir/cross_driver" >> "$dir/build.log" 2>&1; then
+    if ! $cxx -std=c++20 $flags $objs $(linkflags "$arch") -o "$exe" >> "$dir/build.log" 2>&1; then
         echo "LINK-FAIL $(( $(date +%s) - t0 )) 0" > "$dir/result"; return
     fi
     t1=$(date +%s)
     local args=()
     [ -n "${LOCKBOX_CROSS_SCENES:-}" ] && args+=(--scenes "$LOCKBOX_CROSS_SCENES")
-    if [ -n "$run" ]; then
+    if emulated "$arch"; then
         # Emulated unoptimised builds are the slowest cells by far: they check steps <= 60
         # only (LOCKBOX_CROSS_QEMU_O0_MAX_STEP overrides; 600 gives the full lines).
         [ "$idx" = 0 ] && args+=(--max-step "${LOCKBOX_CROSS_QEMU_O0_MAX_STEP:-60}")
         [ -n "${LOCKBOX_CROSS_QEMU_SCENES:-}" ] && args+=(--scenes "$LOCKBOX_CROSS_QEMU_SCENES")
         [ "$mode" = ci ] && args+=(--limits "$qemu_ci_limits")
-    elif [ "$mode" = ci ] && { [ "$idx" = 0 ] || [ "$arch" = i686 ]; }; then
+    elif [ "$mode" = ci ] && { [ "$idx" = 0 ] || [ "$arch" = i686 ] || [ "$arch" = wasm32 ]; }; then
         args+=(--limits "$native_slow_ci_limits")
+        # Unoptimised WebAssembly runs at about a twentieth of native speed under node: in CI
+        # it checks the steps <= 60, as emulated -O0 cells do.
+        [ "$arch" = wasm32 ] && [ "$idx" = 0 ] && args+=(--max-step 60)
     fi
     local status=FAIL
     # shellcheck disable=SC2086
     [ -n "$replay_files" ] && args+=(--replays "$replay_files")
-    if $run "$dir/cross_driver" "$src/tests/golden/hashes.txt" --snapshot-golden "$src/tests/cross/snapshot_golden.txt" \
+    if $run "$exe" "$src/tests/golden/hashes.txt" --snapshot-golden "$src/tests/cross/snapshot_golden.txt" \
         "${args[@]}" > "$dir/run.log" 2> "$dir/time.log"; then
         status=pass
     fi
@@ -285,13 +342,11 @@ build_and_run() {  # $1 arch, $2 family, $3 flag index
     echo "$status $((t1 - t0)) $((t2 - t1))" > "$dir/result"
 }
 
-arches="x86_64 i686 aarch64 s390x"
-families="gcc clang"
 day=$((10#$(date +%j)))
 cells=""
 k=0
 for arch in $arches; do
-    for fam in $families; do
+    for fam in $(families "$arch"); do
         if [ "$mode" = full ]; then
             cells="$cells $arch/$fam/0 $arch/$fam/1 $arch/$fam/2"
         else
@@ -307,7 +362,7 @@ done
 order=$(for cell in $cells; do
     IFS=/ read -r arch fam idx <<< "$cell"
     w=0
-    [ -n "$(runner "$arch")" ] && w=2
+    emulated "$arch" && w=2
     [ "$idx" = 0 ] && w=$((w + 1))
     echo "$((9 - w)) $cell"
 done | sort -s -k1,1n | cut -d' ' -f2)
@@ -386,7 +441,7 @@ fi
 echo
 printf '%-8s %-6s %-18s %-18s %-18s\n' arch cc "-O0" "-O2" "-O3fast"
 for arch in $arches; do
-    for fam in $families; do
+    for fam in $(families "$arch"); do
         printf '%-8s %-6s' "$arch" "$fam"
         for idx in 0 1 2; do
             cell=${result[$arch/$fam/$idx]:--}
