@@ -95,6 +95,12 @@ function(lockbox_require_package)
     endif()
 endfunction()
 
+# Under Emscripten the dependencies come from elsewhere (header-only copies, zstd from Debian's
+# source): those targets exist first, so the finders below do nothing.
+if(EMSCRIPTEN)
+    include(LockboxWasmDependencies)
+endif()
+
 # --- Always required by core -------------------------------------------------------------------
 
 lockbox_require_package(TARGET lockbox_dep::xxhash NAME xxHash DEBIAN libxxhash-dev
