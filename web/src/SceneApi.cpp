@@ -76,7 +76,8 @@ LOCKBOX_WEB_API WebWorld* lb_scene_world(WebScene* s) { return &s->view; }
 /// Q16.16 as the scenes do) with the given iterations. Returns the steps taken so far, or -1.
 LOCKBOX_WEB_API int32_t lb_scene_step(WebScene* s, int32_t hz, int32_t velocityIterations, int32_t positionIterations) {
     if (hz < 1 || hz > 65536) return Fail("scene step: Hz outside 1..65536");
-    if (velocityIterations < 0 || positionIterations < 0) return Fail("scene step: negative iteration count");
+    if (velocityIterations < 0 || positionIterations < 0 || velocityIterations > 1000 || positionIterations > 1000)
+        return Fail("scene step: iteration counts outside 0..1000");
     s->scene->BeforeStep(s->engine, s->steps);
     s->engine.Step(hz, velocityIterations, positionIterations);
     return ++s->steps;

@@ -22,12 +22,15 @@ LOCKBOX_WEB_API void lb_world_destroy(WebWorld* w) {
     if (w && w->owned) delete w;
 }
 
-/// One step of dt (raw Q16.16 seconds) with the given iteration counts; -1 when refused.
+/// One step of dt (raw Q16.16 seconds, >= 0) with the given iteration counts (0..1000); -1
+/// when refused.
 LOCKBOX_WEB_API int32_t lb_world_step(WebWorld* w, int32_t dtRaw, int32_t velocityIterations,
                                       int32_t positionIterations) {
     if (w->world->IsLocked()) return Fail("step: the world is locked (called from inside a step)");
     if (dtRaw < 0) return Fail("step: negative time step");
-    if (velocityIterations < 0 || positionIterations < 0) return Fail("step: negative iteration count");
+    // Far beyond any use (the scenes take 8 and 3), and a call from JavaScript that cannot hang.
+    if (velocityIterations < 0 || positionIterations < 0 || velocityIterations > 1000 || positionIterations > 1000)
+        return Fail("step: iteration counts outside 0..1000");
     w->world->Step(Fx(dtRaw), velocityIterations, positionIterations);
     return 0;
 }

@@ -166,9 +166,10 @@ TEST(NumberConversion, AgreesWithParseOnExactExpansions) {
     };
     const int64_t fixedMax = std::numeric_limits<int32_t>::max();
     const int64_t wideMax = std::numeric_limits<int64_t>::max();
-    for (int biased = 0; biased < 0x7FF; biased += biased < 960 ? 61 : 1) {
-        if (biased > 1100) break;
-        for (int i = 0; i < 24; ++i) {
+    // Below 2^-63 both formats round to zero: a few samples suffice there (their exact
+    // expansions are long, so they are the slow part).
+    for (int biased = 0; biased <= 1100; biased += biased < 960 ? 61 : 1) {
+        for (int i = 0; i < (biased < 960 ? 2 : 24); ++i) {
             const uint64_t r = next();
             const uint64_t bits =
                 (r & 0x8000000000000000ull) | (uint64_t(biased) << 52) | (r & ((uint64_t{1} << 52) - 1));
