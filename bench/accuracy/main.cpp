@@ -18,6 +18,7 @@
 
 #include "BenchReport.h"
 #include "BenchRunner.h"
+#include "lockbox_cli/OptionReader.h"
 
 using namespace lockbox::scenes;
 
@@ -97,19 +98,20 @@ int main(int argc, char** argv) {
     std::vector<std::string> scenes = {"pyramid20", "vertical_stack", "chain60", "pendulum", "slope"};
     int repeat = 1;
     bool quick = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--scene" && i + 1 < argc)
-            scenes = {argv[++i]};
-        else if (a == "--repeat" && i + 1 < argc)
-            repeat = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--quick")
+    lockbox::cli::OptionReader args("lockbox_accuracy", argc, argv);
+    while (args.Next()) {
+        if (args.Is("--scene")) {
+            std::string one;
+            if (args.Text(one)) scenes = {one};
+        } else if (args.Is("--repeat")) {
+            args.Int(1, 100000, repeat);
+        } else if (args.Is("--quick")) {
             quick = true;
-        else {
-            std::fprintf(stderr, "usage: lockbox_accuracy [--scene NAME] [--repeat R] [--quick]\n");
-            return 2;
+        } else {
+            args.Unknown();
         }
     }
+    if (args.Failed()) return args.Fail("usage: lockbox_accuracy [--scene NAME] [--repeat R] [--quick]\n");
     const std::filesystem::path dir = std::filesystem::path(LOCKBOX_BENCH_RESULTS_DIR) / MachineName();
     std::filesystem::create_directories(dir);
     std::ofstream csv(dir / (quick ? "accuracy_quick.csv" : "accuracy.csv"));

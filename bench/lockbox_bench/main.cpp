@@ -31,20 +31,19 @@
 #include "BenchRunner.h"
 #include "Compare.h"
 #include "lockbox/scenes/SceneFileScene.h"
+#include "lockbox_cli/OptionReader.h"
 
 using namespace lockbox::scenes;
 
 namespace {
 
-void Usage() {
-    std::fprintf(stderr,
-                 "usage: lockbox_bench --scene NAME [--steps N] [--velocity-iterations V]\n"
-                 "         [--position-iterations P] [--hz H] [--engine lockbox|box2d-float]\n"
-                 "         [--repeat R] [--metrics] [--no-profile] [--headroom]\n"
-                 "       lockbox_bench --all --compare [--scenes a,b,...] [--repeat R]\n"
-                 "       lockbox_bench --scene-file FILE.json [--steps N] [--repeat R] [--metrics]\n"
-                 "       lockbox_bench --list\n");
-}
+constexpr const char* kUsage =
+    "usage: lockbox_bench --scene NAME [--steps N] [--velocity-iterations V]\n"
+    "         [--position-iterations P] [--hz H] [--engine lockbox|box2d-float]\n"
+    "         [--repeat R] [--metrics] [--no-profile] [--headroom]\n"
+    "       lockbox_bench --all --compare [--scenes a,b,...] [--repeat R]\n"
+    "       lockbox_bench --scene-file FILE.json [--steps N] [--repeat R] [--metrics]\n"
+    "       lockbox_bench --list\n";
 
 /// Runs one scene `repeat` times on engine E and prints the median line and profile.
 template <class E>
@@ -142,57 +141,51 @@ int main(int argc, char** argv) {
     int repeat = 1;
     bool all = false, compare = false, list = false, profile = true, headroom = false;
     std::vector<std::string> only;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&](int& v) {
-            if (i + 1 >= argc) {
-                Usage();
-                std::exit(2);
-            }
-            v = std::atoi(argv[++i]);
-        };
-        if (a == "--scene" && i + 1 < argc)
-            scene = argv[++i];
-        else if (a == "--scene-file" && i + 1 < argc)
-            sceneFile = argv[++i];
-        else if (a == "--engine" && i + 1 < argc)
-            engine = argv[++i];
-        else if (a == "--steps")
-            next(s.steps);
-        else if (a == "--velocity-iterations")
-            next(s.velocityIterations);
-        else if (a == "--position-iterations")
-            next(s.positionIterations);
-        else if (a == "--hz")
-            next(s.hz);
-        else if (a == "--repeat")
-            next(repeat);
-        else if (a == "--metrics")
+    lockbox::cli::OptionReader args("lockbox_bench", argc, argv);
+    while (args.Next()) {
+        if (args.Is("--scene")) {
+            args.Text(scene);
+        } else if (args.Is("--scene-file")) {
+            args.Text(sceneFile);
+        } else if (args.Is("--engine")) {
+            args.Choice({"lockbox", "box2d-float"}, engine);
+        } else if (args.Is("--steps")) {
+            args.Int(-1, 100000000, s.steps);
+        } else if (args.Is("--velocity-iterations")) {
+            args.Int(-1, 1000, s.velocityIterations);
+        } else if (args.Is("--position-iterations")) {
+            args.Int(-1, 1000, s.positionIterations);
+        } else if (args.Is("--hz")) {
+            args.Int(1, 10000, s.hz);
+        } else if (args.Is("--repeat")) {
+            args.Int(1, 100000, repeat);
+        } else if (args.Is("--metrics")) {
             s.trackMetrics = true;
-        else if (a == "--no-profile")
+        } else if (args.Is("--no-profile")) {
             profile = false;
-        else if (a == "--headroom")
+        } else if (args.Is("--headroom")) {
             headroom = true;
-        else if (a == "--all")
+        } else if (args.Is("--all")) {
             all = true;
-        else if (a == "--compare")
+        } else if (args.Is("--compare")) {
             compare = true;
-        else if (a == "--list")
+        } else if (args.Is("--list")) {
             list = true;
-        else if (a == "--scenes" && i + 1 < argc) {
+        } else if (args.Is("--scenes")) {
             // Comma-separated subset for --all --compare; the other rows are kept.
-            std::string all_ = argv[++i];
+            std::string names;
+            if (!args.Text(names)) continue;
             size_t p = 0;
-            while (p <= all_.size()) {
-                const size_t q = std::min(all_.find(',', p), all_.size());
-                if (q > p) only.push_back(all_.substr(p, q - p));
+            while (p <= names.size()) {
+                const size_t q = std::min(names.find(',', p), names.size());
+                if (q > p) only.push_back(names.substr(p, q - p));
                 p = q + 1;
             }
         } else {
-            Usage();
-            return 2;
+            args.Unknown();
         }
     }
+    if (args.Failed()) return args.Fail(kUsage);
     if (repeat < 1) repeat = 1;
     if (list) {
         for (auto n : AllSceneNames()) {
@@ -205,8 +198,8 @@ int main(int argc, char** argv) {
     if (all && compare) return RunCompare(repeat, only) ? 0 : 1;
     if (!sceneFile.empty()) return RunSceneFile(sceneFile, s, repeat, profile) ? 0 : 1;
     if (scene.empty()) {
-        Usage();
-        return 2;
+        args.Refuse("give --scene NAME, --scene-file FILE, --all --compare or --list");
+        return args.Fail(kUsage);
     }
     std::vector<std::string_view> names;
     if (scene == "bullet") {
@@ -222,10 +215,8 @@ int main(int argc, char** argv) {
             if (headroom) PrintHeadroom(n, s);
         } else if (engine == "box2d-float")
             ok = RunAndPrint<Box2DFloatEngine>(n, s, repeat, profile) && ok;
-        else {
-            Usage();
-            return 2;
-        }
+        else
+            return 2;  // unreachable: --engine is checked against its choices above
     }
     return ok ? 0 : 1;
 }

@@ -18,6 +18,7 @@
 #include "lockbox/replay/Recorder.h"
 #include "lockbox/replay/ReplayFile.h"
 #include "lockbox/replay/SceneGame.h"
+#include "lockbox_cli/OptionReader.h"
 
 namespace {
 
@@ -48,20 +49,21 @@ struct Row {
 int main(int argc, char** argv) {
     int reps = 5, frames = 600;
     std::string out, only;  // CSV only with --out: the committed tables are not overwritten by accident
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
-            reps = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
-            frames = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--out") && i + 1 < argc)
-            out = argv[++i];
-        else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
-            only = argv[++i];
-        else {
-            std::fprintf(stderr, "usage: lockbox_replay_bench [--reps N] [--frames N] [--out FILE] [--only SCENE]\n");
-            return 2;
-        }
+    lockbox::cli::OptionReader args("lockbox_replay_bench", argc, argv);
+    while (args.Next()) {
+        if (args.Is("--reps"))
+            args.Int(1, 1000000, reps);
+        else if (args.Is("--frames"))
+            args.Int(1, 100000000, frames);
+        else if (args.Is("--out"))
+            args.Text(out);
+        else if (args.Is("--only"))
+            args.Text(only);
+        else
+            args.Unknown();
     }
+    if (args.Failed())
+        return args.Fail("usage: lockbox_replay_bench [--reps N] [--frames N] [--out FILE] [--only SCENE]\n");
     const char* scenesToRun[] = {"pyramid20", "ragdolls", "tumbler", "rain"};
     std::vector<Row> rows;
     for (const char* scene : scenesToRun) {

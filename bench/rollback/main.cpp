@@ -46,6 +46,7 @@
 #include "lockbox/lockbox.h"
 #include "lockbox/scenes/LockboxScenes.h"
 #include "lockbox/scenes/Registry.h"
+#include "lockbox_cli/OptionReader.h"
 
 namespace {
 
@@ -243,30 +244,27 @@ int main(int argc, char** argv) {
     bool frames = false;
     std::string only;
     std::string out;  // no CSV unless asked: the committed tables are not overwritten by accident
-    for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
-            reps = std::atoi(argv[++i]);
-        else if (std::strcmp(argv[i], "--depth") == 0 && i + 1 < argc)
-            depth = std::atoi(argv[++i]);
-        else if (std::strcmp(argv[i], "--passes") == 0 && i + 1 < argc)
-            passes = std::atoi(argv[++i]);
-        else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-            out = argv[++i];
-        else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc)
-            only = argv[++i];
-        else if (std::strcmp(argv[i], "--frames") == 0)
+    lockbox::cli::OptionReader args("lockbox_rollback_bench", argc, argv);
+    while (args.Next()) {
+        if (args.Is("--reps"))
+            args.Int(1, 1000000, reps);
+        else if (args.Is("--depth"))
+            args.Int(1, 64, depth);
+        else if (args.Is("--passes"))
+            args.Int(1, 16, passes);
+        else if (args.Is("--out"))
+            args.Text(out);
+        else if (args.Is("--only"))
+            args.Text(only);
+        else if (args.Is("--frames"))
             frames = true;
-        else {
-            std::fprintf(stderr,
-                         "usage: lockbox_rollback_bench [--reps N] [--depth D] [--passes P] [--frames] [--out FILE] "
-                         "[--only SCENE]\n");
-            return 2;
-        }
+        else
+            args.Unknown();
     }
-    if (reps < 1 || depth < 1 || depth > 64 || passes < 1 || passes > 16) {
-        std::fprintf(stderr, "--reps must be >= 1, --depth in 1..64 and --passes in 1..16\n");
-        return 2;
-    }
+    if (args.Failed())
+        return args.Fail(
+            "usage: lockbox_rollback_bench [--reps N] [--depth D] [--passes P] [--frames] [--out FILE] "
+            "[--only SCENE]\n");
     std::vector<Case> cases;
     using scenes::Box2DFloatEngine;
     using scenes::LockboxEngine;

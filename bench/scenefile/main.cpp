@@ -22,6 +22,7 @@
 #include "lockbox/lockbox.h"
 #include "lockbox/scenefile/SceneFile.h"
 #include "lockbox/state/WorldHash.h"
+#include "lockbox_cli/OptionReader.h"
 
 using namespace lockbox;
 using namespace lockbox::scenefile;
@@ -90,22 +91,23 @@ int main(int argc, char** argv) {
     int bodies = 10000;
     int repeat = 11;
     std::string file, write;
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--bodies") && i + 1 < argc)
-            bodies = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc)
-            repeat = std::max(1, std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--file") && i + 1 < argc)
-            file = argv[++i];
-        else if (!std::strcmp(argv[i], "--write") && i + 1 < argc)
-            write = argv[++i];
-        else {
-            std::fprintf(stderr,
-                         "usage: lockbox_scenefile_bench [--bodies N] [--repeat R] [--write FILE]\n"
-                         "       lockbox_scenefile_bench --file FILE [--repeat R]\n");
-            return 2;
-        }
+    lockbox::cli::OptionReader args("lockbox_scenefile_bench", argc, argv);
+    while (args.Next()) {
+        if (args.Is("--bodies"))
+            args.Int(1, 10000000, bodies);
+        else if (args.Is("--repeat"))
+            args.Int(1, 100000, repeat);
+        else if (args.Is("--file"))
+            args.Text(file);
+        else if (args.Is("--write"))
+            args.Text(write);
+        else
+            args.Unknown();
     }
+    if (args.Failed())
+        return args.Fail(
+            "usage: lockbox_scenefile_bench [--bodies N] [--repeat R] [--write FILE]\n"
+            "       lockbox_scenefile_bench --file FILE [--repeat R]\n");
 
     std::string text;
     std::vector<double> saves;

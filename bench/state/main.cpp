@@ -18,6 +18,7 @@
 #include "lockbox/lockbox.h"
 #include "lockbox/scenes/LockboxScenes.h"
 #include "lockbox/state/WorldHash.h"
+#include "lockbox_cli/OptionReader.h"
 
 namespace {
 
@@ -203,21 +204,21 @@ int main(int argc, char** argv) {
     int reps = 31;
     std::string only;
     std::string out;  // no CSV unless asked: the committed tables are not overwritten by accident
-    for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
-            reps = std::atoi(argv[++i]);
-        else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-            out = argv[++i];
-        else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc)
-            only = argv[++i];
-        else if (std::strcmp(argv[i], "--profile") == 0 && i + 1 < argc)
-            g_profileRounds = std::atoi(argv[++i]);
-        else {
-            std::fprintf(stderr,
-                         "usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE] [--profile ROUNDS]\n");
-            return 2;
-        }
+    lockbox::cli::OptionReader args("lockbox_state_bench", argc, argv);
+    while (args.Next()) {
+        if (args.Is("--reps"))
+            args.Int(1, 1000000, reps);
+        else if (args.Is("--out"))
+            args.Text(out);
+        else if (args.Is("--only"))
+            args.Text(only);
+        else if (args.Is("--profile"))
+            args.Int(0, 1000000, g_profileRounds);
+        else
+            args.Unknown();
     }
+    if (args.Failed())
+        return args.Fail("usage: lockbox_state_bench [--reps N] [--out FILE] [--only SCENE] [--profile ROUNDS]\n");
     const Case cases[] = {{"pyramid20", 120}, {"ragdolls", 60},   {"rain", 320},
                           {"tumbler", 60},    {"joint_grid", 10}, {"large_pyramid", 10}};
     std::FILE* csv = nullptr;

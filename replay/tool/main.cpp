@@ -3,8 +3,6 @@
 // difference was found, 2 a usage error or a file that cannot be read.
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,26 +13,23 @@
 #include "lockbox/replay/Recorder.h"
 #include "lockbox/replay/ReplayFile.h"
 #include "lockbox/replay/SceneGame.h"
+#include "lockbox_cli/OptionReader.h"
 
 using namespace lockbox;
 using namespace lockbox::replay;
 
 namespace {
 
-int Usage() {
-    std::fprintf(
-        stderr,
-        "usage:\n"
-        "  lockbox_replay record (--scene NAME | --scene-file FILE.json) --out FILE [--frames N] [--players P]\n"
-        "                        [--seed S] [--keyframe-interval K] [--hash-interval H] [--stage-hashes] [--level L]\n"
-        "  lockbox_replay info FILE\n"
-        "  lockbox_replay verify FILE [--scene-file FILE.json]\n"
-        "  lockbox_replay diff A B [--scene-file FILE.json]\n"
-        "  lockbox_replay bisect FILE [--inject FRAME:STAGE] [--scene-file FILE.json]\n"
-        "      (STAGE 0..4: inputs collide solve broadphase toi; --scene-file: the scene file a replay\n"
-        "       was recorded on, refused when it is not that file; without it the seed is enough)\n");
-    return 2;
-}
+constexpr const char* kUsage =
+    "usage:\n"
+    "  lockbox_replay record (--scene NAME | --scene-file FILE.json) --out FILE [--frames N] [--players P]\n"
+    "                        [--seed S] [--keyframe-interval K] [--hash-interval H] [--stage-hashes] [--level L]\n"
+    "  lockbox_replay info FILE\n"
+    "  lockbox_replay verify FILE [--scene-file FILE.json]\n"
+    "  lockbox_replay diff A B [--scene-file FILE.json]\n"
+    "  lockbox_replay bisect FILE [--inject FRAME:STAGE] [--scene-file FILE.json]\n"
+    "      (STAGE 0..4: inputs collide solve broadphase toi; --scene-file: the scene file a replay\n"
+    "       was recorded on, refused when it is not that file; without it the seed is enough)\n";
 
 std::string Hex(uint64 v) {
     char buf[24];
@@ -89,40 +84,39 @@ bool Open(const char* path, ReplayFile& file, std::unique_ptr<SceneGame>& game, 
     return true;
 }
 
-int Record(int argc, char** argv) {
+int Record(cli::OptionReader& args) {
     std::string scene, sceneFile, out;
     long frames = 600, players = 2, keyframe = 600, hashInterval = 1, level = 3;
-    unsigned long long seed = 1;
+    uint64_t seed = 1;
     bool stageHashes = false;
-    for (int i = 0; i < argc; ++i) {
-        const std::string a = argv[i];
-        const bool more = i + 1 < argc;
-        if (a == "--scene" && more)
-            scene = argv[++i];
-        else if (a == "--scene-file" && more)
-            sceneFile = argv[++i];
-        else if (a == "--out" && more)
-            out = argv[++i];
-        else if (a == "--frames" && more)
-            frames = std::strtol(argv[++i], nullptr, 10);
-        else if (a == "--players" && more)
-            players = std::strtol(argv[++i], nullptr, 10);
-        else if (a == "--seed" && more)
-            seed = std::strtoull(argv[++i], nullptr, 0);
-        else if (a == "--keyframe-interval" && more)
-            keyframe = std::strtol(argv[++i], nullptr, 10);
-        else if (a == "--hash-interval" && more)
-            hashInterval = std::strtol(argv[++i], nullptr, 10);
-        else if (a == "--level" && more)
-            level = std::strtol(argv[++i], nullptr, 10);
-        else if (a == "--stage-hashes")
+    while (args.Next()) {
+        if (args.Is("--scene"))
+            args.Text(scene);
+        else if (args.Is("--scene-file"))
+            args.Text(sceneFile);
+        else if (args.Is("--out"))
+            args.Text(out);
+        else if (args.Is("--frames"))
+            args.Int(0, 100000000, frames);
+        else if (args.Is("--players"))
+            args.Int(1, 64, players);
+        else if (args.Is("--seed"))
+            args.Uint64(seed);
+        else if (args.Is("--keyframe-interval"))
+            args.Int(0, 100000000, keyframe);
+        else if (args.Is("--hash-interval"))
+            args.Int(1, 100000000, hashInterval);
+        else if (args.Is("--level"))
+            args.Int(-7, 22, level);
+        else if (args.Is("--stage-hashes"))
             stageHashes = true;
         else
-            return Usage();
+            args.Unknown();
     }
-    if (scene.empty() == sceneFile.empty() || out.empty() || frames < 0 || players < 1 || players > 64 ||
-        keyframe < 0 || hashInterval < 1)
-        return Usage();
+    if (!args.Failed() && scene.empty() == sceneFile.empty())
+        args.Refuse("record needs one of --scene and --scene-file");
+    if (!args.Failed() && out.empty()) args.Refuse("record needs --out FILE");
+    if (args.Failed()) return args.Fail(kUsage);
     std::unique_ptr<SceneGame> made;
     if (!sceneFile.empty()) {
         scenefile::SceneResult error;
@@ -255,24 +249,12 @@ private:
     uint32 m_stage;
 };
 
-int BisectCommand(int argc, char** argv, const std::string& sceneFile) {
-    if (argc < 1) return Usage();
+int BisectCommand(const char* path, const std::string& sceneFile, Nudge* nudge) {
     ReplayFile file;
     std::unique_ptr<SceneGame> game;
-    if (!Open(argv[0], file, game, sceneFile)) return 2;
-    std::unique_ptr<Nudge> nudge;
-    for (int i = 1; i < argc; ++i) {
-        long frame = 0, stage = 0;
-        if (std::strcmp(argv[i], "--inject") == 0 && i + 1 < argc &&
-            std::sscanf(argv[i + 1], "%ld:%ld", &frame, &stage) == 2 && stage >= 0 && stage < 5) {
-            nudge = std::make_unique<Nudge>(static_cast<int32>(frame), static_cast<uint32>(stage));
-            ++i;
-        } else {
-            return Usage();
-        }
-    }
+    if (!Open(path, file, game, sceneFile)) return 2;
     Player player(file, game->world(), *game);
-    player.SetStageHook(nudge.get());
+    player.SetStageHook(nudge);
     const BisectResult r = Bisect(player);
     std::printf("%s", r.Describe().c_str());
     if (!r.error.ok()) return 2;
@@ -282,22 +264,45 @@ int BisectCommand(int argc, char** argv, const std::string& sceneFile) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) return Usage();
-    const std::string cmd = argv[1];
-    if (cmd == "record") return Record(argc - 2, argv + 2);
-    // `--scene-file FILE.json` may follow the file arguments of the other commands.
-    std::string sceneFile;
-    std::vector<char*> args(argv + 2, argv + argc);
-    for (size_t i = 0; i + 1 < args.size(); ++i) {
-        if (std::strcmp(args[i], "--scene-file") != 0) continue;
-        sceneFile = args[i + 1];
-        args.erase(args.begin() + static_cast<std::ptrdiff_t>(i), args.begin() + static_cast<std::ptrdiff_t>(i) + 2);
-        break;
+    // The command is argument 0 of the reader; its options and files follow.
+    cli::OptionReader args("lockbox_replay", argc - 1, argv + 1);
+    if (argc < 2) {
+        args.Refuse("give a command: record, info, verify, diff or bisect");
+        return args.Fail(kUsage);
     }
-    const int n = static_cast<int>(args.size());
-    if (cmd == "info" && n == 1) return Info(args[0]);
-    if (cmd == "verify" && n == 1) return Verify(args[0], sceneFile);
-    if (cmd == "diff" && n == 2) return Diff(args[0], args[1], sceneFile);
-    if (cmd == "bisect") return BisectCommand(n, args.data(), sceneFile);
-    return Usage();
+    const std::string cmd = argv[1];
+    if (cmd == "record") return Record(args);
+    size_t wanted = 0;
+    if (cmd == "info" || cmd == "verify" || cmd == "bisect") {
+        wanted = 1;
+    } else if (cmd == "diff") {
+        wanted = 2;
+    } else {
+        args.Refuse("unknown command '" + cmd + "'");
+        return args.Fail(kUsage);
+    }
+    std::vector<const char*> files;
+    std::string sceneFile;
+    bool inject = false;
+    int32 injectFrame = 0;
+    uint32 injectStage = 0;
+    while (args.Next()) {
+        if (args.Is("--scene-file") && cmd != "info") {
+            args.Text(sceneFile);
+        } else if (args.Is("--inject") && cmd == "bisect") {
+            inject = args.IntPair(':', "FRAME:STAGE with STAGE in 0..4", 0, 2147483647, 0, 4, injectFrame, injectStage);
+        } else if (!args.Current().empty() && args.Current().front() != '-' && files.size() < wanted) {
+            files.push_back(args.Current().data());
+        } else {
+            args.Unknown();
+        }
+    }
+    if (!args.Failed() && files.size() != wanted)
+        args.Refuse(cmd + (wanted == 1 ? " needs a replay file" : " needs two replay files"));
+    if (args.Failed()) return args.Fail(kUsage);
+    if (cmd == "info") return Info(files[0]);
+    if (cmd == "verify") return Verify(files[0], sceneFile);
+    if (cmd == "diff") return Diff(files[0], files[1], sceneFile);
+    Nudge nudge(injectFrame, injectStage);
+    return BisectCommand(files[0], sceneFile, inject ? &nudge : nullptr);
 }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "lockbox/scenes/LockboxScenes.h"
+#include "lockbox_cli/OptionReader.h"
 
 using namespace lockbox;
 using namespace lockbox::scenes;
@@ -105,28 +106,31 @@ int main(int argc, char** argv) {
     std::string name, out = "scene.svg";
     int steps = -1, width = 800;
     RunSettings s;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        const std::string a = argv[i];
-        if (a == "--scene")
-            name = argv[i + 1];
-        else if (a == "--step")
-            steps = std::atoi(argv[i + 1]);
-        else if (a == "--out")
-            out = argv[i + 1];
-        else if (a == "--width")
-            width = std::atoi(argv[i + 1]);
-        else if (a == "--velocity-iterations")
-            s.velocityIterations = std::atoi(argv[i + 1]);
-        else if (a == "--position-iterations")
-            s.positionIterations = std::atoi(argv[i + 1]);
+    constexpr const char* kUsage =
+        "usage: render_scene --scene NAME [--step N] [--velocity-iterations V] [--position-iterations P]\n"
+        "                    [--out FILE.svg] [--width PIXELS]\n";
+    lockbox::cli::OptionReader args("render_scene", argc, argv);
+    while (args.Next()) {
+        if (args.Is("--scene"))
+            args.Text(name);
+        else if (args.Is("--step"))
+            args.Int(-1, 100000000, steps);
+        else if (args.Is("--out"))
+            args.Text(out);
+        else if (args.Is("--width"))
+            args.Int(16, 16384, width);
+        else if (args.Is("--velocity-iterations"))
+            args.Int(-1, 1000, s.velocityIterations);
+        else if (args.Is("--position-iterations"))
+            args.Int(-1, 1000, s.positionIterations);
         else
-            name.clear(), i = argc;
+            args.Unknown();
     }
-    auto scene = name.empty() ? nullptr : MakeLockboxScene(name);
+    if (!args.Failed() && name.empty()) args.Refuse("give --scene NAME");
+    if (args.Failed()) return args.Fail(kUsage);
+    auto scene = MakeLockboxScene(name);
     if (!scene) {
-        std::fprintf(stderr,
-                     "usage: render_scene --scene NAME [--step N] [--velocity-iterations V] "
-                     "[--position-iterations P] [--out FILE.svg] [--width PIXELS]\n");
+        std::fprintf(stderr, "render_scene: unknown scene '%s'\n", name.c_str());
         return 2;
     }
     LockboxEngine e;

@@ -16,6 +16,7 @@
 
 #include "lockbox/scenes/LockboxScenes.h"
 #include "lockbox/stability/Cases.h"
+#include "lockbox_cli/OptionReader.h"
 
 using namespace lockbox;
 using namespace lockbox::stability;
@@ -25,20 +26,20 @@ int main(int argc, char** argv) {
     std::string only;
     bool scenesTable = true;
     int sceneSteps = -1;
-    for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--fast") == 0) {
+    lockbox::cli::OptionReader args("stability", argc, argv);
+    while (args.Next()) {
+        if (args.Is("--fast"))
             budget = Budget::fast;
-        } else if (std::strcmp(argv[i], "--case") == 0 && i + 1 < argc) {
-            only = argv[++i];
-        } else if (std::strcmp(argv[i], "--no-scenes") == 0) {
+        else if (args.Is("--case"))
+            args.Text(only);
+        else if (args.Is("--no-scenes"))
             scenesTable = false;
-        } else if (std::strcmp(argv[i], "--scene-steps") == 0 && i + 1 < argc) {
-            sceneSteps = std::atoi(argv[++i]);
-        } else {
-            std::fprintf(stderr, "usage: %s [--fast] [--case NAME] [--no-scenes] [--scene-steps N]\n", argv[0]);
-            return 2;
-        }
+        else if (args.Is("--scene-steps"))
+            args.Int(-1, 100000000, sceneSteps);
+        else
+            args.Unknown();
     }
+    if (args.Failed()) return args.Fail("usage: stability [--fast] [--case NAME] [--no-scenes] [--scene-steps N]\n");
 
     std::vector<CaseReport> reports;
     int failed = 0, figures = 0;

@@ -12,44 +12,32 @@
 //
 // See docs/testbed.md for the keys and panels.
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 
 #include "App.h"
 #include "Headless.h"
 #include "SceneCatalog.h"
 #include "lockbox/scenes/SceneFileScene.h"
+#include "lockbox_cli/OptionReader.h"
 
 using namespace lockbox::testbed;
 
 namespace {
 
-int Usage() {
-    std::fprintf(stderr,
-                 "usage: lockbox_testbed [--scene NAME | --scene-file FILE.json] [--steps N] [--side-by-side]\n"
-                 "                       [--paused]\n"
-                 "       lockbox_testbed --scene NAME --steps N --screenshot FILE.png [--size WxH] [--no-panel]\n"
-                 "                       [--side-by-side] [--record FILE.lbr]\n"
-                 "       lockbox_testbed --replay FILE.lbr [--frame F] [--inject FRAME:STAGE] [--verify] [--bisect]\n"
-                 "                       --screenshot FILE.png   (STAGE 0..4: inputs collide solve broadphase toi)\n"
-                 "       lockbox_testbed --check FILE.png   (exit 0 when the image has two colours or more)\n"
-                 "       lockbox_testbed --list\n");
-    return 2;
-}
+constexpr const char* kUsage =
+    "usage: lockbox_testbed [--scene NAME | --scene-file FILE.json] [--steps N] [--side-by-side]\n"
+    "                       [--paused]\n"
+    "       lockbox_testbed --scene NAME --steps N --screenshot FILE.png [--size WxH] [--no-panel]\n"
+    "                       [--side-by-side] [--record FILE.lbr]\n"
+    "       lockbox_testbed --replay FILE.lbr [--frame F] [--inject FRAME:STAGE] [--verify] [--bisect]\n"
+    "                       --screenshot FILE.png   (STAGE 0..4: inputs collide solve broadphase toi)\n"
+    "       lockbox_testbed --check FILE.png   (exit 0 when the image has two colours or more)\n"
+    "       lockbox_testbed --list\n";
 
 int List() {
     for (const CatalogEntry& e : SceneCatalog())
         std::printf("%-26s %s%s\n", e.name.c_str(), e.library ? "" : "[testbed] ", e.summary.c_str());
     return 0;
-}
-
-// Parses a non-negative integer; false on anything else.
-bool ParseCount(const char* text, int& out) {
-    char* end = nullptr;
-    const long v = std::strtol(text, &end, 10);
-    if (end == text || *end != '\0' || v < 0 || v > 100000000) return false;
-    out = static_cast<int>(v);
-    return true;
 }
 
 }  // namespace
@@ -58,60 +46,62 @@ int main(int argc, char** argv) {
     HeadlessOptions headless;
     AppOptions app;
     std::string check;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        const bool more = i + 1 < argc;
-        if (a == "--scene" && more) {
-            app.scene = headless.scene = argv[++i];
-        } else if (a == "--scene-file" && more) {
+    bool list = false;
+    lockbox::cli::OptionReader args("lockbox_testbed", argc, argv);
+    while (args.Next()) {
+        if (args.Is("--scene")) {
+            if (args.Text(app.scene)) headless.scene = app.scene;
+        } else if (args.Is("--scene-file")) {
             // A b2dJson file, checked here so that a bad one is reported with its error.
-            const std::string path = argv[++i];
+            std::string path;
+            if (!args.Text(path)) continue;
             lockbox::scenefile::SceneResult error;
             if (!lockbox::scenes::SceneFileScene::Open(path, &error)) {
                 std::fprintf(stderr, "%s: %s\n", path.c_str(), error.Describe().c_str());
                 return 2;
             }
             app.scene = headless.scene = std::string(kSceneFilePrefix) + path;
-        } else if (a == "--steps" && more) {
-            if (!ParseCount(argv[++i], app.steps)) return Usage();
-            headless.steps = app.steps;
-        } else if (a == "--screenshot" && more) {
-            headless.output = argv[++i];
-        } else if (a == "--size" && more) {
-            if (std::sscanf(argv[++i], "%dx%d", &headless.width, &headless.height) != 2 || headless.width < 64 ||
-                headless.height < 64 || headless.width > 8192 || headless.height > 8192)
-                return Usage();
-        } else if (a == "--no-panel") {
+        } else if (args.Is("--steps")) {
+            if (args.Int(0, 100000000, app.steps)) headless.steps = app.steps;
+        } else if (args.Is("--screenshot")) {
+            args.Text(headless.output);
+        } else if (args.Is("--size")) {
+            args.IntPair('x', "WxH with each side in 64..8192", 64, 8192, 64, 8192, headless.width, headless.height);
+        } else if (args.Is("--no-panel")) {
             headless.panel = false;
-        } else if (a == "--side-by-side") {
+        } else if (args.Is("--side-by-side")) {
             app.sideBySide = headless.sideBySide = true;
-        } else if (a == "--paused") {
+        } else if (args.Is("--paused")) {
             app.paused = true;
-        } else if (a == "--record" && more) {
-            headless.record = argv[++i];
-        } else if (a == "--replay" && more) {
-            headless.replay = argv[++i];
-        } else if (a == "--frame" && more) {
-            if (!ParseCount(argv[++i], headless.replayFrame)) return Usage();
-        } else if (a == "--inject" && more) {
-            if (std::sscanf(argv[++i], "%d:%d", &headless.injectFrame, &headless.injectStage) != 2 ||
-                headless.injectFrame < 0 || headless.injectStage < 0 || headless.injectStage > 4)
-                return Usage();
-        } else if (a == "--verify") {
+        } else if (args.Is("--record")) {
+            args.Text(headless.record);
+        } else if (args.Is("--replay")) {
+            args.Text(headless.replay);
+        } else if (args.Is("--frame")) {
+            args.Int(0, 100000000, headless.replayFrame);
+        } else if (args.Is("--inject")) {
+            args.IntPair(':', "FRAME:STAGE with STAGE in 0..4", 0, 100000000, 0, 4, headless.injectFrame,
+                         headless.injectStage);
+        } else if (args.Is("--verify")) {
             headless.verify = true;
-        } else if (a == "--bisect") {
+        } else if (args.Is("--bisect")) {
             headless.bisect = true;
-        } else if (a == "--check" && more) {
-            check = argv[++i];
-        } else if (a == "--list") {
-            return List();
+        } else if (args.Is("--check")) {
+            args.Text(check);
+        } else if (args.Is("--list")) {
+            list = true;
         } else {
-            return Usage();
+            args.Unknown();
         }
     }
+    if (args.Failed()) return args.Fail(kUsage);
+    if (list) return List();
     if (!check.empty()) return CheckImage(check);
     if (!headless.output.empty()) {
-        if (headless.scene.empty() && headless.replay.empty()) return Usage();
+        if (headless.scene.empty() && headless.replay.empty()) {
+            args.Refuse("--screenshot needs --scene, --scene-file or --replay");
+            return args.Fail(kUsage);
+        }
         return RunHeadless(headless);
     }
     if (!app.scene.empty() && CatalogIndex(app.scene) < 0 && !IsSceneFileName(app.scene)) {
