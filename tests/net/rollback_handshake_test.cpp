@@ -78,6 +78,7 @@ struct Match {
                             .Build();
             s.link = std::make_unique<HelloCounter>(*ends[i]);
             RollbackPeerConfig c = i == 0 ? RollbackPeerConfig{} : configB;
+            c.startTimeoutMicros = 3'000'000;
             c.remotes = {RollbackRemote{ends[1 - i]->Index(), {1 - i}}};
             if (i == 0 && withSpectator) c.spectators = {ends[2]->Index()};
             s.peer = std::make_unique<RollbackPeer>(*s.session, *s.link, c);
@@ -114,9 +115,9 @@ struct Match {
     }
 };
 
-// Both sides name the other once, with `why`, take none of its inputs, and later cut its
-// player through the ordinary disconnect timeout.
-void ExpectNamedAndCut(Match& m, RollbackIncompatibility why) {
+// Both sides name the other once, with `why`, take none of its inputs, never start the
+// match, and name it again when the start timeout expires (then leave).
+void ExpectNamedAndNotStarted(Match& m, RollbackIncompatibility why) {
     m.Run(10);
     for (uint32_t i = 0; i < 2; ++i) {
         SCOPED_TRACE(::testing::Message() << "side " << i);
@@ -131,12 +132,14 @@ void ExpectNamedAndCut(Match& m, RollbackIncompatibility why) {
         EXPECT_EQ(s.session->ReceivedFrame(1 - i), 0);  // nothing taken from it
         EXPECT_GT(s.peer->Stats().refused, 0u);
     }
-    m.Run(200);  // past the 2 s disconnect timeout
+    m.Run(200);  // past the 3 s start timeout the match sets
     for (uint32_t i = 0; i < 2; ++i) {
         const Side& s = m.sides[i];
         EXPECT_EQ(s.Count(RollbackEvent::Kind::e_incompatible), 1) << "named once";
-        EXPECT_EQ(s.Count(RollbackEvent::Kind::e_disconnected), 1);
-        EXPECT_FALSE(s.peer->RemoteAlive(0));
+        EXPECT_EQ(s.Count(RollbackEvent::Kind::e_startTimeout), 1);
+        EXPECT_EQ(s.Count(RollbackEvent::Kind::e_running), 0);
+        EXPECT_EQ(s.peer->State(), RollbackPeerState::e_startFailed);
+        EXPECT_EQ(s.session->CurrentFrame(), 0);  // never ran on zero inputs
         EXPECT_EQ(s.Count(RollbackEvent::Kind::e_desync), 0);
     }
 }
@@ -162,23 +165,28 @@ TEST(RollbackHandshake, OtherDeterminismVersionIsNamed) {
     RollbackPeerConfig b;
     b.determinismVersion = b2_determinismVersion + 1;  // an older or newer engine
     Match m(kInputBytes, b, false);
-    ExpectNamedAndCut(m, RollbackIncompatibility::e_determinismVersion);
+    ExpectNamedAndNotStarted(m, RollbackIncompatibility::e_determinismVersion);
 }
 
 TEST(RollbackHandshake, OtherMatchIdIsNamed) {
     RollbackPeerConfig b;
     b.matchId = 2;
     Match m(kInputBytes, b, false);
-    ExpectNamedAndCut(m, RollbackIncompatibility::e_matchId);
+    ExpectNamedAndNotStarted(m, RollbackIncompatibility::e_matchId);
 }
 
 TEST(RollbackHandshake, OtherInputSizeIsNamed) {
     Match m(kInputBytes + 1, RollbackPeerConfig{}, false);
-    ExpectNamedAndCut(m, RollbackIncompatibility::e_sessionShape);
+    ExpectNamedAndNotStarted(m, RollbackIncompatibility::e_sessionShape);
 }
 
-// A datagram of protocol 3 (before the hello existed) from a configured remote.
-TEST(RollbackHandshake, OlderProtocolIsNamed) {
+// A datagram of protocol 3 (before the hello existed) or 6 (before the start phase: such a
+// peer would start at once and cut us at frame 0) from a configured remote.
+class RollbackHandshakeOlder : public ::testing::TestWithParam<uint8_t> {};
+INSTANTIATE_TEST_SUITE_P(Versions, RollbackHandshakeOlder, ::testing::Values(uint8_t{3}, uint8_t{6}));
+
+TEST_P(RollbackHandshakeOlder, OlderProtocolIsNamed) {
+    ASSERT_LT(GetParam(), kRollbackProtocolVersion);
     SimNet net(3);
     SimEndpoint& a = net.AddEndpoint();
     SimEndpoint& old = net.AddEndpoint();
@@ -186,7 +194,8 @@ TEST(RollbackHandshake, OlderProtocolIsNamed) {
     RollbackPeerConfig c;
     c.remotes = {RollbackRemote{old.Index(), {1}}};
     RollbackPeer peer(*session, a, c);
-    const std::vector<uint8_t> v3{0x52, 0x42, 3, 1, 0, 0, 0, static_cast<uint8_t>(RollbackMessageType::e_keepAlive)};
+    const std::vector<uint8_t> v3{0x52, 0x42, GetParam(), 1,
+                                  0,    0,    0,          static_cast<uint8_t>(RollbackMessageType::e_keepAlive)};
     for (int i = 0; i < 3; ++i) {
         old.Send(a.Index(), v3);
         net.Advance(kTick);

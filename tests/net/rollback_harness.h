@@ -72,7 +72,11 @@ struct RbSpec {
     uint32_t inputDelay = 1;
     uint32_t window = 8;
     uint32_t desyncInterval = 10;
-    uint32_t startSkewTicks = 2;   ///< peer i starts i * skew ticks late
+    uint32_t startSkewTicks = 2;  ///< peer i starts i * skew ticks late
+    /// When not empty: peer i starts at startTicks[i] instead (-1: never). Until then its
+    /// machine is down (datagrams to it vanish) and its RollbackPeer does not exist yet.
+    std::vector<int64_t> startTicks;
+    uint64_t startTimeoutMicros = RollbackPeerConfig{}.startTimeoutMicros;
     int32_t steadyFromTick = 240;  ///< frame-advantage samples from this tick on
     int32_t nudgePeer = -1;        ///< forced divergence: this peer's state moves at nudgeFrame
     int32_t nudgeFrame = -1;
@@ -102,6 +106,9 @@ struct RbSpec {
         return false;
     }
 
+    /// The tick peer `i` starts at (-1: never).
+    int64_t StartTick(uint32_t i) const { return i < startTicks.size() ? startTicks[i] : int64_t{startSkewTicks} * i; }
+
     std::string Describe() const {
         std::ostringstream s;
         s << "seed=" << seed << " peers=" << peers << " rtt=" << rttMs << "ms loss=" << lossPct
@@ -110,6 +117,7 @@ struct RbSpec {
         for (const RbExit& e : exits)
             s << " exit(" << e.peer << "@" << e.tick << (e.graceful ? ",leave" : ",down") << ")";
         for (const RbLinkCut& c : linkCuts) s << " cut(" << c.from << "->" << c.to << "@" << c.tick << ")";
+        for (size_t i = 0; i < startTicks.size(); ++i) s << " start" << i << "@" << startTicks[i];
         return s.str();
     }
 };
@@ -224,6 +232,7 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
         return m < spec.peers ? ends[m]->Index() : specEnd->Index();
     };
     out.peers.resize(spec.peers);
+    std::vector<RollbackPeerConfig> peerConfigs(spec.peers);
     std::unique_ptr<replay::SceneGame> specGame;
     std::unique_ptr<RollbackSpectator> spectator;
     if (specEnd != nullptr) {
@@ -253,12 +262,15 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
             p.scene->world(), *p.game,
             WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
                               static_cast<uint32_t>(info.positionIterations)});
-        RollbackPeerConfig cfg;
+        RollbackPeerConfig& cfg = peerConfigs[i];
         cfg.matchId = 77;
+        cfg.startTimeoutMicros = spec.startTimeoutMicros;
         for (uint32_t j = 0; j < spec.peers; ++j)
             if (j != i) cfg.remotes.push_back(RollbackRemote{addressOf(j), {j}});
         if (i == 0 && specEnd != nullptr) cfg.spectators.push_back(addressOf(spec.peers));
-        p.net = std::make_unique<RollbackPeer>(*p.session, linkOf(i), cfg);
+        // A peer that starts late is made when it starts (its start timeout runs from then).
+        if (spec.StartTick(i) == 0) p.net = std::make_unique<RollbackPeer>(*p.session, linkOf(i), cfg);
+        if (!spec.startTicks.empty() && spec.StartTick(i) != 0) ends[i]->SetDown(true);
         p.inputs = std::make_unique<replay::ScriptedInputs>(spec.seed * 1000 + i, 1);
         if (spec.guardBudgetMicros > 0) {
             RollbackBudgetConfig gc = spec.guardConfig;
@@ -283,14 +295,18 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
         for (uint32_t i = 0; i < spec.peers; ++i) {
             RbPeer& p = out.peers[i];
             for (const RbExit& e : spec.exits)
-                if (e.peer == i && e.tick == tick && e.graceful) p.net->Leave();
+                if (e.peer == i && e.tick == tick && e.graceful && p.net) p.net->Leave();
             if (spec.Gone(i, tick)) {
                 ends[i]->SetDown(true);
                 continue;
             }
-            if (tick < int64_t{spec.startSkewTicks} * i) {
+            if (spec.StartTick(i) < 0 || tick < spec.StartTick(i)) {
                 done = false;
                 continue;
+            }
+            if (!p.net) {
+                ends[i]->SetDown(false);
+                p.net = std::make_unique<RollbackPeer>(*p.session, linkOf(i), peerConfigs[i]);
             }
             RollbackSession& s = *p.session;
             // Peer 0 with a fast clock runs one extra tick every fastPeerExtraEvery ticks.
@@ -368,7 +384,7 @@ inline RbResult RunRbMatch(const RbSpec& spec) {
             int32_t lo = INT32_MAX, hi = INT32_MIN;
             bool running = true;
             for (uint32_t i = 0; i < spec.peers; ++i) {
-                if (static_cast<int32_t>(i) == spec.downPeer || spec.Gone(i, tick)) continue;
+                if (static_cast<int32_t>(i) == spec.downPeer || spec.Gone(i, tick) || !out.peers[i].net) continue;
                 const RbPeer& p = out.peers[i];
                 lo = std::min(lo, p.session->CurrentFrame());
                 hi = std::max(hi, p.session->CurrentFrame());

@@ -33,11 +33,18 @@ JoinSpec CutSpec(uint64_t seed, uint64_t cutToMicros) {
     return spec;
 }
 
-// A peer's events other than window stalls, in order.
+// A peer's events after the start phase other than window stalls, in order.
 std::vector<RollbackEvent::Kind> ConnectionEvents(const JoinResult& r, size_t peer) {
     std::vector<RollbackEvent::Kind> kinds;
-    for (const RollbackEvent& e : r.peers[peer].events)
-        if (e.kind != RollbackEvent::Kind::e_waiting) kinds.push_back(e.kind);
+    bool running = false;
+    for (const RollbackEvent& e : r.peers[peer].events) {
+        if (e.kind == RollbackEvent::Kind::e_running) {
+            running = true;
+            continue;
+        }
+        if (running && e.kind != RollbackEvent::Kind::e_waiting) kinds.push_back(e.kind);
+    }
+    EXPECT_TRUE(running) << "peer " << peer << " never ran";
     return kinds;
 }
 

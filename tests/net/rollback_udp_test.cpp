@@ -13,6 +13,7 @@
 #include "lockbox/net/RollbackWorldAdapter.h"
 #include "lockbox/net/UdpTransport.h"
 #include "lockbox/replay/SceneGame.h"
+#include "rollback_udp_start.h"
 
 namespace lockbox::net {
 namespace {
@@ -90,6 +91,17 @@ TEST(RollbackUdp, TwoPeersOnLoopbackAgree) {
     for (const Side& s : sides) {
         EXPECT_FALSE(s.desync);
         EXPECT_FALSE(s.failed);
+    }
+}
+
+// The start phase on real sockets: the second peer's port opens 500 ms after the first one
+// starts sending to it, in either order (the 3 s case is heavy: rollback_start_udp_test.cpp).
+TEST(RollbackUdp, PeersStartedApartOnLoopbackAgree) {
+    for (uint32_t late = 0; late < 2; ++late) {
+        SCOPED_TRACE(::testing::Message() << "late side " << late);
+        rbtest::UdpStartResult r;
+        rbtest::RunUdpStaggered(r, late, std::chrono::milliseconds(500), 120);
+        rbtest::ExpectUdpStartedTogether(r, 120);
     }
 }
 

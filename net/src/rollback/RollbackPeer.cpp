@@ -64,6 +64,22 @@ RollbackPeer::RollbackPeer(RollbackSession& session, Transport& transport, Rollb
         m_spectators.push_back(std::move(s));
     }
     m_localPlayers = m_session.Config().localPlayers;
+    if (m_config.startTimeoutMicros == 0) m_config.startTimeoutMicros = 1;
+    m_startedAt = now;
+    if (m_remotes.empty()) {
+        m_state = RollbackPeerState::e_running;  // nobody to wait for (a host of spectators only)
+    } else {
+        m_session.SetSynchronizing(true);
+    }
+}
+
+const char* RollbackPeerStateName(RollbackPeerState state) noexcept {
+    switch (state) {
+        case RollbackPeerState::e_synchronizing: return "synchronizing";
+        case RollbackPeerState::e_running: return "running";
+        case RollbackPeerState::e_startFailed: return "start failed";
+    }
+    return "unknown";
 }
 
 RollbackPeer::~RollbackPeer() = default;
@@ -106,6 +122,11 @@ void RollbackPeer::Poll() {
             ++m_stats.datagramsReceived;
             if (!r->alive) continue;
             r->lastHeard = now;
+            if (!r->heard) {
+                r->heard = true;
+                if (m_state == RollbackPeerState::e_synchronizing)
+                    m_session.RaiseConnectionEvent(RollbackEvent::Kind::e_synchronizing, r->index);
+            }
             if (r->interrupted) {
                 r->interrupted = false;
                 m_session.RaiseConnectionEvent(RollbackEvent::Kind::e_resumed, r->index);
@@ -133,6 +154,10 @@ void RollbackPeer::Poll() {
         ++m_stats.datagramsReceived;
         for (const RollbackMessage& m : m_messages) HandleSpectator(*spec, m, now);
     }
+    if (m_state == RollbackPeerState::e_synchronizing) AdvanceStart(now);
+    // The disconnect and interruption timers run only in the match: before it, a remote that
+    // starts late is waited for (up to the start timeout), not cut at frame 0.
+    if (m_state != RollbackPeerState::e_running) return;
     for (Remote& r : m_remotes) {
         if (!r.alive) continue;
         const uint64_t silence = now - r.lastHeard;
@@ -143,6 +168,41 @@ void RollbackPeer::Poll() {
         if (silence <= m_config.disconnectTimeoutMicros) continue;
         DropRemote(r);
     }
+}
+
+void RollbackPeer::AdvanceStart(uint64_t now) {
+    bool all = true;
+    for (Remote& r : m_remotes) {
+        if (r.synchronized) continue;
+        // Its echo of one of our datagrams arrived in one of its own: both ways work.
+        if (r.heard && r.rtt.Samples() > 0) {
+            r.synchronized = true;
+            m_session.RaiseConnectionEvent(RollbackEvent::Kind::e_synchronized, r.index);
+            continue;
+        }
+        all = false;
+    }
+    if (all) {
+        m_state = RollbackPeerState::e_running;
+        m_session.SetSynchronizing(false);
+        m_session.RaiseConnectionEvent(RollbackEvent::Kind::e_running, 0);
+        // Time sync starts from the match, not from the wait before it.
+        for (Remote& r : m_remotes) {
+            r.localAdvantage.clear();
+            r.remoteAdvantage.clear();
+        }
+        m_ticksSinceWait = 0;
+        return;
+    }
+    if (now - m_startedAt <= m_config.startTimeoutMicros) return;
+    m_state = RollbackPeerState::e_startFailed;
+    for (const Remote& r : m_remotes)
+        if (!r.synchronized) m_session.RaiseConnectionEvent(RollbackEvent::Kind::e_startTimeout, r.index);
+    Leave();  // the remotes that did hear us stop waiting for us
+}
+
+bool RollbackPeer::RemoteSynchronized(size_t index) const noexcept {
+    return index < m_remotes.size() && m_remotes[index].synchronized;
 }
 
 // A hello goes first in a datagram, before anything that needs the shape to be read.

@@ -18,6 +18,8 @@ struct RollbackPeer::Remote {
     uint32_t index = 0;
     std::vector<uint32_t> players;
     bool alive = true;
+    bool heard = false;         // a valid datagram arrived from it
+    bool synchronized = false;  // and it echoed one of ours (RbQualityReply): the start phase's round trip
     uint64_t lastHeard = 0;
     std::array<int32_t, kRollbackMaxPlayers> acked{};  // per local player: frames before are received
     // Per player: the frame this remote announced it froze that player at, -1 when it has not.

@@ -197,6 +197,8 @@ std::vector<RollbackRequest> RollbackSession::AdvanceFrame() {
         m.started = true;
         m.EmitSave(out, 0);
     }
+    // Before the start nothing is simulated, so nothing can be final or rolled back either.
+    if (m.synchronizing) return out;
     // The game executed the previous call's requests, so every reported hash belongs to the
     // latest save of its frame; only now may hashes become final.
     m.FinalizeHashes();
@@ -283,13 +285,19 @@ void RollbackSession::AddRemoteHash(uint32_t peerTag, int32_t frame, uint64_t ha
 }
 
 void RollbackSession::RaiseConnectionEvent(RollbackEvent::Kind kind, uint32_t peerTag) {
-    if (kind != RollbackEvent::Kind::e_interrupted && kind != RollbackEvent::Kind::e_resumed) return;
+    using K = RollbackEvent::Kind;
+    if (kind != K::e_interrupted && kind != K::e_resumed && kind != K::e_synchronizing && kind != K::e_synchronized &&
+        kind != K::e_running && kind != K::e_startTimeout)
+        return;
     RollbackEvent e;
     e.kind = kind;
     e.frame = m_impl->current;
     e.player = peerTag;
     m_impl->events.push_back(e);
 }
+
+void RollbackSession::SetSynchronizing(bool synchronizing) noexcept { m_impl->synchronizing = synchronizing; }
+bool RollbackSession::Synchronizing() const noexcept { return m_impl->synchronizing; }
 
 void RollbackSession::RaiseIncompatible(uint32_t peerTag, RollbackIncompatibility why) {
     RollbackEvent e;

@@ -64,6 +64,7 @@ struct RollbackSession::Impl {
     std::vector<Player> players;
     int32_t current = 0;
     bool started = false;
+    bool synchronizing = false;  // the start phase holds every Advance (SetSynchronizing)
     bool stalled = false;
     int32_t firstIncorrect = INT32_MAX;
     // What the last Advance of each frame used: one row of players * inputBytes per frame.

@@ -19,6 +19,16 @@
 /// this peer's received frame, and each is cut at the smallest frozen value once every live
 /// remote's value for it has arrived (the same cut on every survivor).
 ///
+/// Start phase: a peer with remotes starts synchronizing. It holds the session
+/// (RollbackSession::SetSynchronizing: AdvanceFrame does not advance) until every remote is
+/// synchronized, that is, until it has heard the remote and the remote has echoed one of its
+/// own datagrams (an RbQualityReply: a full round trip both ways), and only then runs the
+/// disconnect and interruption timers. Events: e_synchronizing when a remote is first heard,
+/// e_synchronized when its round trip is done, e_running once all are. If that takes longer
+/// than startTimeoutMicros, one e_startTimeout names each remote not synchronized, the peer
+/// leaves (RbDisconnect) and the state is e_startFailed: the match never runs on zero inputs.
+/// Peers may therefore be started seconds apart, in any order.
+///
 /// Time sync: every datagram carries the sender's frame and its frame advantage (how far it
 /// believes it is ahead of the receiver, RTT taken into account). The peer that is ahead
 /// idles one tick at a time, spread out (WaitThisTick), until the peers line up.
@@ -45,9 +55,14 @@ struct RollbackRemote {
 
 /// Settings of a RollbackPeer.
 struct RollbackPeerConfig {
-    uint32_t matchId = 1;                        ///< same on every peer of the match
-    uint32_t tickRate = 60;                      ///< frames per second, >= 1
-    uint64_t disconnectTimeoutMicros = 2000000;  ///< silence after which a remote's players leave
+    uint32_t matchId = 1;    ///< same on every peer of the match
+    uint32_t tickRate = 60;  ///< frames per second, >= 1
+    /// Longest start phase: every remote must be synchronized (heard, and its echo of one of
+    /// our datagrams heard) within this long of construction, else the start fails naming the
+    /// missing remotes (e_startTimeout). Microseconds, >= 1.
+    uint64_t startTimeoutMicros = 10000000;
+    /// Silence after which a remote's players leave; counted only once the match runs.
+    uint64_t disconnectTimeoutMicros = 2000000;
     /// Silence after which an e_interrupted event names the remote (once per silence; an
     /// e_resumed follows when it is heard again). Should be < disconnectTimeoutMicros.
     uint64_t interruptTimeoutMicros = 500000;
@@ -77,6 +92,15 @@ struct RollbackPeerStats {
     uint64_t snapshotsOffered = 0;    ///< OfferSnapshot calls that started a transfer
     uint64_t snapshotChunksSent = 0;  ///< chunk datagrams, resends included
 };
+
+/// Where a RollbackPeer is in its life.
+enum class RollbackPeerState : uint8_t {
+    e_synchronizing = 0,  ///< waiting for every remote's round trip; the session does not advance
+    e_running,            ///< the match runs
+    e_startFailed,        ///< the start timeout expired (e_startTimeout named who was missing); left
+};
+/// Short name of a state ("synchronizing", ...).
+const char* RollbackPeerStateName(RollbackPeerState state) noexcept;
 
 /// What OfferSnapshot made of a snapshot.
 enum class SnapshotOfferResult : uint8_t {
@@ -118,6 +142,10 @@ public:
     SnapshotOfferResult OfferSnapshot(int32_t frame, std::span<const uint8_t> state);
     /// Spectators served so far (listed and late ones).
     size_t SpectatorCount() const noexcept;
+    /// The start phase's progress (see the class comment).
+    RollbackPeerState State() const noexcept { return m_state; }
+    /// True once remote `index` and this peer have each heard the other (false past the remotes).
+    bool RemoteSynchronized(size_t index) const noexcept;
     /// True while remote `index` has been silent past interruptTimeoutMicros (and is alive).
     bool RemoteInterrupted(size_t index) const noexcept;
 
@@ -170,6 +198,7 @@ private:
     bool InputsKept(int32_t frame) const;
     void SendSnapshot(Spectator& s, uint64_t now);
     void Handle(Remote& r, const RollbackMessage& m, uint64_t now);
+    void AdvanceStart(uint64_t now);
     void SendTo(Remote& r, uint64_t now);
     void SendSpectator(Spectator& s);
     void BeginDatagram(bool hello, size_t limit);
@@ -190,7 +219,9 @@ private:
     RollbackPeerStats m_stats;
     uint32_t m_ticksSinceWait = 0;
     bool m_left = false;
-    int32_t m_delayWish = -1;                           // what AskInputDelay set; -1: never asked, nothing sent
+    RollbackPeerState m_state = RollbackPeerState::e_synchronizing;
+    uint64_t m_startedAt = 0;  // transport time at construction: the start timeout runs from here
+    int32_t m_delayWish = -1;  // what AskInputDelay set; -1: never asked, nothing sent
     std::array<bool, kRollbackMaxPlayers> m_removed{};  // local players a remote named gone
 };
 

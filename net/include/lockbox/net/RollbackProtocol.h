@@ -26,10 +26,13 @@ namespace lockbox::net {
 
 /// First two bytes of every rollback datagram: 'R' 'B'.
 inline constexpr uint16_t kRollbackMagic = 0x4252u;
-/// Bumped whenever a message layout changes (2: the late-join snapshot messages; 3: RbView
-/// and RbFrozen, the disconnect agreement; 4: RbHello, the compatibility check; 5: snapshot
-/// chunks carry the state as one zstd frame; 6: RbDelayWish, the budget guard's delay).
-inline constexpr uint8_t kRollbackProtocolVersion = 6;
+/// Bumped whenever a message layout or a rule of the exchange changes (2: the late-join
+/// snapshot messages; 3: RbView and RbFrozen, the disconnect agreement; 4: RbHello, the
+/// compatibility check; 5: snapshot chunks carry the state as one zstd frame; 6: RbDelayWish,
+/// the budget guard's delay; 7: the start phase, same layouts: a peer waits for a round trip
+/// with every remote before frame 0 and times none out before it, where a version-6 peer
+/// started at once and cut a late remote at frame 0). Other versions are refused by name.
+inline constexpr uint8_t kRollbackProtocolVersion = 7;
 /// Bytes of the header.
 inline constexpr size_t kRollbackHeaderBytes = 7;
 /// Largest frame count of one input run.

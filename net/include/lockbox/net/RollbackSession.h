@@ -106,11 +106,25 @@ struct RollbackEvent {
         /// frozen at `frame` (it timed this peer out, or heard so from another). They will cut
         /// it; this peer is out of the match and should end it. Once per local player.
         e_removed = 6,
+        /// Start phase (RollbackPeer): remote peer `player` is heard for the first time; the
+        /// round trip with it is under way. `frame` is 0.
+        e_synchronizing = 7,
+        /// Start phase: remote peer `player` and this peer have each heard the other (a full
+        /// round trip). `frame` is 0.
+        e_synchronized = 8,
+        /// Start phase over: every remote peer is synchronized and AdvanceFrame advances from
+        /// now on; the disconnect and interruption timers run from here. `frame` is 0.
+        e_running = 9,
+        /// The start timeout expired before remote peer `player` was synchronized: one event
+        /// per missing remote, then the peer leaves and AdvanceFrame never advances (the match
+        /// did not start; RollbackPeer::State() is e_startFailed). `frame` is 0.
+        e_startTimeout = 10,
     };
     Kind kind = Kind::e_desync;
     int32_t frame = 0;
     /// The player (e_disconnected, e_removed: a local one) or the remote peer tag (e_desync,
-    /// e_interrupted, e_resumed, e_incompatible).
+    /// e_interrupted, e_resumed, e_incompatible, e_synchronizing, e_synchronized,
+    /// e_startTimeout; 0 for e_running).
     uint32_t player = 0;
     uint64_t localHash = 0;                                                     ///< desync: ours
     uint64_t remoteHash = 0;                                                    ///< desync: theirs
@@ -273,8 +287,8 @@ public:
     /// The requests of one tick, to be executed in order before the next call: any rollback
     /// first (LoadState, then Advance + SaveState for every frame up to the current one),
     /// then one new frame (Advance, SaveState) unless the session must wait: at the window's
-    /// edge, or while a local player's input for the frame is missing. The very first call
-    /// starts with SaveState{0}.
+    /// edge, while a local player's input for the frame is missing, or while the start phase
+    /// holds it (SetSynchronizing). The very first call starts with SaveState{0}.
     std::vector<RollbackRequest> AdvanceFrame();
 
     /// The game's hash of the state it saved for `frame` (after a SaveState request). Ignored
@@ -315,9 +329,18 @@ public:
     void SetPeerView(uint32_t peerTag, std::span<const int32_t> received);
     /// Remote peer `peerTag` is no longer live: its view stops limiting finality.
     void DropPeer(uint32_t peerTag);
-    /// Queues an e_interrupted or e_resumed event about remote peer `peerTag` at the current
-    /// frame (called by RollbackPeer; other kinds are ignored: the session raises those itself).
+    /// Queues a connection event about remote peer `peerTag` at the current frame: one of
+    /// e_interrupted, e_resumed and the start phase's e_synchronizing, e_synchronized,
+    /// e_running, e_startTimeout (called by RollbackPeer; other kinds are ignored: the
+    /// session raises those itself).
     void RaiseConnectionEvent(RollbackEvent::Kind kind, uint32_t peerTag);
+    /// While true, AdvanceFrame asks for nothing but the first SaveState{0}: the match has not
+    /// started (RollbackPeer holds it until every remote peer is synchronized). Local inputs
+    /// queue as at the window edge (the first is taken, later ones say e_alreadyAdded), remote
+    /// inputs are stored, and these calls do not count in RollbackStats::waits.
+    void SetSynchronizing(bool synchronizing) noexcept;
+    /// True while SetSynchronizing(true) holds the start.
+    bool Synchronizing() const noexcept;
     /// Queues an e_incompatible event about remote peer `peerTag` (called by RollbackPeer).
     void RaiseIncompatible(uint32_t peerTag, RollbackIncompatibility why);
     /// Queues an e_removed event: local player `player` named frozen at `frame` by a remote
