@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "lockbox/lockbox.h"
+#include "lockbox/net/StateHash.h"
 #include "lockbox/replay/Game.h"
 #include "lockbox/state/WorldHash.h"
 #include "session/SessionCommon.h"

@@ -17,27 +17,6 @@ void StepConfirmedFrame(b2World& world, replay::Game& game, int32_t frame, std::
                static_cast<int32>(positionIterations));
 }
 
-uint64_t FoldedStateHash(const b2World& world, const replay::Game& game) { return FoldUserState(world.Hash(), game); }
-
-uint64_t FoldUserState(uint64_t worldHash, const replay::Game& game) {
-    std::vector<uint8> user;
-    game.SaveUserState(user);
-    return FoldUserState(worldHash, user);
-}
-
-uint64_t FoldUserState(uint64_t worldHash, std::span<const uint8_t> user) {
-    uint64_t h = worldHash;
-    if (user.empty()) return h;
-    uint64_t f = 0xCBF29CE484222325ull;
-    for (uint8 b : user) f = (f ^ b) * 0x100000001B3ull;
-    // Mix so that a user-state change flips about half the bits of the result.
-    h ^= f + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
-    h ^= h >> 33;
-    h *= 0xFF51AFD7ED558CCDull;
-    h ^= h >> 33;
-    return h;
-}
-
 namespace {
 void PutU32(std::vector<uint8_t>& out, size_t v) {
     for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lockbox/net/Protocol.h"
+#include "lockbox/net/StateHash.h"  // the hash fold, used by every session
 
 namespace lockbox {
 class b2World;
@@ -47,14 +48,6 @@ inline uint64_t TickMicros(uint32_t tickRate) noexcept { return 1'000'000u / (ti
 /// Applies `inputs` through the game and steps the world once at 1/tickRate seconds.
 void StepConfirmedFrame(b2World& world, replay::Game& game, int32_t frame, std::span<const uint8_t> inputs,
                         uint32_t tickRate, uint32_t velocityIterations, uint32_t positionIterations);
-
-/// b2World::Hash folded with the game's user state (FNV-1a then a 64-bit mix), so state
-/// outside the physics also takes part in the comparison.
-uint64_t FoldedStateHash(const b2World& world, const replay::Game& game);
-/// The same fold from an already computed b2World::Hash.
-uint64_t FoldUserState(uint64_t worldHash, const replay::Game& game);
-/// The same fold from a world hash and user state already saved (SaveUserState's bytes).
-uint64_t FoldUserState(uint64_t worldHash, std::span<const uint8_t> user);
 
 /// The late-join state blob of lockstep and rollback sessions, from a b2World::Save image and
 /// the game's user state: u32 image size, the image, u32 user size, the user state (sizes

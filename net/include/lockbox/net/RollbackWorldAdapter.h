@@ -52,7 +52,8 @@ public:
     /// before it touches the world; the game is untouched then).
     static bool RestoreSnapshot(b2World& world, replay::Game& game, std::span<const uint8_t> snapshot);
 
-    /// The world hash folded with the game's user state (what ReportHash gets).
+    /// The world hash folded with the game's user state, FoldedStateHash (StateHash.h): what
+    /// ReportHash gets.
     uint64_t StateHash() const;
     /// Advance requests executed inside rollbacks (after a LoadState in the same batch).
     uint64_t FramesResimulated() const noexcept { return m_resimulated; }
