@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/DynamicTree.h"
 #include "lockbox/common/Settings.h"
@@ -48,7 +49,7 @@ constexpr bool b2PairLessThan(const b2Pair& pair1, const b2Pair& pair2) noexcept
 }
 
 /// The broad-phase: a dynamic tree plus the move and pair buffers.
-class b2BroadPhase {
+class LOCKBOX_API b2BroadPhase {
 public:
     /// Null proxy id (a destroyed move-buffer entry).
     static constexpr int32 e_nullProxy = -1;

@@ -5,12 +5,13 @@
 #include <memory>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/EdgeShape.h"
 
 namespace lockbox {
 
 /// A chain of edges. Copyable (the vertices are a std::vector).
-class b2ChainShape : public b2Shape {
+class LOCKBOX_API b2ChainShape : public b2Shape {
 public:
     /// An empty chain (no children). Create it before use.
     b2ChainShape() noexcept : b2Shape(e_chain, b2_polygonRadius) {}

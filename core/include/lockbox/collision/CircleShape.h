@@ -3,13 +3,14 @@
 
 #include <memory>
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Shape.h"
 
 namespace lockbox {
 
 /// A solid circle. The manual's style (`circle.m_p.Set(...); circle.m_radius = r;`) still works;
 /// Set() and the radius constructor additionally validate.
-class b2CircleShape : public b2Shape {
+class LOCKBOX_API b2CircleShape : public b2Shape {
 public:
     /// A zero-radius circle at the origin (as Box2D; give it a radius before use).
     b2CircleShape() noexcept : b2Shape(e_circle, Fixed()) {}

@@ -2,6 +2,7 @@
 /// Shared collision types (Box2D's b2Collision.h): contact ids, manifolds, world manifolds,
 /// point states, ray-cast input and output, AABBs, and the narrow-phase functions.
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Math.h"
 
@@ -58,7 +59,7 @@ struct b2Manifold {
 };
 
 /// World-frame contact information computed from a manifold and the two transforms.
-struct b2WorldManifold {
+struct LOCKBOX_API b2WorldManifold {
     /// Fills normal, points and separations. Radii are the shapes' m_radius.
     void Initialize(const b2Manifold* manifold, const b2Transform& xfA, Fixed radiusA, const b2Transform& xfB,
                     Fixed radiusB);
@@ -77,8 +78,8 @@ enum b2PointState {
 };
 
 /// Compares two manifolds to find which points persist, were added or were removed.
-void b2GetPointStates(b2PointState state1[b2_maxManifoldPoints], b2PointState state2[b2_maxManifoldPoints],
-                      const b2Manifold* manifold1, const b2Manifold* manifold2);
+LOCKBOX_API void b2GetPointStates(b2PointState state1[b2_maxManifoldPoints], b2PointState state2[b2_maxManifoldPoints],
+                                  const b2Manifold* manifold1, const b2Manifold* manifold2);
 
 /// A vertex used to compute contact points by clipping.
 struct b2ClipVertex {
@@ -99,7 +100,7 @@ struct b2RayCastOutput {
 };
 
 /// An axis-aligned bounding box.
-struct b2AABB {
+struct LOCKBOX_API b2AABB {
     b2Vec2 lowerBound;  ///< lower vertex
     b2Vec2 upperBound;  ///< upper vertex
 
@@ -158,28 +159,28 @@ constexpr bool b2TestOverlap(const b2AABB& a, const b2AABB& b) noexcept {
 }
 
 /// True when child shapes A and B overlap (GJK distance below the slop-scaled threshold).
-bool b2TestOverlap(const b2Shape* shapeA, int32 indexA, const b2Shape* shapeB, int32 indexB, const b2Transform& xfA,
-                   const b2Transform& xfB);
+LOCKBOX_API bool b2TestOverlap(const b2Shape* shapeA, int32 indexA, const b2Shape* shapeB, int32 indexB,
+                               const b2Transform& xfA, const b2Transform& xfB);
 
 /// Manifold of two circles.
-void b2CollideCircles(b2Manifold* manifold, const b2CircleShape* circleA, const b2Transform& xfA,
-                      const b2CircleShape* circleB, const b2Transform& xfB);
+LOCKBOX_API void b2CollideCircles(b2Manifold* manifold, const b2CircleShape* circleA, const b2Transform& xfA,
+                                  const b2CircleShape* circleB, const b2Transform& xfB);
 /// Manifold of a polygon and a circle.
-void b2CollidePolygonAndCircle(b2Manifold* manifold, const b2PolygonShape* polygonA, const b2Transform& xfA,
-                               const b2CircleShape* circleB, const b2Transform& xfB);
+LOCKBOX_API void b2CollidePolygonAndCircle(b2Manifold* manifold, const b2PolygonShape* polygonA, const b2Transform& xfA,
+                                           const b2CircleShape* circleB, const b2Transform& xfB);
 /// Manifold of two polygons.
-void b2CollidePolygons(b2Manifold* manifold, const b2PolygonShape* polygonA, const b2Transform& xfA,
-                       const b2PolygonShape* polygonB, const b2Transform& xfB);
+LOCKBOX_API void b2CollidePolygons(b2Manifold* manifold, const b2PolygonShape* polygonA, const b2Transform& xfA,
+                                   const b2PolygonShape* polygonB, const b2Transform& xfB);
 /// Manifold of an edge (with its ghost vertices) and a circle.
-void b2CollideEdgeAndCircle(b2Manifold* manifold, const b2EdgeShape* edgeA, const b2Transform& xfA,
-                            const b2CircleShape* circleB, const b2Transform& xfB);
+LOCKBOX_API void b2CollideEdgeAndCircle(b2Manifold* manifold, const b2EdgeShape* edgeA, const b2Transform& xfA,
+                                        const b2CircleShape* circleB, const b2Transform& xfB);
 /// Manifold of an edge (with its ghost vertices) and a polygon.
-void b2CollideEdgeAndPolygon(b2Manifold* manifold, const b2EdgeShape* edgeA, const b2Transform& xfA,
-                             const b2PolygonShape* polygonB, const b2Transform& xfB);
+LOCKBOX_API void b2CollideEdgeAndPolygon(b2Manifold* manifold, const b2EdgeShape* edgeA, const b2Transform& xfA,
+                                         const b2PolygonShape* polygonB, const b2Transform& xfB);
 
 /// Clips a segment against the half-plane normal . x <= offset; returns the number of output
 /// vertices (0, 1 or 2).
-int32 b2ClipSegmentToLine(b2ClipVertex vOut[2], const b2ClipVertex vIn[2], const b2Vec2& normal, Fixed offset,
-                          int32 vertexIndexA);
+LOCKBOX_API int32 b2ClipSegmentToLine(b2ClipVertex vOut[2], const b2ClipVertex vIn[2], const b2Vec2& normal,
+                                      Fixed offset, int32 vertexIndexA);
 
 }  // namespace lockbox

@@ -12,6 +12,7 @@
 /// Valid range: the two shapes' vertices in world space must lie within 16383 m of each other
 /// (so that every Minkowski difference and edge fits Q16.16).
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Math.h"
 
@@ -22,7 +23,7 @@ class b2Shape;
 /// A convex vertex cloud with a radius: the shape as seen by GJK. It refers to the shape's own
 /// vertex array (or to its buffer for a chain's child edge), so the shape must outlive it. It
 /// is a temporary of the narrow phase and never part of the world state.
-struct b2DistanceProxy {
+struct LOCKBOX_API b2DistanceProxy {
     /// An empty proxy (no vertices).
     b2DistanceProxy() noexcept = default;
     /// Copies keep pointing at valid data: a proxy that used its own buffer uses the copy's.
@@ -95,7 +96,7 @@ struct b2DistanceOutput {
 /// Computes the closest points between two convex shapes (circle, polygon, edge, chain child)
 /// with GJK. The cache is read as a warm start and rewritten; set cache->count = 0 the first
 /// time. Deterministic and exact in its decisions: the result depends only on the input bits.
-void b2Distance(b2DistanceOutput* output, b2SimplexCache* cache, const b2DistanceInput* input);
+LOCKBOX_API void b2Distance(b2DistanceOutput* output, b2SimplexCache* cache, const b2DistanceInput* input);
 
 /// The largest number of GJK iterations b2Distance performs (2.2.1's k_maxIters).
 inline constexpr int32 b2_maxGjkIterations = 20;

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/common/Settings.h"
 
@@ -64,7 +65,7 @@ constexpr bool b2TreeOverlap(const b2AABB& a, const b2AABB& b) noexcept {
 
 /// Traversal stack of Query and RayCast: 256 entries inline (a balanced tree of 2^100 leaves
 /// would fit), spilling to the heap only beyond that, so a warm query never allocates.
-class b2TreeStack {
+class LOCKBOX_API b2TreeStack {
 public:
     /// Pushes a node index.
     void Push(int32 v) {
@@ -97,7 +98,7 @@ private:
 /// current max fraction and the separating-axis test of the segment's line against a box.
 /// Both are conservative (never reject a box the true segment touches) and exact up to the
 /// half-raw rounding of the segment end, which the box absorbs by one raw.
-class b2TreeRay {
+class LOCKBOX_API b2TreeRay {
 public:
     /// Ray from p1 towards p2, clipped at maxFraction (any Fixed; [0, 1] in practice).
     b2TreeRay(const b2Vec2& p1, const b2Vec2& p2, Fixed maxFraction) noexcept;
@@ -121,7 +122,7 @@ private:
 
 /// A dynamic AABB tree (Box2D v2.2.1's b2DynamicTree). Proxy ids are node indices and stay
 /// valid until DestroyProxy. Not thread-safe for writes; const methods may run concurrently.
-class b2DynamicTree {
+class LOCKBOX_API b2DynamicTree {
 public:
     /// An empty tree with 16 free node slots (as 2.2.1).
     b2DynamicTree();

@@ -4,12 +4,13 @@
 
 #include <memory>
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Shape.h"
 
 namespace lockbox {
 
 /// A line segment from m_vertex1 to m_vertex2 with a skin of b2_polygonRadius.
-class b2EdgeShape : public b2Shape {
+class LOCKBOX_API b2EdgeShape : public b2Shape {
 public:
     /// A degenerate edge at the origin without ghost vertices. Set it before use.
     b2EdgeShape() noexcept : b2Shape(e_edge, b2_polygonRadius) {}

@@ -11,6 +11,7 @@
 
 #include <memory>
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Shape.h"
 
 namespace lockbox {
@@ -19,10 +20,10 @@ namespace lockbox {
 /// this order: tooFewVertices, tooManyVertices, outOfRange, duplicateVertices, collinear,
 /// clockwise, notConvex, areaTooSmall. All tests are exact integer arithmetic. `points` may be
 /// null only when count <= 0.
-b2ShapeError b2ValidatePolygon(const b2Vec2* points, int32 count) noexcept;
+LOCKBOX_API b2ShapeError b2ValidatePolygon(const b2Vec2* points, int32 count) noexcept;
 
 /// A solid convex polygon.
-class b2PolygonShape : public b2Shape {
+class LOCKBOX_API b2PolygonShape : public b2Shape {
 public:
     /// An empty polygon (m_vertexCount 0) with the polygon skin radius. Set it before use.
     b2PolygonShape() noexcept : b2Shape(e_polygon, b2_polygonRadius) {}

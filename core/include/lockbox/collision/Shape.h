@@ -13,6 +13,7 @@
 
 #include <memory>
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Math.h"
@@ -36,7 +37,7 @@ enum class b2ShapeError : uint8 {
 };
 
 /// A short English description of `error` ("ok" for ok). Never null; static storage.
-const char* b2ShapeErrorMessage(b2ShapeError error) noexcept;
+LOCKBOX_API const char* b2ShapeErrorMessage(b2ShapeError error) noexcept;
 
 /// Largest |x| or |y| of any shape vertex, centre or circle extent, in the body frame (m, raw
 /// 2^28). Why 4096 m: it keeps every polygon mass sum exact in 128 bits (edges < 2^29 raw, the
@@ -70,7 +71,7 @@ struct b2MassData {
 
 /// The abstract shape. Concrete shapes: b2CircleShape, b2EdgeShape, b2PolygonShape,
 /// b2ChainShape. Shapes are plain copyable values; a fixture owns a Clone().
-class b2Shape {
+class LOCKBOX_API b2Shape {
 public:
     /// Shape kinds; the values match Box2D 2.2.1 (they index the contact registers).
     enum Type { e_circle = 0, e_edge = 1, e_polygon = 2, e_chain = 3, e_typeCount = 4 };

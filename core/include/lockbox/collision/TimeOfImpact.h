@@ -4,6 +4,7 @@
 /// cap and the root finder also stops when its bracket is one raw time unit wide, so the call
 /// always terminates (the argument is written out in TimeOfImpact.cpp).
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Distance.h"
 
 namespace lockbox {
@@ -44,6 +45,6 @@ inline constexpr int32 b2_maxTOIRootIterations = 50;
 /// target = max(linearSlop, rA + rB - 3 linearSlop), as a fraction of [0, tMax]. Uses the
 /// swept separating axis method: it may miss an intermediate grazing contact but never lets a
 /// shape pass through another. Sweeps are normalised internally (on copies). Deterministic.
-void b2TimeOfImpact(b2TOIOutput* output, const b2TOIInput* input);
+LOCKBOX_API void b2TimeOfImpact(b2TOIOutput* output, const b2TOIInput* input);
 
 }  // namespace lockbox

@@ -5,6 +5,7 @@
 /// inverses are Wide (Q32.32) because Q16.16 under- and overflows for small and large bodies
 /// (NUMERICS Table 1). User data is a uint64 (an id or handle), never a pointer.
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/Fixture.h"
 #include "lockbox/fixed/Math.h"
@@ -42,7 +43,7 @@ struct b2BodyDef {
 };
 
 /// A rigid body.
-class b2Body {
+class LOCKBOX_API b2Body {
 public:
     /// Creates a fixture from a definition and attaches it (refused while the world is
     /// locked: returns nullptr). Updates the mass if the density is positive.

@@ -2,6 +2,7 @@
 /// b2ContactManager (Box2D 2.2.1 b2ContactManager.h): owns the broad phase and the contacts,
 /// turns broad-phase pairs into contacts and keeps their manifolds up to date.
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/BroadPhase.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/Pool.h"
@@ -15,7 +16,7 @@ class b2ContactListener;
 class b2Fixture;
 
 /// Contact bookkeeping for one world.
-class b2ContactManager {
+class LOCKBOX_API b2ContactManager {
 public:
     /// fixtures is the world's fixture pool: broad-phase user data are fixture ids.
     explicit b2ContactManager(b2Pool<b2Fixture>* fixtures);

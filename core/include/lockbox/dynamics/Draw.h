@@ -3,6 +3,7 @@
 /// display data only; coordinates stay Fixed and an implementation converts them with
 /// ToFloat() for rendering. Nothing drawn ever flows back into the simulation.
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Math.h"
 
@@ -23,7 +24,7 @@ struct b2Color {
 };
 
 /// Implement and register with b2World::SetDebugDraw to draw the world.
-class b2Draw {
+class LOCKBOX_API b2Draw {
 public:
     virtual ~b2Draw() = default;
 

@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/Shape.h"
 #include "lockbox/common/Settings.h"
@@ -55,7 +56,7 @@ struct b2FixtureProxy {
 };
 
 /// A shape attached to a body. Create with b2Body::CreateFixture; never construct directly.
-class b2Fixture {
+class LOCKBOX_API b2Fixture {
 public:
     /// Shape type (the child shape type for chains is e_edge at collision time).
     b2Shape::Type GetType() const noexcept { return m_shape->GetType(); }

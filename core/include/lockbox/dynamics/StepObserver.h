@@ -8,6 +8,7 @@
 
 #include <span>
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/TimeStep.h"
 
@@ -34,12 +35,12 @@ enum class b2IslandPhase : uint32 {
 };
 
 /// Short name of a stage ("collide", "solve", "broadphase", "toi"); "none" for e_count.
-const char* b2StepStageName(b2StepStage stage) noexcept;
+LOCKBOX_API const char* b2StepStageName(b2StepStage stage) noexcept;
 
 /// Receives the fenceposts of every Step of the world it is set on (b2World::SetStepObserver).
 /// A stage skipped by a step (Solve when dt is 0, the TOI phase with continuous physics off)
 /// is not reported.
-class b2StepObserver {
+class LOCKBOX_API b2StepObserver {
 public:
     virtual ~b2StepObserver() = default;
     /// Called at each fencepost reached by the step, in b2StepStage order.

@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/Body.h"
@@ -53,7 +54,7 @@ uint64 NextWorldSerial() noexcept;
 using b2AssertHandler = void (*)(const char* expr, const char* msg, const char* file, int line);
 
 /// Replaces the assert handler; returns the previous one. nullptr restores the default.
-b2AssertHandler b2SetAssertHandler(b2AssertHandler handler) noexcept;
+LOCKBOX_API b2AssertHandler b2SetAssertHandler(b2AssertHandler handler) noexcept;
 
 /// True in builds where b2World's programmer-error checks call the assert handler (debug or
 /// LOCKBOX_CHECKED); release builds refuse the call silently.
@@ -69,7 +70,7 @@ constexpr bool b2_assertsEnabled =
 inline constexpr Fixed b2_defaultWorldExtent = 16000;
 
 /// The physics world.
-class b2World {
+class LOCKBOX_API b2World {
 public:
     /// A world with the given gravity (m/s^2). Sleeping is allowed by default.
     explicit b2World(const b2Vec2& gravity);

@@ -2,6 +2,7 @@
 /// World callbacks (Box2D 2.2.1 b2WorldCallbacks.h): destruction, contact filtering, contact
 /// events, queries and ray casts, plus lockbox's world-bounds listener.
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Math.h"
@@ -15,7 +16,7 @@ class b2Joint;
 
 /// Told when the world destroys a joint or fixture implicitly (by destroying its body), so the
 /// application can drop its handles.
-class b2DestructionListener {
+class LOCKBOX_API b2DestructionListener {
 public:
     virtual ~b2DestructionListener() = default;
     /// A joint is about to be destroyed because one of its bodies is.
@@ -29,7 +30,7 @@ public:
 /// no contacts), with zero velocity, and IsOutOfBounds() true. Called at the end of Step, in
 /// body-list order; the world is unlocked, so the handler may destroy the body or move it
 /// back with SetTransform and SetActive(true).
-class b2BoundaryListener {
+class LOCKBOX_API b2BoundaryListener {
 public:
     virtual ~b2BoundaryListener() = default;
     /// The body left the world bounds.
@@ -39,7 +40,7 @@ public:
 /// Decides whether two fixtures may collide. The default implements the manual's rule: the
 /// same non-zero group index collides when positive and never when negative; otherwise each
 /// mask must accept the other's category.
-class b2ContactFilter {
+class LOCKBOX_API b2ContactFilter {
 public:
     virtual ~b2ContactFilter() = default;
     /// Return true when contact calculations should be performed between these fixtures.
@@ -53,7 +54,7 @@ struct b2ContactImpulse {
 };
 
 /// Contact events. Every method has an empty default; an unset listener costs nothing.
-class b2ContactListener {
+class LOCKBOX_API b2ContactListener {
 public:
     virtual ~b2ContactListener() = default;
     /// Two fixtures begin to touch (sensors too).
@@ -75,7 +76,7 @@ public:
 };
 
 /// AABB query callback.
-class b2QueryCallback {
+class LOCKBOX_API b2QueryCallback {
 public:
     virtual ~b2QueryCallback() = default;
     /// Called for each fixture whose fat AABB overlaps the query box. Return false to stop.
@@ -83,7 +84,7 @@ public:
 };
 
 /// Ray-cast callback, with the manual's fraction protocol.
-class b2RayCastCallback {
+class LOCKBOX_API b2RayCastCallback {
 public:
     virtual ~b2RayCastCallback() = default;
     /// Called for each fixture hit: point (m), normal, and fraction along the ray. Return -1 to

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 
 namespace lockbox {
@@ -36,10 +37,10 @@ enum class b2HeadroomClass : int32 {
 };
 
 /// Short name of a class ("position", "velocity", ...); "none" for e_count.
-const char* b2HeadroomClassName(b2HeadroomClass c) noexcept;
+LOCKBOX_API const char* b2HeadroomClassName(b2HeadroomClass c) noexcept;
 
 /// One class: the largest raw magnitude seen and the format's largest raw value.
-struct b2HeadroomEntry {
+struct LOCKBOX_API b2HeadroomEntry {
     uint64 maxRaw = 0;  ///< largest |raw| observed (0 when nothing of this class exists)
     uint64 limit = 0;   ///< largest |raw| of the format (Fixed::kMaxRaw or Wide::kMaxRaw)
 
@@ -53,7 +54,7 @@ struct b2HeadroomEntry {
 };
 
 /// Headroom of one world at one moment (or a running maximum, see Merge).
-struct b2Headroom {
+struct LOCKBOX_API b2Headroom {
     /// Per class, indexed by b2HeadroomClass.
     b2HeadroomEntry entries[static_cast<int32>(b2HeadroomClass::e_count)];
     /// Fixed/Wide saturations on this thread during the step (Overflow.h counter delta; 0 from
@@ -78,6 +79,6 @@ struct b2Headroom {
 /// magnitude per class. Call it outside Step (or at its end); saturations is left 0. Joint
 /// impulses are read through GetReactionForce/GetReactionTorque at inv_dt = 1/256, the scale
 /// the state hash uses, so impulses up to 8.3e6 N*s are measured without saturating.
-b2Headroom b2MeasureHeadroom(const b2World& world);
+LOCKBOX_API b2Headroom b2MeasureHeadroom(const b2World& world);
 
 }  // namespace lockbox

@@ -14,6 +14,7 @@
 #include <span>
 #include <string>
 
+#include "lockbox/Export.h"
 #include "lockbox/Version.h"
 #include "lockbox/common/Settings.h"
 
@@ -57,10 +58,10 @@ enum class b2SnapshotError : uint32 {
 /// Recomputes the checksum of an image after its bytes were edited (tools, tests, fuzzing);
 /// does nothing to a span shorter than the header. The checksum covers the header fields
 /// before it and the whole payload, so any flipped bit of a sealed image is detected.
-void b2SealSnapshot(std::span<uint8> image) noexcept;
+LOCKBOX_API void b2SealSnapshot(std::span<uint8> image) noexcept;
 
 /// Short name of an error ("truncated", "bad magic", ...).
-const char* b2SnapshotErrorName(b2SnapshotError error) noexcept;
+LOCKBOX_API const char* b2SnapshotErrorName(b2SnapshotError error) noexcept;
 
 /// Result of b2World::Restore.
 struct b2RestoreResult {

@@ -16,13 +16,14 @@
 #include <string>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox {
 
 /// The game side of a sync test.
-class SyncTestGame {
+class LOCKBOX_API SyncTestGame {
 public:
     virtual ~SyncTestGame() = default;
     /// Applies frame `frame`'s (right) inputs to the world, then steps it once.
@@ -66,7 +67,7 @@ struct SyncTestResult {
 
 /// Runs a game through the sync test. The world must be in its initial state and is left at
 /// the last frame (after the final re-simulation).
-class SyncTest {
+class LOCKBOX_API SyncTest {
 public:
     SyncTest(b2World& world, SyncTestGame& game, SyncTestConfig config = {});
     /// Simulates frames [0, frames) with a rollback check after every frame from k on; stops

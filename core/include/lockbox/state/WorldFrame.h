@@ -16,6 +16,7 @@
 #include <memory>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/DynamicTree.h"
 #include "lockbox/common/Settings.h"
@@ -110,7 +111,7 @@ struct b2FrameStats {
 
 /// A world's state at one moment, for that world's RestoreFrame. Reuse frames (a ring): a
 /// save into a used frame keeps its capacity and does not allocate once sizes settle.
-class b2WorldFrame {
+class LOCKBOX_API b2WorldFrame {
 public:
     b2WorldFrame() = default;
     /// True before the first SaveFrame into it.

@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/state/Snapshot.h"
 
@@ -51,7 +52,7 @@ enum class b2HashCategory : uint32 {
 };
 
 /// Name of a category ("settings", "bodies", ...); "none" for e_count.
-std::string_view b2HashCategoryName(b2HashCategory category) noexcept;
+LOCKBOX_API std::string_view b2HashCategoryName(b2HashCategory category) noexcept;
 
 /// Sub-hash of one body.
 struct b2BodyHashEntry {
@@ -75,18 +76,18 @@ struct b2HashMismatch {
 /// XXH3-64 of the world's state (definition version b2_hashVersion). Listeners, the contact
 /// filter, the debug draw and the profile are not state and do not enter it. Call it outside
 /// Step. Cost: one pass over the world, no allocation.
-uint64 b2WorldHash(const b2World& world);
+LOCKBOX_API uint64 b2WorldHash(const b2World& world);
 
 /// The world hash with per-category and per-body sub-hashes (allocates the body vector).
-b2WorldHashReport b2WorldHashDetailed(const b2World& world);
+LOCKBOX_API b2WorldHashReport b2WorldHashDetailed(const b2World& world);
 
 /// Sub-hash of one body: its own fields then its fixtures' fields (the b2WorldHashReport
 /// body entry).
-uint64 b2BodyStateHash(const b2Body& body);
+LOCKBOX_API uint64 b2BodyStateHash(const b2Body& body);
 
 /// The first category whose sub-hash differs and the first differing body (by position in
 /// list order; a differing body count reports the first body past the shorter list).
-b2HashMismatch b2CompareHashReports(const b2WorldHashReport& a, const b2WorldHashReport& b) noexcept;
+LOCKBOX_API b2HashMismatch b2CompareHashReports(const b2WorldHashReport& a, const b2WorldHashReport& b) noexcept;
 
 /// The world hash read back from a snapshot image (b2SnapshotHash).
 struct b2SnapshotHashResult {
@@ -104,6 +105,6 @@ struct b2SnapshotHashResult {
 /// (docs/determinism.md, "Measured sizes and speeds"): a session that saves every frame gets
 /// the frame's hash almost free. It checks the header and the framing of the sections, not the
 /// checksum or the records (Restore does both): an edited image gives the hash of what it says.
-b2SnapshotHashResult b2SnapshotHash(std::span<const uint8> image);
+LOCKBOX_API b2SnapshotHashResult b2SnapshotHash(std::span<const uint8> image);
 
 }  // namespace lockbox

@@ -14,6 +14,7 @@
 #include <limits>
 #include <string_view>
 
+#include "lockbox/Export.h"
 #include "lockbox/fixed/Overflow.h"
 #include "lockbox/fixed/detail/Decimal.h"
 #include "lockbox/fixed/detail/Int128.h"
@@ -57,7 +58,7 @@ constexpr int64_t ShiftRound(int64_t p, int shift) noexcept {
 template <typename T>
 concept FixedIntegral = std::integral<T> && !std::same_as<T, bool>;
 
-class Fixed {
+class LOCKBOX_API Fixed {
 public:
     static constexpr int kFractionBits = 16;
     static constexpr int32_t kOneRaw = int32_t{1} << kFractionBits;

@@ -12,6 +12,8 @@
 
 #include <cstdint>
 
+#include "lockbox/Export.h"
+
 namespace lockbox {
 
 /// Called on overflow in checked builds. `op` names the operation ("Fixed::operator*", ...),
@@ -21,13 +23,13 @@ using OverflowTrapHandler = void (*)(const char* op, int64_t a, int64_t b);
 
 /// Replaces the trap handler; returns the previous one. nullptr restores the default
 /// (print to stderr and abort).
-OverflowTrapHandler SetOverflowTrapHandler(OverflowTrapHandler handler) noexcept;
+LOCKBOX_API OverflowTrapHandler SetOverflowTrapHandler(OverflowTrapHandler handler) noexcept;
 
 /// Number of saturations on this thread since the last reset. Monotonic; wraps at 2^64.
-uint64_t SaturationCount() noexcept;
+LOCKBOX_API uint64_t SaturationCount() noexcept;
 
 /// Resets this thread's saturation counter to zero.
-void ResetSaturationCount() noexcept;
+LOCKBOX_API void ResetSaturationCount() noexcept;
 
 /// True when this build traps on overflow (LOCKBOX_CHECKED).
 constexpr bool kOverflowTraps =
@@ -41,7 +43,7 @@ namespace detail {
 /// Slow path for every overflow: traps (checked) or counts (default). Never inlined, so the
 /// fast path stays a compare and a branch. Not constexpr on purpose: an overflow during
 /// constant evaluation is a compile error.
-void OnOverflow(const char* op, int64_t a, int64_t b) noexcept;
+LOCKBOX_API void OnOverflow(const char* op, int64_t a, int64_t b) noexcept;
 }  // namespace detail
 
 }  // namespace lockbox

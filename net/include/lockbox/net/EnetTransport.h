@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/Transport.h"
 
 typedef struct _ENetHost ENetHost;
@@ -29,7 +30,7 @@ typedef struct _ENetPeer ENetPeer;
 
 namespace lockbox::net {
 
-class EnetTransport final : public Transport {
+class LOCKBOX_API EnetTransport final : public Transport {
 public:
     /// ENet channel of Delivery::e_reliable datagrams (reliable, ordered).
     static constexpr uint8_t kReliableChannel = 0;

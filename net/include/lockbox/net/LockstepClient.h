@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/Protocol.h"
 #include "lockbox/net/Transport.h"
 
@@ -90,7 +91,7 @@ enum class ClientState : uint8_t {
 using ConfirmedFrameHook =
     std::function<void(int32_t frame, std::span<const uint8_t> inputs, uint64_t worldHash, const b2World& world)>;
 
-class LockstepClient {
+class LOCKBOX_API LockstepClient {
 public:
     /// `server` is the server's PeerId on `transport`. The transport, world and game must
     /// outlive the client; the world must be in the match's start state (or any state, for a

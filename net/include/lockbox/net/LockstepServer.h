@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/Protocol.h"
 #include "lockbox/net/Transport.h"
 
@@ -107,7 +108,7 @@ struct SlotInfo {
     int32_t ackedConfirmed = 0;  ///< the client has every confirmed frame before this one
 };
 
-class LockstepServer {
+class LOCKBOX_API LockstepServer {
 public:
     /// The transport must outlive the server. Invalid settings are clamped into range.
     LockstepServer(Transport& transport, ServerConfig config);

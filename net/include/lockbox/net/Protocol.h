@@ -22,6 +22,8 @@
 #include <variant>
 #include <vector>
 
+#include "lockbox/Export.h"
+
 namespace lockbox::net {
 
 /// First two bytes of every datagram: 'L' 'K'.
@@ -68,7 +70,7 @@ enum class RejectReason : uint8_t {
     e_count
 };
 /// Short name of a reason ("full", "bad token", ...).
-std::string_view RejectReasonName(RejectReason reason) noexcept;
+LOCKBOX_API std::string_view RejectReasonName(RejectReason reason) noexcept;
 
 /// Handshake request, client -> server. The protocol version is the header's.
 struct Hello {
@@ -240,7 +242,7 @@ enum class DecodeError : uint8_t {
     e_count
 };
 /// Short name of an error ("truncated", ...).
-std::string_view DecodeErrorName(DecodeError error) noexcept;
+LOCKBOX_API std::string_view DecodeErrorName(DecodeError error) noexcept;
 
 /// What the decoder must know to size input runs: the session's player count and input
 /// bytes. Zero players or zero input bytes: input messages are refused with e_noShape.
@@ -251,15 +253,15 @@ struct SessionShape {
 
 /// Decodes only the header (magic, version, token, sequence). e_badVersion still fills
 /// `header` so the caller can answer with Reject{e_protocolVersion}.
-DecodeError DecodeHeader(std::span<const uint8_t> datagram, Header& header) noexcept;
+LOCKBOX_API DecodeError DecodeHeader(std::span<const uint8_t> datagram, Header& header) noexcept;
 
 /// Decodes a whole datagram into its header and messages (appended to `out` after clearing
 /// it). On any error `out` is left empty.
-DecodeError DecodeDatagram(std::span<const uint8_t> datagram, const SessionShape& shape, Header& header,
-                           std::vector<Message>& out);
+LOCKBOX_API DecodeError DecodeDatagram(std::span<const uint8_t> datagram, const SessionShape& shape, Header& header,
+                                       std::vector<Message>& out);
 
 /// Builds one datagram: the header, then messages appended one by one.
-class DatagramWriter {
+class LOCKBOX_API DatagramWriter {
 public:
     /// Starts a datagram with this header (replaces any previous contents).
     void Begin(const Header& header);

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/RelayWire.h"
 #include "lockbox/net/Transport.h"
 
@@ -37,7 +38,7 @@ struct RelayServerStats {
     uint64_t sendFailures = 0;    ///< the transport refused a forward or a welcome
 };
 
-class RelayServer {
+class LOCKBOX_API RelayServer {
 public:
     /// `transport` must outlive the relay. Throws std::invalid_argument when the slot count is
     /// outside 2 .. kRelayMaxSlots.

@@ -21,6 +21,8 @@
 #include <span>
 #include <vector>
 
+#include "lockbox/Export.h"
+
 namespace lockbox::net {
 
 inline constexpr uint8_t kRelayVersion = 1;
@@ -46,11 +48,11 @@ struct RelayFrame {
 
 /// Parses one datagram; nullopt for a wrong magic or version, an unknown kind, a wrong length
 /// (join: exactly 17 bytes; welcome: exactly 9; data: at least 10) or a slot >= kRelayMaxSlots.
-std::optional<RelayFrame> ParseRelayFrame(std::span<const uint8_t> bytes) noexcept;
+LOCKBOX_API std::optional<RelayFrame> ParseRelayFrame(std::span<const uint8_t> bytes) noexcept;
 
 /// Writes the header (and the join token) into `out`, replacing its contents; data kinds
 /// append `payload` after it.
-void WriteRelayFrame(std::vector<uint8_t>& out, RelayKind kind, uint32_t matchId, uint8_t slot, uint64_t token = 0,
-                     std::span<const uint8_t> payload = {});
+LOCKBOX_API void WriteRelayFrame(std::vector<uint8_t>& out, RelayKind kind, uint32_t matchId, uint8_t slot,
+                                 uint64_t token = 0, std::span<const uint8_t> payload = {});
 
 }  // namespace lockbox::net

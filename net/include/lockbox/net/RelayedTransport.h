@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/RelayWire.h"
 #include "lockbox/net/Transport.h"
 
@@ -27,7 +28,7 @@ struct RelayedTransportConfig {
     uint64_t joinRetryMicros = 100000;  ///< join resend interval until welcomed, >= 1
 };
 
-class RelayedTransport final : public Transport {
+class LOCKBOX_API RelayedTransport final : public Transport {
 public:
     /// `inner` must outlive this transport. Throws std::invalid_argument for a slot outside
     /// [0, slots), slots outside 2 .. kRelayMaxSlots, no relay or a zero retry interval.

@@ -26,6 +26,8 @@
 #include <string_view>
 #include <vector>
 
+#include "lockbox/Export.h"
+
 namespace lockbox::net {
 
 /// Settings of a RollbackBudgetGuard (checked by RollbackBudgetGuard::Check).
@@ -44,7 +46,7 @@ struct RollbackBudgetConfig {
 };
 
 /// Advises the input delay of one rollback session.
-class RollbackBudgetGuard {
+class LOCKBOX_API RollbackBudgetGuard {
 public:
     /// Empty when `config` is valid, else a one-line reason.
     static std::string_view Check(const RollbackBudgetConfig& config) noexcept;

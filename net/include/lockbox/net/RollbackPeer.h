@@ -39,6 +39,7 @@
 #include <span>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/Protocol.h"
 #include "lockbox/net/RollbackProtocol.h"
 #include "lockbox/net/RollbackSession.h"
@@ -111,7 +112,7 @@ enum class SnapshotOfferResult : uint8_t {
     e_badSize,       ///< empty or larger than kRbMaxSnapshotBytes
 };
 
-class RollbackPeer {
+class LOCKBOX_API RollbackPeer {
 public:
     /// `session` and `transport` must outlive the peer; every remote player must be a
     /// non-local player of the session (others are ignored).

@@ -19,6 +19,7 @@
 #include <variant>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/Protocol.h"
 #include "lockbox/net/RollbackSession.h"
 
@@ -214,9 +215,9 @@ enum class RollbackMessageType : uint8_t {
 /// The reason a datagram from a known sender shows, from its decoding (`error`, `header`
 /// and, when the decoding succeeded or stopped at a hello, `messages`): e_none when it
 /// carries no sign of one. `determinismVersion` is the receiver's.
-RollbackIncompatibility FindIncompatibility(DecodeError error, const RollbackHeader& header,
-                                            std::span<const RollbackMessage> messages, uint32_t matchId,
-                                            uint32_t determinismVersion) noexcept;
+LOCKBOX_API RollbackIncompatibility FindIncompatibility(DecodeError error, const RollbackHeader& header,
+                                                        std::span<const RollbackMessage> messages, uint32_t matchId,
+                                                        uint32_t determinismVersion) noexcept;
 
 /// What the decoder must know to size input runs.
 struct RollbackShape {
@@ -231,11 +232,11 @@ inline RbHello HelloFor(uint32_t determinismVersion, const RollbackShape& shape)
 
 /// Decodes a whole datagram (messages appended to `out` after clearing it; empty on error,
 /// except e_incompatible: an RbHello for another shape, which is then all `out` holds).
-DecodeError DecodeRollbackDatagram(std::span<const uint8_t> datagram, const RollbackShape& shape,
-                                   RollbackHeader& header, std::vector<RollbackMessage>& out);
+LOCKBOX_API DecodeError DecodeRollbackDatagram(std::span<const uint8_t> datagram, const RollbackShape& shape,
+                                               RollbackHeader& header, std::vector<RollbackMessage>& out);
 
 /// Builds one datagram: the header, then messages appended one by one.
-class RollbackDatagramWriter {
+class LOCKBOX_API RollbackDatagramWriter {
 public:
     /// Starts a datagram (replaces any previous contents).
     void Begin(const RollbackHeader& header);

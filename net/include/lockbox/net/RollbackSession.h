@@ -32,6 +32,8 @@
 #include <variant>
 #include <vector>
 
+#include "lockbox/Export.h"
+
 namespace lockbox::net {
 
 /// Largest player count of a rollback session.
@@ -84,7 +86,7 @@ enum class RollbackIncompatibility : uint8_t {
     e_sessionShape,        ///< another player count or input size
 };
 /// Short name of a reason ("determinism version", ...).
-const char* RollbackIncompatibilityName(RollbackIncompatibility why) noexcept;
+LOCKBOX_API const char* RollbackIncompatibilityName(RollbackIncompatibility why) noexcept;
 
 /// Something the game should know about (drained by TakeEvents).
 struct RollbackEvent {
@@ -195,7 +197,7 @@ struct RollbackConfig {
 class RollbackSession;
 
 /// Collects and checks the settings of a session.
-class RollbackSessionBuilder {
+class LOCKBOX_API RollbackSessionBuilder {
 public:
     /// Number of players, 1 .. kRollbackMaxPlayers (default 2).
     RollbackSessionBuilder& Players(uint32_t players) {
@@ -255,7 +257,7 @@ private:
     RollbackConfig m_config;
 };
 
-class RollbackSession {
+class LOCKBOX_API RollbackSession {
 public:
     /// Use RollbackSessionBuilder; `config` must pass its Check.
     explicit RollbackSession(RollbackConfig config);

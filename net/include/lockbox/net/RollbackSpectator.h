@@ -18,6 +18,7 @@
 #include <memory>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/Protocol.h"
 #include "lockbox/net/RollbackProtocol.h"
 #include "lockbox/net/Transport.h"
@@ -66,7 +67,7 @@ struct SpectatorEvent {
     int32_t frame = 0;  ///< ReceivedFrame() at that moment
 };
 
-class RollbackSpectator {
+class LOCKBOX_API RollbackSpectator {
 public:
     /// `transport` must outlive the spectator.
     RollbackSpectator(Transport& transport, RollbackSpectatorConfig config);

@@ -11,6 +11,7 @@
 #include <memory>
 #include <span>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/RollbackSession.h"
 #include "lockbox/net/RollbackWorldAdapter.h"
 #include "lockbox/state/SyncTest.h"
@@ -33,9 +34,10 @@ struct SyncTestSessionConfig {
 
 /// The sync test settings of a session built with RollbackSessionBuilder (players, input
 /// bytes and CheckDistance), so one builder describes both the real and the test session.
-SyncTestSessionConfig SyncTestConfigFrom(const RollbackConfig& config, WorldStepSettings step, bool mispredict);
+LOCKBOX_API SyncTestSessionConfig SyncTestConfigFrom(const RollbackConfig& config, WorldStepSettings step,
+                                                     bool mispredict);
 
-class SyncTestSession {
+class LOCKBOX_API SyncTestSession {
 public:
     /// `world`, `game` and the source must outlive the session; the world must be in its
     /// starting state (frame 0).

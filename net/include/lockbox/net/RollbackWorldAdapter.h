@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/RollbackSession.h"
 #include "lockbox/state/WorldFrame.h"
 
@@ -29,7 +30,7 @@ struct WorldStepSettings {
 };
 
 /// Runs rollback requests against a world and a game. Both must outlive the adapter.
-class WorldGameAdapter {
+class LOCKBOX_API WorldGameAdapter {
 public:
     /// `slots`: saved states kept. A match driven by a RollbackPeer needs kRollbackMaxFinalLag + 2
     /// (66, the default): a disconnect cut may roll back to the final frame, which can lag the

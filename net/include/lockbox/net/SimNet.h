@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/Transport.h"
 
 namespace lockbox::net {
@@ -71,7 +72,7 @@ struct LinkStats {
 
 class SimEndpoint;
 
-class SimNet {
+class LOCKBOX_API SimNet {
 public:
     /// IPv4 + UDP header bytes added to every payload for wire sizes and wire byte counters.
     static constexpr uint32_t kWireOverhead = 28;
@@ -125,7 +126,7 @@ private:
 };
 
 /// One endpoint of a SimNet: a Transport whose clock is the net's virtual clock.
-class SimEndpoint : public Transport {
+class LOCKBOX_API SimEndpoint : public Transport {
 public:
     /// False (counted in sendFailures) when `peer` is not another endpoint of the net or the
     /// size is not in [1, MaxDatagram()]. A datagram from a down endpoint is accepted (true)

@@ -13,6 +13,8 @@
 #include <span>
 #include <vector>
 
+#include "lockbox/Export.h"
+
 namespace lockbox::net {
 
 /// A peer as one transport names it: a small index into that transport's peer table. The same
@@ -45,7 +47,7 @@ struct TransportStats {
     uint64_t droppedUnknown = 0;  ///< received from a sender the transport would not admit
 };
 
-class Transport {
+class LOCKBOX_API Transport {
 public:
     /// Largest payload every transport carries in one datagram (fits a 1280-byte IPv6 MTU).
     static constexpr size_t kMaxDatagram = 1200;

@@ -14,11 +14,12 @@
 #include <string>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/net/Transport.h"
 
 namespace lockbox::net {
 
-class UdpTransport final : public Transport {
+class LOCKBOX_API UdpTransport final : public Transport {
 public:
     /// Most datagrams one Poll reads before returning, so one call never starves the caller.
     static constexpr size_t kMaxPollPerCall = 1024;

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "lockbox/Export.h"
 #include "lockbox/replay/Player.h"
 
 namespace lockbox::replay {
@@ -15,7 +16,7 @@ namespace lockbox::replay {
 inline constexpr int32 kStageAfterToi = static_cast<int32>(kStagesPerFrame);
 
 /// What Bisect found.
-struct BisectResult {
+struct LOCKBOX_API BisectResult {
     bool diverged = false;     ///< re-simulation disagrees with the recording
     int32 frame = -1;          ///< first divergent frame (its step produces a different state)
     bool frameExact = true;    ///< false when hashes are sparse: the frame is the first checked
@@ -37,6 +38,6 @@ struct BisectResult {
 
 /// Bisects the player's replay (the player's hook, if any, stays installed: tests use it to
 /// inject a fault). Leaves the player somewhere after the divergence.
-BisectResult Bisect(Player& player);
+LOCKBOX_API BisectResult Bisect(Player& player);
 
 }  // namespace lockbox::replay

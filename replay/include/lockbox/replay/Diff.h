@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/replay/Player.h"
 #include "lockbox/state/WorldHash.h"
@@ -19,7 +20,7 @@ struct FieldDifference {
 };
 
 /// Where two worlds or two runs first differ.
-struct DiffResult {
+struct LOCKBOX_API DiffResult {
     bool same = true;                     ///< no difference found
     int32 frame = -1;                     ///< first frame after which the states differ (-1: the seed)
     int32 firstInputFrame = -1;           ///< first frame whose recorded inputs differ (-1: none)
@@ -33,19 +34,19 @@ struct DiffResult {
 };
 
 /// Compares two worlds now: hash, category, body, fields.
-DiffResult DiffWorlds(const b2World& a, const b2World& b);
+LOCKBOX_API DiffResult DiffWorlds(const b2World& a, const b2World& b);
 
 /// Every differing field of two bodies (same id in two worlds), in a fixed order.
-std::vector<FieldDifference> CompareBodies(const b2Body& a, const b2Body& b);
+LOCKBOX_API std::vector<FieldDifference> CompareBodies(const b2Body& a, const b2Body& b);
 
 /// Plays two replays in lockstep from their seeds (each player on its own world) and reports
 /// the first frame whose states differ. Both players are left at that frame.
-DiffResult DiffReplays(Player& a, Player& b, const ReplayFile& fileA, const ReplayFile& fileB);
+LOCKBOX_API DiffResult DiffReplays(Player& a, Player& b, const ReplayFile& fileA, const ReplayFile& fileB);
 
 /// "1.500000 (raw 0x00018000)": a Q16.16 value for people (exact raw, decimal truncated to
 /// 6 places).
-std::string FormatFixed(Fixed v);
+LOCKBOX_API std::string FormatFixed(Fixed v);
 /// The same for a Q32.32 value.
-std::string FormatWide(Wide v);
+LOCKBOX_API std::string FormatWide(Wide v);
 
 }  // namespace lockbox::replay

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <string>
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 
 namespace lockbox::replay {
@@ -63,7 +64,7 @@ enum WorldFlag : uint32 {
 /// applied (before Step), then the four b2StepStage points. A stage the step skipped is 0.
 inline constexpr uint32 kStagesPerFrame = 5;
 /// Name of stored stage i ("inputs", "collide", "solve", "broadphase", "toi").
-const char* StageName(uint32 stage) noexcept;
+LOCKBOX_API const char* StageName(uint32 stage) noexcept;
 
 /// Hashes of one frame's discrete solve stored in a SOLV chunk, in b2IslandPhase order: the
 /// velocity phase (every island's body ids and solver velocities after its velocity
@@ -71,7 +72,7 @@ const char* StageName(uint32 stage) noexcept;
 /// iterations), each one XXH3-64 over all islands in solve order. 0: no solve that frame.
 inline constexpr uint32 kSolvePhasesPerFrame = 2;
 /// Name of solve phase i ("velocity solve", "position solve").
-const char* SolvePhaseName(uint32 phase) noexcept;
+LOCKBOX_API const char* SolvePhaseName(uint32 phase) noexcept;
 
 /// The fixed header.
 struct Header {
@@ -107,10 +108,10 @@ enum class ErrorCode : uint32 {
 };
 
 /// Short name of an error code ("truncated", "bad checksum", ...).
-const char* ErrorCodeName(ErrorCode code) noexcept;
+LOCKBOX_API const char* ErrorCodeName(ErrorCode code) noexcept;
 
 /// An error with where it happened.
-struct Error {
+struct LOCKBOX_API Error {
     ErrorCode code = ErrorCode::e_ok;
     uint64 offset = 0;      ///< byte offset in the file of the header or chunk concerned
     int32 chunkIndex = -1;  ///< 0-based chunk number; -1 for the header
@@ -124,6 +125,6 @@ struct Error {
 };
 
 /// The four characters of a chunk tag (non-printable bytes as '?').
-std::string ChunkTagName(uint32 tag);
+LOCKBOX_API std::string ChunkTagName(uint32 tag);
 
 }  // namespace lockbox::replay

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/StepObserver.h"
 
@@ -17,7 +18,7 @@ class b2World;
 namespace lockbox::replay {
 
 /// Applies recorded inputs; mirror of SyncTestGame with the step taken by the replay.
-class Game {
+class LOCKBOX_API Game {
 public:
     virtual ~Game() = default;
     /// Applies frame `frame`'s inputs (0-based frame number) to the world, which is unlocked.
@@ -33,7 +34,7 @@ public:
 /// StageName: 0 inputs applied, 1 collide, 2 solve, 3 broadphase, 4 toi), before the stage is
 /// hashed. For debugging and for tests that inject a fault at a known point; the world is
 /// locked for stages 1 to 4, so only field edits are allowed there.
-class StageHook {
+class LOCKBOX_API StageHook {
 public:
     virtual ~StageHook() = default;
     virtual void OnStage(int32 frame, uint32 stage, b2World& world) = 0;

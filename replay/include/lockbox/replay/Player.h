@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/replay/Game.h"
 #include "lockbox/replay/ReplayFile.h"
@@ -26,7 +27,7 @@ struct VerifyResult {
 };
 
 /// Steps a world through a parsed replay.
-class Player {
+class LOCKBOX_API Player {
 public:
     /// The file, world and game must outlive the player. The world is the game's world;
     /// it should hold the game's initial bodies (restoring in place keeps their addresses),

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/replay/Format.h"
 #include "lockbox/replay/Game.h"
@@ -16,7 +17,7 @@
 namespace lockbox::replay {
 
 /// Where the bytes of a replay go.
-class Sink {
+class LOCKBOX_API Sink {
 public:
     virtual ~Sink() = default;
     /// Appends bytes; false on failure (the recorder then reports e_io).
@@ -24,7 +25,7 @@ public:
 };
 
 /// A replay kept in memory.
-class MemorySink : public Sink {
+class LOCKBOX_API MemorySink : public Sink {
 public:
     bool Write(std::span<const uint8> bytes) override {
         m_bytes.insert(m_bytes.end(), bytes.begin(), bytes.end());
@@ -38,7 +39,7 @@ private:
 };
 
 /// A replay streamed to a file (created or truncated).
-class FileSink : public Sink {
+class LOCKBOX_API FileSink : public Sink {
 public:
     explicit FileSink(const std::string& path);
     ~FileSink() override;
@@ -71,7 +72,7 @@ struct RecorderConfig {
 };
 
 /// Records frames of a world driven by a game.
-class Recorder {
+class LOCKBOX_API Recorder {
 public:
     /// The world and game must outlive the recorder. Nothing is written before Begin.
     Recorder(b2World& world, Game& game, Sink& sink, RecorderConfig config);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/replay/Format.h"
 
 namespace lockbox::replay {
@@ -28,7 +29,7 @@ struct ChunkStat {
 };
 
 /// A whole replay.
-struct ReplayFile {
+struct LOCKBOX_API ReplayFile {
     Header header;
     std::string gameName;               ///< what the player must build (e.g. "scene:rain")
     std::vector<uint8> gameParams;      ///< the game's own parameters
@@ -62,10 +63,10 @@ struct ReplayFile {
 };
 
 /// Parses and validates a whole file image. On error `out` is unspecified.
-Error ParseReplay(std::span<const uint8> bytes, ReplayFile& out);
+LOCKBOX_API Error ParseReplay(std::span<const uint8> bytes, ReplayFile& out);
 /// Reads a file and parses it.
-Error LoadReplay(const std::string& path, ReplayFile& out);
+LOCKBOX_API Error LoadReplay(const std::string& path, ReplayFile& out);
 /// Reads a whole file into bytes.
-Error ReadFileBytes(const std::string& path, std::vector<uint8>& bytes);
+LOCKBOX_API Error ReadFileBytes(const std::string& path, std::vector<uint8>& bytes);
 
 }  // namespace lockbox::replay

@@ -4,6 +4,7 @@
 /// b2Collide* functions (a chain collides through its child edge). Pairs without a collider
 /// (edge/chain against edge/chain) create no contact.
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/Shape.h"
 #include "lockbox/common/Settings.h"
@@ -19,7 +20,7 @@ struct b2Profile;
 
 /// Friction mixing: sqrt(f1 * f2), computed as the correctly rounded square root of the exact
 /// raw product (one rounding).
-Fixed b2MixFriction(Fixed friction1, Fixed friction2);
+LOCKBOX_API Fixed b2MixFriction(Fixed friction1, Fixed friction2);
 /// Restitution mixing: the larger one.
 inline Fixed b2MixRestitution(Fixed r1, Fixed r2) noexcept { return r1 > r2 ? r1 : r2; }
 
@@ -32,7 +33,7 @@ struct b2ContactEdge {
 };
 
 /// A potential contact between two fixture children. Owned by the contact manager.
-class b2Contact {
+class LOCKBOX_API b2Contact {
 public:
     /// The manifold in local coordinates (do not modify).
     b2Manifold* GetManifold() noexcept { return &m_manifold; }

@@ -2,13 +2,14 @@
 /// b2DistanceJoint (Box2D 2.2.1): keeps two anchor points at a fixed distance, rigidly or
 /// through a soft spring (frequencyHz > 0).
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 
 /// Distance joint definition. Do not make length too short (below a few linearSlop).
-struct b2DistanceJointDef : b2JointDef {
+struct LOCKBOX_API b2DistanceJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2DistanceJointDef() { type = e_distanceJoint; }
 
@@ -23,7 +24,7 @@ struct b2DistanceJointDef : b2JointDef {
 };
 
 /// Distance joint.
-class b2DistanceJoint : public b2Joint {
+class LOCKBOX_API b2DistanceJoint : public b2Joint {
 public:
     /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2DistanceJoint(const b2DistanceJointDef* def);

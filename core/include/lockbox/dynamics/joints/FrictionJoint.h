@@ -2,13 +2,14 @@
 /// b2FrictionJoint (Box2D 2.2.1): top-down friction. Resists relative linear and angular
 /// motion with at most maxForce and maxTorque.
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 
 /// Friction joint definition.
-struct b2FrictionJointDef : b2JointDef {
+struct LOCKBOX_API b2FrictionJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2FrictionJointDef() { type = e_frictionJoint; }
 
@@ -22,7 +23,7 @@ struct b2FrictionJointDef : b2JointDef {
 };
 
 /// Friction joint.
-class b2FrictionJoint : public b2Joint {
+class LOCKBOX_API b2FrictionJoint : public b2Joint {
 public:
     /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2FrictionJoint(const b2FrictionJointDef* def);

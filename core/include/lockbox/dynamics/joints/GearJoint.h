@@ -10,6 +10,7 @@
 /// Revolute coordinates are continuous across turns (body angles wrap every step): the gear
 /// follows the branch of each angle nearest to its previous value, as b2RevoluteJoint does.
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/WideMatrix.h"
 
@@ -27,7 +28,7 @@ struct b2GearJointDef : b2JointDef {
 };
 
 /// Gear joint.
-class b2GearJoint : public b2Joint {
+class LOCKBOX_API b2GearJoint : public b2Joint {
 public:
     /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2GearJoint(const b2GearJointDef* def);

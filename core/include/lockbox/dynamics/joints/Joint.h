@@ -3,6 +3,7 @@
 /// solver interface the island calls. The concrete joints live next to this header (one per
 /// file); b2World::CreateJoint goes through b2Joint::Create, which dispatches on the type.
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/TimeStep.h"
 #include "lockbox/fixed/Math.h"
@@ -50,7 +51,7 @@ struct b2JointDef {
 };
 
 /// Base class of all joints. The world owns joints; the island calls the three solver hooks.
-class b2Joint {
+class LOCKBOX_API b2Joint {
 public:
     virtual ~b2Joint() = default;
 

@@ -5,6 +5,7 @@
 /// maxForce is Q32.32: the testbed's 1000 * mass reaches 1e6 N for a 1000 kg body, beyond
 /// Q16.16 (NUMERICS Table 1).
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/WideMatrix.h"
 
@@ -22,7 +23,7 @@ struct b2MouseJointDef : b2JointDef {
 };
 
 /// Mouse joint.
-class b2MouseJoint : public b2Joint {
+class LOCKBOX_API b2MouseJoint : public b2Joint {
 public:
     /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2MouseJoint(const b2MouseJointDef* def);

@@ -2,13 +2,14 @@
 /// b2PrismaticJoint (Box2D 2.2.1): one translational degree of freedom along an axis fixed in
 /// body A, no relative rotation, with an optional translation limit and motor.
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 
 /// Prismatic joint definition.
-struct b2PrismaticJointDef : b2JointDef {
+struct LOCKBOX_API b2PrismaticJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2PrismaticJointDef() {
         type = e_prismaticJoint;
@@ -32,7 +33,7 @@ struct b2PrismaticJointDef : b2JointDef {
 };
 
 /// Prismatic joint.
-class b2PrismaticJoint : public b2Joint {
+class LOCKBOX_API b2PrismaticJoint : public b2Joint {
 public:
     /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2PrismaticJoint(const b2PrismaticJointDef* def);

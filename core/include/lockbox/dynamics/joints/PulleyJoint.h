@@ -3,13 +3,14 @@
 /// lengthA + ratio * lengthB stays constant. When one side reaches zero length its direction
 /// is undefined: that side then contributes nothing (finite, no division), as in 2.2.1.
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 
 /// Pulley joint definition. collideConnected is true by default, as in 2.2.1.
-struct b2PulleyJointDef : b2JointDef {
+struct LOCKBOX_API b2PulleyJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2PulleyJointDef() {
         type = e_pulleyJoint;
@@ -34,7 +35,7 @@ struct b2PulleyJointDef : b2JointDef {
 };
 
 /// Pulley joint.
-class b2PulleyJoint : public b2Joint {
+class LOCKBOX_API b2PulleyJoint : public b2Joint {
 public:
     /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2PulleyJoint(const b2PulleyJointDef* def);

@@ -6,6 +6,7 @@
 /// to the previous value (the relative rotation per step is below pi). Limits may therefore
 /// span many turns (keep them within +-16000 rad, half the Q16.16 range).
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/WideMatrix.h"
 
@@ -17,7 +18,7 @@ namespace lockbox {
 inline constexpr Fixed kMaxContinuousAngle = 8192;
 
 /// Revolute joint definition.
-struct b2RevoluteJointDef : b2JointDef {
+struct LOCKBOX_API b2RevoluteJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2RevoluteJointDef() { type = e_revoluteJoint; }
 
@@ -37,7 +38,7 @@ struct b2RevoluteJointDef : b2JointDef {
 };
 
 /// Revolute joint.
-class b2RevoluteJoint : public b2Joint {
+class LOCKBOX_API b2RevoluteJoint : public b2Joint {
 public:
     /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2RevoluteJoint(const b2RevoluteJointDef* def);

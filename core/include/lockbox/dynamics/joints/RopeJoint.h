@@ -2,6 +2,7 @@
 /// b2RopeJoint (Box2D 2.2.1): a maximum distance between two anchors (a slack rope). It keeps
 /// chains and ragdolls from stretching under large mass ratios.
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/WideMatrix.h"
 
@@ -22,7 +23,7 @@ struct b2RopeJointDef : b2JointDef {
 };
 
 /// Rope joint.
-class b2RopeJoint : public b2Joint {
+class LOCKBOX_API b2RopeJoint : public b2Joint {
 public:
     /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2RopeJoint(const b2RopeJointDef* def);

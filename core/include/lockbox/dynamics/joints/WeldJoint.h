@@ -2,13 +2,14 @@
 /// b2WeldJoint (Box2D 2.2.1): glues two bodies together (point and angle), optionally with a
 /// soft angular spring (frequencyHz > 0).
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 
 /// Weld joint definition.
-struct b2WeldJointDef : b2JointDef {
+struct LOCKBOX_API b2WeldJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2WeldJointDef() { type = e_weldJoint; }
 
@@ -23,7 +24,7 @@ struct b2WeldJointDef : b2JointDef {
 };
 
 /// Weld joint.
-class b2WeldJoint : public b2Joint {
+class LOCKBOX_API b2WeldJoint : public b2Joint {
 public:
     /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2WeldJoint(const b2WeldJointDef* def);

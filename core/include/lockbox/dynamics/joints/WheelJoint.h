@@ -2,13 +2,14 @@
 /// b2WheelJoint (Box2D 2.2.1): B's anchor slides on a line fixed in A (the suspension axis)
 /// with a spring along it, and B rotates freely with an optional motor. For vehicles.
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
 
 /// Wheel joint definition.
-struct b2WheelJointDef : b2JointDef {
+struct LOCKBOX_API b2WheelJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2WheelJointDef() {
         type = e_wheelJoint;
@@ -29,7 +30,7 @@ struct b2WheelJointDef : b2JointDef {
 };
 
 /// Wheel joint.
-class b2WheelJoint : public b2Joint {
+class LOCKBOX_API b2WheelJoint : public b2Joint {
 public:
     /// Made by b2World::CreateJoint (through b2Joint::Create).
     explicit b2WheelJoint(const b2WheelJointDef* def);

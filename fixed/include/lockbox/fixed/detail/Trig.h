@@ -7,6 +7,8 @@
 
 #include <cstdint>
 
+#include "lockbox/Export.h"
+
 namespace lockbox::detail {
 
 /// pi in Q16.16, correctly rounded: 205887 = 3.14159... (pi * 2^16 = 205887.416, so raw 205887
@@ -34,7 +36,7 @@ inline constexpr int64_t kTwoPiQ48 = 1768559438007110;
 /// for all but a handful of inputs (internal error < 2^-31 rad before the final rounding).
 /// Exact: sin(0) = 0, cos(0) = 65536, sin(-x) = -sin(x), cos(-x) = cos(x) for every x
 /// (INT32_MIN included).
-void SinCosRaw(int32_t angle, int32_t* s, int32_t* c) noexcept;
+LOCKBOX_API void SinCosRaw(int32_t angle, int32_t* s, int32_t* c) noexcept;
 
 /// Four-quadrant arc tangent of y/x in Q16.16 radians; y and x are raw values of any common
 /// scale (only their ratio matters), any int32 values including INT32_MIN.
@@ -43,7 +45,7 @@ void SinCosRaw(int32_t angle, int32_t* s, int32_t* c) noexcept;
 /// +-pi/4, +-3pi/4, all correctly rounded. Exact symmetry atan2(-y, x) = -atan2(y, x) for y != 0.
 /// Accuracy: <= 1 ULP for every input pair; correctly rounded except for rare near-ties
 /// (internal error ~2^-32 rad).
-int32_t Atan2Raw(int32_t y, int32_t x) noexcept;
+LOCKBOX_API int32_t Atan2Raw(int32_t y, int32_t x) noexcept;
 
 /// Wraps a Q16.16 angle (radians) into the half-open real interval [-pi, pi).
 /// Semantics: returns round(a - n * 2pi) (to nearest, raw units) where the integer n is chosen
@@ -54,11 +56,11 @@ int32_t Atan2Raw(int32_t y, int32_t x) noexcept;
 /// +-kPiRaw are included (kPiRaw = 205887 is 0.42 ULP below pi, so WrapAngleRaw(kPiRaw) ==
 /// kPiRaw, while WrapAngleRaw(kPiRaw + 1) == -kPiRaw). Idempotent: inputs already in
 /// [-205887, 205887] are returned unchanged.
-int32_t WrapAngleRaw(int32_t a) noexcept;
+LOCKBOX_API int32_t WrapAngleRaw(int32_t a) noexcept;
 
 /// Same as WrapAngleRaw, and stores in *turns the number n of whole turns removed, so that
 /// a = result + n * 2pi up to the final rounding (|a/2^16 - (result/2^16 + n 2pi)| <= 2^-17).
 /// n is in [-5215, 5215]. turns must not be null.
-int32_t WrapAngleTurnsRaw(int32_t a, int32_t* turns) noexcept;
+LOCKBOX_API int32_t WrapAngleTurnsRaw(int32_t a, int32_t* turns) noexcept;
 
 }  // namespace lockbox::detail
