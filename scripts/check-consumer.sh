@@ -4,7 +4,7 @@
 # project against the same lockbox, and equal in every build):
 #
 #   static  static libraries installed into a prefix: find_package(lockbox 0.8 COMPONENTS core
-#           net replay), every installed header compiled and lockbox::lockbox linked, and a build
+#           net replay scenefile), every installed header compiled and lockbox::lockbox linked, and a build
 #           through pkg-config (lockbox-core)
 #   shared  the same with BUILD_SHARED_LIBS=ON (hidden visibility, LOCKBOX_API)
 #   subdir  add_subdirectory of the source tree, physics only (LOCKBOX_BUILD_REPLAY=OFF,
@@ -143,7 +143,7 @@ for step in $steps; do
             echo "installed: $(find "$work/prefix-static" -name '*.h' | wc -l) headers," \
                 "$(find "$work/prefix-static" -name '*.a' | wc -l) static libraries"
             build_consumer static -DCMAKE_PREFIX_PATH="$work/prefix-static" \
-                -DLOCKBOX_CONSUMER_COMPONENTS="core;net;replay" -DLOCKBOX_CONSUMER_CHECK_HEADERS=ON
+                -DLOCKBOX_CONSUMER_COMPONENTS="core;net;replay;scenefile" -DLOCKBOX_CONSUMER_CHECK_HEADERS=ON
             pc_dir=$(dirname "$(find "$work/prefix-static" -name lockbox.pc)")
             PKG_CONFIG_PATH="$pc_dir" build_with_pkg_config static
             step_end static
@@ -153,7 +153,7 @@ for step in $steps; do
             build_lockbox shared -DBUILD_SHARED_LIBS=ON
             cmake --install "$work/shared" --prefix "$work/prefix-shared" > /dev/null
             build_consumer shared -DCMAKE_PREFIX_PATH="$work/prefix-shared" \
-                -DLOCKBOX_CONSUMER_COMPONENTS="core;net;replay" -DLOCKBOX_CONSUMER_CHECK_HEADERS=ON
+                -DLOCKBOX_CONSUMER_COMPONENTS="core;net;replay;scenefile" -DLOCKBOX_CONSUMER_CHECK_HEADERS=ON
             needed=$(ldd "$work/consumer-shared/consumer")
             grep -q 'liblockbox_core\.so' <<< "$needed" || fail "shared: the consumer is not linked to liblockbox_core.so"
             for lib in "$work"/prefix-shared/lib*/liblockbox_*.so; do
@@ -185,12 +185,12 @@ for step in $steps; do
             echo "control: with LOCKBOX_BUILD_REPLAY on, configuring fails: $(grep -o 'zstd not found[^(]*' "$work/control.log")"
             build_consumer subdir "${hide[@]}" -DLOCKBOX_CONSUMER_SOURCE_DIR="$repo_root" \
                 -DLOCKBOX_BUILD_REPLAY=OFF -DLOCKBOX_BUILD_NET=OFF -DLOCKBOX_BUILD_SCENEFILE=OFF
-            if grep -Eqi 'zstd|enet' "$work/consumer-subdir/build.ninja"; then
-                fail "subdir: the physics-only build mentions zstd or ENet"
+            if grep -Eqi 'zstd|enet|rapidjson' "$work/consumer-subdir/build.ninja"; then
+                fail "subdir: the physics-only build mentions zstd, ENet or RapidJSON"
             fi
             libs=$(cd "$work/consumer-subdir" && find . -name 'liblockbox_*' | sort | xargs -n1 basename | tr '\n' ' ')
             [ "$libs" = "liblockbox_core.a liblockbox_fixed.a " ] || fail "subdir: built $libs"
-            echo "subdir: built $libs; no zstd or ENet anywhere in the build"
+            echo "subdir: built $libs; no zstd, ENet or RapidJSON anywhere in the build"
             step_end subdir
             ;;
         fetch)
@@ -224,7 +224,7 @@ for step in $steps; do
                 "Depends: $(dpkg-deb -f "$deb" Depends)"
             "${sudo_cmd[@]}" dpkg -i "$deb" > /dev/null
             deb_installed=1
-            build_consumer deb -DLOCKBOX_CONSUMER_COMPONENTS="core;net;replay" -DLOCKBOX_CONSUMER_CHECK_HEADERS=ON
+            build_consumer deb -DLOCKBOX_CONSUMER_COMPONENTS="core;net;replay;scenefile" -DLOCKBOX_CONSUMER_CHECK_HEADERS=ON
             build_with_pkg_config deb
             "${sudo_cmd[@]}" dpkg -r lockbox-dev > /dev/null
             deb_installed=0

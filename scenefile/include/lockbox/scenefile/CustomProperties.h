@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Vec2.h"
 
@@ -25,7 +26,7 @@ struct CustomColor {
 using CustomValue = std::variant<int32, std::string, bool, Fixed, b2Vec2, CustomColor>;
 
 /// The JSON member name of a value's type: "int", "string", "bool", "float", "vec2", "color".
-const char* CustomTypeName(const CustomValue& value) noexcept;
+LOCKBOX_API const char* CustomTypeName(const CustomValue& value) noexcept;
 
 /// One named value.
 struct CustomProperty {
@@ -36,7 +37,7 @@ struct CustomProperty {
 
 /// The custom properties of one object, kept sorted by type (in CustomValue's order), then by
 /// name: the order they are saved in, whatever order they were set in.
-class CustomProperties {
+class LOCKBOX_API CustomProperties {
 public:
     /// Sets `name` for the type of `value` (replacing the value of that name and type).
     void Set(std::string name, CustomValue value);

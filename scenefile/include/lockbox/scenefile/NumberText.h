@@ -13,6 +13,7 @@
 #include <string>
 #include <string_view>
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Wide.h"
 
@@ -27,17 +28,17 @@ enum class NumberError : uint8 {
 };
 
 /// Decimal text (JSON number syntax, or Fixed::Parse's wider syntax) to the nearest Fixed.
-NumberError ParseFixed(std::string_view text, Fixed& out) noexcept;
+LOCKBOX_API NumberError ParseFixed(std::string_view text, Fixed& out) noexcept;
 /// Decimal text to the nearest Wide (Q32.32).
-NumberError ParseWide(std::string_view text, Wide& out) noexcept;
+LOCKBOX_API NumberError ParseWide(std::string_view text, Wide& out) noexcept;
 /// Eight hexadecimal digits (either case) holding binary32 bits, to the nearest Fixed.
-NumberError HexFloatToFixed(std::string_view hex, Fixed& out) noexcept;
+LOCKBOX_API NumberError HexFloatToFixed(std::string_view hex, Fixed& out) noexcept;
 /// Eight hexadecimal digits holding binary32 bits, to the nearest Wide.
-NumberError HexFloatToWide(std::string_view hex, Wide& out) noexcept;
+LOCKBOX_API NumberError HexFloatToWide(std::string_view hex, Wide& out) noexcept;
 
 /// The shortest decimal text that ParseFixed reads back as `value` ("0", "-1.5", "0.1").
-std::string FormatFixed(Fixed value);
+LOCKBOX_API std::string FormatFixed(Fixed value);
 /// The shortest decimal text that ParseWide reads back as `value`.
-std::string FormatWide(Wide value);
+LOCKBOX_API std::string FormatWide(Wide value);
 
 }  // namespace lockbox::scenefile

@@ -15,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/collision/ChainShape.h"
 #include "lockbox/collision/CircleShape.h"
 #include "lockbox/collision/EdgeShape.h"
@@ -139,9 +140,9 @@ struct SceneDocument {
 };
 
 /// b2dJson's name of a joint type ("revolute", "gear", ...); nullptr for e_unknownJoint.
-const char* JointTypeName(b2JointType type) noexcept;
+LOCKBOX_API const char* JointTypeName(b2JointType type) noexcept;
 
 /// The joint type a JointDefDesc holds.
-b2JointType JointDescType(const JointDefDesc& def) noexcept;
+LOCKBOX_API b2JointType JointDescType(const JointDefDesc& def) noexcept;
 
 }  // namespace lockbox::scenefile

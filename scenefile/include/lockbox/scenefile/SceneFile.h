@@ -18,6 +18,7 @@
 #include <string>
 #include <string_view>
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/scenefile/SceneDocument.h"
 #include "lockbox/scenefile/SceneLimits.h"
@@ -30,7 +31,7 @@ namespace lockbox::scenefile {
 
 /// Reads and validates JSON text into `out` (replacing its contents); touches no world. On
 /// error `out` is unspecified.
-SceneResult ReadScene(std::string_view json, SceneDocument& out, const SceneLimits& limits = {});
+LOCKBOX_API SceneResult ReadScene(std::string_view json, SceneDocument& out, const SceneLimits& limits = {});
 
 /// Builds a document into `world`: sets its gravity and switches (as b2dJson does for an
 /// existing world), then creates the bodies with their fixtures and mass data, then the joints
@@ -38,23 +39,23 @@ SceneResult ReadScene(std::string_view json, SceneDocument& out, const SceneLimi
 /// b2dJson's two passes do). Checks everything first (indices, body positions within the
 /// world's bounds, the world not inside Step): on error nothing changes. With `metadata`, the
 /// names, properties, step settings and images are added to it, keyed by the new objects' ids.
-SceneResult BuildScene(const SceneDocument& doc, b2World& world, SceneMetadata* metadata = nullptr);
+LOCKBOX_API SceneResult BuildScene(const SceneDocument& doc, b2World& world, SceneMetadata* metadata = nullptr);
 
 /// ReadScene, then BuildScene.
-SceneResult LoadScene(std::string_view json, b2World& world, SceneMetadata* metadata = nullptr,
-                      const SceneLimits& limits = {});
+LOCKBOX_API SceneResult LoadScene(std::string_view json, b2World& world, SceneMetadata* metadata = nullptr,
+                                  const SceneLimits& limits = {});
 
 /// Loads into a new world made with the file's gravity; nullptr on error (then *result, when
 /// given, says why).
-std::unique_ptr<b2World> LoadSceneWorld(std::string_view json, SceneResult* result = nullptr,
-                                        SceneMetadata* metadata = nullptr, const SceneLimits& limits = {});
+LOCKBOX_API std::unique_ptr<b2World> LoadSceneWorld(std::string_view json, SceneResult* result = nullptr,
+                                                    SceneMetadata* metadata = nullptr, const SceneLimits& limits = {});
 
 /// Reads a whole file into `out`, refusing one larger than limits.maxFileBytes.
-SceneResult ReadSceneFileBytes(const std::string& path, std::string& out, const SceneLimits& limits = {});
+LOCKBOX_API SceneResult ReadSceneFileBytes(const std::string& path, std::string& out, const SceneLimits& limits = {});
 
 /// LoadScene on a file's contents.
-SceneResult LoadSceneFile(const std::string& path, b2World& world, SceneMetadata* metadata = nullptr,
-                          const SceneLimits& limits = {});
+LOCKBOX_API SceneResult LoadSceneFile(const std::string& path, b2World& world, SceneMetadata* metadata = nullptr,
+                                      const SceneLimits& limits = {});
 
 // ---- saving ----
 
@@ -62,20 +63,21 @@ SceneResult LoadSceneFile(const std::string& path, b2World& world, SceneMetadata
 /// order, every field b2dJson writes, read through the public API. Gravity and the switches
 /// come from the world; step settings, world properties and images from `metadata`. Images
 /// whose body no longer exists are attached to no body.
-SceneDocument DescribeWorld(const b2World& world, const SceneMetadata* metadata = nullptr);
+LOCKBOX_API SceneDocument DescribeWorld(const b2World& world, const SceneMetadata* metadata = nullptr);
 
 /// The document as b2dJson JSON text (two-space indentation, shortest decimals, zero vectors as
 /// 0, b2dJson's field names and defaults). The same document always gives the same text.
-std::string WriteScene(const SceneDocument& doc);
+LOCKBOX_API std::string WriteScene(const SceneDocument& doc);
 
 /// DescribeWorld, then WriteScene.
-std::string SaveScene(const b2World& world, const SceneMetadata* metadata = nullptr);
+LOCKBOX_API std::string SaveScene(const b2World& world, const SceneMetadata* metadata = nullptr);
 
 /// SaveScene into a file (replacing it).
-SceneResult SaveSceneFile(const std::string& path, const b2World& world, const SceneMetadata* metadata = nullptr);
+LOCKBOX_API SceneResult SaveSceneFile(const std::string& path, const b2World& world,
+                                      const SceneMetadata* metadata = nullptr);
 
 /// XXH3-64 of a scene file's bytes: what a replay recorded on the file carries, so a player
 /// can tell that it was given the same file.
-uint64 SceneFileHash(std::string_view bytes) noexcept;
+LOCKBOX_API uint64 SceneFileHash(std::string_view bytes) noexcept;
 
 }  // namespace lockbox::scenefile

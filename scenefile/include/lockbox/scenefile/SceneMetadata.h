@@ -13,13 +13,14 @@
 #include <string_view>
 #include <vector>
 
+#include "lockbox/Export.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/scenefile/SceneDocument.h"
 
 namespace lockbox::scenefile {
 
 /// Names, paths, custom properties and images of one scene.
-class SceneMetadata {
+class LOCKBOX_API SceneMetadata {
 public:
     /// The world's custom properties (its name and path are unused).
     ObjectInfo worldInfo;

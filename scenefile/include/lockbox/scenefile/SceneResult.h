@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 
 namespace lockbox::scenefile {
@@ -27,10 +28,10 @@ enum class SceneError : uint8 {
 };
 
 /// Short name of an error kind ("syntax", "range", ...).
-const char* SceneErrorName(SceneError error) noexcept;
+LOCKBOX_API const char* SceneErrorName(SceneError error) noexcept;
 
 /// Outcome of a scene-file operation.
-struct SceneResult {
+struct LOCKBOX_API SceneResult {
     SceneError error = SceneError::e_ok;
     std::string path;     ///< JSON path of the value at fault ("body[3].angle"); empty for the document
     std::string message;  ///< what is wrong; empty when ok
