@@ -4,8 +4,8 @@
 # project against the same lockbox, and equal in every build):
 #
 #   static  static libraries installed into a prefix: find_package(lockbox 0.8 COMPONENTS core
-#           net replay scenefile), every installed header compiled and lockbox::lockbox linked, and a build
-#           through pkg-config (lockbox-core)
+#           net replay scenefile), every installed header compiled and lockbox::lockbox linked,
+#           and a build through pkg-config (lockbox-core)
 #   shared  the same with BUILD_SHARED_LIBS=ON (hidden visibility, LOCKBOX_API)
 #   subdir  add_subdirectory of the source tree, physics only (LOCKBOX_BUILD_REPLAY=OFF,
 #           LOCKBOX_BUILD_NET=OFF, LOCKBOX_BUILD_SCENEFILE=OFF), configured with zstd, ENet and
@@ -55,7 +55,8 @@ cleanup() {
     if [ "$deb_installed" -eq 1 ]; then
         "${sudo_cmd[@]}" dpkg -r lockbox-dev > /dev/null || echo "check-consumer: could not remove lockbox-dev" >&2
     fi
-    [ -z "$keep" ] && rm -rf "$work"
+    # An if, not `[ ] && rm`: a false test as the trap's last command would become the exit status.
+    if [ -z "$keep" ]; then rm -rf "$work"; fi
 }
 trap cleanup EXIT
 
