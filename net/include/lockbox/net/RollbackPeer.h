@@ -101,7 +101,7 @@ enum class RollbackPeerState : uint8_t {
     e_startFailed,        ///< the start timeout expired (e_startTimeout named who was missing); left
 };
 /// Short name of a state ("synchronizing", ...).
-const char* RollbackPeerStateName(RollbackPeerState state) noexcept;
+LOCKBOX_API const char* RollbackPeerStateName(RollbackPeerState state) noexcept;
 
 /// What OfferSnapshot made of a snapshot.
 enum class SnapshotOfferResult : uint8_t {

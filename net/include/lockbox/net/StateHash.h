@@ -18,6 +18,8 @@
 #include <cstdint>
 #include <span>
 
+#include "lockbox/Export.h"
+
 namespace lockbox {
 class b2World;
 }
@@ -29,11 +31,11 @@ namespace lockbox::net {
 
 /// Folds user state `user` (Game::SaveUserState's bytes, any length) into world hash
 /// `worldHash` (b2World::Hash) as described above.
-uint64_t FoldUserState(uint64_t worldHash, std::span<const uint8_t> user) noexcept;
+LOCKBOX_API uint64_t FoldUserState(uint64_t worldHash, std::span<const uint8_t> user) noexcept;
 /// The same fold with the game's current user state (calls Game::SaveUserState).
-uint64_t FoldUserState(uint64_t worldHash, const replay::Game& game);
+LOCKBOX_API uint64_t FoldUserState(uint64_t worldHash, const replay::Game& game);
 /// FoldUserState(world.Hash(), game): the hash of a world and a game as sessions compare it.
 /// Call outside Step.
-uint64_t FoldedStateHash(const b2World& world, const replay::Game& game);
+LOCKBOX_API uint64_t FoldedStateHash(const b2World& world, const replay::Game& game);
 
 }  // namespace lockbox::net
