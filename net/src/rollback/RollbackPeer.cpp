@@ -20,6 +20,10 @@ constexpr size_t kAdvantageSamples = 16;
 // Each final hash goes out in this many datagrams to each remote: at 20 % loss all copies
 // are lost 0.8 % of the time, which only skips that comparison, and no acks are needed.
 constexpr uint8_t kHashCopies = 3;
+// Bit rates (RemoteStats) are measured over windows of this length.
+constexpr uint64_t kRateWindowMicros = 1000000;
+// IPv4 + UDP header bytes counted per datagram in the bit rates.
+constexpr uint64_t kDatagramHeaderBytes = 28;
 
 int32_t ClampMilli(int64_t v) noexcept { return static_cast<int32_t>(std::clamp<int64_t>(v, -1000000000, 1000000000)); }
 
@@ -50,6 +54,7 @@ RollbackPeer::RollbackPeer(RollbackSession& session, Transport& transport, Rollb
         for (uint32_t p : rr.players)
             if (p < m_session.Config().players && !m_session.IsLocal(p)) r.players.push_back(p);
         r.lastHeard = now;
+        r.windowStart = now;
         // Registered before its first datagram: until this remote reports what it holds,
         // nothing becomes final (it may hold nothing yet).
         const std::vector<int32_t> nothing(m_session.Config().players, 0);
@@ -121,6 +126,7 @@ void RollbackPeer::Poll() {
         if (r != nullptr) {
             ++m_stats.datagramsReceived;
             if (!r->alive) continue;
+            CountTraffic(*r, now, 0, d.bytes.size());
             r->lastHeard = now;
             if (!r->heard) {
                 r->heard = true;
@@ -345,7 +351,58 @@ void RollbackPeer::SendTo(Remote& r, uint64_t now) {
     // Forget frames that left the session's list (they are never offered again).
     while (!r.hashCopies.empty() && (finals.empty() || r.hashCopies.begin()->first < finals.front().first))
         r.hashCopies.erase(r.hashCopies.begin());
-    if (m_transport.Send(r.peer, m_writer.Bytes())) ++m_stats.datagramsSent;
+    if (m_transport.Send(r.peer, m_writer.Bytes())) {
+        ++m_stats.datagramsSent;
+        CountTraffic(r, now, m_writer.Bytes().size(), 0);
+    }
+}
+
+void RollbackPeer::CountTraffic(Remote& r, uint64_t now, size_t sentBytes, size_t receivedBytes) {
+    if (now - r.windowStart >= kRateWindowMicros) {
+        const uint64_t elapsed = now - r.windowStart;
+        r.sendBps = r.windowSent * 8 * 1000000 / elapsed;
+        r.receiveBps = r.windowReceived * 8 * 1000000 / elapsed;
+        r.windowStart = now;
+        r.windowSent = 0;
+        r.windowReceived = 0;
+    }
+    if (sentBytes > 0) {
+        ++r.datagramsSent;
+        r.bytesSent += sentBytes;
+        r.windowSent += sentBytes + kDatagramHeaderBytes;
+    }
+    if (receivedBytes > 0) {
+        ++r.datagramsReceived;
+        r.bytesReceived += receivedBytes;
+        r.windowReceived += receivedBytes + kDatagramHeaderBytes;
+    }
+}
+
+RollbackRemoteStats RollbackPeer::RemoteStats(size_t index) const {
+    RollbackRemoteStats out;
+    if (index >= m_remotes.size()) return out;
+    const Remote& r = m_remotes[index];
+    out.synchronized = r.synchronized;
+    out.alive = r.alive;
+    out.interrupted = r.alive && r.interrupted;
+    out.rttMicros = r.rtt.Srtt();
+    out.rttDeviationMicros = r.rtt.Var();
+    out.rttSamples = r.rtt.Samples();
+    out.remoteFrame = r.remoteFrame;
+    out.framesAheadMilli = Average(r.localAdvantage);
+    out.remoteFramesAheadMilli = Average(r.remoteAdvantage);
+    out.datagramsSent = r.datagramsSent;
+    out.datagramsReceived = r.datagramsReceived;
+    out.bytesSent = r.bytesSent;
+    out.bytesReceived = r.bytesReceived;
+    out.sendBitsPerSecond = r.sendBps;
+    out.receiveBitsPerSecond = r.receiveBps;
+    for (uint32_t p : r.players) out.mispredictedInputs += m_session.MispredictedInputs(p);
+    const RollbackStats& s = m_session.Stats();
+    out.rollbacks = s.rollbacks;
+    out.framesResimulated = s.framesResimulated;
+    out.deepestRollback = s.deepestRollback;
+    return out;
 }
 
 void RollbackPeer::Leave() {

@@ -35,6 +35,10 @@ struct RollbackPeer::Remote {
     bool interrupted = false;
     uint8_t delayWish = 0;  // the input delay it asked this peer for (RbDelayWish)
     RollbackIncompatibility incompatible = RollbackIncompatibility::e_none;
+    // Traffic (RemoteStats): totals, and the bytes of the current one-second window.
+    uint64_t datagramsSent = 0, datagramsReceived = 0, bytesSent = 0, bytesReceived = 0;
+    uint64_t windowStart = 0, windowSent = 0, windowReceived = 0;
+    uint64_t sendBps = 0, receiveBps = 0;  // of the latest whole window
 
     Remote() { frozenHeard.fill(-1); }
 };

@@ -72,12 +72,14 @@ void RollbackSession::Impl::EmitSave(std::vector<RollbackRequest>& out, int32_t 
     out.emplace_back(SaveState{frame, want});
 }
 
-void RollbackSession::Impl::CheckPast(uint32_t player, int32_t frame, const uint8_t* actual) {
-    if (frame >= current) return;
+bool RollbackSession::Impl::CheckPast(uint32_t player, int32_t frame, const uint8_t* actual) {
+    if (frame >= current) return false;
     const int32_t slot = Slot(frame, kInputRing);
-    if (usedFrame[static_cast<size_t>(slot)] != frame) return;
+    if (usedFrame[static_cast<size_t>(slot)] != frame) return false;
     const uint8_t* was = used.data() + static_cast<size_t>(slot) * RowBytes() + player * Bytes();
-    if (std::memcmp(was, actual, Bytes()) != 0) firstIncorrect = std::min(firstIncorrect, frame);
+    if (std::memcmp(was, actual, Bytes()) == 0) return false;
+    firstIncorrect = std::min(firstIncorrect, frame);
+    return true;
 }
 
 void RollbackSession::Impl::Compare(uint32_t peer, int32_t frame, uint64_t local, uint64_t remote) {
@@ -266,7 +268,7 @@ InputResult RollbackSession::AddRemoteInput(uint32_t player, int32_t frame, std:
         std::min<int64_t>(int64_t{m.current} - m.config.predictionWindow - 1, int64_t{m.Final()});
     if (int64_t{frame} - oldestNeeded >= kInputRing) return InputResult::e_tooFarAhead;
     m.Store(p, frame, input);
-    m.CheckPast(player, frame, input.data());
+    if (m.CheckPast(player, frame, input.data())) ++p.mispredicted;
     return InputResult::e_ok;
 }
 
@@ -334,6 +336,9 @@ std::span<const uint8_t> RollbackSession::ConfirmedInput(uint32_t player, int32_
 
 const std::deque<std::pair<int32_t, uint64_t>>& RollbackSession::FinalHashes() const noexcept {
     return m_impl->offered;
+}
+uint64_t RollbackSession::MispredictedInputs(uint32_t player) const noexcept {
+    return player < m_impl->config.players ? m_impl->players[player].mispredicted : 0;
 }
 bool RollbackSession::IsLocal(uint32_t player) const noexcept {
     return player < m_impl->config.players && m_impl->players[player].local;

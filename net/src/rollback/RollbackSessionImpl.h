@@ -50,6 +50,7 @@ struct RollbackSession::Impl {
         // Frames a lowered input delay still owes: the local queue runs this much deeper than
         // the delay until as many repeated inputs have been absorbed (SetInputDelay).
         int32_t surplus = 0;
+        uint64_t mispredicted = 0;  // remote inputs that differed from what a past Advance used
         std::vector<uint8_t> ring;  // kInputRing * inputBytes
         std::vector<int32_t> ringFrame;
     };
@@ -115,8 +116,8 @@ struct RollbackSession::Impl {
     void EmitAdvance(std::vector<RollbackRequest>& out, int32_t frame, bool fresh);
     void EmitSave(std::vector<RollbackRequest>& out, int32_t frame);
     // Marks `frame` for re-simulation when the input a past Advance used for `player`
-    // differs from `actual`.
-    void CheckPast(uint32_t player, int32_t frame, const uint8_t* actual);
+    // differs from `actual`; true when it did.
+    bool CheckPast(uint32_t player, int32_t frame, const uint8_t* actual);
     void Compare(uint32_t peer, int32_t frame, uint64_t local, uint64_t remote);
     // Hashes of final frames that no pending rollback will re-simulate become final; compares
     // them with what the peers reported.

@@ -103,6 +103,39 @@ enum class RollbackPeerState : uint8_t {
 /// Short name of a state ("synchronizing", ...).
 LOCKBOX_API const char* RollbackPeerStateName(RollbackPeerState state) noexcept;
 
+/// The network figures of one remote peer in one call (RollbackPeer::RemoteStats). Counts
+/// are since the peer was made; rates are over the latest whole second.
+struct RollbackRemoteStats {
+    bool synchronized = false;        ///< its start-phase round trip is done
+    bool alive = false;               ///< not left, timed out or named gone
+    bool interrupted = false;         ///< silent past interruptTimeoutMicros right now
+    uint64_t rttMicros = 0;           ///< smoothed round-trip time; 0 before the first sample
+    uint64_t rttDeviationMicros = 0;  ///< smoothed mean deviation of the RTT samples
+    uint32_t rttSamples = 0;          ///< echoes measured
+    int32_t remoteFrame = 0;          ///< the frame it last reported (its current frame then)
+    /// How far this peer believes it runs ahead of the remote (RTT taken into account), in
+    /// thousandths of a frame, averaged over the latest samples; negative: behind.
+    int32_t framesAheadMilli = 0;
+    /// The remote's own estimate of its lead over this peer, same units (it sends it).
+    int32_t remoteFramesAheadMilli = 0;
+    uint64_t datagramsSent = 0;      ///< to it
+    uint64_t datagramsReceived = 0;  ///< accepted from it
+    uint64_t bytesSent = 0;          ///< payload bytes to it
+    uint64_t bytesReceived = 0;      ///< payload bytes accepted from it
+    /// Bit rates of the latest whole second (0 during the first), payload plus 28 bytes of
+    /// IPv4 + UDP header per datagram.
+    uint64_t sendBitsPerSecond = 0;
+    uint64_t receiveBitsPerSecond = 0;
+    /// Inputs of its players that arrived after a wrong prediction: the rollbacks it caused
+    /// (RollbackSession::MispredictedInputs summed over its players).
+    uint64_t mispredictedInputs = 0;
+    /// The session's own figures, all remotes together (RollbackStats): rollbacks, frames
+    /// re-simulated, and the deepest rollback.
+    uint64_t rollbacks = 0;
+    uint64_t framesResimulated = 0;
+    uint32_t deepestRollback = 0;
+};
+
 /// What OfferSnapshot made of a snapshot.
 enum class SnapshotOfferResult : uint8_t {
     e_ok = 0,        ///< sent to every spectator that wanted one
@@ -168,6 +201,10 @@ public:
     /// it, or more, with RollbackSession::SetInputDelay.
     uint32_t RemoteDelayWish() const noexcept;
 
+    /// Every network figure of remote `index` (config order) at once: RTT, frames ahead or
+    /// behind, datagrams, bytes and bit rates both ways, the rollbacks its inputs caused. All
+    /// zero past the remotes.
+    RollbackRemoteStats RemoteStats(size_t index) const;
     /// Smoothed RTT to remote `index` (config order), microseconds; 0 before the first sample.
     uint64_t RttMicros(size_t index) const noexcept;
     /// False once remote `index` left, timed out or was named gone by another live remote
@@ -205,6 +242,7 @@ private:
     void BeginDatagram(bool hello, size_t limit);
     bool HelloAcked(const Remote& r) const noexcept;
     int32_t LocalAdvantageMilli(const Remote& r, uint64_t now) const;
+    static void CountTraffic(Remote& r, uint64_t now, size_t sentBytes, size_t receivedBytes);
 
     RollbackSession& m_session;
     Transport& m_transport;

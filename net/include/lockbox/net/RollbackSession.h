@@ -371,6 +371,10 @@ public:
     std::span<const uint8_t> ConfirmedInput(uint32_t player, int32_t frame) const noexcept;
     /// The latest final local hashes (frame, hash), oldest first, at most 8.
     const std::deque<std::pair<int32_t, uint64_t>>& FinalHashes() const noexcept;
+    /// Remote inputs of `player` that differed from what a past Advance used for their frame
+    /// (a wrong prediction: each asks for a rollback to its frame, or joins one). 0 for a
+    /// local player or no such player.
+    uint64_t MispredictedInputs(uint32_t player) const noexcept;
     /// True for a player whose inputs this machine adds.
     bool IsLocal(uint32_t player) const noexcept;
     /// True once `player` is cut (DisconnectPlayer or CompleteDisconnect), not while frozen.
