@@ -24,3 +24,6 @@
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/dynamics/joints/Joints.h"
 #include "lockbox/fixed/Math.h"
+#include "lockbox/state/Snapshot.h"
+#include "lockbox/state/SyncTest.h"
+#include "lockbox/state/WorldHash.h"

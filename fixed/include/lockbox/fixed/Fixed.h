@@ -234,7 +234,8 @@ constexpr int Sign(Fixed a) noexcept { return (a.Raw() > 0) - (a.Raw() < 0); }
 
 }  // namespace math
 
-namespace literals {
+// Inline, as std::literals is: `using namespace lockbox;` brings `_fx` too.
+inline namespace literals {
 /// Exact decimal literal: `12.375_fx`, `1e-3_fx`. Rounded to nearest, ties away from zero.
 template <char... Chars>
 consteval Fixed operator""_fx() {
