@@ -5,7 +5,8 @@
 #
 #   static  static libraries installed into a prefix: find_package(lockbox 0.8 COMPONENTS core
 #           net replay scenefile), every installed header compiled and lockbox::lockbox linked,
-#           and a build through pkg-config (lockbox-core)
+#           a b2dJson save and load through lockbox::scenefile, and a build through pkg-config
+#           (lockbox-core)
 #   shared  the same with BUILD_SHARED_LIBS=ON (hidden visibility, LOCKBOX_API)
 #   subdir  add_subdirectory of the source tree, physics only (LOCKBOX_BUILD_REPLAY=OFF,
 #           LOCKBOX_BUILD_NET=OFF, LOCKBOX_BUILD_SCENEFILE=OFF), configured with zstd, ENet and
@@ -125,6 +126,14 @@ run_and_compare() {
     hashes+=("$got")
 }
 
+# Runs the consumer's scenefile program ($1 names the build): a world saved as b2dJson and loaded
+# back must step to the same hash.
+run_scene_file() {
+    local program="$work/consumer-$1/consumer_scene_file"
+    [ -x "$program" ] || fail "$1: consumer_scene_file was not built (scenefile component missing?)"
+    "$program" || fail "$1: consumer_scene_file failed"
+}
+
 # A build through pkg-config alone: one compile and link of the consumer.
 build_with_pkg_config() {
     local out="$work/consumer-$1-pkg-config"
@@ -145,6 +154,7 @@ for step in $steps; do
                 "$(find "$work/prefix-static" -name '*.a' | wc -l) static libraries"
             build_consumer static -DCMAKE_PREFIX_PATH="$work/prefix-static" \
                 -DLOCKBOX_CONSUMER_COMPONENTS="core;net;replay;scenefile" -DLOCKBOX_CONSUMER_CHECK_HEADERS=ON
+            run_scene_file static
             pc_dir=$(dirname "$(find "$work/prefix-static" -name lockbox.pc)")
             PKG_CONFIG_PATH="$pc_dir" build_with_pkg_config static
             step_end static
@@ -155,6 +165,7 @@ for step in $steps; do
             cmake --install "$work/shared" --prefix "$work/prefix-shared" > /dev/null
             build_consumer shared -DCMAKE_PREFIX_PATH="$work/prefix-shared" \
                 -DLOCKBOX_CONSUMER_COMPONENTS="core;net;replay;scenefile" -DLOCKBOX_CONSUMER_CHECK_HEADERS=ON
+            run_scene_file shared
             needed=$(ldd "$work/consumer-shared/consumer")
             grep -q 'liblockbox_core\.so' <<< "$needed" || fail "shared: the consumer is not linked to liblockbox_core.so"
             for lib in "$work"/prefix-shared/lib*/liblockbox_*.so; do
@@ -226,6 +237,7 @@ for step in $steps; do
             "${sudo_cmd[@]}" dpkg -i "$deb" > /dev/null
             deb_installed=1
             build_consumer deb -DLOCKBOX_CONSUMER_COMPONENTS="core;net;replay;scenefile" -DLOCKBOX_CONSUMER_CHECK_HEADERS=ON
+            run_scene_file deb
             build_with_pkg_config deb
             "${sudo_cmd[@]}" dpkg -r lockbox-dev > /dev/null
             deb_installed=0
