@@ -180,10 +180,11 @@ TEST(RollbackHandshake, OtherInputSizeIsNamed) {
     ExpectNamedAndNotStarted(m, RollbackIncompatibility::e_sessionShape);
 }
 
-// A datagram of protocol 3 (before the hello existed) or 6 (before the start phase: such a
-// peer would start at once and cut us at frame 0) from a configured remote.
+// A datagram of protocol 3 (before the hello existed), 6 (before the start phase: such a
+// peer would start at once and cut us at frame 0) or 7 (before RbQuality's sequence byte)
+// from a configured remote.
 class RollbackHandshakeOlder : public ::testing::TestWithParam<uint8_t> {};
-INSTANTIATE_TEST_SUITE_P(Versions, RollbackHandshakeOlder, ::testing::Values(uint8_t{3}, uint8_t{6}));
+INSTANTIATE_TEST_SUITE_P(Versions, RollbackHandshakeOlder, ::testing::Values(uint8_t{3}, uint8_t{6}, uint8_t{7}));
 
 TEST_P(RollbackHandshakeOlder, OlderProtocolIsNamed) {
     ASSERT_LT(GetParam(), kRollbackProtocolVersion);

@@ -1,5 +1,6 @@
 // RollbackPeer::RemoteStats: every network figure of a remote in one call, checked against
-// what the SimNet saw and what the sessions counted.
+// what the SimNet saw and what the sessions counted, and the loss estimate on clean and
+// lossy links.
 
 #include <cstdint>
 
@@ -37,6 +38,10 @@ TEST(RollbackStats, OneCallPerRemoteMatchesTheNetwork) {
         EXPECT_LE(o.datagramsReceived, s.datagramsSent);
         EXPECT_GE(o.datagramsReceived * 100, s.datagramsSent * 85);
         EXPECT_LE(o.bytesReceived, s.bytesSent);
+        // The remote's estimate of our loss: 5 % on the link.
+        EXPECT_GE(o.lossPermille, 25u);
+        EXPECT_LE(o.lossPermille, 80u);
+        EXPECT_GE(o.datagramsLost + o.datagramsReceived + 5, s.datagramsSent);
         // About 30 kbit/s up (docs/rollback.md's matrix), a little less arriving.
         EXPECT_GE(s.sendBitsPerSecond, 15000u);
         EXPECT_LE(s.sendBitsPerSecond, 64000u);
@@ -61,6 +66,25 @@ TEST(RollbackStats, OneCallPerRemoteMatchesTheNetwork) {
     const RollbackRemoteStats none = r.peers[0].net->RemoteStats(1);
     EXPECT_FALSE(none.alive);
     EXPECT_EQ(none.datagramsSent, 0u);
+    EXPECT_EQ(none.lossPermille, 0u);
+}
+
+// No loss, then 20 %: the estimate follows the link.
+TEST(RollbackStats, LossEstimateFollowsTheLink) {
+    for (uint32_t loss : {0u, 20u}) {
+        RbSpec spec;
+        spec.seed = 812;
+        spec.lossPct = loss;
+        spec.frames = 240;
+        const RbResult r = RunRbMatch(spec);
+        ExpectHealthy(spec, r);
+        for (const RbPeer& p : r.peers) {
+            const RollbackRemoteStats s = p.net->RemoteStats(0);
+            SCOPED_TRACE(::testing::Message() << "loss " << loss << "% estimate " << s.lossPermille);
+            EXPECT_GE(s.lossPermille, loss * 10 * 7 / 10);
+            EXPECT_LE(s.lossPermille, loss * 10 * 13 / 10 + 5);
+        }
+    }
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ std::vector<RollbackMessage> Sample() {
     m.push_back(RbInputAck{1, 77});
     m.push_back(RbQuality{4000, -2500, 123456789});
     m.push_back(RbQuality{1, INT32_MIN, 0});
-    m.push_back(RbQuality{2, INT32_MAX, UINT64_MAX});
+    m.push_back(RbQuality{2, INT32_MAX, UINT64_MAX, 255});
     m.push_back(RbQualityReply{99, 12});
     m.push_back(RbHash{30, 0xDEADBEEFCAFEF00Dull});
     std::vector<uint8_t> rows(2 * 3 * 4, 0);

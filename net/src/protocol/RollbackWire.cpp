@@ -77,6 +77,7 @@ bool Enc(Writer& w, const RbQuality& m, const RollbackShape&) {
     w.Var(static_cast<uint64_t>(m.frame));
     w.Var(Zig(m.advantageMilli));
     w.Var(m.time);
+    w.U8(m.sequence);
     return true;
 }
 void Dec(Reader& r, RbQuality& m, const RollbackShape&) {
@@ -85,6 +86,7 @@ void Dec(Reader& r, RbQuality& m, const RollbackShape&) {
     if (r.ok() && z > 0xFFFFFFFFull) r.Fail(DecodeError::e_badValue);
     m.advantageMilli = Unzig(z);
     m.time = r.Var();
+    m.sequence = r.U8();
 }
 
 bool Enc(Writer& w, const RbQualityReply& m, const RollbackShape&) {

@@ -261,6 +261,7 @@ void RollbackPeer::Handle(Remote& r, const RollbackMessage& m, uint64_t now) {
             r.acked[ack->player] = std::max(r.acked[ack->player], known);
         }
     } else if (const auto* q = std::get_if<RbQuality>(&m)) {
+        CountSequence(r, q->sequence);
         r.heardFrame = true;
         r.remoteFrame = q->frame;
         r.remoteFrameAt = now;
@@ -316,7 +317,7 @@ void RollbackPeer::SendTo(Remote& r, uint64_t now) {
     BeginDatagram(!HelloAcked(r), limit);
     const int32_t advantage = LocalAdvantageMilli(r, now);
     if (r.heardFrame) Push(r.localAdvantage, advantage);
-    m_writer.Add(RbQuality{m_session.CurrentFrame(), advantage, now}, m_shape, limit);
+    m_writer.Add(RbQuality{m_session.CurrentFrame(), advantage, now, r.sendSequence++}, m_shape, limit);
     if (r.echoPending && m_writer.Add(RbQualityReply{r.echoTime, now - r.echoReceivedAt}, m_shape, limit))
         r.echoPending = false;
     AddAgreement(limit);
@@ -378,6 +379,22 @@ void RollbackPeer::CountTraffic(Remote& r, uint64_t now, size_t sentBytes, size_
     }
 }
 
+// Unwraps the remote's 8-bit datagram counter: a step of 1..127 past the highest is newer
+// (the datagrams between were lost or are late), 0 a duplicate of it, anything else an older
+// one arriving late (it still counts as arrived).
+void RollbackPeer::CountSequence(Remote& r, uint8_t sequence) {
+    if (!r.sequenceSeen) {
+        r.sequenceSeen = true;
+        r.sequenceFirst = r.sequenceHighest = sequence;
+        r.sequenceArrived = 1;
+        return;
+    }
+    const auto step = static_cast<uint8_t>(sequence - static_cast<uint8_t>(r.sequenceHighest));
+    if (step == 0) return;
+    if (step < 128) r.sequenceHighest += step;
+    ++r.sequenceArrived;
+}
+
 RollbackRemoteStats RollbackPeer::RemoteStats(size_t index) const {
     RollbackRemoteStats out;
     if (index >= m_remotes.size()) return out;
@@ -397,6 +414,11 @@ RollbackRemoteStats RollbackPeer::RemoteStats(size_t index) const {
     out.bytesReceived = r.bytesReceived;
     out.sendBitsPerSecond = r.sendBps;
     out.receiveBitsPerSecond = r.receiveBps;
+    if (r.sequenceSeen) {
+        const uint64_t expected = r.sequenceHighest - r.sequenceFirst + 1;
+        out.datagramsLost = expected - std::min(expected, r.sequenceArrived);
+        out.lossPermille = static_cast<uint32_t>(out.datagramsLost * 1000 / expected);
+    }
     for (uint32_t p : r.players) out.mispredictedInputs += m_session.MispredictedInputs(p);
     const RollbackStats& s = m_session.Stats();
     out.rollbacks = s.rollbacks;

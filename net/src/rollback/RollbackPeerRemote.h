@@ -39,6 +39,11 @@ struct RollbackPeer::Remote {
     uint64_t datagramsSent = 0, datagramsReceived = 0, bytesSent = 0, bytesReceived = 0;
     uint64_t windowStart = 0, windowSent = 0, windowReceived = 0;
     uint64_t sendBps = 0, receiveBps = 0;  // of the latest whole window
+    // Loss estimate from RbQuality's sequence byte: ours to it, and its to us unwrapped (the
+    // first and highest seen) with the count of those that arrived.
+    uint8_t sendSequence = 0;
+    bool sequenceSeen = false;
+    uint64_t sequenceFirst = 0, sequenceHighest = 0, sequenceArrived = 0;
 
     Remote() { frozenHeard.fill(-1); }
 };

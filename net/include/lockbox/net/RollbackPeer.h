@@ -126,6 +126,11 @@ struct RollbackRemoteStats {
     /// IPv4 + UDP header per datagram.
     uint64_t sendBitsPerSecond = 0;
     uint64_t receiveBitsPerSecond = 0;
+    /// Its datagrams to this peer that never arrived, estimated from their sequence numbers
+    /// since the first one heard (a datagram still in flight counts until it lands; a
+    /// duplicated one can hide a loss), and that as a share of those it sent, per mille.
+    uint64_t datagramsLost = 0;
+    uint32_t lossPermille = 0;
     /// Inputs of its players that arrived after a wrong prediction: the rollbacks it caused
     /// (RollbackSession::MispredictedInputs summed over its players).
     uint64_t mispredictedInputs = 0;
@@ -243,6 +248,7 @@ private:
     bool HelloAcked(const Remote& r) const noexcept;
     int32_t LocalAdvantageMilli(const Remote& r, uint64_t now) const;
     static void CountTraffic(Remote& r, uint64_t now, size_t sentBytes, size_t receivedBytes);
+    static void CountSequence(Remote& r, uint8_t sequence);
 
     RollbackSession& m_session;
     Transport& m_transport;

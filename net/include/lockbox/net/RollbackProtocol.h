@@ -32,8 +32,9 @@ inline constexpr uint16_t kRollbackMagic = 0x4252u;
 /// compatibility check; 5: snapshot chunks carry the state as one zstd frame; 6: RbDelayWish,
 /// the budget guard's delay; 7: the start phase, same layouts: a peer waits for a round trip
 /// with every remote before frame 0 and times none out before it, where a version-6 peer
-/// started at once and cut a late remote at frame 0). Other versions are refused by name.
-inline constexpr uint8_t kRollbackProtocolVersion = 7;
+/// started at once and cut a late remote at frame 0; 8: RbQuality's sequence byte, the loss
+/// estimate). Other versions are refused by name.
+inline constexpr uint8_t kRollbackProtocolVersion = 8;
 /// Bytes of the header.
 inline constexpr size_t kRollbackHeaderBytes = 7;
 /// Largest frame count of one input run.
@@ -74,6 +75,8 @@ struct RbQuality {
     int32_t frame = 0;           ///< >= 0
     int32_t advantageMilli = 0;  ///< any int32 (zigzag varint)
     uint64_t time = 0;           ///< sender clock, microseconds
+    /// Counts the sender's datagrams to this receiver, wrapping at 256 (loss estimate).
+    uint8_t sequence = 0;
     bool operator==(const RbQuality&) const = default;
 };
 
