@@ -3,7 +3,8 @@
 // of (a) the bare simulation of the same frames (the game's inputs applied, Step, nothing
 // else) and (b) Player::Verify (restore the seed, the same frames, a state hash after every
 // frame), alternating the two; it prints the median ratio, the input stream's bytes per second
-// before compression and the file's compressed size by chunk type, and, with --out, writes a CSV.
+// before compression, the file's compressed size by chunk type and the time ParseReplay takes to
+// read the whole file back, and, with --out, writes a CSV (without the parse time).
 //
 // Usage: lockbox_replay_bench [--reps N] [--frames N] [--out FILE] [--only SCENE]
 
@@ -40,6 +41,7 @@ struct Row {
     std::string scene;
     int frames = 0, bodies = 0;
     double bareMs = 0, verifyMs = 0, ratio = 0, realTime = 0;
+    double parseMs = 0;                                ///< ParseReplay of the whole file (stdout only)
     double inputPayloadPerS = 0, inputFramedPerS = 0;  // bytes/s before compression
     uint64 fileBytes = 0, inptStored = 0, hashStored = 0, keyfStored = 0, seedStored = 0;
 };
@@ -92,6 +94,19 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "%s: %s\n", scene, e.Describe().c_str());
             return 1;
         }
+        // The reader alone: parse the whole file again (header, chunk checksums, zstd, every
+        // payload field), the median of 15 parses.
+        {
+            std::vector<double> parses;
+            for (int r = 0; r < 15; ++r) {
+                ReplayFile again;
+                const double t0 = ThreadMs();
+                const Error e = ParseReplay(sink.bytes(), again);
+                parses.push_back(ThreadMs() - t0);
+                if (e) return 1;
+            }
+            row.parseMs = Median(parses);
+        }
         const double seconds = static_cast<double>(frames) / file.header.tickRate;
         row.fileBytes = file.fileBytes;
         for (const ChunkStat& s : file.chunkStats) {
@@ -137,10 +152,10 @@ int main(int argc, char** argv) {
         row.realTime = row.verifyMs > 0 ? seconds * 1e3 / row.verifyMs : 0;
         rows.push_back(row);
         std::printf(
-            "%-14s frames=%d bodies=%d bare=%.1f ms verify=%.1f ms ratio=%.3f speed=%.1fx real time | "
+            "%-14s frames=%d bodies=%d bare=%.1f ms verify=%.1f ms ratio=%.3f speed=%.1fx real time parse=%.3f ms | "
             "inputs %.0f B/s raw (%.0f with chunk frames), file %llu B (INPT %llu, HASH %llu, KEYF %llu, SEED %llu)\n",
-            scene, row.frames, row.bodies, row.bareMs, row.verifyMs, row.ratio, row.realTime, row.inputPayloadPerS,
-            row.inputFramedPerS, static_cast<unsigned long long>(row.fileBytes),
+            scene, row.frames, row.bodies, row.bareMs, row.verifyMs, row.ratio, row.realTime, row.parseMs,
+            row.inputPayloadPerS, row.inputFramedPerS, static_cast<unsigned long long>(row.fileBytes),
             static_cast<unsigned long long>(row.inptStored), static_cast<unsigned long long>(row.hashStored),
             static_cast<unsigned long long>(row.keyfStored), static_cast<unsigned long long>(row.seedStored));
         std::fflush(stdout);

@@ -12,7 +12,7 @@
 #include <zstd.h>
 #endif
 
-#include "Bytes.h"
+#include "lockbox/common/Bytes.h"
 
 namespace lockbox::replay::detail {
 namespace {
@@ -41,7 +41,7 @@ Error Fail(ErrorCode code, uint64 offset, int32 index, uint32 type, std::string 
 
 void EncodeHeader(const Header& h, std::vector<uint8>& out) {
     const size_t start = out.size();
-    ByteWriter w(out);
+    bytes::Writer w(out);
     w.U32(kMagic);
     w.U16(h.formatVersion);
     w.U16(static_cast<uint16>(kHeaderBytes));
@@ -73,7 +73,7 @@ Error DecodeHeader(std::span<const uint8> bytes, Header& h) {
     if (bytes.size() < 8)
         return Fail(ErrorCode::e_truncated, 0, -1, 0,
                     "file has " + std::to_string(bytes.size()) + " bytes, fewer than the 8-byte header start");
-    ByteReader r(bytes);
+    bytes::Reader r(bytes);
     (void)r.U32();
     h.formatVersion = r.U16();
     const uint16 headerBytes = r.U16();
@@ -132,7 +132,7 @@ void EncodeChunk(uint32 type, std::span<const uint8> raw, int level, std::vector
 #endif
     const std::span<const uint8> stored = (flags & kChunkCompressed) ? std::span<const uint8>(packed) : raw;
     const size_t start = out.size();
-    ByteWriter w(out);
+    bytes::Writer w(out);
     w.U32(type);
     w.U32(flags);
     w.U32(static_cast<uint32>(stored.size()));
@@ -149,7 +149,7 @@ Error ReadChunk(std::span<const uint8> file, uint64& offset, int32 index, RawChu
     if (file.size() - offset < kChunkHeaderBytes)
         return Fail(ErrorCode::e_truncated, offset, index, 0,
                     "file ends inside a chunk header (" + std::to_string(file.size() - offset) + " of 24 bytes)");
-    ByteReader r(file.subspan(offset, kChunkHeaderBytes));
+    bytes::Reader r(file.subspan(offset, kChunkHeaderBytes));
     chunk.type = r.U32();
     chunk.flags = r.U32();
     chunk.storedBytes = r.U32();

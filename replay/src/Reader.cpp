@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "Bytes.h"
 #include "Chunks.h"
+#include "lockbox/common/Bytes.h"
 #include "lockbox/replay/ReplayFile.h"
 #include "lockbox/state/Snapshot.h"
 #include "lockbox/state/WorldHash.h"
@@ -63,12 +63,12 @@ struct Parser {
     }
 
     // A block of per-frame hashes (STAG, SOLV): {first frame, count, values per frame, values}.
-    Error FrameHashes(detail::ByteReader& r, const char* name, uint32 expectPer, int32& framesSoFar,
+    Error FrameHashes(bytes::Reader& r, const char* name, uint32 expectPer, int32& framesSoFar,
                       std::vector<uint64>& into) const {
         const uint32 first = r.U32();
         const uint32 count = r.U32();
         const uint32 per = r.U32();
-        if (r.failed() || per != expectPer || static_cast<uint64>(count) * per * 8 != r.Remaining())
+        if (!r.Ok() || per != expectPer || static_cast<uint64>(count) * per * 8 != r.Remaining())
             return Fail(ErrorCode::e_badChunk, -1, std::string(name) + " chunk sizes do not add up");
         if (first != static_cast<uint32>(framesSoFar) ||
             static_cast<uint64>(first) + count > static_cast<uint64>(inputFrames))
@@ -79,20 +79,19 @@ struct Parser {
         return {};
     }
 
-    Error Snapshot(detail::ByteReader& r, Keyframe& k) {
+    Error Snapshot(bytes::Reader& r, Keyframe& k) {
         k.frame = r.I32();
         k.hash = r.U64();
         const auto world = r.Blob();
         const auto user = r.Blob();
-        if (r.failed() || r.Remaining() != 0)
-            return Fail(ErrorCode::e_badChunk, -1, "snapshot chunk sizes do not add up");
+        if (!r.Ok() || r.Remaining() != 0) return Fail(ErrorCode::e_badChunk, -1, "snapshot chunk sizes do not add up");
         k.world.assign(world.begin(), world.end());
         k.user.assign(user.begin(), user.end());
         return {};
     }
 
     Error Chunk(std::span<const uint8> payload) {
-        detail::ByteReader r(payload);
+        bytes::Reader r(payload);
         const size_t frameBytes = out.FrameInputBytes();
         if (!haveMeta && chunk.type != e_chunkMeta)
             return Fail(ErrorCode::e_missing, -1, "the first chunk must be META");
@@ -102,8 +101,7 @@ struct Parser {
                 if (haveMeta) return Fail(ErrorCode::e_badChunk, -1, "second META chunk");
                 const auto name = r.Bytes(r.U16());
                 const auto params = r.Blob();
-                if (r.failed() || r.Remaining() != 0)
-                    return Fail(ErrorCode::e_badChunk, -1, "META sizes do not add up");
+                if (!r.Ok() || r.Remaining() != 0) return Fail(ErrorCode::e_badChunk, -1, "META sizes do not add up");
                 out.gameName.assign(name.begin(), name.end());
                 out.gameParams.assign(params.begin(), params.end());
                 haveMeta = true;
@@ -120,7 +118,7 @@ struct Parser {
                 if (!haveSeed) return Fail(ErrorCode::e_missing, inputFrames, "inputs before the SEED chunk");
                 const uint32 first = r.U32();
                 const uint32 count = r.U32();
-                if (r.failed())
+                if (!r.Ok())
                     return Fail(ErrorCode::e_badChunk, inputFrames, "INPT chunk shorter than its 8-byte prefix");
                 if (first != static_cast<uint32>(inputFrames))
                     return Fail(ErrorCode::e_badChunk, static_cast<int32>(first),
@@ -142,7 +140,7 @@ struct Parser {
                 const uint32 first = r.U32();
                 const uint32 count = r.U32();
                 const uint64 interval = out.header.hashInterval;
-                if (r.failed() || static_cast<uint64>(count) * 8 != r.Remaining())
+                if (!r.Ok() || static_cast<uint64>(count) * 8 != r.Remaining())
                     return Fail(ErrorCode::e_badChunk, -1, "HASH chunk sizes do not add up");
                 if (count == 0) return {};
                 const uint64 last = first + (static_cast<uint64>(count) - 1) * interval;
@@ -174,7 +172,7 @@ struct Parser {
             case e_chunkEnd: {
                 const int32 frames = r.I32();
                 out.finalHash = r.U64();
-                if (r.failed() || r.Remaining() != 0) return Fail(ErrorCode::e_badChunk, -1, "END sizes do not add up");
+                if (!r.Ok() || r.Remaining() != 0) return Fail(ErrorCode::e_badChunk, -1, "END sizes do not add up");
                 if (frames != inputFrames)
                     return Fail(ErrorCode::e_badChunk, frames,
                                 "END record counts " + std::to_string(frames) + " frames, the inputs hold " +

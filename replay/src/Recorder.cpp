@@ -3,9 +3,9 @@
 
 #include <algorithm>
 
-#include "Bytes.h"
 #include "Chunks.h"
 #include "StageHasher.h"
+#include "lockbox/common/Bytes.h"
 #include "lockbox/state/Snapshot.h"
 #include "lockbox/state/WorldHash.h"
 
@@ -90,7 +90,7 @@ Error Recorder::Begin() {
     }
 
     m_scratch.clear();
-    detail::ByteWriter meta(m_scratch);
+    bytes::Writer meta(m_scratch);
     const std::string& name = m_config.gameName;
     meta.U16(static_cast<uint16>(std::min<size_t>(name.size(), 0xFFFF)));
     meta.Bytes(
@@ -101,7 +101,7 @@ Error Recorder::Begin() {
     std::vector<uint8> image = m_world.Save();
     m_game.SaveUserState(m_user);
     m_scratch.clear();
-    detail::ByteWriter seed(m_scratch);
+    bytes::Writer seed(m_scratch);
     seed.U32(0);
     seed.U64(m_world.Hash());
     seed.Blob(image);
@@ -169,7 +169,7 @@ void Recorder::Record(uint64 hash, const b2World* keyframeWorld) {
         std::vector<uint8> image = keyframeWorld->Save();
         m_game.SaveUserState(m_user);
         m_scratch.clear();
-        detail::ByteWriter w(m_scratch);
+        bytes::Writer w(m_scratch);
         w.U32(static_cast<uint32>(m_frames));
         w.U64(keyframeWorld->Hash());
         w.Blob(image);
@@ -182,7 +182,7 @@ void Recorder::Flush() {
     const int32 count = m_frames - m_blockStart;
     if (count > 0) {
         m_scratch.clear();
-        detail::ByteWriter w(m_scratch);
+        bytes::Writer w(m_scratch);
         w.U32(static_cast<uint32>(m_blockStart));
         w.U32(static_cast<uint32>(count));
         w.Bytes(m_inputBlock);
@@ -190,7 +190,7 @@ void Recorder::Flush() {
     }
     if (!m_hashBlock.empty()) {
         m_scratch.clear();
-        detail::ByteWriter w(m_scratch);
+        bytes::Writer w(m_scratch);
         w.U32(static_cast<uint32>(m_hashBlockStart));
         w.U32(static_cast<uint32>(m_hashBlock.size()));
         for (uint64 h : m_hashBlock) w.U64(h);
@@ -209,7 +209,7 @@ void Recorder::Flush() {
 void Recorder::EmitFrameHashes(uint32 type, int32 count, uint32 per, const std::vector<uint64>& block) {
     if (block.empty()) return;
     m_scratch.clear();
-    detail::ByteWriter w(m_scratch);
+    bytes::Writer w(m_scratch);
     w.U32(static_cast<uint32>(m_blockStart));
     w.U32(static_cast<uint32>(count));
     w.U32(per);
@@ -222,7 +222,7 @@ Error Recorder::Finish() {
     m_finished = true;
     Flush();
     m_scratch.clear();
-    detail::ByteWriter w(m_scratch);
+    bytes::Writer w(m_scratch);
     w.U32(static_cast<uint32>(m_frames));
     w.U64(m_world.Hash());
     Emit(e_chunkEnd, m_scratch);

@@ -2,9 +2,9 @@
 // tampered input or stored hash gives the first divergent frame.
 #include <string>
 
-#include "../../replay/src/Bytes.h"
 #include "../../replay/src/Chunks.h"
 #include "ReplayTestUtil.h"
+#include "lockbox/common/Bytes.h"
 
 namespace lockbox::replay::testing {
 namespace {
@@ -91,7 +91,7 @@ TEST(ReplayReject, CorruptChunkContentsAreNamed) {
     // A well-framed INPT chunk that announces frames out of sequence.
     std::vector<uint8> bytes = SmallReplay();
     std::vector<uint8> payload;
-    detail::ByteWriter w(payload);
+    bytes::Writer w(payload);
     w.U32(5);
     w.U32(1);
     for (int i = 0; i < 16; ++i) w.U8(0);

@@ -3,7 +3,6 @@
 #include <cstdio>
 #include <string>
 
-#include "../../replay/src/Bytes.h"
 #include "../../replay/src/Chunks.h"
 #include "ReplayTestUtil.h"
 

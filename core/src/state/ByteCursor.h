@@ -1,10 +1,14 @@
 #pragma once
 // Internal to the state code: unchecked little-endian field cursors over a span whose room
-// the owner (HashWriter, FieldWriter, FieldReader) has checked once for a whole record. A
+// the owner (HashWriter, FieldWriter, ImageReader) has checked once for a whole record. A
 // cursor is a local value holding one pointer, so the compiler keeps it in a register for
 // the record: a body's 27 fields cost 27 stores instead of 27 checks, loads and stores of a
 // member write position (a store through uint8* may alias any member, so a member position
-// is reloaded after every field).
+// is reloaded after every field). They exist beside lockbox's checked byte reader
+// (lockbox/common/Bytes.h) for the records whose bounds are already known: the save writes
+// the world's own state, and a restore's apply (SnapshotApply.cpp, JointState.h) reads again
+// the records the parse has checked. Untrusted bytes are read through the checked reader
+// only, or through a ReadCursor from ImageReader::Begin after its room check.
 
 #include <bit>
 #include <cstddef>

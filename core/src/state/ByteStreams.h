@@ -1,9 +1,11 @@
 #pragma once
-// Internal to the snapshot: the byte encodings. The fixed header goes through Cereal's
-// portable binary archive (HeaderSink/HeaderSource adapt it to memory); the sections are
-// written by FieldWriter and read by FieldReader, lockbox's own fixed-width little-endian
-// field codec, which the state walk drives. Per-field Cereal calls cost ~20 ns each through
-// std::streambuf and made save plus restore several times the step budget; these cost ~1 ns.
+// Internal to the snapshot: the byte encodings of the save. The fixed header goes through
+// Cereal's portable binary archive (HeaderSink/HeaderSource adapt it to memory); the sections
+// are written by FieldWriter, which the state walk drives through unchecked ByteCursors (the
+// world's own state needs no checks, only room). Per-field Cereal calls cost ~20 ns each
+// through std::streambuf and made save plus restore several times the step budget; these
+// cost ~1 ns. Images are read back through ImageReader (SnapshotCheck.h), on lockbox's checked
+// byte reader (lockbox/common/Bytes.h), which writes the same encoding.
 
 #include <bit>
 #include <cstddef>
@@ -111,59 +113,6 @@ private:
 
     std::vector<uint8>& m_out;
     size_t m_used;
-};
-
-/// Raised by FieldReader when the image ends early (mapped to e_truncated).
-struct TruncatedImage {};
-
-/// Reads little-endian fixed-width fields from a span; a read past the end throws
-/// TruncatedImage.
-class FieldReader {
-public:
-    FieldReader(std::span<const uint8> bytes, size_t start) : m_data(bytes.data()), m_size(bytes.size()), m_at(start) {}
-
-    uint8 U8() { return static_cast<uint8>(Get<1>()); }
-    uint16 U16() { return static_cast<uint16>(Get<2>()); }
-    uint32 U32() { return static_cast<uint32>(Get<4>()); }
-    uint64 U64() { return Get<8>(); }
-    int32 I32() { return static_cast<int32>(static_cast<uint32>(Get<4>())); }
-    int64_t I64() { return static_cast<int64_t>(Get<8>()); }
-    Fixed F() { return Fixed::FromRaw(I32()); }
-    Wide W() { return Wide::FromRaw(I64()); }
-    b2Vec2 V() {
-        const Fixed x = F();
-        return b2Vec2(x, F());
-    }
-
-    /// A cursor over the next `bytes` bytes (throws TruncatedImage when fewer are left);
-    /// hand it back to End.
-    ReadCursor Begin(size_t bytes) const {
-        if (m_size - m_at < bytes) throw TruncatedImage{};
-        return ReadCursor(m_data + m_at);
-    }
-    /// Moves past the bytes a cursor from Begin read.
-    void End(const ReadCursor& c) noexcept { m_at = static_cast<size_t>(c.Position() - m_data); }
-
-    size_t Position() const noexcept { return m_at; }
-    size_t Remaining() const noexcept { return m_size - m_at; }
-
-private:
-    template <int N>
-    uint64 Get() {
-        if (m_size - m_at < N) throw TruncatedImage{};
-        uint64 v = 0;
-        if constexpr (std::endian::native == std::endian::little) {
-            std::memcpy(&v, m_data + m_at, N);  // one load: the stream order is the host order
-        } else {
-            for (int i = 0; i < N; ++i) v |= static_cast<uint64>(m_data[m_at + static_cast<size_t>(i)]) << (8 * i);
-        }
-        m_at += N;
-        return v;
-    }
-
-    const uint8* m_data;
-    size_t m_size;
-    size_t m_at;
 };
 
 }  // namespace lockbox::state_detail

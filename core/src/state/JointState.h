@@ -125,7 +125,7 @@ inline void PrefetchJointFields(const b2Joint* joint, uint64 chunks) noexcept {
 
 /// Parse side: reads and checks a joint's state fields from R, keeping only the references
 /// (gear joints) in `refs`, in VisitState order. R is a ReadCursor when the whole record is
-/// known to be in the image, else the checked FieldReader, which then fails exactly where
+/// known to be in the image, else the checked ImageReader, which then fails exactly where
 /// a field runs past the end.
 template <class R>
 struct JointStateCheck {

@@ -12,6 +12,7 @@
 #include "FastXxh3.h"
 #include "SnapshotImage.h"
 #include "StateWalk.h"
+#include "lockbox/common/Bytes.h"
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox {
@@ -92,8 +93,7 @@ void state_detail::SaveImage(const b2World& world, std::vector<uint8>& out, bool
         archive(b2_snapshotMagic, b2_snapshotFormatVersion, b2_snapshotEngineMajor, b2_snapshotEngineMinor,
                 b2_snapshotEnginePatch, b2_determinismVersion, payload, uint64{0});
     }
-    const uint64 sum = SnapshotChecksum(out, static_cast<size_t>(payload));
-    for (size_t i = 0; i < 8; ++i) out[kChecksumOffset + i] = static_cast<uint8>(sum >> (8 * i));
+    b2SealSnapshot(out);  // the checksum of the payload just written
 }
 
 std::vector<uint8> b2World::Save() const {
@@ -110,17 +110,14 @@ b2SnapshotStats b2World::SaveStats() const {
     uint32* bySection[kSectionCount] = {&stats.settingsBytes,     &stats.bodyBytes,  &stats.fixtureBytes,
                                         &stats.contactBytes,      &stats.jointBytes, &stats.broadPhaseBytes,
                                         &stats.jointReactionBytes};
-    // Walk the section headers: tag, length (little-endian), contents. The 8 header bytes
-    // count toward their section.
-    size_t at = kHeaderBytes;
-    auto le32 = [&](size_t i) {
-        return uint32{image[i]} | (uint32{image[i + 1]} << 8) | (uint32{image[i + 2]} << 16) |
-               (uint32{image[i + 3]} << 24);
-    };
-    for (uint32 s = 0; s < kSectionCount && at + 8 <= image.size(); ++s) {
-        const uint32 length = le32(at + 4);
+    // Walk the section headers: tag, length, contents. The 8 header bytes count toward their
+    // section.
+    bytes::Reader r(image, kHeaderBytes);
+    for (uint32 s = 0; s < kSectionCount && r.Remaining() >= 8; ++s) {
+        (void)r.U32();
+        const uint32 length = r.U32();
         *bySection[s] = length + 8;
-        at += 8 + length;
+        r.Skip(length);
     }
     return stats;
 }

@@ -1,12 +1,16 @@
 #pragma once
 // Internal to the snapshot reader: how a check failure travels (an exception caught in
-// ParseSnapshot and turned into a b2RestoreResult) and how messages name values.
+// ParseSnapshot and turned into a b2RestoreResult), how messages name values, and the reader
+// the parser takes the image's fields from.
 
 #include <array>
 #include <cstdio>
 #include <span>
 #include <string>
 
+#include "ByteCursor.h"
+#include "lockbox/common/Bytes.h"
+#include "lockbox/fixed/Math.h"
 #include "lockbox/state/Snapshot.h"
 
 namespace lockbox::state_detail {
@@ -34,6 +38,57 @@ struct SnapshotFailure {
     if (!ok) [[unlikely]]
         FailCheck(what, problem, value);
 }
+
+/// The parser's reader: lockbox::bytes::Reader over the image, whose read past the end fails
+/// the parse with e_truncated naming the offset. A record whose room is checked once is read
+/// through Begin/End and the unchecked ReadCursor (ByteCursor.h), as the apply reads it again.
+class ImageReader {
+public:
+    ImageReader(std::span<const uint8> image, size_t start) noexcept : m_in(image, start), m_data(image.data()) {}
+
+    uint8 U8() { return Need(1).U8(); }
+    uint16 U16() { return Need(2).U16(); }
+    uint32 U32() { return Need(4).U32(); }
+    uint64 U64() { return Need(8).U64(); }
+    int32 I32() { return Need(4).I32(); }
+    int64_t I64() { return Need(8).I64(); }
+    Fixed F() { return Fixed::FromRaw(I32()); }
+    Wide W() { return Wide::FromRaw(I64()); }
+    b2Vec2 V() {
+        const Fixed x = F();
+        return b2Vec2(x, F());
+    }
+
+    /// A cursor over the next `bytes` bytes (e_truncated when fewer are left); hand it back to
+    /// End.
+    ReadCursor Begin(size_t bytes) {
+        Need(bytes);
+        return ReadCursor(m_data + m_in.Position());
+    }
+    /// Moves past the bytes a cursor from Begin read.
+    void End(const ReadCursor& c) noexcept { m_in.Skip(static_cast<size_t>(c.Position() - m_data) - m_in.Position()); }
+
+    /// Offset of the next field from the image's first byte.
+    size_t Position() const noexcept { return m_in.Position(); }
+    size_t Remaining() const noexcept { return m_in.Remaining(); }
+
+private:
+    /// The byte reader, once `bytes` are known to be left: its own check of the same room then
+    /// folds into this one.
+    bytes::Reader& Need(size_t bytes) {
+        if (m_in.Remaining() < bytes) [[unlikely]]
+            Truncated(bytes);
+        return m_in;
+    }
+    [[noreturn, gnu::noinline, gnu::cold]] void Truncated(size_t bytes) const {
+        Fail(b2SnapshotError::e_truncated, "the image ends inside a field: " + std::to_string(bytes) +
+                                               " bytes wanted at byte " + std::to_string(m_in.Position()) + ", " +
+                                               std::to_string(m_in.Remaining()) + " left");
+    }
+
+    bytes::Reader m_in;
+    const uint8* m_data;
+};
 
 /// A boolean field: 0 or 1, anything else is corrupt.
 template <class R>

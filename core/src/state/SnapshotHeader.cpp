@@ -11,6 +11,7 @@
 #include "ByteStreams.h"
 #include "SnapshotCheck.h"
 #include "SnapshotImage.h"
+#include "lockbox/common/Bytes.h"
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox::state_detail {
@@ -62,28 +63,21 @@ SectionSpans FrameSections(std::span<const uint8> bytes, uint16 format) {
                                                           "joints",   "broadphase", "jointReactions"};
     const uint32 count = format >= 2 ? kSectionCount : kSectionCountV1;
     SectionSpans sections;
-    size_t at = kHeaderBytes;
-    auto le32 = [&](size_t i) {
-        return uint32{bytes[i]} | (uint32{bytes[i + 1]} << 8) | (uint32{bytes[i + 2]} << 16) |
-               (uint32{bytes[i + 3]} << 24);
-    };
+    bytes::Reader r(bytes, kHeaderBytes);
     for (uint32 s = 0; s < count; ++s) {
-        if (bytes.size() - at < 8)
-            Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section header missing");
-        const uint32 tag = le32(at);
+        const uint32 tag = r.U32();
+        const uint32 length = r.U32();
+        if (!r.Ok()) Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section header missing");
         Check(tag == s + 1, kNames[s], "section tag is wrong", tag);
-        const uint32 length = le32(at + 4);
-        at += 8;
-        if (length > bytes.size() - at) {
+        if (length > r.Remaining()) {
             Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section announces " +
-                                                   std::to_string(length) + " bytes, " +
-                                                   std::to_string(bytes.size() - at) + " are left");
+                                                   std::to_string(length) + " bytes, " + std::to_string(r.Remaining()) +
+                                                   " are left");
         }
-        sections[s] = bytes.subspan(at, length);
-        at += length;
+        sections[s] = r.Bytes(length);
     }
-    if (at != bytes.size()) {
-        Fail(b2SnapshotError::e_trailingBytes, std::to_string(bytes.size() - at) + " bytes after the last section");
+    if (!r.AtEnd()) {
+        Fail(b2SnapshotError::e_trailingBytes, std::to_string(r.Remaining()) + " bytes after the last section");
     }
     return sections;
 }

@@ -5,7 +5,6 @@
 
 #include <string>
 
-#include "ByteStreams.h"
 #include "JointState.h"
 #include "SnapshotCheck.h"
 #include "SnapshotImage.h"
@@ -19,7 +18,7 @@ namespace lockbox::state_detail {
 namespace {
 
 /// Checks a count read from a record (as ReadCount) once the record has been consumed.
-int32 CheckCount(const FieldReader& r, int32 n, size_t minBytes, const char* what) {
+int32 CheckCount(const ImageReader& r, int32 n, size_t minBytes, const char* what) {
     Check(n >= 0, what, "is negative", n);
     if (static_cast<uint64>(n) * minBytes > r.Remaining()) [[unlikely]] {
         Fail(b2SnapshotError::e_truncated, std::string(what) + " announces " + std::to_string(n) +
@@ -31,7 +30,7 @@ int32 CheckCount(const FieldReader& r, int32 n, size_t minBytes, const char* wha
 
 /// A count of records that take at least minBytes each: never more than the bytes left, so
 /// a hostile count cannot make us allocate.
-int32 ReadCount(FieldReader& r, size_t minBytes, const char* what) {
+int32 ReadCount(ImageReader& r, size_t minBytes, const char* what) {
     const int32 n = r.I32();
     Check(n >= 0, what, "is negative", n);
     if (static_cast<uint64>(n) * minBytes > r.Remaining()) {
@@ -50,7 +49,7 @@ b2AABB ReadAABB(R& r) {
     return box;
 }
 
-void ReadPool(FieldReader& r, PoolImage& pool, size_t minRecordBytes, const char* what) {
+void ReadPool(ImageReader& r, PoolImage& pool, size_t minRecordBytes, const char* what) {
     pool.capacity = r.I32();
     pool.count = ReadCount(r, minRecordBytes, what);
     const int32 freeCount = ReadCount(r, 4, what);
@@ -66,7 +65,7 @@ void ReadPool(FieldReader& r, PoolImage& pool, size_t minRecordBytes, const char
     }
 }
 
-void ReadSettings(FieldReader& r, SettingsImage& s) {
+void ReadSettings(ImageReader& r, SettingsImage& s) {
     s.gravity = r.V();
     s.allowSleep = ReadBool(r, "settings.allowSleep");
     s.warmStarting = ReadBool(r, "settings.warmStarting");
@@ -93,7 +92,7 @@ void ReadSettings(FieldReader& r, SettingsImage& s) {
 // 40, a contact 48, a joint 22, a tree node 8.
 constexpr size_t kMinBody = 150, kMinFixture = 40, kMinContact = 48, kMinJoint = 22, kMinNode = 8;
 
-void ReadBodies(FieldReader& r, Image& img) {
+void ReadBodies(ImageReader& r, Image& img) {
     ReadPool(r, img.bodyPool, kMinBody, "bodies.pool");
     Check(img.bodyPool.count == img.settings.bodyCount, "bodies.pool", "count differs from settings.bodyCount",
           img.bodyPool.count);
@@ -116,7 +115,7 @@ void ReadBodies(FieldReader& r, Image& img) {
 }
 
 /// A shape after its type and radius (read with the fixture record).
-void ReadShape(FieldReader& r, Image& img, ShapeImage& s) {
+void ReadShape(ImageReader& r, Image& img, ShapeImage& s) {
     switch (s.type) {
         case b2Shape::e_circle: {
             ReadCursor c = r.Begin(8);
@@ -168,7 +167,7 @@ int32 ChildCount(const ShapeImage& s) {
     return 1;
 }
 
-void ReadFixtures(FieldReader& r, Image& img) {
+void ReadFixtures(ImageReader& r, Image& img) {
     ReadPool(r, img.fixturePool, kMinFixture, "fixtures.pool");
     int64_t expected = 0;
     for (const BodyImage& b : img.bodies) expected += b.fixtureCount;
@@ -219,7 +218,7 @@ void ReadFixtures(FieldReader& r, Image& img) {
     }
 }
 
-void ReadContacts(FieldReader& r, Image& img) {
+void ReadContacts(ImageReader& r, Image& img) {
     ReadPool(r, img.contactPool, kMinContact, "contacts.pool");
     Check(img.contactPool.count == img.settings.contactCount, "contacts.pool",
           "count differs from settings.contactCount", img.contactPool.count);
@@ -253,7 +252,7 @@ void ReadContacts(FieldReader& r, Image& img) {
     }
 }
 
-/// One joint record from R (a ReadCursor or the FieldReader, see ReadJoints); the state
+/// One joint record from R (a ReadCursor or the ImageReader, see ReadJoints); the state
 /// fields are checked where they lie and only their offset and references are kept.
 template <class R>
 void ReadJoint(R& r, JointImage& j, Image& img, size_t recordAt) {
@@ -272,7 +271,7 @@ void ReadJoint(R& r, JointImage& j, Image& img, size_t recordAt) {
     j.refCount = static_cast<int32>(img.refs.size()) - j.refBegin;
 }
 
-void ReadJoints(FieldReader& r, Image& img) {
+void ReadJoints(ImageReader& r, Image& img) {
     const int32 n = img.settings.jointCount;
     if (static_cast<uint64>(n) * kMinJoint > r.Remaining()) {
         Fail(b2SnapshotError::e_truncated,
@@ -297,7 +296,7 @@ void ReadJoints(FieldReader& r, Image& img) {
 
 /// The joint-reaction section: each joint's VisitReactionState fields, in joint-list order
 /// (any values: reaction queries only scale them). Keeps their offsets for the apply.
-void ReadJointReactions(FieldReader& r, Image& img) {
+void ReadJointReactions(ImageReader& r, Image& img) {
     const JointStateSizes& sizes = JointStateBytes();
     for (JointImage& j : img.joints) {
         const uint32 bytes = sizes.reaction[static_cast<size_t>(j.type)];
@@ -309,7 +308,7 @@ void ReadJointReactions(FieldReader& r, Image& img) {
     }
 }
 
-void ReadBroadPhase(FieldReader& r, Image& img) {
+void ReadBroadPhase(ImageReader& r, Image& img) {
     TreeImage& t = img.tree;
     t.proxyCount = r.I32();
     t.root = r.I32();
@@ -349,7 +348,7 @@ void ReadBroadPhase(FieldReader& r, Image& img) {
 
 /// Reads one section header and runs its reader, checking the announced length.
 template <class ReadFn>
-void ReadSection(FieldReader& r, uint32 tag, const char* name, ReadFn read) {
+void ReadSection(ImageReader& r, uint32 tag, const char* name, ReadFn read) {
     const uint32 found = r.U32();
     Check(found == tag, name, "section tag is wrong", found);
     const uint32 length = r.U32();
@@ -371,7 +370,7 @@ b2RestoreResult ParseSnapshot(std::span<const uint8> bytes, Image& img) {
     try {
         const HeaderFields header = ReadHeader(bytes);
         const uint64 payload = header.payload, checksum = header.checksum;
-        FieldReader r(bytes, kHeaderBytes);
+        ImageReader r(bytes, kHeaderBytes);
         const uint64 actual = SnapshotChecksum(bytes, static_cast<size_t>(payload));
         if (actual != checksum) {
             Fail(b2SnapshotError::e_badChecksum,
@@ -391,9 +390,6 @@ b2RestoreResult ParseSnapshot(std::span<const uint8> bytes, Image& img) {
             Fail(b2SnapshotError::e_trailingBytes, std::to_string(r.Remaining()) + " bytes after the last section");
         }
         ValidateImage(img);
-    } catch (const TruncatedImage&) {
-        result.error = b2SnapshotError::e_truncated;
-        result.message = "the image ends inside a field";
     } catch (const SnapshotFailure& failure) {
         result.error = failure.error;
         result.message = failure.message;

@@ -58,7 +58,7 @@ DecodeError DecodeHeader(std::span<const uint8_t> datagram, Header& header) noex
 void DatagramWriter::Begin(const Header& header) {
     m_bytes.clear();
     m_messages = 0;
-    wire::Writer w(m_bytes);
+    bytes::Writer w(m_bytes);
     w.U16(kProtocolMagic);
     w.U8(header.version);
     w.U32(header.token);
@@ -67,7 +67,7 @@ void DatagramWriter::Begin(const Header& header) {
 
 namespace wire {
 
-void WriteRun(Writer& w, std::span<const uint8_t> bytes, size_t entries, size_t width, size_t stride) {
+void WriteRun(bytes::Writer& w, std::span<const uint8_t> bytes, size_t entries, size_t width, size_t stride) {
     std::vector<uint8_t> bitmap((entries + 7) / 8, 0);
     // The first frame's entries repeat an all-zero entry (idle input is the common case).
     auto same = [&](size_t i) {
@@ -86,7 +86,7 @@ void WriteRun(Writer& w, std::span<const uint8_t> bytes, size_t entries, size_t 
 
 void ReadRun(Reader& r, std::vector<uint8_t>& out, size_t entries, size_t width, size_t stride) {
     std::vector<uint8_t> bitmap((entries + 7) / 8, 0);
-    if (!r.Bytes(bitmap.data(), bitmap.size())) return;
+    if (!r.Copy(bitmap)) return;
     // Padding bits past the last entry must be zero, or two spellings would decode alike.
     if (entries % 8 != 0 && (bitmap.back() >> (entries % 8)) != 0) {
         r.Fail(DecodeError::e_badValue);
@@ -101,7 +101,7 @@ void ReadRun(Reader& r, std::vector<uint8_t>& out, size_t entries, size_t width,
             if (i >= stride && width > 0) std::memcpy(entry, entry - stride * width, width);
             continue;
         }
-        if (!r.Bytes(entry, width)) return;
+        if (!r.Copy({entry, width})) return;
         // An explicit entry equal to its repeat source must have been written as a repeat.
         bool same = true;
         if (i >= stride) {

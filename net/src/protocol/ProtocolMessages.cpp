@@ -10,8 +10,8 @@
 namespace lockbox::net {
 namespace {
 
+using bytes::Writer;
 using wire::Reader;
-using wire::Writer;
 
 constexpr uint64_t kMaxFrame = 0x7FFFFFFFull;
 
@@ -34,7 +34,7 @@ bool Enc(Writer& w, const Hello& m, const SessionShape&) {
     w.U32(m.determinismVersion);
     w.U32(m.token);
     w.U8(m.requestedSlot);
-    w.Var(m.clientTime);
+    w.Varint(m.clientTime);
     return true;
 }
 bool Enc(Writer& w, const Welcome& m, const SessionShape&) {
@@ -47,12 +47,12 @@ bool Enc(Writer& w, const Welcome& m, const SessionShape&) {
     w.U16(m.inputBytes);
     w.U16(m.tickRate);
     w.U8(m.inputDelay);
-    w.Var(m.hashInterval);
-    w.Var(static_cast<uint64_t>(m.startFrame));
+    w.Varint(m.hashInterval);
+    w.Varint(static_cast<uint64_t>(m.startFrame));
     w.U32(m.token);
     w.U8(m.lateJoin ? 1 : 0);
-    w.Var(m.echoTime);
-    w.Var(m.holdMicros);
+    w.Varint(m.echoTime);
+    w.Varint(m.holdMicros);
     return true;
 }
 bool Enc(Writer& w, const Reject& m, const SessionShape&) {
@@ -65,43 +65,43 @@ bool Enc(Writer& w, const Inputs& m, const SessionShape& s) {
     const size_t n = RunFrames(m.bytes.size(), s.inputBytes);
     if (n == 0 || static_cast<uint64_t>(m.firstFrame) + n - 1 > kMaxFrame) return false;
     w.U8(m.slot);
-    w.Var(static_cast<uint64_t>(m.firstFrame));
+    w.Varint(static_cast<uint64_t>(m.firstFrame));
     w.U8(static_cast<uint8_t>(n));
     wire::WriteRun(w, m.bytes, n, s.inputBytes, 1);
     return true;
 }
 bool Enc(Writer& w, const InputAck& m, const SessionShape&) {
     if (!FrameOk(m.nextFrame) || !FrameOk(m.hashFrame)) return false;
-    w.Var(static_cast<uint64_t>(m.nextFrame));
-    w.Var(static_cast<uint64_t>(m.hashFrame));
+    w.Varint(static_cast<uint64_t>(m.nextFrame));
+    w.Varint(static_cast<uint64_t>(m.hashFrame));
     return true;
 }
 bool Enc(Writer& w, const Confirmed& m, const SessionShape& s) {
     if (!ShapeOk(s) || !FrameOk(m.firstFrame)) return false;
     const size_t n = RunFrames(m.bytes.size(), size_t{s.inputBytes} * s.playerCount);
     if (n == 0 || static_cast<uint64_t>(m.firstFrame) + n - 1 > kMaxFrame) return false;
-    w.Var(static_cast<uint64_t>(m.firstFrame));
+    w.Varint(static_cast<uint64_t>(m.firstFrame));
     w.U8(static_cast<uint8_t>(n));
     wire::WriteRun(w, m.bytes, n * s.playerCount, s.inputBytes, s.playerCount);
     return true;
 }
 bool Enc(Writer& w, const ConfirmedAck& m, const SessionShape&) {
     if (!FrameOk(m.nextFrame)) return false;
-    w.Var(static_cast<uint64_t>(m.nextFrame));
+    w.Varint(static_cast<uint64_t>(m.nextFrame));
     return true;
 }
 bool Enc(Writer& w, const Ping& m, const SessionShape&) {
-    w.Var(m.time);
+    w.Varint(m.time);
     return true;
 }
 bool Enc(Writer& w, const Pong& m, const SessionShape&) {
-    w.Var(m.echoTime);
-    w.Var(m.holdMicros);
+    w.Varint(m.echoTime);
+    w.Varint(m.holdMicros);
     return true;
 }
 bool Enc(Writer& w, const HashReport& m, const SessionShape&) {
     if (!FrameOk(m.frame)) return false;
-    w.Var(static_cast<uint64_t>(m.frame));
+    w.Varint(static_cast<uint64_t>(m.frame));
     w.U64(m.hash);
     return true;
 }
@@ -113,7 +113,7 @@ bool Enc(Writer& w, const Disconnect& m, const SessionShape&) {
 }
 bool Enc(Writer& w, const SnapshotRequest& m, const SessionShape&) {
     if (!FrameOk(m.minFrame)) return false;
-    w.Var(static_cast<uint64_t>(m.minFrame));
+    w.Varint(static_cast<uint64_t>(m.minFrame));
     return true;
 }
 // Bytes chunk `index` of a `total`-byte snapshot must carry, or 0 when the index is past the end.
@@ -126,26 +126,26 @@ bool Enc(Writer& w, const SnapshotChunk& m, const SessionShape&) {
     if (!FrameOk(m.frame) || m.totalSize < 1 || m.totalSize > kMaxSnapshotBytes) return false;
     const uint64_t len = ChunkLength(m.totalSize, m.index);
     if (len == 0 || m.bytes.size() != len) return false;
-    w.Var(static_cast<uint64_t>(m.frame));
-    w.Var(m.totalSize);
-    w.Var(m.index);
+    w.Varint(static_cast<uint64_t>(m.frame));
+    w.Varint(m.totalSize);
+    w.Varint(m.index);
     w.Bytes(m.bytes);
     return true;
 }
 bool Enc(Writer& w, const SnapshotAck& m, const SessionShape&) {
     if (!FrameOk(m.frame)) return false;
-    w.Var(static_cast<uint64_t>(m.frame));
-    w.Var(m.index);
+    w.Varint(static_cast<uint64_t>(m.frame));
+    w.Varint(m.index);
     return true;
 }
 bool Enc(Writer& w, const Admit& m, const SessionShape&) {
     if (!FrameOk(m.joinFrame)) return false;
-    w.Var(static_cast<uint64_t>(m.joinFrame));
+    w.Varint(static_cast<uint64_t>(m.joinFrame));
     return true;
 }
 bool Enc(Writer& w, const DesyncNotice& m, const SessionShape&) {
     if (!FrameOk(m.frame)) return false;
-    w.Var(static_cast<uint64_t>(m.frame));
+    w.Varint(static_cast<uint64_t>(m.frame));
     return true;
 }
 
@@ -154,7 +154,7 @@ void Dec(Reader& r, Hello& m, const SessionShape&) {
     m.determinismVersion = r.U32();
     m.token = r.U32();
     m.requestedSlot = r.U8();
-    m.clientTime = r.Var();
+    m.clientTime = r.Varint();
     if (m.requestedSlot != kAnySlot && m.requestedSlot >= kMaxPlayers) r.Fail(DecodeError::e_badValue);
 }
 void Dec(Reader& r, Welcome& m, const SessionShape&) {
@@ -163,13 +163,13 @@ void Dec(Reader& r, Welcome& m, const SessionShape&) {
     m.inputBytes = r.U16();
     m.tickRate = r.U16();
     m.inputDelay = r.U8();
-    const uint64_t interval = r.Var();
+    const uint64_t interval = r.Varint();
     m.startFrame = r.Frame();
     m.token = r.U32();
     const uint8_t flags = r.U8();
-    m.echoTime = r.Var();
-    m.holdMicros = r.Var();
-    if (!r.ok()) return;
+    m.echoTime = r.Varint();
+    m.holdMicros = r.Varint();
+    if (!r.Ok()) return;
     if (m.playerCount < 1 || m.playerCount > kMaxPlayers || m.slot >= m.playerCount || m.inputBytes < 1 ||
         m.inputBytes > kMaxInputBytes || m.tickRate < 1 || interval < 1 || interval > 0xFFFFFFFFull || m.token == 0 ||
         flags > 1) {
@@ -189,7 +189,7 @@ void Dec(Reader& r, Inputs& m, const SessionShape& s) {
     m.slot = r.U8();
     m.firstFrame = r.Frame();
     const uint8_t n = r.U8();
-    if (!r.ok()) return;
+    if (!r.Ok()) return;
     if (m.slot >= s.playerCount || n == 0 || static_cast<uint64_t>(m.firstFrame) + n - 1 > kMaxFrame)
         return r.Fail(DecodeError::e_badValue);
     wire::ReadRun(r, m.bytes, n, s.inputBytes, 1);
@@ -202,15 +202,15 @@ void Dec(Reader& r, Confirmed& m, const SessionShape& s) {
     if (!ShapeOk(s) || s.inputBytes == 0) return r.Fail(DecodeError::e_noShape);
     m.firstFrame = r.Frame();
     const uint8_t n = r.U8();
-    if (!r.ok()) return;
+    if (!r.Ok()) return;
     if (n == 0 || static_cast<uint64_t>(m.firstFrame) + n - 1 > kMaxFrame) return r.Fail(DecodeError::e_badValue);
     wire::ReadRun(r, m.bytes, size_t{n} * s.playerCount, s.inputBytes, s.playerCount);
 }
 void Dec(Reader& r, ConfirmedAck& m, const SessionShape&) { m.nextFrame = r.Frame(); }
-void Dec(Reader& r, Ping& m, const SessionShape&) { m.time = r.Var(); }
+void Dec(Reader& r, Ping& m, const SessionShape&) { m.time = r.Varint(); }
 void Dec(Reader& r, Pong& m, const SessionShape&) {
-    m.echoTime = r.Var();
-    m.holdMicros = r.Var();
+    m.echoTime = r.Varint();
+    m.holdMicros = r.Varint();
 }
 void Dec(Reader& r, HashReport& m, const SessionShape&) {
     m.frame = r.Frame();
@@ -225,20 +225,20 @@ void Dec(Reader& r, Disconnect& m, const SessionShape&) {
 void Dec(Reader& r, SnapshotRequest& m, const SessionShape&) { m.minFrame = r.Frame(); }
 void Dec(Reader& r, SnapshotChunk& m, const SessionShape&) {
     m.frame = r.Frame();
-    const uint64_t total = r.Var();
-    const uint64_t index = r.Var();
-    if (!r.ok()) return;
+    const uint64_t total = r.Varint();
+    const uint64_t index = r.Varint();
+    if (!r.Ok()) return;
     if (total < 1 || total > kMaxSnapshotBytes || index > 0xFFFFFFFFull) return r.Fail(DecodeError::e_badValue);
     const uint64_t len = ChunkLength(total, index);
     if (len == 0) return r.Fail(DecodeError::e_badValue);
     m.totalSize = static_cast<uint32_t>(total);
     m.index = static_cast<uint32_t>(index);
     m.bytes.resize(len);
-    r.Bytes(m.bytes.data(), m.bytes.size());
+    r.Copy(m.bytes);
 }
 void Dec(Reader& r, SnapshotAck& m, const SessionShape&) {
     m.frame = r.Frame();
-    const uint64_t index = r.Var();
+    const uint64_t index = r.Varint();
     if (index > 0xFFFFFFFFull) r.Fail(DecodeError::e_badValue);
     m.index = static_cast<uint32_t>(index);
 }
@@ -252,7 +252,7 @@ bool DecodeIndex(size_t type, Reader& r, const SessionShape& s, std::vector<Mess
         if (type != I) return DecodeIndex<I + 1>(type, r, s, out);
         std::variant_alternative_t<I, Message> m{};
         Dec(r, m, s);
-        if (r.ok()) out.emplace_back(std::move(m));
+        if (r.Ok()) out.emplace_back(std::move(m));
         return true;
     } else {
         return false;
@@ -278,9 +278,9 @@ DecodeError DecodeDatagram(std::span<const uint8_t> datagram, const SessionShape
             out.clear();
             return DecodeError::e_badType;
         }
-        if (!r.ok()) {
+        if (!r.Ok()) {
             out.clear();
-            return r.error();
+            return r.Failure();
         }
     }
     return DecodeError::e_ok;

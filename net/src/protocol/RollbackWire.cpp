@@ -13,8 +13,8 @@ namespace lockbox::net {
 
 namespace {
 
+using bytes::Writer;
 using wire::Reader;
-using wire::Writer;
 
 bool ShapeOk(const RollbackShape& s) noexcept {
     return s.players >= 1 && s.players <= kRollbackMaxPlayers && s.inputBytes >= 1 &&
@@ -46,62 +46,62 @@ bool Enc(Writer& w, const RbInputs& m, const RollbackShape& s) {
     const size_t n = RunCount(m.bytes.size(), s.inputBytes);
     if (n == 0) return false;
     w.U8(m.player);
-    w.Var(static_cast<uint64_t>(m.firstFrame));
-    w.Var(n);
+    w.Varint(static_cast<uint64_t>(m.firstFrame));
+    w.Varint(n);
     wire::WriteRun(w, m.bytes, n, s.inputBytes, 1);
     return true;
 }
 void Dec(Reader& r, RbInputs& m, const RollbackShape& s) {
     m.player = r.U8();
-    if (r.ok() && m.player >= s.players) r.Fail(DecodeError::e_badValue);
+    if (r.Ok() && m.player >= s.players) r.Fail(DecodeError::e_badValue);
     m.firstFrame = r.Frame();
-    const uint64_t n = r.Var();
-    if (r.ok() && (n < 1 || n > kRollbackMaxRun)) r.Fail(DecodeError::e_badValue);
-    if (r.ok()) wire::ReadRun(r, m.bytes, static_cast<size_t>(n), s.inputBytes, 1);
+    const uint64_t n = r.Varint();
+    if (r.Ok() && (n < 1 || n > kRollbackMaxRun)) r.Fail(DecodeError::e_badValue);
+    if (r.Ok()) wire::ReadRun(r, m.bytes, static_cast<size_t>(n), s.inputBytes, 1);
 }
 
 bool Enc(Writer& w, const RbInputAck& m, const RollbackShape& s) {
     if (m.player >= s.players || m.nextFrame < 0) return false;
     w.U8(m.player);
-    w.Var(static_cast<uint64_t>(m.nextFrame));
+    w.Varint(static_cast<uint64_t>(m.nextFrame));
     return true;
 }
 void Dec(Reader& r, RbInputAck& m, const RollbackShape& s) {
     m.player = r.U8();
-    if (r.ok() && m.player >= s.players) r.Fail(DecodeError::e_badValue);
+    if (r.Ok() && m.player >= s.players) r.Fail(DecodeError::e_badValue);
     m.nextFrame = r.Frame();
 }
 
 bool Enc(Writer& w, const RbQuality& m, const RollbackShape&) {
     if (m.frame < 0) return false;
-    w.Var(static_cast<uint64_t>(m.frame));
-    w.Var(Zig(m.advantageMilli));
-    w.Var(m.time);
+    w.Varint(static_cast<uint64_t>(m.frame));
+    w.Varint(Zig(m.advantageMilli));
+    w.Varint(m.time);
     w.U8(m.sequence);
     return true;
 }
 void Dec(Reader& r, RbQuality& m, const RollbackShape&) {
     m.frame = r.Frame();
-    const uint64_t z = r.Var();
-    if (r.ok() && z > 0xFFFFFFFFull) r.Fail(DecodeError::e_badValue);
+    const uint64_t z = r.Varint();
+    if (r.Ok() && z > 0xFFFFFFFFull) r.Fail(DecodeError::e_badValue);
     m.advantageMilli = Unzig(z);
-    m.time = r.Var();
+    m.time = r.Varint();
     m.sequence = r.U8();
 }
 
 bool Enc(Writer& w, const RbQualityReply& m, const RollbackShape&) {
-    w.Var(m.echoTime);
-    w.Var(m.holdMicros);
+    w.Varint(m.echoTime);
+    w.Varint(m.holdMicros);
     return true;
 }
 void Dec(Reader& r, RbQualityReply& m, const RollbackShape&) {
-    m.echoTime = r.Var();
-    m.holdMicros = r.Var();
+    m.echoTime = r.Varint();
+    m.holdMicros = r.Varint();
 }
 
 bool Enc(Writer& w, const RbHash& m, const RollbackShape&) {
     if (m.frame < 0) return false;
-    w.Var(static_cast<uint64_t>(m.frame));
+    w.Varint(static_cast<uint64_t>(m.frame));
     w.U64(m.hash);
     return true;
 }
@@ -114,21 +114,21 @@ bool Enc(Writer& w, const RbConfirmed& m, const RollbackShape& s) {
     if (m.firstFrame < 0) return false;
     const size_t n = RunCount(m.bytes.size(), static_cast<size_t>(s.players) * s.inputBytes);
     if (n == 0) return false;
-    w.Var(static_cast<uint64_t>(m.firstFrame));
-    w.Var(n);
+    w.Varint(static_cast<uint64_t>(m.firstFrame));
+    w.Varint(n);
     wire::WriteRun(w, m.bytes, n * s.players, s.inputBytes, s.players);
     return true;
 }
 void Dec(Reader& r, RbConfirmed& m, const RollbackShape& s) {
     m.firstFrame = r.Frame();
-    const uint64_t n = r.Var();
-    if (r.ok() && (n < 1 || n > kRollbackMaxRun)) r.Fail(DecodeError::e_badValue);
-    if (r.ok()) wire::ReadRun(r, m.bytes, static_cast<size_t>(n) * s.players, s.inputBytes, s.players);
+    const uint64_t n = r.Varint();
+    if (r.Ok() && (n < 1 || n > kRollbackMaxRun)) r.Fail(DecodeError::e_badValue);
+    if (r.Ok()) wire::ReadRun(r, m.bytes, static_cast<size_t>(n) * s.players, s.inputBytes, s.players);
 }
 
 bool Enc(Writer& w, const RbConfirmedAck& m, const RollbackShape&) {
     if (m.nextFrame < 0) return false;
-    w.Var(static_cast<uint64_t>(m.nextFrame));
+    w.Varint(static_cast<uint64_t>(m.nextFrame));
     return true;
 }
 void Dec(Reader& r, RbConfirmedAck& m, const RollbackShape&) { m.nextFrame = r.Frame(); }
@@ -140,12 +140,12 @@ void Dec(Reader&, RbDisconnect&, const RollbackShape&) {}
 
 bool Enc(Writer& w, const RbJoinRequest& m, const RollbackShape&) {
     if (m.attempt < 1) return false;
-    w.Var(m.attempt);
+    w.Varint(m.attempt);
     return true;
 }
 void Dec(Reader& r, RbJoinRequest& m, const RollbackShape&) {
-    const uint64_t a = r.Var();
-    if (r.ok() && (a < 1 || a > 0xFFFFFFFFull)) r.Fail(DecodeError::e_badValue);
+    const uint64_t a = r.Varint();
+    if (r.Ok() && (a < 1 || a > 0xFFFFFFFFull)) r.Fail(DecodeError::e_badValue);
     m.attempt = static_cast<uint32_t>(a);
 }
 
@@ -160,39 +160,39 @@ bool Enc(Writer& w, const RbSnapshotChunk& m, const RollbackShape&) {
     if (m.frame < 0 || m.totalSize < 1 || m.totalSize > kRbMaxSnapshotBytes) return false;
     const size_t len = ChunkLength(m.totalSize, m.index);
     if (len == 0 || m.bytes.size() != len) return false;
-    w.Var(static_cast<uint64_t>(m.frame));
-    w.Var(m.totalSize);
+    w.Varint(static_cast<uint64_t>(m.frame));
+    w.Varint(m.totalSize);
     w.U64(m.checksum);
-    w.Var(m.index);
+    w.Varint(m.index);
     w.Bytes(m.bytes);
     return true;
 }
 void Dec(Reader& r, RbSnapshotChunk& m, const RollbackShape&) {
     m.frame = r.Frame();
-    const uint64_t total = r.Var();
-    if (r.ok() && (total < 1 || total > kRbMaxSnapshotBytes)) r.Fail(DecodeError::e_badValue);
+    const uint64_t total = r.Varint();
+    if (r.Ok() && (total < 1 || total > kRbMaxSnapshotBytes)) r.Fail(DecodeError::e_badValue);
     m.totalSize = static_cast<uint32_t>(total);
     m.checksum = r.U64();
-    const uint64_t index = r.Var();
+    const uint64_t index = r.Varint();
     // total <= 16 MiB, so an index past it is refused before any multiplication can wrap.
-    if (r.ok() && index >= (uint64_t{m.totalSize} + kRbSnapshotChunkBytes - 1) / kRbSnapshotChunkBytes)
+    if (r.Ok() && index >= (uint64_t{m.totalSize} + kRbSnapshotChunkBytes - 1) / kRbSnapshotChunkBytes)
         r.Fail(DecodeError::e_badValue);
-    if (!r.ok()) return;
+    if (!r.Ok()) return;
     m.index = static_cast<uint32_t>(index);
     m.bytes.resize(ChunkLength(m.totalSize, m.index));
-    r.Bytes(m.bytes.data(), m.bytes.size());
+    r.Copy(m.bytes);
 }
 
 bool Enc(Writer& w, const RbSnapshotAck& m, const RollbackShape&) {
     if (m.frame < 0 || m.index >= kRbMaxSnapshotBytes / kRbSnapshotChunkBytes) return false;
-    w.Var(static_cast<uint64_t>(m.frame));
-    w.Var(m.index);
+    w.Varint(static_cast<uint64_t>(m.frame));
+    w.Varint(m.index);
     return true;
 }
 void Dec(Reader& r, RbSnapshotAck& m, const RollbackShape&) {
     m.frame = r.Frame();
-    const uint64_t index = r.Var();
-    if (r.ok() && index >= kRbMaxSnapshotBytes / kRbSnapshotChunkBytes) r.Fail(DecodeError::e_badValue);
+    const uint64_t index = r.Varint();
+    if (r.Ok() && index >= kRbMaxSnapshotBytes / kRbSnapshotChunkBytes) r.Fail(DecodeError::e_badValue);
     m.index = static_cast<uint32_t>(index);
 }
 
@@ -203,35 +203,35 @@ bool Enc(Writer& w, const RbView& m, const RollbackShape& s) {
         if (v < 0) return false;
         base = std::min(base, v);
     }
-    w.Var(static_cast<uint64_t>(base));
-    for (int32_t v : m.received) w.Var(static_cast<uint64_t>(v - base));
+    w.Varint(static_cast<uint64_t>(base));
+    for (int32_t v : m.received) w.Varint(static_cast<uint64_t>(v - base));
     return true;
 }
 void Dec(Reader& r, RbView& m, const RollbackShape& s) {
     const int32_t base = r.Frame();
     m.received.assign(s.players, 0);
     bool zero = false;
-    for (uint32_t i = 0; i < s.players && r.ok(); ++i) {
-        const uint64_t d = r.Var();
+    for (uint32_t i = 0; i < s.players && r.Ok(); ++i) {
+        const uint64_t d = r.Varint();
         // base + d must stay a frame number; checked before adding, so nothing overflows.
-        if (r.ok() && d > static_cast<uint64_t>(INT32_MAX - base)) r.Fail(DecodeError::e_badValue);
-        if (!r.ok()) return;
+        if (r.Ok() && d > static_cast<uint64_t>(INT32_MAX - base)) r.Fail(DecodeError::e_badValue);
+        if (!r.Ok()) return;
         zero = zero || d == 0;
         m.received[i] = base + static_cast<int32_t>(d);
     }
     // The base must be the smallest entry: any other base would be a second encoding.
-    if (r.ok() && !zero) r.Fail(DecodeError::e_badValue);
+    if (r.Ok() && !zero) r.Fail(DecodeError::e_badValue);
 }
 
 bool Enc(Writer& w, const RbFrozen& m, const RollbackShape& s) {
     if (m.player >= s.players || m.frame < 0) return false;
     w.U8(m.player);
-    w.Var(static_cast<uint64_t>(m.frame));
+    w.Varint(static_cast<uint64_t>(m.frame));
     return true;
 }
 void Dec(Reader& r, RbFrozen& m, const RollbackShape& s) {
     m.player = r.U8();
-    if (r.ok() && m.player >= s.players) r.Fail(DecodeError::e_badValue);
+    if (r.Ok() && m.player >= s.players) r.Fail(DecodeError::e_badValue);
     m.frame = r.Frame();
 }
 
@@ -241,15 +241,15 @@ bool Enc(Writer& w, const RbHello& m, const RollbackShape&) {
         return false;
     w.U32(m.determinismVersion);
     w.U8(m.players);
-    w.Var(m.inputBytes);
+    w.Varint(m.inputBytes);
     return true;
 }
 void Dec(Reader& r, RbHello& m, const RollbackShape&) {
     m.determinismVersion = r.U32();
     m.players = r.U8();
-    if (r.ok() && (m.players < 1 || m.players > kRollbackMaxPlayers)) r.Fail(DecodeError::e_badValue);
-    const uint64_t bytes = r.Var();
-    if (r.ok() && (bytes < 1 || bytes > kRollbackMaxInputBytes)) r.Fail(DecodeError::e_badValue);
+    if (r.Ok() && (m.players < 1 || m.players > kRollbackMaxPlayers)) r.Fail(DecodeError::e_badValue);
+    const uint64_t bytes = r.Varint();
+    if (r.Ok() && (bytes < 1 || bytes > kRollbackMaxInputBytes)) r.Fail(DecodeError::e_badValue);
     m.inputBytes = static_cast<uint32_t>(bytes);
 }
 
@@ -260,7 +260,7 @@ bool Enc(Writer& w, const RbDelayWish& m, const RollbackShape&) {
 }
 void Dec(Reader& r, RbDelayWish& m, const RollbackShape&) {
     m.frames = r.U8();
-    if (r.ok() && m.frames > kRollbackMaxInputDelay) r.Fail(DecodeError::e_badValue);
+    if (r.Ok() && m.frames > kRollbackMaxInputDelay) r.Fail(DecodeError::e_badValue);
 }
 
 // Input-carrying messages need a valid shape to be sized at all.
@@ -281,7 +281,7 @@ bool DecodeIndexed(Reader& r, size_t index, const RollbackShape& s, RollbackMess
             }
             M m;
             Dec(r, m, s);
-            if (!r.ok()) return false;
+            if (!r.Ok()) return false;
             out = std::move(m);
             return true;
         }
@@ -312,7 +312,7 @@ DecodeError DecodeRollbackDatagram(std::span<const uint8_t> datagram, const Roll
         RollbackMessage m;
         if (!DecodeIndexed(r, static_cast<size_t>(type - 1), shape, m)) {
             out.clear();
-            return r.ok() ? DecodeError::e_badValue : r.error();
+            return r.Ok() ? DecodeError::e_badValue : r.Failure();
         }
         // A sender of another shape: what follows cannot be sized; the hello says why.
         if (const auto* hello = std::get_if<RbHello>(&m);

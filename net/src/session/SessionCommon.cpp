@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "lockbox/common/Bytes.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/replay/Game.h"
 
@@ -17,34 +18,21 @@ void StepConfirmedFrame(b2World& world, replay::Game& game, int32_t frame, std::
                static_cast<int32>(positionIterations));
 }
 
-namespace {
-void PutU32(std::vector<uint8_t>& out, size_t v) {
-    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
-}
-bool GetU32(std::span<const uint8_t> in, size_t at, uint32_t& v) {
-    if (in.size() < 4 || at > in.size() - 4) return false;
-    v = 0;
-    for (size_t i = 0; i < 4; ++i) v |= static_cast<uint32_t>(in[at + i]) << (8 * i);
-    return true;
-}
-}  // namespace
-
 void PackStateBlob(std::span<const uint8_t> image, std::span<const uint8_t> user, std::vector<uint8_t>& out) {
     out.clear();
     out.reserve(8 + image.size() + user.size());
-    PutU32(out, image.size());
-    out.insert(out.end(), image.begin(), image.end());
-    PutU32(out, user.size());
-    out.insert(out.end(), user.begin(), user.end());
+    bytes::Writer w(out);
+    w.Blob(image);
+    w.Blob(user);
 }
 
 bool LoadStateBlob(std::span<const uint8_t> blob, b2World& world, replay::Game& game) {
-    uint32_t imageSize = 0, userSize = 0;
-    if (!GetU32(blob, 0, imageSize) || imageSize > blob.size() - 4) return false;
-    const size_t userAt = 4 + size_t{imageSize};
-    if (!GetU32(blob, userAt, userSize) || userSize != blob.size() - userAt - 4) return false;
-    if (!world.Restore(blob.subspan(4, imageSize)).ok()) return false;
-    game.LoadUserState(blob.subspan(userAt + 4, userSize));
+    bytes::Reader r(blob);
+    const std::span<const uint8_t> image = r.Blob();
+    const std::span<const uint8_t> user = r.Blob();
+    if (!r.Ok() || !r.AtEnd()) return false;
+    if (!world.Restore(image).ok()) return false;
+    game.LoadUserState(user);
     return true;
 }
 

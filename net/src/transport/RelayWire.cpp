@@ -1,44 +1,32 @@
 // The relay header codec (RelayWire.h).
 #include "lockbox/net/RelayWire.h"
 
+#include "lockbox/common/Bytes.h"
+
 namespace lockbox::net {
 
-namespace {
-
-uint64_t ReadLe(std::span<const uint8_t> b, size_t at, int bytes) noexcept {
-    uint64_t v = 0;
-    for (int i = 0; i < bytes; ++i) v |= static_cast<uint64_t>(b[at + static_cast<size_t>(i)]) << (8 * i);
-    return v;
-}
-
-void WriteLe(std::vector<uint8_t>& out, uint64_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
-}
-
-}  // namespace
-
 std::optional<RelayFrame> ParseRelayFrame(std::span<const uint8_t> bytes) noexcept {
-    if (bytes.size() < kRelayHeaderBytes || bytes[0] != 'L' || bytes[1] != 'Y' || bytes[2] != kRelayVersion)
-        return std::nullopt;
+    bytes::Reader r(bytes);
+    const uint8_t l = r.U8(), y = r.U8(), version = r.U8(), kind = r.U8();
     RelayFrame f;
-    f.matchId = static_cast<uint32_t>(ReadLe(bytes, 4, 4));
-    f.slot = bytes[8];
-    if (f.slot >= kRelayMaxSlots) return std::nullopt;
-    switch (bytes[3]) {
+    f.matchId = r.U32();
+    f.slot = r.U8();
+    if (!r.Ok() || l != 'L' || y != 'Y' || version != kRelayVersion || f.slot >= kRelayMaxSlots) return std::nullopt;
+    switch (kind) {
         case static_cast<uint8_t>(RelayKind::e_join):
-            if (bytes.size() != kRelayHeaderBytes + 8) return std::nullopt;
             f.kind = RelayKind::e_join;
-            f.token = ReadLe(bytes, kRelayHeaderBytes, 8);
+            f.token = r.U64();
+            if (!r.Ok() || !r.AtEnd()) return std::nullopt;
             return f;
         case static_cast<uint8_t>(RelayKind::e_welcome):
-            if (bytes.size() != kRelayHeaderBytes) return std::nullopt;
+            if (!r.AtEnd()) return std::nullopt;
             f.kind = RelayKind::e_welcome;
             return f;
         case static_cast<uint8_t>(RelayKind::e_toSlot):
         case static_cast<uint8_t>(RelayKind::e_fromSlot):
-            if (bytes.size() == kRelayHeaderBytes) return std::nullopt;  // data is never empty
-            f.kind = static_cast<RelayKind>(bytes[3]);
-            f.payload = bytes.subspan(kRelayHeaderBytes);
+            if (r.AtEnd()) return std::nullopt;  // data is never empty
+            f.kind = static_cast<RelayKind>(kind);
+            f.payload = r.Bytes(r.Remaining());
             return f;
         default: return std::nullopt;
     }
@@ -47,15 +35,15 @@ std::optional<RelayFrame> ParseRelayFrame(std::span<const uint8_t> bytes) noexce
 void WriteRelayFrame(std::vector<uint8_t>& out, RelayKind kind, uint32_t matchId, uint8_t slot, uint64_t token,
                      std::span<const uint8_t> payload) {
     out.clear();
-    out.push_back('L');
-    out.push_back('Y');
-    out.push_back(kRelayVersion);
-    out.push_back(static_cast<uint8_t>(kind));
-    WriteLe(out, matchId, 4);
-    out.push_back(slot);
-    if (kind == RelayKind::e_join) WriteLe(out, token, 8);
-    if (kind == RelayKind::e_toSlot || kind == RelayKind::e_fromSlot)
-        out.insert(out.end(), payload.begin(), payload.end());
+    bytes::Writer w(out);
+    w.U8('L');
+    w.U8('Y');
+    w.U8(kRelayVersion);
+    w.U8(static_cast<uint8_t>(kind));
+    w.U32(matchId);
+    w.U8(slot);
+    if (kind == RelayKind::e_join) w.U64(token);
+    if (kind == RelayKind::e_toSlot || kind == RelayKind::e_fromSlot) w.Bytes(payload);
 }
 
 }  // namespace lockbox::net
