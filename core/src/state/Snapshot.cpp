@@ -1,8 +1,8 @@
 // b2World::Save, SaveStats, Restore and Hash: the snapshot image is a fixed header then seven
 // sections (settings, bodies, fixtures, contacts, joints, broad-phase, joint reactions), each
 // a tag, a byte length and a walk of StateWalk.h (the first six are the hash categories'), the
-// header through Cereal's portable binary archive.
-// docs/determinism.md ("Snapshot format") is the layout's reference.
+// header through Cereal's portable binary archive. SnapshotFormat.h holds the layout and
+// docs/determinism.md ("Snapshot format") every field.
 
 #include <ostream>
 
@@ -113,10 +113,10 @@ b2SnapshotStats b2World::SaveStats() const {
     // Walk the section headers: tag, length, contents. The 8 header bytes count toward their
     // section.
     bytes::Reader r(image, kHeaderBytes);
-    for (uint32 s = 0; s < kSectionCount && r.Remaining() >= 8; ++s) {
+    for (uint32 s = 0; s < kSectionCount && r.Remaining() >= kSectionHeaderBytes; ++s) {
         (void)r.U32();
         const uint32 length = r.U32();
-        *bySection[s] = length + 8;
+        *bySection[s] = static_cast<uint32>(length + kSectionHeaderBytes);
         r.Skip(length);
     }
     return stats;

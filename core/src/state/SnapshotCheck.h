@@ -9,6 +9,7 @@
 #include <string>
 
 #include "ByteCursor.h"
+#include "SnapshotFormat.h"
 #include "lockbox/common/Bytes.h"
 #include "lockbox/fixed/Math.h"
 #include "lockbox/state/Snapshot.h"
@@ -119,7 +120,7 @@ HeaderFields ReadHeader(std::span<const uint8> bytes);
 
 /// The sections' contents (without their tag and length), in image order; an image of format
 /// 1 has no joint-reaction section (its span is empty).
-using SectionSpans = std::array<std::span<const uint8>, 7>;
+using SectionSpans = std::array<std::span<const uint8>, kSectionCount>;
 
 /// Checks the framing of an image whose header ReadHeader accepted: the sections of its
 /// format with the tags 1, 2, ... in order, each length within the image, nothing after the

@@ -59,18 +59,16 @@ HeaderFields ReadHeader(std::span<const uint8> bytes) {
 }
 
 SectionSpans FrameSections(std::span<const uint8> bytes, uint16 format) {
-    static constexpr const char* kNames[kSectionCount] = {"settings", "bodies",     "fixtures",      "contacts",
-                                                          "joints",   "broadphase", "jointReactions"};
     const uint32 count = format >= 2 ? kSectionCount : kSectionCountV1;
     SectionSpans sections;
     bytes::Reader r(bytes, kHeaderBytes);
     for (uint32 s = 0; s < count; ++s) {
         const uint32 tag = r.U32();
         const uint32 length = r.U32();
-        if (!r.Ok()) Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section header missing");
-        Check(tag == s + 1, kNames[s], "section tag is wrong", tag);
+        if (!r.Ok()) Fail(b2SnapshotError::e_truncated, std::string(kSectionNames[s]) + ": section header missing");
+        Check(tag == s + 1, kSectionNames[s], "section tag is wrong", tag);
         if (length > r.Remaining()) {
-            Fail(b2SnapshotError::e_truncated, std::string(kNames[s]) + ": section announces " +
+            Fail(b2SnapshotError::e_truncated, std::string(kSectionNames[s]) + ": section announces " +
                                                    std::to_string(length) + " bytes, " + std::to_string(r.Remaining()) +
                                                    " are left");
         }

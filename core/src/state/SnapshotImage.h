@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "RestoreLinks.h"
+#include "SnapshotFormat.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/DynamicTree.h"
 #include "lockbox/dynamics/Body.h"
@@ -17,32 +18,9 @@
 
 namespace lockbox::state_detail {
 
-/// Fixed header size: Cereal's endianness flag, magic, format version, engine version,
-/// determinism version, payload size, payload checksum.
-inline constexpr size_t kHeaderBytes = 1 + 4 + 2 + 3 * 2 + 4 + 8 + 8;
-/// Offsets of the patched header fields.
-inline constexpr size_t kPayloadSizeOffset = 17;
-inline constexpr size_t kChecksumOffset = 25;
-
 /// The checksum of an image: XXH3-64 of the payload, seeded with XXH3-64 of the header bytes
 /// before the checksum field (flag, magic, versions, payload size).
 uint64 SnapshotChecksum(std::span<const uint8> image, size_t payloadBytes) noexcept;
-
-/// Section tags, in image order.
-enum SectionTag : uint32 {
-    e_sectionSettings = 1,
-    e_sectionBodies = 2,
-    e_sectionFixtures = 3,
-    e_sectionContacts = 4,
-    e_sectionJoints = 5,
-    e_sectionBroadPhase = 6,
-    e_sectionJointReactions = 7,  ///< format 2 on: not a hash category (Snapshot.h)
-};
-/// Sections of a current image; the first kHashedSections are the hash categories' walks.
-inline constexpr uint32 kSectionCount = 7;
-inline constexpr uint32 kHashedSections = 6;
-/// Sections of an image of format version 1 (no joint-reaction section).
-inline constexpr uint32 kSectionCountV1 = 6;
 
 struct PoolImage {
     int32 capacity = 0;

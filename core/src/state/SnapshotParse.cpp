@@ -348,7 +348,8 @@ void ReadBroadPhase(ImageReader& r, Image& img) {
 
 /// Reads one section header and runs its reader, checking the announced length.
 template <class ReadFn>
-void ReadSection(ImageReader& r, uint32 tag, const char* name, ReadFn read) {
+void ReadSection(ImageReader& r, SectionTag tag, ReadFn read) {
+    const char* name = kSectionNames[tag - 1];
     const uint32 found = r.U32();
     Check(found == tag, name, "section tag is wrong", found);
     const uint32 length = r.U32();
@@ -376,15 +377,15 @@ b2RestoreResult ParseSnapshot(std::span<const uint8> bytes, Image& img) {
             Fail(b2SnapshotError::e_badChecksum,
                  "payload checksum " + Hex(actual) + " differs from the header's " + Hex(checksum));
         }
-        ReadSection(r, e_sectionSettings, "settings", [&] { ReadSettings(r, img.settings); });
-        ReadSection(r, e_sectionBodies, "bodies", [&] { ReadBodies(r, img); });
-        ReadSection(r, e_sectionFixtures, "fixtures", [&] { ReadFixtures(r, img); });
-        ReadSection(r, e_sectionContacts, "contacts", [&] { ReadContacts(r, img); });
-        ReadSection(r, e_sectionJoints, "joints", [&] { ReadJoints(r, img); });
-        ReadSection(r, e_sectionBroadPhase, "broadphase", [&] { ReadBroadPhase(r, img); });
+        ReadSection(r, e_sectionSettings, [&] { ReadSettings(r, img.settings); });
+        ReadSection(r, e_sectionBodies, [&] { ReadBodies(r, img); });
+        ReadSection(r, e_sectionFixtures, [&] { ReadFixtures(r, img); });
+        ReadSection(r, e_sectionContacts, [&] { ReadContacts(r, img); });
+        ReadSection(r, e_sectionJoints, [&] { ReadJoints(r, img); });
+        ReadSection(r, e_sectionBroadPhase, [&] { ReadBroadPhase(r, img); });
         // Format 1 had no joint-reaction section: its joints keep their reaction directions.
         if (header.format >= 2) {
-            ReadSection(r, e_sectionJointReactions, "jointReactions", [&] { ReadJointReactions(r, img); });
+            ReadSection(r, e_sectionJointReactions, [&] { ReadJointReactions(r, img); });
         }
         if (r.Remaining() != 0) {
             Fail(b2SnapshotError::e_trailingBytes, std::to_string(r.Remaining()) + " bytes after the last section");
