@@ -69,23 +69,23 @@ public:
 
     /// Exact conversion from an integer in [-32767, 32767]; out of range saturates (or traps).
     template <FixedIntegral I>
-    constexpr Fixed(I v) noexcept : raw_(FromInteger(v)) {}  // NOLINT: implicit, exact
+    constexpr Fixed(I v) noexcept : m_raw(FromInteger(v)) {}  // NOLINT: implicit, exact
 
     /// Compile-time conversion of a floating-point literal, correctly rounded (ties away from
     /// zero). A run-time float or double does not compile: use the `_fx` literal, FromRatio,
     /// Parse, or the named FromDoubleNondeterministic.
-    consteval Fixed(double v) : raw_(CheckedLiteral(detail::RoundDoubleToRaw(v, kFractionBits))) {}  // NOLINT
-    consteval Fixed(float v)                                                                         // NOLINT
-        : raw_(CheckedLiteral(detail::RoundDoubleToRaw(static_cast<double>(v), kFractionBits))) {}
+    consteval Fixed(double v) : m_raw(CheckedLiteral(detail::RoundDoubleToRaw(v, kFractionBits))) {}  // NOLINT
+    consteval Fixed(float v)                                                                          // NOLINT
+        : m_raw(CheckedLiteral(detail::RoundDoubleToRaw(static_cast<double>(v), kFractionBits))) {}
 
     /// Bit-exact construction from a raw Q16.16 value.
     static constexpr Fixed FromRaw(int32_t raw) noexcept {
         Fixed f;
-        f.raw_ = raw;
+        f.m_raw = raw;
         return f;
     }
     /// The raw Q16.16 value.
-    constexpr int32_t Raw() const noexcept { return raw_; }
+    constexpr int32_t Raw() const noexcept { return m_raw; }
 
     /// num/den correctly rounded (ties away from zero); den must not be 0.
     static constexpr Fixed FromRatio(int64_t num, int64_t den) noexcept;
@@ -103,7 +103,7 @@ public:
     }
 
     /// For display and debug draw only.
-    constexpr double ToDouble() const noexcept { return static_cast<double>(raw_) / kOneRaw; }
+    constexpr double ToDouble() const noexcept { return static_cast<double>(m_raw) / kOneRaw; }
     constexpr float ToFloat() const noexcept { return static_cast<float>(ToDouble()); }
 
     /// Run-time conversion from double for tools (scene editors, plots). NOT deterministic
@@ -115,25 +115,25 @@ public:
 
     constexpr Fixed operator+() const noexcept { return *this; }
     constexpr Fixed operator-() const noexcept {
-        if (raw_ == std::numeric_limits<int32_t>::min()) [[unlikely]] {
-            detail::OnOverflow("Fixed::operator- (negate)", raw_, 0);
+        if (m_raw == std::numeric_limits<int32_t>::min()) [[unlikely]] {
+            detail::OnOverflow("Fixed::operator- (negate)", m_raw, 0);
             return FromRaw(kMaxRaw);
         }
-        return FromRaw(-raw_);
+        return FromRaw(-m_raw);
     }
 
     friend constexpr Fixed operator+(Fixed a, Fixed b) noexcept {
-        return FromRaw(detail::NarrowRaw(int64_t{a.raw_} + b.raw_, "Fixed::operator+", a.raw_, b.raw_));
+        return FromRaw(detail::NarrowRaw(int64_t{a.m_raw} + b.m_raw, "Fixed::operator+", a.m_raw, b.m_raw));
     }
     friend constexpr Fixed operator-(Fixed a, Fixed b) noexcept {
-        return FromRaw(detail::NarrowRaw(int64_t{a.raw_} - b.raw_, "Fixed::operator-", a.raw_, b.raw_));
+        return FromRaw(detail::NarrowRaw(int64_t{a.m_raw} - b.m_raw, "Fixed::operator-", a.m_raw, b.m_raw));
     }
     friend constexpr Fixed operator*(Fixed a, Fixed b) noexcept {
-        const int64_t p = int64_t{a.raw_} * b.raw_;
-        return FromRaw(detail::NarrowRaw(detail::ShiftRound(p, kFractionBits), "Fixed::operator*", a.raw_, b.raw_));
+        const int64_t p = int64_t{a.m_raw} * b.m_raw;
+        return FromRaw(detail::NarrowRaw(detail::ShiftRound(p, kFractionBits), "Fixed::operator*", a.m_raw, b.m_raw));
     }
     friend constexpr Fixed operator/(Fixed a, Fixed b) noexcept {
-        return FromRaw(DivRaw(int64_t{a.raw_} * kOneRaw, b.raw_, "Fixed::operator/", a.raw_));
+        return FromRaw(DivRaw(int64_t{a.m_raw} * kOneRaw, b.m_raw, "Fixed::operator/", a.m_raw));
     }
 
     constexpr Fixed& operator+=(Fixed b) noexcept { return *this = *this + b; }
@@ -185,7 +185,7 @@ private:
         return static_cast<int32_t>(raw);
     }
 
-    int32_t raw_ = 0;
+    int32_t m_raw = 0;
 };
 
 constexpr Fixed Fixed::FromRatio(int64_t num, int64_t den) noexcept {

@@ -126,20 +126,20 @@ public:
 
     /// Exact conversion from an integer in [-2^31+1, 2^31-1]; beyond saturates (or traps).
     template <FixedIntegral I>
-    constexpr Wide(I v) noexcept : raw_(FromInteger(v)) {}  // NOLINT: implicit, exact
+    constexpr Wide(I v) noexcept : m_raw(FromInteger(v)) {}  // NOLINT: implicit, exact
 
     /// Compile-time literal, correctly rounded.
-    consteval Wide(double v) : raw_(detail::RoundDoubleToRaw(v, kFractionBits)) {}  // NOLINT
+    consteval Wide(double v) : m_raw(detail::RoundDoubleToRaw(v, kFractionBits)) {}  // NOLINT
 
     /// Exact widening of a Q16.16 value.
-    constexpr explicit Wide(Fixed f) noexcept : raw_(int64_t{f.Raw()} * (int64_t{1} << 16)) {}
+    constexpr explicit Wide(Fixed f) noexcept : m_raw(int64_t{f.Raw()} * (int64_t{1} << 16)) {}
 
     static constexpr Wide FromRaw(int64_t raw) noexcept {
         Wide w;
-        w.raw_ = raw;
+        w.m_raw = raw;
         return w;
     }
-    constexpr int64_t Raw() const noexcept { return raw_; }
+    constexpr int64_t Raw() const noexcept { return m_raw; }
 
     /// num/den correctly rounded; den must not be 0.
     static constexpr Wide FromRatio(int64_t num, int64_t den) noexcept {
@@ -152,12 +152,12 @@ public:
         // the clamp below leaves them alone (|raw| < 2^48), so the result is the same rounding
         // with no saturation; the single range test replaces the clamp and the narrow test.
         constexpr int64_t kFitRaw = (int64_t{Fixed::kMaxRaw} << 16) + (int64_t{1} << 15) - 1;
-        if (raw_ >= -kFitRaw && raw_ <= kFitRaw) [[likely]] {
-            return Fixed::FromRaw(static_cast<int32_t>(detail::ShiftRound(raw_, 16)));
+        if (m_raw >= -kFitRaw && m_raw <= kFitRaw) [[likely]] {
+            return Fixed::FromRaw(static_cast<int32_t>(detail::ShiftRound(m_raw, 16)));
         }
         constexpr int64_t kBiasRoom = int64_t{1} << 62;  // beyond it the result saturates anyway
-        const int64_t r = raw_ >= kBiasRoom ? kBiasRoom : raw_ <= -kBiasRoom ? -kBiasRoom : raw_;
-        return Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(r, 16), "Wide::ToFixed", raw_, 0));
+        const int64_t r = m_raw >= kBiasRoom ? kBiasRoom : m_raw <= -kBiasRoom ? -kBiasRoom : m_raw;
+        return Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(r, 16), "Wide::ToFixed", m_raw, 0));
     }
 
     /// Parses decimal text exactly. Returns false and leaves `out` unchanged on error.
@@ -172,24 +172,24 @@ public:
     }
 
     /// For display only.
-    constexpr double ToDouble() const noexcept { return static_cast<double>(raw_) / static_cast<double>(kOneRaw); }
+    constexpr double ToDouble() const noexcept { return static_cast<double>(m_raw) / static_cast<double>(kOneRaw); }
 
     constexpr auto operator<=>(const Wide&) const noexcept = default;
     constexpr bool operator==(const Wide&) const noexcept = default;
 
     constexpr Wide operator+() const noexcept { return *this; }
     constexpr Wide operator-() const noexcept {
-        if (raw_ == std::numeric_limits<int64_t>::min()) [[unlikely]] {
-            detail::OnOverflow("Wide::operator- (negate)", raw_, 0);
+        if (m_raw == std::numeric_limits<int64_t>::min()) [[unlikely]] {
+            detail::OnOverflow("Wide::operator- (negate)", m_raw, 0);
             return FromRaw(kMaxRaw);
         }
-        return FromRaw(-raw_);
+        return FromRaw(-m_raw);
     }
     // The two tests of + and - are separate branches to the same saturation: GCC then
     // branches on the overflow flag directly instead of materialising it (same results).
     [[gnu::always_inline]] friend constexpr Wide operator+(Wide a, Wide b) noexcept {
         int64_t r = 0;
-        if (__builtin_add_overflow(a.raw_, b.raw_, &r)) [[unlikely]]
+        if (__builtin_add_overflow(a.m_raw, b.m_raw, &r)) [[unlikely]]
             return SaturateAdd(a, b);
         if (r == std::numeric_limits<int64_t>::min()) [[unlikely]]
             return SaturateAdd(a, b);
@@ -197,17 +197,17 @@ public:
     }
     [[gnu::always_inline]] friend constexpr Wide operator-(Wide a, Wide b) noexcept {
         int64_t r = 0;
-        if (__builtin_sub_overflow(a.raw_, b.raw_, &r)) [[unlikely]]
+        if (__builtin_sub_overflow(a.m_raw, b.m_raw, &r)) [[unlikely]]
             return SaturateSub(a, b);
         if (r == std::numeric_limits<int64_t>::min()) [[unlikely]]
             return SaturateSub(a, b);
         return FromRaw(r);
     }
     [[gnu::always_inline]] friend constexpr Wide operator*(Wide a, Wide b) noexcept {
-        return FromRaw(detail::MulShiftRound64(a.raw_, b.raw_, kFractionBits, "Wide::operator*"));
+        return FromRaw(detail::MulShiftRound64(a.m_raw, b.m_raw, kFractionBits, "Wide::operator*"));
     }
     friend constexpr Wide operator/(Wide a, Wide b) noexcept {
-        return FromRaw(detail::DivShiftRound64(a.raw_, b.raw_, kFractionBits, "Wide::operator/"));
+        return FromRaw(detail::DivShiftRound64(a.m_raw, b.m_raw, kFractionBits, "Wide::operator/"));
     }
     constexpr Wide& operator+=(Wide b) noexcept { return *this = *this + b; }
     constexpr Wide& operator-=(Wide b) noexcept { return *this = *this - b; }
@@ -216,12 +216,12 @@ public:
 
 private:
     static Wide SaturateAdd(Wide a, Wide b) noexcept {
-        detail::OnOverflow("Wide::operator+", a.raw_, b.raw_);
-        return FromRaw(a.raw_ > 0 ? kMaxRaw : -kMaxRaw);
+        detail::OnOverflow("Wide::operator+", a.m_raw, b.m_raw);
+        return FromRaw(a.m_raw > 0 ? kMaxRaw : -kMaxRaw);
     }
     static Wide SaturateSub(Wide a, Wide b) noexcept {
-        detail::OnOverflow("Wide::operator-", a.raw_, b.raw_);
-        return FromRaw(a.raw_ >= 0 ? kMaxRaw : -kMaxRaw);
+        detail::OnOverflow("Wide::operator-", a.m_raw, b.m_raw);
+        return FromRaw(a.m_raw >= 0 ? kMaxRaw : -kMaxRaw);
     }
 
     template <FixedIntegral I>
@@ -241,7 +241,7 @@ private:
         return static_cast<int64_t>(v) * kOneRaw;
     }
 
-    int64_t raw_ = 0;
+    int64_t m_raw = 0;
 };
 
 /// Exact product of two Q16.16 values as Q32.32 (no rounding at all).
