@@ -1,7 +1,7 @@
-// libFuzzer target for the lockstep packet decoder (issue 10, net/include/lockbox/net/Protocol.h).
-// Each input is one datagram:
-//   1. decoded with a fixed session shape; whatever decodes must encode back to the same bytes
-//      (the codec is canonical), and every refusal must leave no messages behind;
+// libFuzzer target for the packet decoders: lockstep (net/include/lockbox/net/Protocol.h),
+// rollback (RollbackProtocol.h) and the relay header (RelayWire.h). Each input is one datagram:
+//   1. decoded with a fixed session shape by each codec; whatever decodes must encode back to
+//      the same bytes (the codecs are canonical), and every refusal must leave no messages behind;
 //   2. fed to a LockstepServer on a fresh SimNet from a peer that joined properly, so the
 //      session handlers see it too. When the first byte is odd the header's token is replaced
 //      by the peer's real one, so the fuzzer gets past the token check.
@@ -15,6 +15,8 @@
 
 #include "lockbox/net/LockstepServer.h"
 #include "lockbox/net/Protocol.h"
+#include "lockbox/net/RelayWire.h"
+#include "lockbox/net/RollbackProtocol.h"
 #include "lockbox/net/SimNet.h"
 #include "lockbox/state/WorldHash.h"
 
@@ -37,6 +39,32 @@ void CheckCanonical(const uint8_t* data, size_t size) {
     for (const Message& m : messages)
         if (!w.Add(m, kShape, 1u << 20)) std::abort();  // decoded, so in range
     if (w.Size() != size || std::memcmp(w.Bytes().data(), data, size) != 0) std::abort();
+}
+
+const RollbackShape kRollbackShape{2, 8};
+
+void CheckRollbackCanonical(const uint8_t* data, size_t size) {
+    RollbackHeader header;
+    std::vector<RollbackMessage> messages;
+    const DecodeError e = DecodeRollbackDatagram({data, size}, kRollbackShape, header, messages);
+    if (e != DecodeError::e_ok) {
+        // Only an incompatible hello is handed back with a refusal.
+        if (!messages.empty() && e != DecodeError::e_incompatible) std::abort();
+        return;
+    }
+    RollbackDatagramWriter w;
+    w.Begin(header);
+    for (const RollbackMessage& m : messages)
+        if (!w.Add(m, kRollbackShape, 1u << 20)) std::abort();
+    if (w.Size() != size || std::memcmp(w.Bytes().data(), data, size) != 0) std::abort();
+}
+
+void CheckRelayCanonical(const uint8_t* data, size_t size) {
+    const std::optional<RelayFrame> f = ParseRelayFrame({data, size});
+    if (!f) return;
+    std::vector<uint8_t> again;
+    WriteRelayFrame(again, f->kind, f->matchId, f->slot, f->token, f->payload);
+    if (again.size() != size || std::memcmp(again.data(), data, size) != 0) std::abort();
 }
 
 void FeedServer(const uint8_t* data, size_t size) {
@@ -87,6 +115,8 @@ void FeedServer(const uint8_t* data, size_t size) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     CheckCanonical(data, size);
+    CheckRollbackCanonical(data, size);
+    CheckRelayCanonical(data, size);
     FeedServer(data, size);
     return 0;
 }
