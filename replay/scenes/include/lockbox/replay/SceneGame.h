@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "lockbox/common/Bytes.h"
 #include "lockbox/lockbox.h"
 #include "lockbox/replay/Game.h"
 #include "lockbox/replay/Recorder.h"
@@ -69,18 +70,22 @@ inline constexpr uint8 kSceneFileParamsTag[4] = {'S', 'F', 'H', '1'};
 /// META game parameters of a replay recorded on a scene file: the tag "SFH1", then the file's
 /// scenefile::SceneFileHash as 8 bytes, least significant first (12 bytes).
 inline std::vector<uint8> SceneFileParams(uint64 fileHash) {
-    std::vector<uint8> out(kSceneFileParamsTag, kSceneFileParamsTag + 4);
-    for (int i = 0; i < 8; ++i) out.push_back(static_cast<uint8>(fileHash >> (8 * i)));
+    std::vector<uint8> out;
+    bytes::Writer w(out);
+    w.Bytes(kSceneFileParamsTag);
+    w.U64(fileHash);
     return out;
 }
 
 /// The scene-file hash a replay carries; false when the replay was not recorded on a scene file
 /// (or its parameters are not in the SceneFileParams layout).
 inline bool SceneFileHashOf(const ReplayFile& file, uint64& hash) {
-    if (file.gameName.rfind(kSceneFileGamePrefix, 0) != 0 || file.gameParams.size() != 12) return false;
-    if (!std::equal(kSceneFileParamsTag, kSceneFileParamsTag + 4, file.gameParams.begin())) return false;
-    hash = 0;
-    for (int i = 7; i >= 0; --i) hash = (hash << 8) | file.gameParams[static_cast<size_t>(4 + i)];
+    if (file.gameName.rfind(kSceneFileGamePrefix, 0) != 0) return false;
+    bytes::Reader r(file.gameParams);
+    const std::span<const uint8> tag = r.Bytes(4);
+    const uint64 read = r.U64();
+    if (!r.Ok() || !r.AtEnd() || !std::equal(tag.begin(), tag.end(), kSceneFileParamsTag)) return false;
+    hash = read;
     return true;
 }
 
