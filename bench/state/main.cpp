@@ -19,6 +19,7 @@
 #include "lockbox/scenes/LockboxScenes.h"
 #include "lockbox/state/WorldHash.h"
 #include "lockbox_cli/OptionReader.h"
+#include "lockbox_internal/WorldInternals.h"
 
 namespace {
 
@@ -180,15 +181,15 @@ Row Measure(const Case& c, int reps) {
                 world.SaveFrame(old);
             else
                 world.Save(image);
-            const uint64 epoch = world.GetStructureEpoch();
+            const uint64 epoch = lockbox::test::StructureEpoch(world);
             const int at = frame;
             for (int k = 0; k < 8; ++k) advance();
-            if (frames) row.backCrossings += world.GetStructureEpoch() != epoch ? 1 : 0;
-            const uint64 undone = world.GetFrameRestoreCounts().undoneCreations;
+            if (frames) row.backCrossings += lockbox::test::StructureEpoch(world) != epoch ? 1 : 0;
+            const uint64 undone = lockbox::test::FrameRestores(world).undoneCreations;
             (frames ? back : imageBack).push_back(TimeMs([&] {
                 if (!(frames ? world.RestoreFrame(old) : world.Restore(image)).ok()) std::abort();
             }));
-            row.backUndone += static_cast<int>(world.GetFrameRestoreCounts().undoneCreations - undone);
+            row.backUndone += static_cast<int>(lockbox::test::FrameRestores(world).undoneCreations - undone);
             frame = at;
             for (int k = 0; k < 8; ++k) advance();
         }

@@ -143,7 +143,8 @@ ln -s /usr/include/rapidjson "$work/include/rapidjson"
 
 # scenefile/ loads the hand-written scene files of the golden plan (file/<name> lines).
 sources=$(cd "$src" && find fixed/src core/src scenefile/src samples/scenes/src -name '*.cpp' | LC_ALL=C sort)
-incdirs="fixed/include core/include scenefile/include samples/scenes/include tests/cross"
+# core/src: the engine's sources include its internal headers from there (Engine.h, dynamics/, state/).
+incdirs="fixed/include core/include core/src scenefile/include samples/scenes/include tests/cross"
 # The golden replays recorded uncompressed (the cross toolchains have no zstd: replay/ is built
 # with LOCKBOX_REPLAY_ZSTD=0) are verified in every cell (tests/cross/ReplayVerify.h).
 replay_files=""

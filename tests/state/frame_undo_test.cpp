@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "FrameTestUtil.h"
+#include "lockbox_internal/WorldInternals.h"
 
 namespace lockbox {
 namespace {
@@ -21,7 +22,7 @@ using testing_state::SavedFrame;
 using testing_state::SceneRun;
 
 /// Where the frame went: 0 same structure, 1 creations undone, 2 structure image.
-int PathOf(const b2FrameRestoreCounts& before, const b2FrameRestoreCounts& after) {
+int PathOf(const state_detail::FrameRestoreCounts& before, const state_detail::FrameRestoreCounts& after) {
     if (after.sameStructure == before.sameStructure + 1) return 0;
     if (after.undoneCreations == before.undoneCreations + 1) return 1;
     if (after.restoredStructure == before.restoredStructure + 1) return 2;
@@ -29,9 +30,9 @@ int PathOf(const b2FrameRestoreCounts& before, const b2FrameRestoreCounts& after
 }
 
 int RestoreAndPath(b2World& w, const b2WorldFrame& frame) {
-    const b2FrameRestoreCounts before = w.GetFrameRestoreCounts();
+    const state_detail::FrameRestoreCounts before = test::FrameRestores(w);
     if (!w.RestoreFrame(frame).ok()) return -2;
-    return PathOf(before, w.GetFrameRestoreCounts());
+    return PathOf(before, test::FrameRestores(w));
 }
 
 TEST(FrameUndo, RainSpawnsAreUndoneAndRespawnWithTheSameIds) {
@@ -148,7 +149,7 @@ TEST(FrameUndo, OtherChangesRestoreTheStructureImage) {
         {"MarkStructureChanged",
          [](b2World& w, b2Body*) {
              AddBox(w, b2Vec2(0, 20));
-             w.MarkStructureChanged();
+             test::MarkStructureChanged(w);
          }},
     };
     for (const auto& [name, change] : changes) {
@@ -215,11 +216,11 @@ TEST(FrameUndo, WorldsWithoutFramesKeepNoLog) {
     SceneRun run{"pyramid20"};
     b2World& w = run.world();
     for (int i = 0; i < 10; ++i) AddBox(w, b2Vec2(i, 30));
-    EXPECT_TRUE(w.m_structureLog.empty());
+    EXPECT_EQ(test::StructureLogSize(w), 0u);
     b2WorldFrame frame;
     w.SaveFrame(frame);
     AddBox(w, b2Vec2(0, 40));
-    EXPECT_EQ(w.m_structureLog.size(), 3u);  // the body, its fixture, its mass
+    EXPECT_EQ(test::StructureLogSize(w), 3u);  // the body, its fixture, its mass
 }
 
 }  // namespace

@@ -1,11 +1,14 @@
 // b2Body: construction, fixtures, mass, transforms, forces and state flags.
 #include "lockbox/dynamics/Body.h"
 
+#include "dynamics/WorldState.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 #include "lockbox/dynamics/joints/Joint.h"
 
 namespace lockbox {
+
+using core_detail::Engine;
 
 b2Body::b2Body(const b2BodyDef* bd, b2World* world, int32 id) : m_type(bd->type), m_world(world), m_id(id) {
     if (bd->bullet) m_flags |= e_bulletFlag;
@@ -37,8 +40,8 @@ b2Body::b2Body(const b2BodyDef* bd, b2World* world, int32 id) : m_type(bd->type)
 }
 
 b2Fixture* b2Body::CreateFixture(const b2FixtureDef* def) {
-    if (m_world->CheckLocked("b2Body::CreateFixture")) return nullptr;
-    return m_world->CreateFixtureSlot(this, def);
+    if (Engine::Of(*m_world).CheckLocked("b2Body::CreateFixture")) return nullptr;
+    return Engine::Of(*m_world).CreateFixture(this, def);
 }
 
 b2Fixture* b2Body::CreateFixture(const b2Shape* shape, Fixed density) {
@@ -49,9 +52,9 @@ b2Fixture* b2Body::CreateFixture(const b2Shape* shape, Fixed density) {
 }
 
 void b2Body::DestroyFixture(b2Fixture* fixture) {
-    if (m_world->CheckLocked("b2Body::DestroyFixture")) return;
+    if (Engine::Of(*m_world).CheckLocked("b2Body::DestroyFixture")) return;
     if (fixture == nullptr || fixture->m_body != this) return;
-    m_world->DestroyFixtureSlot(fixture);
+    Engine::Of(*m_world).DestroyFixture(fixture);
 }
 
 Wide b2Body::GetInertia() const noexcept { return m_I + m_mass * b2DotWide(m_sweep.localCenter, m_sweep.localCenter); }
@@ -63,7 +66,7 @@ void b2Body::GetMassData(b2MassData* data) const {
 }
 
 void b2Body::ResetMassData() {
-    m_world->MarkBodyStructureChanged(m_id);
+    Engine::Of(*m_world).MarkBodyStructureChanged(m_id);
     m_mass = Wide();
     m_invMass = Wide();
     m_I = Wide();
@@ -124,8 +127,8 @@ void b2Body::ResetMassData() {
 }
 
 void b2Body::SetMassData(const b2MassData* massData) {
-    if (m_world->CheckLocked("b2Body::SetMassData")) return;
-    m_world->MarkBodyStructureChanged(m_id);
+    if (Engine::Of(*m_world).CheckLocked("b2Body::SetMassData")) return;
+    Engine::Of(*m_world).MarkBodyStructureChanged(m_id);
     if (m_type != b2_dynamicBody) return;
 
     m_invMass = Wide();
@@ -163,23 +166,23 @@ bool b2Body::ShouldCollide(const b2Body* other) const {
 }
 
 void b2Body::SetTransform(const b2Vec2& position, Fixed angle) {
-    if (m_world->CheckLocked("b2Body::SetTransform")) return;
+    if (Engine::Of(*m_world).CheckLocked("b2Body::SetTransform")) return;
     m_xf.q.Set(angle);
     m_xf.p = position;
     m_sweep.c = b2Mul(m_xf, m_sweep.localCenter);
     m_sweep.a = angle;
     m_sweep.c0 = m_sweep.c;
     m_sweep.a0 = angle;
-    b2BroadPhase* broadPhase = &m_world->m_contactManager.m_broadPhase;
+    b2BroadPhase* broadPhase = &Engine::Of(*m_world).m_contactManager.m_broadPhase;
     for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->Synchronize(broadPhase, m_xf, m_xf);
-    m_world->m_contactManager.FindNewContacts();
+    Engine::Of(*m_world).m_contactManager.FindNewContacts();
 }
 
 void b2Body::SynchronizeFixtures() {
     b2Transform xf1;
     xf1.q.Set(m_sweep.a0);
     xf1.p = m_sweep.c0 - b2Mul(xf1.q, m_sweep.localCenter);
-    b2BroadPhase* broadPhase = &m_world->m_contactManager.m_broadPhase;
+    b2BroadPhase* broadPhase = &Engine::Of(*m_world).m_contactManager.m_broadPhase;
     for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->Synchronize(broadPhase, xf1, m_xf);
 }
 
@@ -214,7 +217,7 @@ void b2Body::WrapAngle() noexcept {
 }
 
 void b2Body::SetType(b2BodyType type) {
-    if (m_world->CheckLocked("b2Body::SetType")) return;
+    if (Engine::Of(*m_world).CheckLocked("b2Body::SetType")) return;
     if (m_type == type) return;
     m_type = type;
     ResetMassData();  // marks the world's structure changed
@@ -235,22 +238,22 @@ void b2Body::SetType(b2BodyType type) {
 // Set-up fields that rollback frames share through the structure image: each setter marks
 // the world's structure changed.
 void b2Body::SetLinearDamping(Fixed d) noexcept {
-    m_world->MarkBodyStructureChanged(m_id);
+    Engine::Of(*m_world).MarkBodyStructureChanged(m_id);
     m_linearDamping = d;
 }
 
 void b2Body::SetAngularDamping(Fixed d) noexcept {
-    m_world->MarkBodyStructureChanged(m_id);
+    Engine::Of(*m_world).MarkBodyStructureChanged(m_id);
     m_angularDamping = d;
 }
 
 void b2Body::SetGravityScale(Fixed s) noexcept {
-    m_world->MarkBodyStructureChanged(m_id);
+    Engine::Of(*m_world).MarkBodyStructureChanged(m_id);
     m_gravityScale = s;
 }
 
 void b2Body::SetUserData(uint64 data) noexcept {
-    m_world->MarkBodyStructureChanged(m_id);
+    Engine::Of(*m_world).MarkBodyStructureChanged(m_id);
     m_userData = data;
 }
 
@@ -287,17 +290,17 @@ void b2Body::SetAwake(bool flag) {
 }
 
 void b2Body::SetActive(bool flag) {
-    if (m_world->CheckLocked("b2Body::SetActive")) return;
+    if (Engine::Of(*m_world).CheckLocked("b2Body::SetActive")) return;
     if (flag == IsActive()) return;
     // Proxies are made or dropped: a structural change for rollback frames.
-    m_world->MarkBodyStructureChanged(m_id);
-    b2BroadPhase* broadPhase = &m_world->m_contactManager.m_broadPhase;
+    Engine::Of(*m_world).MarkBodyStructureChanged(m_id);
+    b2BroadPhase* broadPhase = &Engine::Of(*m_world).m_contactManager.m_broadPhase;
     if (flag) {
         m_flags |= e_activeFlag;
         m_flags &= ~e_outOfBoundsFlag;
         for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->CreateProxies(broadPhase, m_xf);
         // Contacts are created at the next Step.
-        m_world->m_flags |= b2World::e_newFixture;
+        Engine::Of(*m_world).m_flags |= Engine::World::e_newFixture;
     } else {
         m_flags &= ~e_activeFlag;
         for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->DestroyProxies(broadPhase);
@@ -305,7 +308,7 @@ void b2Body::SetActive(bool flag) {
         while (ce) {
             b2ContactEdge* ce0 = ce;
             ce = ce->next;
-            m_world->m_contactManager.Destroy(ce0->contact);
+            Engine::Of(*m_world).m_contactManager.Destroy(ce0->contact);
         }
         m_contactList = nullptr;
     }

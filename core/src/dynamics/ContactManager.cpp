@@ -1,5 +1,5 @@
 // b2ContactManager: pairs to contacts, contact destruction and the narrow-phase pass.
-#include "lockbox/dynamics/ContactManager.h"
+#include "dynamics/ContactManager.h"
 
 #include <utility>
 
@@ -14,7 +14,7 @@ namespace {
 b2ContactFilter g_defaultFilter;
 }  // namespace
 
-b2ContactManager::b2ContactManager(b2Pool<b2Fixture>* fixtures) : m_fixtures(fixtures) {}
+b2ContactManager::ContactManager(b2Pool<b2Fixture>* fixtures) : m_fixtures(fixtures) {}
 
 bool b2ContactManager::ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) {
     b2ContactFilter* filter = m_contactFilter ? m_contactFilter : &g_defaultFilter;

@@ -1,6 +1,7 @@
 // b2Fixture: shape ownership, broad-phase proxies and filtering.
 #include "lockbox/dynamics/Fixture.h"
 
+#include "dynamics/WorldState.h"
 #include "lockbox/collision/BroadPhase.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/World.h"
@@ -66,7 +67,8 @@ void b2Fixture::Synchronize(b2BroadPhase* broadPhase, const b2Transform& transfo
 namespace {
 /// Fixture set-up is structure for rollback frames (lockbox/state/WorldFrame.h).
 void MarkChanged(b2Body* body) noexcept {
-    if (body != nullptr && body->GetWorld() != nullptr) body->GetWorld()->MarkBodyStructureChanged(body->GetId());
+    if (body != nullptr && body->GetWorld() != nullptr)
+        core_detail::Engine::Of(*body->GetWorld()).MarkBodyStructureChanged(body->GetId());
 }
 }  // namespace
 
@@ -112,7 +114,7 @@ void b2Fixture::SetFilterData(const b2Filter& filter) {
     if (world == nullptr) return;
     // Touching the proxies puts them in the move buffer, so pairs that the old filter
     // rejected are offered again at the next Step.
-    b2BroadPhase* broadPhase = &world->m_contactManager.m_broadPhase;
+    b2BroadPhase* broadPhase = &core_detail::Engine::Of(*world).m_contactManager.m_broadPhase;
     for (int32 i = 0; i < m_proxyCount; ++i) broadPhase->TouchProxy(m_proxies[static_cast<size_t>(i)].proxyId);
 }
 

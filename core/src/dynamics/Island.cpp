@@ -1,13 +1,13 @@
 // b2Island: integration, the contact/joint solver loops and sleep.
-#include "lockbox/dynamics/Island.h"
+#include "dynamics/Island.h"
 
 #include <chrono>
 
+#include "dynamics/contacts/ContactSolver.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/StepObserver.h"
 #include "lockbox/dynamics/WorldCallbacks.h"
 #include "lockbox/dynamics/contacts/Contact.h"
-#include "lockbox/dynamics/contacts/ContactSolver.h"
 #include "lockbox/dynamics/joints/Joint.h"
 
 namespace lockbox {

@@ -1,10 +1,12 @@
-// b2World: lifetime of bodies and fixtures, the step driver, switches and the assert handler.
+// The world's engine (Engine::World): lifetime of bodies and fixtures, the step driver,
+// switches and the assert handler.
 #include "lockbox/dynamics/World.h"
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 
+#include "dynamics/WorldState.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 
 namespace lockbox {
@@ -28,12 +30,15 @@ b2AssertHandler b2SetAssertHandler(b2AssertHandler handler) noexcept {
     return previous;
 }
 
-b2World::b2World(const b2Vec2& gravity) : m_contactManager(&m_fixtures), m_gravity(gravity) {
+using World = core_detail::Engine::World;
+
+World::World(b2World* owner, const b2Vec2& gravity)
+    : m_owner(owner), m_contactManager(&m_fixtures), m_gravity(gravity) {
     m_bounds.lowerBound.Set(-b2_defaultWorldExtent, -b2_defaultWorldExtent);
     m_bounds.upperBound.Set(b2_defaultWorldExtent, b2_defaultWorldExtent);
 }
 
-b2World::~b2World() {
+World::~World() {
     // Joints are heap objects owned by the world (bodies and fixtures live in pools).
     b2Joint* j = m_jointList;
     while (j) {
@@ -43,32 +48,15 @@ b2World::~b2World() {
     }
 }
 
-void b2World::MarkBodyStructureChanged(int32 bodyId) noexcept { LogStructureChange({0, bodyId, b2_nullId, b2_nullId}); }
-
-void b2World::MarkJointStructureChanged(const b2Joint& joint) noexcept {
-    LogStructureChange({0, joint.m_bodyA->GetId(), joint.m_bodyB->GetId(), joint.GetId()});
+void World::MarkBodyStructureChanged(int32 bodyId) noexcept {
+    m_frames.LogStructureChange({0, bodyId, b2_nullId, b2_nullId});
 }
 
-void b2World::LogStructureChange(b2StructureChange change) noexcept {
-    // Only frames read the log: a world that never saved one starts it again each time.
-    if (!m_frameCache) {
-        MarkStructureChanged();
-        return;
-    }
-    m_structureEpoch = ++m_epochSource;
-    // Bounded: when full, the older half goes, and frames from before it restore their
-    // structure image instead.
-    constexpr size_t kLogCapacity = 4096;
-    if (m_structureLog.size() == kLogCapacity) {
-        constexpr size_t kDrop = kLogCapacity / 2;
-        m_structureLogBase = m_structureLog[kDrop - 1].epoch;
-        m_structureLog.erase(m_structureLog.begin(), m_structureLog.begin() + static_cast<std::ptrdiff_t>(kDrop));
-    }
-    change.epoch = m_structureEpoch;
-    m_structureLog.push_back(change);
+void World::MarkJointStructureChanged(const b2Joint& joint) noexcept {
+    m_frames.LogStructureChange({0, joint.m_bodyA->GetId(), joint.m_bodyB->GetId(), joint.GetId()});
 }
 
-bool b2World::CheckLocked(const char* what) const {
+bool World::CheckLocked(const char* what) const {
     if (!IsLocked()) return false;
     if constexpr (b2_assertsEnabled) {
         g_assertHandler("!world->IsLocked()", what, __FILE__, __LINE__);
@@ -77,9 +65,9 @@ bool b2World::CheckLocked(const char* what) const {
     return true;
 }
 
-b2Body* b2World::CreateBody(const b2BodyDef* def) {
+b2Body* World::CreateBody(const b2BodyDef* def) {
     if (CheckLocked("b2World::CreateBody called inside a Step callback (the world is locked)")) return nullptr;
-    const int32 id = m_bodies.Create(def, this, b2_nullId);
+    const int32 id = m_bodies.Create(def, m_owner, b2_nullId);
     MarkBodyStructureChanged(id);
     b2Body* b = m_bodies.Get(id);
     b->m_id = id;
@@ -93,7 +81,7 @@ b2Body* b2World::CreateBody(const b2BodyDef* def) {
     return b;
 }
 
-void b2World::DestroyBody(b2Body* b) {
+void World::DestroyBody(b2Body* b) {
     if (CheckLocked("b2World::DestroyBody called inside a Step callback (the world is locked)")) return;
     if (b == nullptr) return;
     MarkBodyStructureChanged(b->GetId());
@@ -137,7 +125,7 @@ void b2World::DestroyBody(b2Body* b) {
     m_bodies.Destroy(b->GetId());
 }
 
-b2Fixture* b2World::CreateFixtureSlot(b2Body* body, const b2FixtureDef* def) {
+b2Fixture* World::CreateFixture(b2Body* body, const b2FixtureDef* def) {
     if (def == nullptr || def->shape == nullptr) {
         if constexpr (b2_assertsEnabled) {
             g_assertHandler("def->shape != nullptr", "b2Body::CreateFixture needs a shape", __FILE__, __LINE__);
@@ -162,7 +150,7 @@ b2Fixture* b2World::CreateFixtureSlot(b2Body* body, const b2FixtureDef* def) {
     return fixture;
 }
 
-void b2World::DestroyFixtureSlot(b2Fixture* fixture) {
+void World::DestroyFixture(b2Fixture* fixture) {
     b2Body* body = fixture->m_body;
     MarkBodyStructureChanged(body->GetId());
 
@@ -190,7 +178,7 @@ void b2World::DestroyFixtureSlot(b2Fixture* fixture) {
     body->ResetMassData();
 }
 
-void b2World::SetAllowSleeping(bool flag) {
+void World::SetAllowSleeping(bool flag) {
     if (flag == m_allowSleep) return;
     m_allowSleep = flag;
     if (!m_allowSleep) {
@@ -198,14 +186,14 @@ void b2World::SetAllowSleeping(bool flag) {
     }
 }
 
-void b2World::ClearForces() {
+void World::ClearForces() {
     for (b2Body* body = m_bodyList; body; body = body->GetNext()) {
         body->m_force.SetZero();
         body->m_torque = Fixed();
     }
 }
 
-void b2World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
+void World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
     const Clock::time_point stepTimer = Clock::now();
     const uint64 saturationsBefore = SaturationCount();
     m_profile = b2Profile{};
@@ -242,7 +230,7 @@ void b2World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations)
         m_contactManager.Collide();
         m_profile.collideNs = Nanos(timer);
     }
-    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_collide, *this);
+    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_collide, *m_owner);
 
     // Integrate velocities, solve velocity constraints, integrate positions.
     if (m_stepComplete && step.dt > Fixed()) {
@@ -256,7 +244,7 @@ void b2World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations)
         const Clock::time_point timer = Clock::now();
         SolveTOI(step);
         m_profile.solveTOINs = Nanos(timer);
-        if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solveTOI, *this);
+        if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solveTOI, *m_owner);
     }
 
     if (step.dt > Fixed()) m_inv_dt0 = step.inv_dt;
@@ -284,19 +272,19 @@ void b2World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations)
     if (m_headroomTelemetry) {
         // Read the step's count before the walk, so the walk itself can never add to it.
         const int64_t stepSaturations = static_cast<int64_t>(SaturationCount() - saturationsBefore);
-        m_profile.headroom = b2MeasureHeadroom(*this);
+        m_profile.headroom = b2MeasureHeadroom(*m_owner);
         m_profile.headroom.saturations = stepSaturations;
     }
     m_profile.stepNs = Nanos(stepTimer);
 }
 
-bool b2World::IsOutside(const b2Body* b) const noexcept {
+bool World::IsOutside(const b2Body* b) const noexcept {
     const b2Vec2& c = b->m_sweep.c;
     return c.x < m_bounds.lowerBound.x || c.y < m_bounds.lowerBound.y || c.x > m_bounds.upperBound.x ||
            c.y > m_bounds.upperBound.y;
 }
 
-void b2World::EnforceBounds() {
+void World::EnforceBounds() {
     if (m_outOfBounds.empty()) return;
     // The candidates were pushed in body-list order by the solver; drop duplicates and bodies
     // that came back inside within the step (TOI).

@@ -1,4 +1,5 @@
 // b2World queries (AABB, ray cast) and debug drawing.
+#include "dynamics/WorldState.h"
 #include "lockbox/collision/ChainShape.h"
 #include "lockbox/collision/CircleShape.h"
 #include "lockbox/collision/EdgeShape.h"
@@ -8,6 +9,8 @@
 #include "lockbox/dynamics/contacts/Contact.h"
 
 namespace lockbox {
+
+using World = core_detail::Engine::World;
 
 namespace {
 
@@ -44,12 +47,12 @@ struct WorldRayCastWrapper {
 
 }  // namespace
 
-void b2World::QueryAABB(b2QueryCallback* callback, const b2AABB& aabb) const {
+void World::QueryAABB(b2QueryCallback* callback, const b2AABB& aabb) const {
     WorldQueryWrapper wrapper{&m_contactManager.m_broadPhase, const_cast<b2Pool<b2Fixture>*>(&m_fixtures), callback};
     m_contactManager.m_broadPhase.Query(&wrapper, aabb);
 }
 
-void b2World::RayCast(b2RayCastCallback* callback, const b2Vec2& point1, const b2Vec2& point2) const {
+void World::RayCast(b2RayCastCallback* callback, const b2Vec2& point1, const b2Vec2& point2) const {
     WorldRayCastWrapper wrapper{&m_contactManager.m_broadPhase, const_cast<b2Pool<b2Fixture>*>(&m_fixtures), callback};
     b2RayCastInput input;
     input.maxFraction = 1;
@@ -58,7 +61,7 @@ void b2World::RayCast(b2RayCastCallback* callback, const b2Vec2& point1, const b
     m_contactManager.m_broadPhase.RayCast(&wrapper, input);
 }
 
-void b2World::DrawShape(b2Fixture* fixture, const b2Transform& xf, const b2Color& color) {
+void World::DrawShape(b2Fixture* fixture, const b2Transform& xf, const b2Color& color) {
     switch (fixture->GetType()) {
         case b2Shape::e_circle: {
             const auto* circle = static_cast<const b2CircleShape*>(fixture->m_shape.get());
@@ -95,7 +98,7 @@ void b2World::DrawShape(b2Fixture* fixture, const b2Transform& xf, const b2Color
     }
 }
 
-void b2World::DrawDebugData() {
+void World::DrawDebugData() {
     if (m_debugDraw == nullptr) return;
     const uint32 flags = m_debugDraw->GetFlags();
 

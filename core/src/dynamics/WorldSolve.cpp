@@ -1,11 +1,14 @@
 // b2World::Solve (islands) and b2World::SolveTOI (continuous collision).
 #include <chrono>
 
+#include "dynamics/WorldState.h"
 #include "lockbox/collision/TimeOfImpact.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 
 namespace lockbox {
+
+using World = core_detail::Engine::World;
 
 namespace {
 using Clock = std::chrono::steady_clock;
@@ -23,7 +26,7 @@ constexpr int32 kTOIPositionIterations = 20;
 bool IsSensorContact(const b2Contact* c) { return c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor(); }
 }  // namespace
 
-void b2World::Solve(const b2TimeStep& step) {
+void World::Solve(const b2TimeStep& step) {
     // Size the island for the worst case and clear the graph flags.
     m_island.Reset(m_bodyCount, m_contactManager.m_contactCount, m_jointCount, m_contactManager.m_contactListener);
     m_island.m_observer = m_stepObserver;
@@ -93,7 +96,7 @@ void b2World::Solve(const b2TimeStep& step) {
         }
     }
 
-    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solve, *this);
+    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solve, *m_owner);
 
     const Clock::time_point timer = Clock::now();
     // Synchronise fixtures of bodies that moved, keep angles bounded, flag fast bodies and
@@ -110,10 +113,10 @@ void b2World::Solve(const b2TimeStep& step) {
     }
     m_contactManager.FindNewContacts();
     m_profile.broadphaseNs += Nanos(timer);
-    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_broadPhase, *this);
+    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_broadPhase, *m_owner);
 }
 
-void b2World::SolveTOI(const b2TimeStep& step) {
+void World::SolveTOI(const b2TimeStep& step) {
     // The cheap check: without a fast or bullet body no contact can need a TOI event (see
     // b2Body::IsFastThisStep), so nothing else runs.
     bool anyFast = false;

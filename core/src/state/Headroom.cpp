@@ -2,6 +2,7 @@
 
 #include "lockbox/state/Headroom.h"
 
+#include "dynamics/WorldState.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
@@ -124,14 +125,14 @@ b2Headroom b2MeasureHeadroom(const b2World& world) {
         }
     }
 
-    for (const b2Joint* j = world.m_jointList; j != nullptr; j = j->GetNext()) {
+    for (const b2Joint* j = world.GetJointList(); j != nullptr; j = j->GetNext()) {
         const b2Vec2 f = j->GetReactionForce(kJointScale);
         w.SeeJointImpulse(f.x.Raw());
         w.SeeJointImpulse(f.y.Raw());
         w.SeeJointImpulse(j->GetReactionTorque(kJointScale).Raw());
     }
 
-    const b2DynamicTree& tree = world.GetContactManager().m_broadPhase.GetTree();
+    const b2DynamicTree& tree = core_detail::Engine::Of(world).m_contactManager.m_broadPhase.GetTree();
     const auto& nodes = tree.GetNodes();
     for (const b2TreeNode& n : nodes) {
         if (n.height < 0) continue;  // free slot

@@ -169,7 +169,7 @@ private:
 /// joints) once every joint of the image is in the world's id table.
 struct JointStateReader {
     ReadCursor r;
-    b2World& world;
+    core_detail::Engine::World& world;
     template <class... T>
     void operator()(T&... fields) {
         (Get(fields), ...);

@@ -12,6 +12,7 @@
 #include "FastXxh3.h"
 #include "SnapshotImage.h"
 #include "StateWalk.h"
+#include "dynamics/WorldState.h"
 #include "lockbox/common/Bytes.h"
 #include "lockbox/state/WorldHash.h"
 
@@ -123,16 +124,17 @@ b2SnapshotStats b2World::SaveStats() const {
 }
 
 b2RestoreResult b2World::Restore(std::span<const uint8> image) {
-    if (IsLocked()) {
-        CheckLocked("b2World::Restore called inside a Step callback (the world is locked)");
+    core_detail::Engine::World& world = core_detail::Engine::Of(*this);
+    if (world.IsLocked()) {
+        world.CheckLocked("b2World::Restore called inside a Step callback (the world is locked)");
         return {b2SnapshotError::e_locked, "the world is locked (inside Step)"};
     }
-    if (!m_restoreScratch) m_restoreScratch.reset(new Image());
-    Image& parsed = *m_restoreScratch;
+    if (!world.m_restoreScratch) world.m_restoreScratch.reset(new Image());
+    Image& parsed = *world.m_restoreScratch;
     b2RestoreResult result = ParseSnapshot(image, parsed);
     if (!result.ok()) return result;
     ApplySnapshot(parsed, *this);
-    MarkStructureChanged();
+    world.MarkStructureChanged();
     return result;
 }
 

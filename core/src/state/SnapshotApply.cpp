@@ -15,6 +15,8 @@
 namespace lockbox::state_detail {
 namespace {
 
+using World = core_detail::Engine::World;
+
 /// Records ahead whose world object is requested while the current one is written: image
 /// order is list order, not memory order, so each object would otherwise be a cache miss.
 constexpr size_t kApplyPrefetch = 6;
@@ -50,10 +52,10 @@ void ApplyBodyState(const uint8* at, b2Body& b) {
     b.m_userData = r.U64();
 }
 
-void ApplyBodies(const Image& img, b2World& world) {
+void ApplyBodies(const Image& img, World& world) {
     const b2BodyDef def;
     world.m_bodies.RestoreLayout(img.bodyPool.live, img.bodyPool.free,
-                                 [&](void* slot, int32 id) { ::new (slot) b2Body(&def, &world, id); });
+                                 [&](void* slot, int32 id) { ::new (slot) b2Body(&def, world.m_owner, id); });
     b2Body* previous = nullptr;
     world.m_bodyList = nullptr;
     const size_t count = img.bodies.size();
@@ -65,7 +67,7 @@ void ApplyBodies(const Image& img, b2World& world) {
         b->m_flags = bi.flags;
         b->m_islandIndex = 0;
         ApplyBodyState(img.bytes + bi.stateAt, *b);
-        b->m_world = &world;
+        b->m_world = world.m_owner;
         b->m_id = bi.id;
         b->m_fixtureCount = bi.fixtureCount;
         b->m_fixtureList = nullptr;
@@ -125,7 +127,7 @@ void ApplyShape(const Image& img, const ShapeImage& si, std::unique_ptr<b2Shape>
     }
 }
 
-void ApplyFixtures(Image& img, b2World& world) {
+void ApplyFixtures(Image& img, World& world) {
     world.m_fixtures.RestoreLayout(img.fixturePool.live, img.fixturePool.free,
                                    [](void* slot, int32) { ::new (slot) b2Fixture(); });
     img.fixtureSlots.resize(static_cast<size_t>(img.fixturePool.capacity));
@@ -208,7 +210,7 @@ void ApplyContactState(const uint8* at, b2Contact& c) {
     }
 }
 
-void ApplyContacts(Image& img, b2World& world) {
+void ApplyContacts(Image& img, World& world) {
     b2ContactManager& cm = world.m_contactManager;
     b2Pool<b2Fixture>& fixtures = world.m_fixtures;
     // New slots are built from their image record (the constructor needs the fixtures);
@@ -239,7 +241,7 @@ void ApplyContacts(Image& img, b2World& world) {
 /// A joint's visited fields, straight from its record into the joint, then its reaction
 /// directions when the image has them; other solver temporaries are left as they are (every
 /// step recomputes them before use, and no query reads them).
-void ReadJointState(const Image& img, const JointImage& ji, b2World& world) {
+void ReadJointState(const Image& img, const JointImage& ji, World& world) {
     b2Joint& joint = *world.m_joints[static_cast<size_t>(ji.id)];
     JointStateReader reader{ReadCursor(img.bytes + ji.stateAt), world};
     VisitJointState(joint, reader);
@@ -249,7 +251,7 @@ void ReadJointState(const Image& img, const JointImage& ji, b2World& world) {
     }
 }
 
-void ApplyJoints(Image& img, b2World& world) {
+void ApplyJoints(Image& img, World& world) {
     int32 maxId = -1;
     for (const JointImage& ji : img.joints) maxId = ji.id > maxId ? ji.id : maxId;
     // The id table keeps the world's joints until each id is visited: a joint of the image's
@@ -319,7 +321,8 @@ void ApplyJoints(Image& img, b2World& world) {
 
 }  // namespace
 
-void ApplySnapshot(Image& img, b2World& world) {
+void ApplySnapshot(Image& img, b2World& publicWorld) {
+    World& world = core_detail::Engine::Of(publicWorld);
     ApplyBodies(img, world);
     ApplyFixtures(img, world);
     ApplyContacts(img, world);

@@ -8,6 +8,7 @@
 
 #include "RestoreLinks.h"
 #include "SnapshotFormat.h"
+#include "dynamics/WorldState.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/DynamicTree.h"
 #include "lockbox/dynamics/Body.h"
@@ -43,7 +44,7 @@ struct SettingsImage {
 /// Writes the world switches and step carry-over from a SettingsImage or from a rollback
 /// frame's settings (frame_detail::Settings): both name these fields alike.
 template <class S>
-void InstallSettings(const S& s, b2World& world) {
+void InstallSettings(const S& s, core_detail::Engine::World& world) {
     world.m_gravity = s.gravity;
     world.m_allowSleep = s.allowSleep;
     world.m_warmStarting = s.warmStarting;

@@ -13,6 +13,7 @@
 #include <type_traits>
 
 #include "ListWalk.h"
+#include "dynamics/WorldState.h"
 #include "lockbox/collision/ChainShape.h"
 #include "lockbox/collision/CircleShape.h"
 #include "lockbox/collision/EdgeShape.h"
@@ -141,10 +142,11 @@ void WriteSettings(W& w, const b2World& world, bool withContacts = true) {
     WriteAABB(w, world.GetWorldBounds());
     // e_newFixture makes the next step look for new pairs first; e_clearForces mirrors the
     // auto-clear switch. e_locked is always clear outside Step.
-    w.U32(world.m_flags);
+    const core_detail::Engine::World& in = core_detail::Engine::Of(world);
+    w.U32(in.m_flags);
     // The previous step's inverse length scales warm starting (dtRatio) of the next one.
-    w.F(world.m_inv_dt0);
-    w.Bool(world.m_stepComplete);
+    w.F(in.m_inv_dt0);
+    w.Bool(in.m_stepComplete);
     w.U64(world.GetSaturationCount());
     w.I32(world.GetBodyCount());
     w.I32(world.GetJointCount());
@@ -328,7 +330,7 @@ void WriteJoint(W& w, const b2Joint& j) {
 /// order, the fields of its VisitReactionState (none for some types).
 template <class W>
 void WriteJointReactions(W& w, const b2World& world) {
-    for (const b2Joint* j = world.m_jointList; j; j = j->GetNext()) {
+    for (const b2Joint* j = world.GetJointList(); j; j = j->GetNext()) {
         auto c = w.Begin(kJointRecordMaxBytes);
         JointFieldWriter<decltype(c)> visitor{c};
         VisitJointReaction(const_cast<b2Joint&>(*j), visitor);
@@ -354,7 +356,7 @@ void WriteTreeNode(C& c, const b2TreeNode& n) {
 
 template <class W>
 void WriteBroadPhase(W& w, const b2World& world) {
-    const b2BroadPhase& bp = world.GetContactManager().m_broadPhase;
+    const b2BroadPhase& bp = core_detail::Engine::Of(world).m_contactManager.m_broadPhase;
     const b2DynamicTree& tree = bp.GetTree();
     w.I32(bp.GetProxyCount());
     w.I32(tree.GetRoot());
@@ -379,7 +381,7 @@ void WriteBroadPhase(W& w, const b2World& world) {
 /// The body section: pool, then every body in body-list order.
 template <class W>
 void WriteBodies(W& w, const b2World& world) {
-    WritePool(w, world.m_bodies);
+    WritePool(w, core_detail::Engine::Of(world).m_bodies);
     WalkList(
         world.GetBodyList(), [&](const b2Body& b) { WriteBody(w, b); }, [](const b2Body*) {});
 }
@@ -387,7 +389,7 @@ void WriteBodies(W& w, const b2World& world) {
 /// The fixture section: pool, then each body's fixtures (body-list order, fixture-list order).
 template <class W>
 void WriteFixtures(W& w, const b2World& world) {
-    WritePool(w, world.m_fixtures);
+    WritePool(w, core_detail::Engine::Of(world).m_fixtures);
     WalkList(
         world.GetBodyList(),
         [&](const b2Body& b) {
@@ -406,7 +408,7 @@ void WriteFixtures(W& w, const b2World& world) {
 /// The contact section: pool, then every contact in contact-list order.
 template <class W>
 void WriteContacts(W& w, const b2World& world) {
-    WritePool(w, world.GetContactManager().GetPool());
+    WritePool(w, core_detail::Engine::Of(world).m_contactManager.GetPool());
     // The record's fixture ids are cached in the contact: no fixture is visited.
     WalkList(
         world.GetContactList(), [&](const b2Contact& c) { WriteContact(w, c); }, [](const b2Contact*) {});
@@ -423,7 +425,7 @@ void WriteNoContacts(W& w) {
 /// The joint section: every joint in joint-list order.
 template <class W>
 void WriteJoints(W& w, const b2World& world) {
-    for (const b2Joint* j = world.m_jointList; j; j = j->GetNext()) WriteJoint(w, *j);
+    for (const b2Joint* j = world.GetJointList(); j; j = j->GetNext()) WriteJoint(w, *j);
 }
 
 }  // namespace lockbox::state_detail

@@ -4,6 +4,7 @@
 #include "lockbox/state/SyncTest.h"
 
 #include "FastXxh3.h"
+#include "dynamics/WorldState.h"
 #include "lockbox/collision/PolygonShape.h"
 #include "lockbox/dynamics/joints/DistanceJoint.h"
 
@@ -157,9 +158,10 @@ void SyncTest::WrongInputs(int32 frame, bool spawnOnly, std::vector<int32>& spaw
 }
 
 SyncTestResult SyncTest::Run(int32 frames) {
-    const b2FrameRestoreCounts before = m_world.GetFrameRestoreCounts();
+    const state_detail::FrameRestoreCounts& counts = core_detail::Engine::Of(m_world).m_frames.m_restores;
+    const state_detail::FrameRestoreCounts before = counts;
     SyncTestResult result = RunFrames(frames);
-    const b2FrameRestoreCounts after = m_world.GetFrameRestoreCounts();
+    const state_detail::FrameRestoreCounts after = counts;
     result.frameRestores.sameStructure = after.sameStructure - before.sameStructure;
     result.frameRestores.undoneCreations = after.undoneCreations - before.undoneCreations;
     result.frameRestores.restoredStructure = after.restoredStructure - before.restoredStructure;

@@ -6,7 +6,7 @@
 //
 // The split mirrors the full restore (SnapshotApply.cpp): what it writes from the body,
 // contact, joint and broad-phase sections is either here or set-up that only a structural
-// call changes, and every structural call marks the epoch (World.h, MarkStructureChanged).
+// call changes, and every structural call marks the epoch (FrameBook.h).
 // Checked builds prove it on every restore: the world hash after RestoreFrame must equal the
 // hash taken at SaveFrame.
 
@@ -19,10 +19,14 @@
 
 #include "ByteCursor.h"
 #include "ByteStreams.h"
+#include "FrameBook.h"
+#include "FrameData.h"
 #include "JointState.h"
 #include "ListWalk.h"
 #include "RestoreLinks.h"
+#include "SnapshotImage.h"
 #include "StateWalk.h"
+#include "dynamics/WorldState.h"
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox {
@@ -56,24 +60,71 @@ uint64 NextWorldSerial() noexcept {
     return next.fetch_add(1, std::memory_order_relaxed);
 }
 
+void FrameBook::LogStructureChange(StructureChange change) noexcept {
+    // Only frames read the log: a world that never saved one starts it again each time.
+    if (!m_cache) {
+        MarkStructureChanged();
+        return;
+    }
+    m_structureEpoch = ++m_epochSource;
+    // Bounded: when full, the older half goes, and frames from before it restore their
+    // structure image instead.
+    constexpr size_t kLogCapacity = 4096;
+    if (m_structureLog.size() == kLogCapacity) {
+        constexpr size_t kDrop = kLogCapacity / 2;
+        m_structureLogBase = m_structureLog[kDrop - 1].epoch;
+        m_structureLog.erase(m_structureLog.begin(), m_structureLog.begin() + static_cast<std::ptrdiff_t>(kDrop));
+    }
+    change.epoch = m_structureEpoch;
+    m_structureLog.push_back(change);
+}
+
 }  // namespace state_detail
 
 using namespace state_detail;
 using namespace frame_detail;
+using core_detail::Engine;
+
+b2WorldFrame::b2WorldFrame() noexcept = default;
+b2WorldFrame::~b2WorldFrame() = default;
+b2WorldFrame::b2WorldFrame(b2WorldFrame&& other) noexcept = default;
+b2WorldFrame& b2WorldFrame::operator=(b2WorldFrame&& other) noexcept = default;
+
+b2WorldFrame::b2WorldFrame(const b2WorldFrame& other)
+    : m_data(other.m_data ? std::make_unique<Data>(*other.m_data) : nullptr) {}
+
+b2WorldFrame& b2WorldFrame::operator=(const b2WorldFrame& other) {
+    if (this == &other) return *this;
+    if (!other.m_data) {
+        m_data.reset();
+    } else if (m_data) {
+        *m_data = *other.m_data;  // keeps this frame's capacity
+    } else {
+        m_data = std::make_unique<Data>(*other.m_data);
+    }
+    return *this;
+}
+
+bool b2WorldFrame::IsEmpty() const noexcept { return !m_data || m_data->m_serial == 0; }
 
 b2FrameStats b2WorldFrame::Stats() const noexcept {
     b2FrameStats s;
+    if (!m_data) {
+        s.frameBytes = static_cast<uint32>(sizeof(b2WorldFrame));
+        return s;
+    }
+    const Data& f = *m_data;
     auto bytes = [](const auto& v) { return static_cast<uint32>(v.size() * sizeof(v[0])); };
-    s.bodyBytes = bytes(m_bodies);
-    s.forceBytes = bytes(m_forces);
-    s.proxyBytes = bytes(m_proxies);
-    s.contactBytes = bytes(m_contacts) + bytes(m_points) + bytes(m_contactLive) + bytes(m_contactFree);
-    s.jointBytes = bytes(m_joints);
-    s.broadPhaseBytes = bytes(m_nodes) + bytes(m_moveBuffer);
-    s.frameBytes = static_cast<uint32>(sizeof(b2WorldFrame)) + s.bodyBytes + s.forceBytes + s.proxyBytes +
-                   s.contactBytes + s.jointBytes + s.broadPhaseBytes;
-    if (m_structure) {
-        const Structure& st = *m_structure;
+    s.bodyBytes = bytes(f.m_bodies);
+    s.forceBytes = bytes(f.m_forces);
+    s.proxyBytes = bytes(f.m_proxies);
+    s.contactBytes = bytes(f.m_contacts) + bytes(f.m_points) + bytes(f.m_contactLive) + bytes(f.m_contactFree);
+    s.jointBytes = bytes(f.m_joints);
+    s.broadPhaseBytes = bytes(f.m_nodes) + bytes(f.m_moveBuffer);
+    s.frameBytes = static_cast<uint32>(sizeof(b2WorldFrame) + sizeof(Data)) + s.bodyBytes + s.forceBytes +
+                   s.proxyBytes + s.contactBytes + s.jointBytes + s.broadPhaseBytes;
+    if (f.m_structure) {
+        const Structure& st = *f.m_structure;
         s.structureBytes = bytes(st.image) + bytes(st.bodyLive) + bytes(st.fixtureLive) + bytes(st.jointLive) +
                            bytes(st.bodyFree) + bytes(st.fixtureFree);
     }
@@ -82,7 +133,7 @@ b2FrameStats b2WorldFrame::Stats() const noexcept {
 
 namespace {
 
-void SaveSettings(const b2World& world, Settings& s) {
+void SaveSettings(const Engine::World& world, Settings& s) {
     s.gravity = world.m_gravity;
     s.allowSleep = world.m_allowSleep;
     s.warmStarting = world.m_warmStarting;
@@ -115,9 +166,12 @@ void PrefetchJointsAhead(const std::vector<b2Joint*>& table, size_t id) {
 
 }  // namespace
 
-/// The frame's arrays, filled from the world and written back (a friend of b2WorldFrame).
-struct FrameAccess {
-    static void Save(const b2World& world, b2WorldFrame& f) {
+/// Rollback frames: their arrays, filled from the world and written back, the undoing of
+/// creations, and the two calls b2World forwards.
+struct core_detail::Engine::Frames {
+    using Data = b2WorldFrame::Data;
+
+    static void Save(const World& world, Data& f) {
         SaveSettings(world, f.m_settings);
 
         // Bodies, their pending forces and their proxies' boxes, in one walk of the body list.
@@ -208,7 +262,7 @@ struct FrameAccess {
     }
 
     /// Writes the frame's arrays into a world whose structure is the frame's (same epoch).
-    static void Apply(const b2WorldFrame& f, b2World& world, FrameCache& cache) {
+    static void Apply(const Data& f, World& world, FrameCache& cache) {
         InstallSettings(f.m_settings, world);
 
         // Bodies, forces and proxy boxes; every contact list is rebuilt below.
@@ -244,14 +298,14 @@ struct FrameAccess {
         }
 
         // The fixtures by id, once per structure epoch (their addresses hold while it lasts).
-        if (cache.slots.empty() || cache.slotsEpoch != world.m_structureEpoch) {
+        if (cache.slots.empty() || cache.slotsEpoch != world.m_frames.m_structureEpoch) {
             cache.slots.assign(static_cast<size_t>(world.m_fixtures.GetCapacity()), FixtureSlot{});
             for (b2Body* b = world.m_bodyList; b != nullptr; b = b->m_next) {
                 for (b2Fixture* fx = b->m_fixtureList; fx != nullptr; fx = fx->m_next) {
                     cache.slots[static_cast<size_t>(fx->m_id)] = {fx, b, b->m_id};
                 }
             }
-            cache.slotsEpoch = world.m_structureEpoch;
+            cache.slotsEpoch = world.m_frames.m_structureEpoch;
         }
 
         // Contacts: the pool's layout (a slot live only in the frame gets a blank contact), then
@@ -304,6 +358,10 @@ struct FrameAccess {
                                             f.m_treeInsertions);
         bp.RestoreState(f.m_proxyCount, f.m_moveBuffer);
     }
+
+    struct Undo;
+    static void SaveFrame(const World& world, b2WorldFrame& frame);
+    static b2RestoreResult RestoreFrame(World& world, const b2WorldFrame& frame);
 };
 
 namespace {
@@ -311,7 +369,7 @@ namespace {
 /// The world's structure in a buffer from the pool (or a new one), shared: when the last
 /// frame holding it lets go, the buffer goes back to the pool if the world's cache still
 /// exists.
-std::shared_ptr<const Structure> SaveStructure(const b2World& world, FrameCache& cache) {
+std::shared_ptr<const Structure> SaveStructure(const Engine::World& world, FrameCache& cache) {
     std::unique_ptr<Structure> buffer;
     if (!cache.pool->spare.empty()) {
         buffer = std::move(cache.pool->spare.back());
@@ -321,7 +379,7 @@ std::shared_ptr<const Structure> SaveStructure(const b2World& world, FrameCache&
     }
     // Without the contacts: every frame carries them, and a restore across a structural change
     // would otherwise install them twice.
-    SaveImage(world, buffer->image, /*withContacts=*/false);
+    SaveImage(*world.m_owner, buffer->image, /*withContacts=*/false);
     buffer->bodyLive = world.m_bodies.GetLiveFlags();
     buffer->bodyFree = world.m_bodies.GetFreeList();
     buffer->fixtureLive = world.m_fixtures.GetLiveFlags();
@@ -343,7 +401,7 @@ bool IsNewSince(const std::vector<uint8>& live, int32 id) noexcept {
 }
 
 /// True when everything `change` concerned is newer than `s`'s epoch.
-bool ConcernsOnlyNew(const Structure& s, const b2StructureChange& change) noexcept {
+bool ConcernsOnlyNew(const Structure& s, const StructureChange& change) noexcept {
     if (!IsNewSince(s.bodyLive, change.body)) return false;
     if (change.joint < 0) return true;
     return IsNewSince(s.bodyLive, change.otherBody) && IsNewSince(s.jointLive, change.joint);
@@ -378,7 +436,7 @@ constexpr size_t kCannotUndo = static_cast<size_t>(-1);
 /// without them, so destroying them (and putting the pools' free stacks back) makes it the
 /// frame's. Everything else such a change touched (contacts, proxies in the tree, the move
 /// buffer, the world's flags, older bodies' motion) the frame's arrays overwrite.
-struct FrameUndo {
+struct core_detail::Engine::Frames::Undo {
     /// How many bodies and joints at the heads of the world's lists are new (creation
     /// prepends, so the new ones come first).
     struct Heads {
@@ -387,10 +445,10 @@ struct FrameUndo {
 
     /// How many of the log's entries precede the frame's epoch (the log keeps those), or
     /// kCannotUndo.
-    static size_t Check(const b2World& world, const b2WorldFrame& frame, Heads& heads) {
-        const std::vector<b2StructureChange>& log = world.m_structureLog;
+    static size_t Check(const World& world, const Data& frame, Heads& heads) {
+        const std::vector<StructureChange>& log = world.m_frames.m_structureLog;
         size_t start = kCannotUndo;
-        if (frame.m_epoch == world.m_structureLogBase) {
+        if (frame.m_epoch == world.m_frames.m_structureLogBase) {
             start = 0;
         } else {
             for (size_t k = log.size(); k-- > 0;) {
@@ -433,7 +491,7 @@ struct FrameUndo {
 
     /// Destroys the new joints, then the new bodies with their fixtures, and gives the body
     /// and fixture pools the frame's layout (Check said yes).
-    static void Apply(b2World& world, const Structure& s, const Heads& heads) {
+    static void Apply(World& world, const Structure& s, const Heads& heads) {
         // Joints: only new bodies' joint lists hold them, and those bodies go next.
         DropFromHead(world.m_jointList, heads.joints, [&](b2Joint* joint) {
             world.ReleaseJointId(joint->m_id);
@@ -450,70 +508,79 @@ struct FrameUndo {
     }
 };
 
-void b2World::SaveFrame(b2WorldFrame& frame) const {
-    if (!m_frameCache) m_frameCache.reset(new FrameCache());
-    FrameCache& cache = *m_frameCache;
-    if (!cache.structure || cache.structureEpoch != m_structureEpoch) {
-        cache.structure = SaveStructure(*this, cache);
-        cache.structureEpoch = m_structureEpoch;
+void core_detail::Engine::Frames::SaveFrame(const World& world, b2WorldFrame& frame) {
+    FrameBook& book = const_cast<FrameBook&>(world.m_frames);
+    if (!book.m_cache) book.m_cache.reset(new FrameCache());
+    FrameCache& cache = *book.m_cache;
+    if (!cache.structure || cache.structureEpoch != book.m_structureEpoch) {
+        cache.structure = SaveStructure(world, cache);
+        cache.structureEpoch = book.m_structureEpoch;
     }
-    frame.m_serial = m_serial;
-    frame.m_epoch = m_structureEpoch;
-    frame.m_structure = cache.structure;
-    FrameAccess::Save(*this, frame);
+    if (!frame.m_data) frame.m_data = std::make_unique<Data>();
+    Data& f = *frame.m_data;
+    f.m_serial = book.m_serial;
+    f.m_epoch = book.m_structureEpoch;
+    f.m_structure = cache.structure;
+    Save(world, f);
 #ifdef LOCKBOX_CHECKED
-    frame.m_checkHash = b2WorldHash(*this);
+    f.m_checkHash = b2WorldHash(*world.m_owner);
 #endif
 }
 
-b2RestoreResult b2World::RestoreFrame(const b2WorldFrame& frame) {
-    if (IsLocked()) {
-        CheckLocked("b2World::RestoreFrame called inside a Step callback (the world is locked)");
+b2RestoreResult core_detail::Engine::Frames::RestoreFrame(World& world, const b2WorldFrame& frame) {
+    if (world.IsLocked()) {
+        world.CheckLocked("b2World::RestoreFrame called inside a Step callback (the world is locked)");
         return {b2SnapshotError::e_locked, "the world is locked (inside Step)"};
     }
     if (frame.IsEmpty()) return {b2SnapshotError::e_foreignFrame, "the frame is empty (never saved into)"};
-    if (frame.m_serial != m_serial) return {b2SnapshotError::e_foreignFrame, "the frame was saved by another world"};
-    if (!m_frameCache) m_frameCache.reset(new FrameCache());
-    FrameCache& cache = *m_frameCache;
-    FrameUndo::Heads heads;
-    if (frame.m_epoch == m_structureEpoch) {
-        ++m_frameRestores.sameStructure;
-    } else if (const size_t kept = FrameUndo::Check(*this, frame, heads); kept != kCannotUndo) {
-        FrameUndo::Apply(*this, *frame.m_structure, heads);
+    const Data& f = *frame.m_data;
+    FrameBook& book = world.m_frames;
+    if (f.m_serial != book.m_serial) return {b2SnapshotError::e_foreignFrame, "the frame was saved by another world"};
+    if (!book.m_cache) book.m_cache.reset(new FrameCache());
+    FrameCache& cache = *book.m_cache;
+    Undo::Heads heads;
+    if (f.m_epoch == book.m_structureEpoch) {
+        ++book.m_restores.sameStructure;
+    } else if (const size_t kept = Undo::Check(world, f, heads); kept != kCannotUndo) {
+        Undo::Apply(world, *f.m_structure, heads);
         // The fixtures the frame has kept their addresses: a fixture table of the epoch undone
         // still serves (the entries of the destroyed ones are never looked up).
-        if (cache.slotsEpoch == m_structureEpoch && cache.slots.size() >= frame.m_structure->fixtureLive.size()) {
-            cache.slotsEpoch = frame.m_epoch;
+        if (cache.slotsEpoch == book.m_structureEpoch && cache.slots.size() >= f.m_structure->fixtureLive.size()) {
+            cache.slotsEpoch = f.m_epoch;
         }
-        m_structureLog.resize(kept);
-        ++m_frameRestores.undoneCreations;
+        book.m_structureLog.resize(kept);
+        ++book.m_restores.undoneCreations;
     } else {
         // The structure changed otherwise since the frame: its epoch's image first (it only
         // ever holds this world's own Save, so the checks pass; a failure is reported, the
         // world intact).
-        b2RestoreResult result = Restore(frame.m_structure->image);
+        b2RestoreResult result = world.m_owner->Restore(f.m_structure->image);
         if (!result.ok()) return result;
-        m_structureLogBase = frame.m_epoch;
-        m_structureLog.clear();
+        book.m_structureLogBase = f.m_epoch;
+        book.m_structureLog.clear();
         cache.slots.clear();  // fixtures may sit at other addresses than in that epoch
-        ++m_frameRestores.restoredStructure;
+        ++book.m_restores.restoredStructure;
     }
     // The world's structure is now the frame's epoch's (unchanged on the first path).
-    m_structureEpoch = frame.m_epoch;
-    cache.structure = frame.m_structure;
-    cache.structureEpoch = frame.m_epoch;
-    FrameAccess::Apply(frame, *this, cache);
+    book.m_structureEpoch = f.m_epoch;
+    cache.structure = f.m_structure;
+    cache.structureEpoch = f.m_epoch;
+    Apply(f, world, cache);
 #ifdef LOCKBOX_CHECKED
-    if (b2WorldHash(*this) != frame.m_checkHash) {
+    if (b2WorldHash(*world.m_owner) != f.m_checkHash) {
         std::fprintf(stderr,
-                     "lockbox: RestoreFrame did not give the saved state: a structural change did not call "
-                     "b2World::MarkStructureChanged\n");
+                     "lockbox: RestoreFrame did not give the saved state: a structural change did not mark the "
+                     "world's structure changed\n");
         std::abort();
     }
 #endif
     return {};
 }
 
-b2FrameRestoreCounts b2World::GetFrameRestoreCounts() const noexcept { return m_frameRestores; }
+void b2World::SaveFrame(b2WorldFrame& frame) const { Engine::Frames::SaveFrame(Engine::Of(*this), frame); }
+
+b2RestoreResult b2World::RestoreFrame(const b2WorldFrame& frame) {
+    return Engine::Frames::RestoreFrame(Engine::Of(*this), frame);
+}
 
 }  // namespace lockbox

@@ -36,9 +36,10 @@ void HashAll(const b2World& world, uint64 out[], std::vector<b2BodyHashEntry>* b
         Tag(bodyStream, b2HashCategory::e_bodies);
         Tag(fixtureStream, b2HashCategory::e_fixtures);
         Tag(contactStream, b2HashCategory::e_contacts);
-        WritePool(bodyStream, world.m_bodies);
-        WritePool(fixtureStream, world.m_fixtures);
-        WritePool(contactStream, world.GetContactManager().GetPool());
+        const core_detail::Engine::World& in = core_detail::Engine::Of(world);
+        WritePool(bodyStream, in.m_bodies);
+        WritePool(fixtureStream, in.m_fixtures);
+        WritePool(contactStream, in.m_contactManager.GetPool());
         const b2Body* b = world.GetBodyList();
         const b2Contact* c = world.GetContactList();
         while (b != nullptr || c != nullptr) {

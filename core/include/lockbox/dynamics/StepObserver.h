@@ -10,12 +10,24 @@
 
 #include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
-#include "lockbox/dynamics/TimeStep.h"
+#include "lockbox/fixed/Math.h"
 
 namespace lockbox {
 
 class b2World;
 class b2Body;
+
+/// Solver copy of a body's position: centre of mass (m) and angle (rad).
+struct b2Position {
+    b2Vec2 c;
+    Fixed a;
+};
+
+/// Solver copy of a body's velocity: linear (m/s) and angular (rad/s).
+struct b2Velocity {
+    b2Vec2 v;
+    Fixed w;
+};
 
 /// The fenceposts of one b2World::Step, in the order they are reached.
 enum class b2StepStage : uint32 {

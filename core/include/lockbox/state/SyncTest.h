@@ -49,6 +49,13 @@ struct SyncTestConfig {
     bool frames = false;
 };
 
+/// How a sync test's RestoreFrame calls went (frames mode), by the path each took.
+struct SyncTestFrameRestores {
+    uint64 sameStructure = 0;      ///< the world's structure was the frame's: the frame's arrays only
+    uint64 undoneCreations = 0;    ///< bodies and joints created since the frame were destroyed first
+    uint64 restoredStructure = 0;  ///< the frame's structure image was restored first
+};
+
 /// What a sync test found.
 struct SyncTestResult {
     bool ok = true;
@@ -62,7 +69,7 @@ struct SyncTestResult {
     std::string message;          ///< a one-line account of the failure; empty when ok
     /// In frames mode: how the run's RestoreFrame calls went (same structure, spawns undone,
     /// structure image restored).
-    b2FrameRestoreCounts frameRestores;
+    SyncTestFrameRestores frameRestores;
 };
 
 /// Runs a game through the sync test. The world must be in its initial state and is left at

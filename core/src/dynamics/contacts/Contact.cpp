@@ -1,13 +1,14 @@
 // b2Contact: creation rules, narrow-phase dispatch and the per-step update.
 #include "lockbox/dynamics/contacts/Contact.h"
 
+#include "dynamics/TimeStep.h"
 #include "lockbox/collision/ChainShape.h"
 #include "lockbox/collision/CircleShape.h"
 #include "lockbox/collision/EdgeShape.h"
 #include "lockbox/collision/PolygonShape.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
-#include "lockbox/dynamics/TimeStep.h"
+#include "lockbox/dynamics/Profile.h"
 #include "lockbox/dynamics/WorldCallbacks.h"
 #include "lockbox/fixed/detail/Sqrt.h"
 

@@ -1,5 +1,5 @@
 // b2ContactSolver: setup, warm starting and the velocity iterations.
-#include "lockbox/dynamics/contacts/ContactSolver.h"
+#include "dynamics/contacts/ContactSolver.h"
 
 #include "SolverMath.h"
 #include "lockbox/dynamics/Body.h"
@@ -40,7 +40,7 @@ bool InvertBlock(const b2WideSym22& K, b2WideSym22* inverse) {
 
 }  // namespace
 
-b2ContactSolver::b2ContactSolver(b2ContactSolverDef* def)
+b2ContactSolver::ContactSolver(b2ContactSolverDef* def)
     : m_step(def->step),
       m_positions(def->positions),
       m_velocities(def->velocities),

@@ -1,6 +1,6 @@
 // b2ContactSolver: non-linear position correction (discrete and time-of-impact).
 #include "SolverMath.h"
-#include "lockbox/dynamics/contacts/ContactSolver.h"
+#include "dynamics/contacts/ContactSolver.h"
 
 namespace lockbox {
 

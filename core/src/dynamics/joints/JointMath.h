@@ -2,8 +2,8 @@
 // Internal helpers shared by the joint solvers: applying Q32.32 impulses to Q16.16 velocities
 // and positions with one rounding per component, and the soft-constraint coefficients.
 
+#include "dynamics/TimeStep.h"
 #include "lockbox/dynamics/Body.h"
-#include "lockbox/dynamics/TimeStep.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/Math.h"
 #include "lockbox/fixed/WideMatrix.h"

@@ -1,10 +1,13 @@
 // b2World::CreateJoint and DestroyJoint (Box2D 2.2.1 b2World.cpp), with lockbox's gear rule:
 // a gear joint never outlives the joints it couples.
+#include "dynamics/WorldState.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 #include "lockbox/dynamics/joints/GearJoint.h"
 
 namespace lockbox {
+
+using World = core_detail::Engine::World;
 
 namespace {
 // Links one edge at the head of its body's joint list.
@@ -34,7 +37,7 @@ void FlagContactsBetween(b2Body* body, const b2Body* other) {
 }
 }  // namespace
 
-b2Joint* b2World::CreateJoint(const b2JointDef* def) {
+b2Joint* World::CreateJoint(const b2JointDef* def) {
     if (CheckLocked("b2World::CreateJoint called inside a Step callback (the world is locked)")) return nullptr;
     b2Joint* j = b2Joint::Create(def);
     if (j == nullptr) return nullptr;
@@ -67,7 +70,7 @@ b2Joint* b2World::CreateJoint(const b2JointDef* def) {
     return j;
 }
 
-void b2World::DestroyJoint(b2Joint* j) {
+void World::DestroyJoint(b2Joint* j) {
     if (CheckLocked("b2World::DestroyJoint called inside a Step callback (the world is locked)")) return;
     if (j == nullptr) return;
     MarkJointStructureChanged(*j);
@@ -117,7 +120,7 @@ void b2World::DestroyJoint(b2Joint* j) {
     if (!collideConnected) FlagContactsBetween(bodyB, bodyA);
 }
 
-void b2World::ReleaseJointId(int32 id) {
+void World::ReleaseJointId(int32 id) {
     m_joints[static_cast<size_t>(id)] = nullptr;
     // Trailing free ids are dropped so the table's size follows the largest live id.
     while (!m_joints.empty() && m_joints.back() == nullptr) m_joints.pop_back();

@@ -5,7 +5,6 @@
 
 #include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
-#include "lockbox/dynamics/TimeStep.h"
 #include "lockbox/fixed/Math.h"
 
 namespace lockbox {
@@ -13,6 +12,7 @@ namespace lockbox {
 class b2Body;
 class b2Joint;
 class b2Draw;
+struct b2SolverData;
 
 /// Joint kinds, numbered as in 2.2.1.
 enum b2JointType {

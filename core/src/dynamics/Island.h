@@ -1,12 +1,14 @@
 #pragma once
-/// b2Island (Box2D 2.2.1 b2Island.h): a connected group of awake bodies, contacts and joints,
-/// solved together; also the small island of a time-of-impact event.
+// b2Island (Box2D 2.2.1 b2Island.h): a connected group of awake bodies, contacts and joints,
+// solved together; also the small island of a time-of-impact event.
 
 #include <vector>
 
+#include "Engine.h"
+#include "dynamics/TimeStep.h"
+#include "dynamics/contacts/ContactSolver.h"
 #include "lockbox/common/Settings.h"
-#include "lockbox/dynamics/TimeStep.h"
-#include "lockbox/dynamics/contacts/ContactSolver.h"
+#include "lockbox/dynamics/Profile.h"
 #include "lockbox/fixed/Math.h"
 
 namespace lockbox {
@@ -19,9 +21,9 @@ class b2StepObserver;
 enum class b2IslandPhase : uint32;
 
 /// An island: buffers reused between islands and steps (capacity grows, never shrinks).
-class b2Island {
+class core_detail::Engine::Island {
 public:
-    b2Island() = default;
+    Island() = default;
 
     /// Sets the capacities and the listener for the next islands.
     void Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapacity, b2ContactListener* listener);
@@ -70,5 +72,7 @@ public:
     int32 m_contactCapacity = 0;
     int32 m_jointCapacity = 0;
 };
+
+using b2Island = core_detail::Engine::Island;
 
 }  // namespace lockbox

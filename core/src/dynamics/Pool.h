@@ -1,11 +1,12 @@
 #pragma once
-/// b2Pool: the storage of bodies, fixtures, contacts (and later joints).
-///
-/// Objects live in chunked blocks that are never moved or freed while the pool lives, so a
-/// pointer to a slot stays valid until that slot is destroyed (ARCHITECTURE §4: the pointer API
-/// is a facade over slots). Every slot has a small int32 id: its index. Free slots are reused in
-/// LIFO order from an explicit stack of ids, so the id sequence depends only on the sequence of
-/// creations and destructions, never on addresses.
+// b2Pool: the storage of bodies, fixtures and contacts.
+//
+// Objects live in chunked blocks that are never moved or freed while the pool lives, so a
+// pointer to a slot stays valid until that slot is destroyed (ARCHITECTURE §4: the pointer API
+// is a facade over slots). Every slot has a small int32 id: its index. Free slots are reused in
+// LIFO order from an explicit stack of ids, so the id sequence depends only on the sequence of
+// creations and destructions, never on addresses. A part of the engine (Engine.h), so that it
+// may construct the core's objects, whose constructors are private.
 
 #include <cstddef>
 #include <memory>
@@ -13,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "Engine.h"
 #include "lockbox/common/Settings.h"
 
 namespace lockbox {
@@ -21,13 +23,13 @@ namespace lockbox {
 inline constexpr int32 b2_nullId = -1;
 
 /// A pool of T with stable addresses and LIFO id reuse. Not thread-safe.
-template <typename T, int32 kBlockSize = 64>
-class b2Pool {
+template <typename T, int32 kBlockSize>
+class core_detail::Engine::Pool {
 public:
-    b2Pool() = default;
-    b2Pool(const b2Pool&) = delete;
-    b2Pool& operator=(const b2Pool&) = delete;
-    ~b2Pool() { Clear(); }
+    Pool() = default;
+    Pool(const Pool&) = delete;
+    Pool& operator=(const Pool&) = delete;
+    ~Pool() { Clear(); }
 
     /// Constructs a T in a free slot (the most recently freed one first, else a new slot) and
     /// returns its id. The object's address is Get(id) and stays fixed until Destroy(id).
@@ -132,5 +134,8 @@ private:
     std::vector<int32> m_free;
     int32 m_count = 0;
 };
+
+template <typename T, int32 kBlockSize = 64>
+using b2Pool = core_detail::Engine::Pool<T, kBlockSize>;
 
 }  // namespace lockbox

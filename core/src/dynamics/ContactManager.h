@@ -1,12 +1,13 @@
 #pragma once
-/// b2ContactManager (Box2D 2.2.1 b2ContactManager.h): owns the broad phase and the contacts,
-/// turns broad-phase pairs into contacts and keeps their manifolds up to date.
+// b2ContactManager (Box2D 2.2.1 b2ContactManager.h): owns the broad phase and the contacts,
+// turns broad-phase pairs into contacts and keeps their manifolds up to date.
 
-#include "lockbox/Export.h"
+#include "Engine.h"
+#include "dynamics/Pool.h"
+#include "dynamics/TimeStep.h"
 #include "lockbox/collision/BroadPhase.h"
 #include "lockbox/common/Settings.h"
-#include "lockbox/dynamics/Pool.h"
-#include "lockbox/dynamics/TimeStep.h"
+#include "lockbox/dynamics/Profile.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 
 namespace lockbox {
@@ -16,12 +17,12 @@ class b2ContactListener;
 class b2Fixture;
 
 /// Contact bookkeeping for one world.
-class LOCKBOX_API b2ContactManager {
+class core_detail::Engine::ContactManager {
 public:
     /// fixtures is the world's fixture pool: broad-phase user data are fixture ids.
-    explicit b2ContactManager(b2Pool<b2Fixture>* fixtures);
-    b2ContactManager(const b2ContactManager&) = delete;
-    b2ContactManager& operator=(const b2ContactManager&) = delete;
+    explicit ContactManager(b2Pool<b2Fixture>* fixtures);
+    ContactManager(const ContactManager&) = delete;
+    ContactManager& operator=(const ContactManager&) = delete;
 
     /// Broad-phase callback: creates a contact for a new overlapping pair (after the body,
     /// joint and filter checks). Keys are b2FixtureProxy::MakeKey values.
@@ -57,5 +58,7 @@ private:
     b2Pool<b2Fixture>* m_fixtures;
     b2Pool<b2Contact> m_contacts;
 };
+
+using b2ContactManager = core_detail::Engine::ContactManager;
 
 }  // namespace lockbox

@@ -8,9 +8,10 @@
 /// block solver's condition test k11^2 < 1000 (k11 k22 - k12^2) is evaluated exactly in
 /// 128 bits (NUMERICS Table 1: it overflows Q32.32).
 
+#include "Engine.h"
+#include "dynamics/TimeStep.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/common/Settings.h"
-#include "lockbox/dynamics/TimeStep.h"
 #include "lockbox/fixed/Math.h"
 #include "lockbox/fixed/WideVec.h"
 
@@ -90,10 +91,10 @@ struct b2ContactSolverDef {
 };
 
 /// Solves the contacts of one island.
-class b2ContactSolver {
+class core_detail::Engine::ContactSolver {
 public:
     /// Copies the constraint data; warm-start impulses are scaled by dtRatio.
-    explicit b2ContactSolver(b2ContactSolverDef* def);
+    explicit ContactSolver(b2ContactSolverDef* def);
 
     /// Anchors, effective masses, restitution bias and the block-solver matrices.
     void InitializeVelocityConstraints();
@@ -118,5 +119,7 @@ public:
     b2Contact** m_contacts;
     int32 m_count;
 };
+
+using b2ContactSolver = core_detail::Engine::ContactSolver;
 
 }  // namespace lockbox

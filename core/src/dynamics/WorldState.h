@@ -1,0 +1,133 @@
+#pragma once
+// A world's internal state and the code behind b2World's calls. b2World (World.h) holds one
+// of these and forwards to it; the rest of the engine reaches it through Engine::Of.
+
+#include <memory>
+#include <vector>
+
+#include "Engine.h"
+#include "dynamics/ContactManager.h"
+#include "dynamics/Island.h"
+#include "dynamics/Pool.h"
+#include "dynamics/TimeStep.h"
+#include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/Fixture.h"
+#include "lockbox/dynamics/World.h"
+#include "lockbox/dynamics/joints/Joint.h"
+#include "state/FrameBook.h"
+
+namespace lockbox {
+
+namespace state_detail {
+struct Image;
+/// Frees a restore scratch image (defined where Image is complete).
+struct ImageDeleter {
+    void operator()(Image* image) const noexcept;
+};
+}  // namespace state_detail
+
+class core_detail::Engine::World {
+public:
+    explicit World(b2World* owner, const b2Vec2& gravity);
+    ~World();
+    World(const World&) = delete;
+    World& operator=(const World&) = delete;
+
+    b2Body* CreateBody(const b2BodyDef* def);
+    void DestroyBody(b2Body* body);
+    b2Joint* CreateJoint(const b2JointDef* def);
+    void DestroyJoint(b2Joint* joint);
+    void Step(Fixed timeStep, int32 velocityIterations, int32 positionIterations);
+    void ClearForces();
+    void DrawDebugData();
+    void QueryAABB(b2QueryCallback* callback, const b2AABB& aabb) const;
+    void RayCast(b2RayCastCallback* callback, const b2Vec2& point1, const b2Vec2& point2) const;
+    void SetAllowSleeping(bool flag);
+    b2Joint* GetJoint(int32 id) noexcept {
+        return id >= 0 && static_cast<size_t>(id) < m_joints.size() ? m_joints[static_cast<size_t>(id)] : nullptr;
+    }
+    bool IsLocked() const noexcept { return (m_flags & e_locked) != 0; }
+
+    // ---- what bodies, fixtures and joints call back into ----
+    enum : uint32 { e_newFixture = 0x0001, e_locked = 0x0002, e_clearForces = 0x0004 };
+    /// Reports a refused call on a locked world; returns true when the world is locked.
+    bool CheckLocked(const char* what) const;
+    b2Fixture* CreateFixture(b2Body* body, const b2FixtureDef* def);
+    void DestroyFixture(b2Fixture* fixture);
+    /// Frees a joint id in the id table (the joint is being destroyed).
+    void ReleaseJointId(int32 id);
+
+    // ---- structural changes, for rollback frames (state/FrameBook.h) ----
+    /// Every change of the structure (what a frame shares through its structure image rather
+    /// than copying: bodies', fixtures' and joints' set-up, shapes, pool layouts) calls one of
+    /// these. A frame saved before the change is restored through its structure image, or,
+    /// for a change confined to bodies and joints created since the frame, by destroying them.
+    void MarkStructureChanged() noexcept { m_frames.MarkStructureChanged(); }
+    /// A change confined to one body: its creation or destruction, its fixtures and their
+    /// settings and shapes, its mass, type, activity, damping, gravity scale or user data.
+    void MarkBodyStructureChanged(int32 bodyId) noexcept;
+    /// A joint created or destroyed (with its id and bodies set): confined to the joint and
+    /// its two bodies.
+    void MarkJointStructureChanged(const b2Joint& joint) noexcept;
+
+    /// The public world this state belongs to (listeners and observers are given it).
+    b2World* m_owner;
+    uint32 m_flags = e_clearForces;
+    b2ContactManager m_contactManager;
+    b2Pool<b2Body> m_bodies;
+    b2Pool<b2Fixture> m_fixtures;
+    b2Body* m_bodyList = nullptr;
+    b2Joint* m_jointList = nullptr;
+    /// Joints by id (nullptr for free ids). Ids are the smallest free ones, so this table is
+    /// derived from the joints' ids and is rebuilt on restore.
+    std::vector<b2Joint*> m_joints;
+    int32 m_jointIdHint = 0;  ///< every joint id below it is taken (a cache, not state)
+    int32 m_bodyCount = 0;
+    int32 m_jointCount = 0;
+    b2Vec2 m_gravity;
+    bool m_allowSleep = true;
+    b2DestructionListener* m_destructionListener = nullptr;
+    b2BoundaryListener* m_boundaryListener = nullptr;
+    b2Draw* m_debugDraw = nullptr;
+    Fixed m_inv_dt0;  ///< inverse of the previous step, for dtRatio
+    bool m_warmStarting = true;
+    bool m_continuousPhysics = true;
+    bool m_subStepping = false;
+    bool m_autoClearForces = true;
+    bool m_stepComplete = true;
+    b2AABB m_bounds;
+    uint64 m_saturationCount = 0;  ///< saturations inside this world's Steps (state)
+    /// Parsed-image scratch kept between restores, so a rollback restore reuses its buffers.
+    std::unique_ptr<state_detail::Image, state_detail::ImageDeleter> m_restoreScratch;
+    /// Rollback frames' book-keeping (not state): serial, structure epochs, the log of
+    /// confined changes, the shared structure image and restore scratch.
+    state_detail::FrameBook m_frames;
+    b2Profile m_profile;
+    bool m_headroomTelemetry = false;          ///< fill m_profile.headroom at the end of each Step
+    b2StepObserver* m_stepObserver = nullptr;  ///< step fenceposts (not state)
+
+private:
+    void Solve(const b2TimeStep& step);
+    void SolveTOI(const b2TimeStep& step);
+    /// Takes bodies whose centre left the bounds out of the simulation and reports them.
+    void EnforceBounds();
+    bool IsOutside(const b2Body* b) const noexcept;
+    void DrawShape(b2Fixture* fixture, const b2Transform& xf, const b2Color& color);
+
+    b2Island m_island;
+    std::vector<b2Body*> m_stack;
+    std::vector<b2Body*> m_outOfBounds;
+};
+
+/// The block a b2World holds (World.h declares it without the engine's definition).
+class b2World::State final : public core_detail::Engine::World {
+public:
+    using core_detail::Engine::World::World;
+};
+
+inline core_detail::Engine::World& core_detail::Engine::Of(b2World& world) noexcept { return *world.m_state; }
+inline const core_detail::Engine::World& core_detail::Engine::Of(const b2World& world) noexcept {
+    return *world.m_state;
+}
+
+}  // namespace lockbox
