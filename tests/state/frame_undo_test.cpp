@@ -137,7 +137,7 @@ TEST(FrameUndo, OtherChangesRestoreTheStructureImage) {
          }},
         {"older body destroyed", [](b2World& w, b2Body* older) { w.DestroyBody(older); }},
         {"older body made inactive", [](b2World&, b2Body* older) { older->SetActive(false); }},
-        {"older fixture's shape", [](b2World&, b2Body* older) { (void)older->GetFixtureList()->GetShape(); }},
+        {"older fixture's shape", [](b2World&, b2Body* older) { (void)older->GetFixtureList()->EditShape(); }},
         {"joint between a new and an older body",
          [](b2World& w, b2Body* older) {
              b2Body* a = AddBox(w, b2Vec2(0, 20));

@@ -72,7 +72,7 @@ void MarkChanged(b2Body* body) noexcept {
 }
 }  // namespace
 
-b2Shape* b2Fixture::GetShape() noexcept {
+b2Shape* b2Fixture::EditShape() noexcept {
     MarkChanged(m_body);
     return m_shape.get();
 }

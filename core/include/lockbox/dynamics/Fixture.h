@@ -60,11 +60,14 @@ class LOCKBOX_API b2Fixture {
 public:
     /// Shape type (the child shape type for chains is e_edge at collision time).
     b2Shape::Type GetType() const noexcept { return m_shape->GetType(); }
-    /// The fixture's own shape (a clone of the definition's), to change: marks the world's
-    /// structure changed (b2World::MarkStructureChanged), so read through a const fixture.
-    /// Do not change its geometry.
-    b2Shape* GetShape() noexcept;
+    /// The fixture's own shape (a clone of the definition's), to read. Reading changes nothing.
     const b2Shape* GetShape() const noexcept { return m_shape.get(); }
+    /// The fixture's own shape, to change (its radius, vertices, centre): tells the world that
+    /// its structure changed, so a rollback frame saved before the edit restores the shape as
+    /// it was. Call it for each edit (an edit through a pointer kept from before the last
+    /// SaveFrame goes unseen). Keep the shape's type and child count; mass and proxies follow
+    /// at ResetMassData and the next step's synchronisation, as in Box2D.
+    b2Shape* EditShape() noexcept;
 
     /// Makes this a sensor (or not). Takes effect at the next contact update.
     void SetSensor(bool sensor) noexcept;
