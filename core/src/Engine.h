@@ -14,7 +14,6 @@
 namespace lockbox {
 
 class b2World;
-class b2WorldFrame;
 
 namespace core_detail {
 
@@ -31,27 +30,25 @@ struct Engine {
     class Island;
     /// The contact constraints of one island (dynamics/contacts/ContactSolver.h).
     class ContactSolver;
-    /// What the body, fixture and joint code needs of each other (dynamics/Internals.h).
+    /// The few body and contact internals other code reads (dynamics/Access.h).
     struct Bodies;
-    struct Fixtures;
     struct Contacts;
+    /// The joint factory, the joint graph's links, and what joints read of bodies
+    /// (dynamics/joints/JointAccess.h).
     struct Joints;
 
     // ---- the world's state (state/) ----
-    /// The canonical state walk shared by the hash and the snapshot (state/StateWalk.h).
+    /// The canonical state walk's body, fixture, contact and joint records (state/StateWalk.h).
     struct StateWalk;
-    /// Joint state records without a scratch joint (state/JointState.h).
+    /// The joints' state fields on prototypes, for the parse and the record sizes
+    /// (state/JointState.h).
     struct JointState;
-    /// Relinking restored objects (state/RestoreLinks.h).
+    /// The list links the restores write (state/RestoreLinks.h).
     struct RestoreLinks;
     /// Installing a validated snapshot image (state/SnapshotApply.cpp).
     struct SnapshotApply;
     /// Rollback frames: their arrays and the undoing of creations (state/WorldFrame.cpp).
     struct Frames;
-    /// The state hash (state/WorldHash.cpp).
-    struct Hashing;
-    /// Headroom telemetry (state/Headroom.cpp).
-    struct HeadroomWalk;
 
     /// The internal state of a world.
     static World& Of(b2World& world) noexcept;

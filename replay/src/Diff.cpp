@@ -50,45 +50,22 @@ std::string FormatWide(Wide v) {
 }
 
 std::vector<FieldDifference> CompareBodies(const b2Body& a, const b2Body& b) {
+    // The body records of the canonical state walk (b2BodyStateFields): the fields the hash
+    // reads, in its order, so the diff cannot miss one the hash sees.
     std::vector<FieldDifference> out;
-    auto fx = [&](const char* name, Fixed x, Fixed y) {
-        if (x != y) out.push_back({name, FormatFixed(x), FormatFixed(y)});
+    const std::vector<b2BodyField> fa = b2BodyStateFields(a);
+    const std::vector<b2BodyField> fb = b2BodyStateFields(b);
+    auto format = [](const b2BodyField& f) {
+        switch (f.format) {
+            case b2FieldFormat::e_fixed: return FormatFixed(Fixed::FromRaw(static_cast<int32>(f.raw)));
+            case b2FieldFormat::e_wide: return FormatWide(Wide::FromRaw(f.raw));
+            case b2FieldFormat::e_integer: break;
+        }
+        return std::to_string(f.raw);
     };
-    auto wd = [&](const char* name, Wide x, Wide y) {
-        if (x.Raw() != y.Raw()) out.push_back({name, FormatWide(x), FormatWide(y)});
-    };
-    auto in = [&](const char* name, int64_t x, int64_t y) {
-        if (x != y) out.push_back({name, std::to_string(x), std::to_string(y)});
-    };
-    auto vec = [&](const std::string& name, const b2Vec2& x, const b2Vec2& y) {
-        if (x.x != y.x) out.push_back({name + ".x", FormatFixed(x.x), FormatFixed(y.x)});
-        if (x.y != y.y) out.push_back({name + ".y", FormatFixed(x.y), FormatFixed(y.y)});
-    };
-    in("type", static_cast<int64_t>(a.m_type), static_cast<int64_t>(b.m_type));
-    in("flags", a.m_flags, b.m_flags);
-    vec("position", a.m_xf.p, b.m_xf.p);
-    fx("rotation.s", a.m_xf.q.s, b.m_xf.q.s);
-    fx("rotation.c", a.m_xf.q.c, b.m_xf.q.c);
-    fx("sweep.a", a.m_sweep.a, b.m_sweep.a);
-    fx("sweep.a0", a.m_sweep.a0, b.m_sweep.a0);
-    vec("sweep.c", a.m_sweep.c, b.m_sweep.c);
-    vec("sweep.c0", a.m_sweep.c0, b.m_sweep.c0);
-    vec("sweep.localCenter", a.m_sweep.localCenter, b.m_sweep.localCenter);
-    fx("sweep.alpha0", a.m_sweep.alpha0, b.m_sweep.alpha0);
-    vec("linearVelocity", a.m_linearVelocity, b.m_linearVelocity);
-    fx("angularVelocity", a.m_angularVelocity, b.m_angularVelocity);
-    vec("force", a.m_force, b.m_force);
-    fx("torque", a.m_torque, b.m_torque);
-    wd("mass", a.m_mass, b.m_mass);
-    wd("invMass", a.m_invMass, b.m_invMass);
-    wd("I", a.m_I, b.m_I);
-    wd("invI", a.m_invI, b.m_invI);
-    fx("linearDamping", a.m_linearDamping, b.m_linearDamping);
-    fx("angularDamping", a.m_angularDamping, b.m_angularDamping);
-    fx("gravityScale", a.m_gravityScale, b.m_gravityScale);
-    in("sleepSteps", a.m_sleepSteps, b.m_sleepSteps);
-    in("fixtureCount", a.m_fixtureCount, b.m_fixtureCount);
-    in("userData", static_cast<int64_t>(a.m_userData), static_cast<int64_t>(b.m_userData));
+    for (size_t i = 0; i < fa.size() && i < fb.size(); ++i) {
+        if (fa[i].raw != fb[i].raw) out.push_back({fa[i].name, format(fa[i]), format(fb[i])});
+    }
     if (out.empty() && b2BodyStateHash(a) != b2BodyStateHash(b))
         out.push_back(
             {"fixtures", "(sub-hash " + Hex(b2BodyStateHash(a)) + ")", "(sub-hash " + Hex(b2BodyStateHash(b)) + ")"});

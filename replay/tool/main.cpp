@@ -239,7 +239,7 @@ public:
         if (frame != m_frame || stage != m_stage) return;
         for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
             if (b->GetType() != b2_dynamicBody) continue;
-            b->m_linearVelocity.x = Fixed::FromRaw(b->m_linearVelocity.x.Raw() + 1);
+            b->SetLinearVelocity(b->GetLinearVelocity() + b2Vec2(Fixed::FromRaw(1), Fixed()));
             return;
         }
     }

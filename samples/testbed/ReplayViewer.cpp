@@ -10,7 +10,7 @@ void FaultInjector::OnStage(int32 atFrame, uint32 atStage, b2World& world) {
     for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
         if (b->GetType() != b2_dynamicBody) continue;
         // One raw unit: the smallest change the format can make.
-        b->m_linearVelocity.x = Fixed::FromRaw(b->m_linearVelocity.x.Raw() + 1);
+        b->SetLinearVelocity(b->GetLinearVelocity() + b2Vec2(Fixed::FromRaw(1), Fixed()));
         return;
     }
 }

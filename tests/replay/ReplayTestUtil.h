@@ -78,7 +78,7 @@ public:
         if (frame != m_frame || stage != m_stage) return;
         for (b2Body* b = world.GetBodyList(); b; b = b->GetNext()) {
             if (b->GetType() != b2_dynamicBody || (m_bodyId >= 0 && b->GetId() != m_bodyId)) continue;
-            b->m_linearVelocity.x = Fixed::FromRaw(b->m_linearVelocity.x.Raw() + 1);
+            b->SetLinearVelocity(b->GetLinearVelocity() + b2Vec2(Fixed::FromRaw(1), Fixed()));
             touched = b->GetId();
             return;
         }

@@ -45,8 +45,10 @@ TEST(Headroom, WalkRecordsExactMagnitudes) {
     EXPECT_EQ(h[C::e_angularVelocity].maxRaw, 5u * 65536u);
     EXPECT_EQ(h[C::e_mass].maxRaw, static_cast<uint64>(b->GetMass().Raw()));
     EXPECT_EQ(h[C::e_mass].maxRaw, 8ull << 32);
-    EXPECT_EQ(h[C::e_invMass].maxRaw, static_cast<uint64>(b->m_invMass.Raw()));
-    EXPECT_EQ(h[C::e_inertia].maxRaw, static_cast<uint64>(b->m_I.Raw()));
+    // The box is centred on its origin: its central inertia is GetInertia(), and its inverse
+    // mass is the one division the body makes.
+    EXPECT_EQ(h[C::e_invMass].maxRaw, static_cast<uint64>((Wide(1) / b->GetMass()).Raw()));
+    EXPECT_EQ(h[C::e_inertia].maxRaw, static_cast<uint64>(b->GetInertia().Raw()));
     // The fat AABB reaches past the body by the skin and aabbExtension.
     EXPECT_GT(h[C::e_treeBounds].maxRaw, 201u * 65536u);
     EXPECT_GT(h[C::e_treeCost].maxRaw, 0u);

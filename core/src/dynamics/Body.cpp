@@ -53,7 +53,7 @@ b2Fixture* b2Body::CreateFixture(const b2Shape* shape, Fixed density) {
 
 void b2Body::DestroyFixture(b2Fixture* fixture) {
     if (Engine::Of(*m_world).CheckLocked("b2Body::DestroyFixture")) return;
-    if (fixture == nullptr || fixture->m_body != this) return;
+    if (fixture == nullptr || fixture->GetBody() != this) return;
     Engine::Of(*m_world).DestroyFixture(fixture);
 }
 
@@ -84,8 +84,8 @@ void b2Body::ResetMassData() {
     // First moments accumulate in Q32.32 so the centre is divided out with one rounding.
     Wide momentX;
     Wide momentY;
-    for (b2Fixture* f = m_fixtureList; f; f = f->m_next) {
-        if (f->m_density == Fixed()) continue;
+    for (b2Fixture* f = m_fixtureList; f; f = f->GetNext()) {
+        if (f->GetDensity() == Fixed()) continue;
         b2MassData massData;
         f->GetMassData(&massData);
         m_mass += massData.mass;
@@ -160,7 +160,7 @@ bool b2Body::ShouldCollide(const b2Body* other) const {
     // At least one body must be dynamic.
     if (m_type != b2_dynamicBody && other->m_type != b2_dynamicBody) return false;
     for (const b2JointEdge* jn = m_jointList; jn; jn = jn->next) {
-        if (jn->other == other && !jn->joint->m_collideConnected) return false;
+        if (jn->other == other && !jn->joint->GetCollideConnected()) return false;
     }
     return true;
 }
@@ -173,17 +173,9 @@ void b2Body::SetTransform(const b2Vec2& position, Fixed angle) {
     m_sweep.a = angle;
     m_sweep.c0 = m_sweep.c;
     m_sweep.a0 = angle;
-    b2BroadPhase* broadPhase = &Engine::Of(*m_world).m_contactManager.m_broadPhase;
-    for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->Synchronize(broadPhase, m_xf, m_xf);
-    Engine::Of(*m_world).m_contactManager.FindNewContacts();
-}
-
-void b2Body::SynchronizeFixtures() {
-    b2Transform xf1;
-    xf1.q.Set(m_sweep.a0);
-    xf1.p = m_sweep.c0 - b2Mul(xf1.q, m_sweep.localCenter);
-    b2BroadPhase* broadPhase = &Engine::Of(*m_world).m_contactManager.m_broadPhase;
-    for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->Synchronize(broadPhase, xf1, m_xf);
+    Engine::World& world = Engine::Of(*m_world);
+    world.SynchronizeFixtures(*this, m_xf, m_xf);
+    world.m_contactManager.FindNewContacts();
 }
 
 void b2Body::SynchronizeTransform() {
@@ -226,7 +218,7 @@ void b2Body::SetType(b2BodyType type) {
         m_angularVelocity = Fixed();
         m_sweep.a0 = m_sweep.a;
         m_sweep.c0 = m_sweep.c;
-        SynchronizeFixtures();
+        Engine::Of(*m_world).SynchronizeFixtures(*this);
     }
     SetAwake(true);
     m_force.SetZero();
@@ -293,22 +285,22 @@ void b2Body::SetActive(bool flag) {
     if (Engine::Of(*m_world).CheckLocked("b2Body::SetActive")) return;
     if (flag == IsActive()) return;
     // Proxies are made or dropped: a structural change for rollback frames.
-    Engine::Of(*m_world).MarkBodyStructureChanged(m_id);
-    b2BroadPhase* broadPhase = &Engine::Of(*m_world).m_contactManager.m_broadPhase;
+    Engine::World& world = Engine::Of(*m_world);
+    world.MarkBodyStructureChanged(m_id);
     if (flag) {
         m_flags |= e_activeFlag;
         m_flags &= ~e_outOfBoundsFlag;
-        for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->CreateProxies(broadPhase, m_xf);
+        world.CreateProxies(*this);
         // Contacts are created at the next Step.
-        Engine::Of(*m_world).m_flags |= Engine::World::e_newFixture;
+        world.m_flags |= Engine::World::e_newFixture;
     } else {
         m_flags &= ~e_activeFlag;
-        for (b2Fixture* f = m_fixtureList; f; f = f->m_next) f->DestroyProxies(broadPhase);
+        world.DestroyProxies(*this);
         b2ContactEdge* ce = m_contactList;
         while (ce) {
             b2ContactEdge* ce0 = ce;
             ce = ce->next;
-            Engine::Of(*m_world).m_contactManager.Destroy(ce0->contact);
+            world.m_contactManager.Destroy(ce0->contact);
         }
         m_contactList = nullptr;
     }

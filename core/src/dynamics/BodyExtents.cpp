@@ -58,9 +58,9 @@ Fixed MaxExtent(const b2Shape* shape, const b2Vec2& center) {
 void b2Body::UpdateExtents() {
     m_minExtent = Fixed::FromRaw(Fixed::kMaxRaw);
     m_maxExtent = Fixed();
-    for (const b2Fixture* f = m_fixtureList; f; f = f->m_next) {
-        m_minExtent = b2Min(m_minExtent, MinExtent(f->m_shape.get()));
-        m_maxExtent = b2Max(m_maxExtent, MaxExtent(f->m_shape.get(), m_sweep.localCenter));
+    for (const b2Fixture* f = m_fixtureList; f; f = f->GetNext()) {
+        m_minExtent = b2Min(m_minExtent, MinExtent(f->GetShape()));
+        m_maxExtent = b2Max(m_maxExtent, MaxExtent(f->GetShape(), m_sweep.localCenter));
     }
     if (m_fixtureList == nullptr) m_minExtent = Fixed();
 }

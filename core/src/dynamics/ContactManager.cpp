@@ -3,6 +3,7 @@
 
 #include <utility>
 
+#include "dynamics/contacts/ContactRules.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
 #include "lockbox/dynamics/WorldCallbacks.h"
@@ -52,8 +53,8 @@ void b2ContactManager::AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB) {
 
     const b2Shape::Type typeA = fixtureA->GetType();
     const b2Shape::Type typeB = fixtureB->GetType();
-    if (!b2Contact::CanCollide(typeA, typeB)) return;
-    if (b2Contact::NeedsSwap(typeA, typeB)) {
+    if (!core_detail::ShapesCanCollide(typeA, typeB)) return;
+    if (core_detail::ShapesNeedSwap(typeA, typeB)) {
         std::swap(fixtureA, fixtureB);
         std::swap(indexA, indexB);
         std::swap(bodyA, bodyB);

@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "dynamics/WorldState.h"
+#include "dynamics/joints/JointAccess.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 
 namespace lockbox {
@@ -31,6 +32,7 @@ b2AssertHandler b2SetAssertHandler(b2AssertHandler handler) noexcept {
 }
 
 using World = core_detail::Engine::World;
+using Joints = core_detail::Engine::Joints;
 
 World::World(b2World* owner, const b2Vec2& gravity)
     : m_owner(owner), m_contactManager(&m_fixtures), m_gravity(gravity) {
@@ -43,7 +45,7 @@ World::~World() {
     b2Joint* j = m_jointList;
     while (j) {
         b2Joint* next = j->m_next;
-        b2Joint::Destroy(j);
+        Joints::Destroy(j);
         j = next;
     }
 }
@@ -176,6 +178,27 @@ void World::DestroyFixture(b2Fixture* fixture) {
     m_fixtures.Destroy(fixture->GetId());
     --body->m_fixtureCount;
     body->ResetMassData();
+}
+
+void World::SynchronizeFixtures(b2Body& body, const b2Transform& xf1, const b2Transform& xf2) {
+    b2BroadPhase* broadPhase = &m_contactManager.m_broadPhase;
+    for (b2Fixture* f = body.m_fixtureList; f; f = f->m_next) f->Synchronize(broadPhase, xf1, xf2);
+}
+
+void World::SynchronizeFixtures(b2Body& body) {
+    b2Transform xf1;
+    xf1.q.Set(body.m_sweep.a0);
+    xf1.p = body.m_sweep.c0 - b2Mul(xf1.q, body.m_sweep.localCenter);
+    SynchronizeFixtures(body, xf1, body.m_xf);
+}
+
+void World::CreateProxies(b2Body& body) {
+    for (b2Fixture* f = body.m_fixtureList; f; f = f->m_next)
+        f->CreateProxies(&m_contactManager.m_broadPhase, body.m_xf);
+}
+
+void World::DestroyProxies(b2Body& body) {
+    for (b2Fixture* f = body.m_fixtureList; f; f = f->m_next) f->DestroyProxies(&m_contactManager.m_broadPhase);
 }
 
 void World::SetAllowSleeping(bool flag) {

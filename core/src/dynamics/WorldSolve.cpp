@@ -104,7 +104,7 @@ void World::Solve(const b2TimeStep& step) {
     for (b2Body* b = m_bodyList; b; b = b->GetNext()) {
         if ((b->m_flags & b2Body::e_islandFlag) == 0) continue;
         if (b->GetType() == b2_staticBody) continue;
-        b->SynchronizeFixtures();
+        SynchronizeFixtures(*b);
         if (b->IsBullet() || b->IsFastThisStep()) b->m_flags |= b2Body::e_fastFlag;
         // Wrapping after the synchronisation keeps this step's swept AABB exact; the next
         // step starts from the wrapped angle (a and a0 shift by the same whole turns).
@@ -334,7 +334,7 @@ void World::SolveTOI(const b2TimeStep& step) {
             b2Body* body = m_island.m_bodies[static_cast<size_t>(i)];
             body->m_flags &= ~b2Body::e_islandFlag;
             if (body->m_type != b2_dynamicBody) continue;
-            body->SynchronizeFixtures();
+            SynchronizeFixtures(*body);
             // The sub-step moved it: it needs its TOIs re-examined.
             body->m_flags |= b2Body::e_fastFlag;
             if (IsOutside(body)) m_outOfBounds.push_back(body);

@@ -56,6 +56,13 @@ public:
     void DestroyFixture(b2Fixture* fixture);
     /// Frees a joint id in the id table (the joint is being destroyed).
     void ReleaseJointId(int32 id);
+    /// Moves a body's proxies to cover its fixtures from transform xf1 to xf2.
+    void SynchronizeFixtures(b2Body& body, const b2Transform& xf1, const b2Transform& xf2);
+    /// The same over the body's step: from its sweep's start to its transform.
+    void SynchronizeFixtures(b2Body& body);
+    /// Gives a body's fixtures their proxies (the body becomes active), or takes them away.
+    void CreateProxies(b2Body& body);
+    void DestroyProxies(b2Body& body);
 
     // ---- structural changes, for rollback frames (state/FrameBook.h) ----
     /// Every change of the structure (what a frame shares through its structure image rather

@@ -2,6 +2,7 @@
 
 #include "lockbox/state/Headroom.h"
 
+#include "dynamics/Access.h"
 #include "dynamics/WorldState.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/World.h"
@@ -102,19 +103,20 @@ b2HeadroomClass b2Headroom::Tightest() const noexcept {
 }
 
 b2Headroom b2MeasureHeadroom(const b2World& world) {
+    using Bodies = core_detail::Engine::Bodies;
     b2Headroom h;
     Walker w(h);
 
     for (const b2Body* b = world.GetBodyList(); b != nullptr; b = b->GetNext()) {
-        w.SeeVec(C::e_position, b->m_xf.p);
-        w.SeeVec(C::e_position, b->m_sweep.c);
-        w.See(C::e_angle, b->m_sweep.a.Raw());
-        w.SeeVec(C::e_velocity, b->m_linearVelocity);
-        w.See(C::e_angularVelocity, b->m_angularVelocity.Raw());
-        w.See(C::e_mass, b->m_mass.Raw());
-        w.See(C::e_inertia, b->m_I.Raw());
-        w.See(C::e_invMass, b->m_invMass.Raw());
-        w.See(C::e_invInertia, b->m_invI.Raw());
+        w.SeeVec(C::e_position, b->GetPosition());
+        w.SeeVec(C::e_position, b->GetWorldCenter());
+        w.See(C::e_angle, b->GetAngle().Raw());
+        w.SeeVec(C::e_velocity, b->GetLinearVelocity());
+        w.See(C::e_angularVelocity, b->GetAngularVelocity().Raw());
+        w.See(C::e_mass, b->GetMass().Raw());
+        w.See(C::e_inertia, Bodies::CentralInertia(*b).Raw());
+        w.See(C::e_invMass, Bodies::InvMass(*b).Raw());
+        w.See(C::e_invInertia, Bodies::InvInertia(*b).Raw());
     }
 
     for (const b2Contact* c = world.GetContactList(); c != nullptr; c = c->GetNext()) {

@@ -17,22 +17,47 @@
 #include "SnapshotImage.h"
 #include "StateWalk.h"
 
+namespace lockbox {
+
+/// The joints' state fields where no world joint is at hand: their prototypes.
+struct core_detail::Engine::JointState {
+    /// A joint of class T to run VisitState on where no world joint is at hand (the parse, the
+    /// record sizes): the visitors use the fields' types and places, never write them, and the
+    /// size count's reads are defined (a static is zero-filled before its constructor runs).
+    /// Restores in several threads only read it.
+    template <class T>
+    static T& Prototype() {
+        static T prototype{b2RestoreTag{}};
+        return prototype;
+    }
+
+    /// Runs the VisitState of the class of `type` on its prototype.
+    template <class V>
+    static void VisitFields(b2JointType type, V& v) {
+        state_detail::WithJointClass(type, [&](auto cls) { Prototype<typename decltype(cls)::type>().VisitState(v); });
+    }
+
+    /// Runs a joint's own VisitState (T is its concrete class).
+    template <class T, class V>
+    static void VisitState(T& joint, V& v) {
+        joint.VisitState(v);
+    }
+};
+
+}  // namespace lockbox
+
 namespace lockbox::state_detail {
 
-/// A joint of class T to run VisitState on where no world joint is at hand (the parse, the
-/// record sizes): the visitors use the fields' types and places, never write them, and the
-/// size count's reads are defined (a static is zero-filled before its constructor runs).
-/// Restores in several threads only read it.
+/// The prototype joint of class T (Engine::JointState::Prototype).
 template <class T>
 T& JointPrototype() {
-    static T prototype{b2RestoreTag{}};
-    return prototype;
+    return core_detail::Engine::JointState::Prototype<T>();
 }
 
 /// Runs the VisitState of the class of `type` on its prototype.
 template <class V>
 void VisitJointFields(b2JointType type, V& v) {
-    WithJointClass(type, [&](auto cls) { JointPrototype<typename decltype(cls)::type>().VisitState(v); });
+    core_detail::Engine::JointState::VisitFields(type, v);
 }
 
 /// A writer that only counts the bytes asked of it (the widths of ByteCursor's fields).
@@ -95,12 +120,12 @@ inline const JointStateSizes& JointStateBytes() {
                 T& prototype = JointPrototype<T>();
                 FieldChunks chunks{reinterpret_cast<const char*>(&prototype)};
                 chunks.Mark(&prototype, sizeof(b2Joint));
-                prototype.VisitState(chunks);
-                VisitJointReaction(prototype, chunks);
+                core_detail::Engine::JointState::VisitState(prototype, chunks);
+                StateWalk::VisitJointReaction(prototype, chunks);
                 s.chunks[static_cast<size_t>(t)] = chunks.mask;
                 ByteCount reactionCount;
                 JointFieldWriter<ByteCount> reactionWriter{reactionCount};
-                VisitJointReaction(prototype, reactionWriter);
+                StateWalk::VisitJointReaction(prototype, reactionWriter);
                 s.reaction[static_cast<size_t>(t)] = static_cast<uint32>(reactionCount.bytes);
             });
         }

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 
+#include "dynamics/Access.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 
 namespace lockbox::state_detail {
@@ -29,7 +30,7 @@ inline void PrefetchBytes(const void* p, size_t bytes) noexcept {
 inline void PrefetchObject(const b2Contact* c) noexcept {
     if (c == nullptr) return;
     const char* first = reinterpret_cast<const char*>(c);
-    const char* last = reinterpret_cast<const char*>(&c->m_nodeA) - 1;
+    const char* last = first + core_detail::Engine::Contacts::WalkedBytes(*c) - 1;
     for (const char* p = first; p < last; p += 64) __builtin_prefetch(p);
     __builtin_prefetch(last);
 }

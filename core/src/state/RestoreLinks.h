@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "Engine.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
 #include "lockbox/dynamics/contacts/Contact.h"
@@ -26,16 +27,37 @@ struct ContactListTail {
     std::vector<b2ContactEdge*>& edgeTails;
 };
 
+}  // namespace lockbox::state_detail
+
+namespace lockbox {
+
+/// The list and edge links the restores write into bodies, contacts and joints.
+struct core_detail::Engine::RestoreLinks {
+    /// Appends a node at the tail of a doubly linked world list (bodies, contacts, joints).
+    template <class T>
+    static void AppendToWorldList(T* node, T*& head, T*& tail) {
+        node->m_prev = tail;
+        node->m_next = nullptr;
+        if (tail != nullptr)
+            tail->m_next = node;
+        else
+            head = node;
+        tail = node;
+    }
+
+    static void LinkRestoredContact(b2Contact* c, int32 fixtureA, int32 indexA, int32 fixtureB, int32 indexB,
+                                    const state_detail::FixtureSlot& a, const state_detail::FixtureSlot& b,
+                                    b2Contact*& head, state_detail::ContactListTail& tail);
+};
+
+}  // namespace lockbox
+
+namespace lockbox::state_detail {
+
 /// Appends a node at the tail of a doubly linked world list (bodies, contacts, joints).
 template <class T>
 void AppendToWorldList(T* node, T*& head, T*& tail) {
-    node->m_prev = tail;
-    node->m_next = nullptr;
-    if (tail != nullptr)
-        tail->m_next = node;
-    else
-        head = node;
-    tail = node;
+    core_detail::Engine::RestoreLinks::AppendToWorldList(node, head, tail);
 }
 
 /// Links an edge (contact or joint) at the tail of a body's list, given the list's current
@@ -55,6 +77,18 @@ void AppendEdge(Edge* e, Edge*& head, Edge*& tail) {
 /// contact list (head) and to both bodies' edge lists.
 inline void LinkRestoredContact(b2Contact* c, int32 fixtureA, int32 indexA, int32 fixtureB, int32 indexB,
                                 const FixtureSlot& a, const FixtureSlot& b, b2Contact*& head, ContactListTail& tail) {
+    core_detail::Engine::RestoreLinks::LinkRestoredContact(c, fixtureA, indexA, fixtureB, indexB, a, b, head, tail);
+}
+
+}  // namespace lockbox::state_detail
+
+namespace lockbox {
+
+inline void core_detail::Engine::RestoreLinks::LinkRestoredContact(b2Contact* c, int32 fixtureA, int32 indexA,
+                                                                   int32 fixtureB, int32 indexB,
+                                                                   const state_detail::FixtureSlot& a,
+                                                                   const state_detail::FixtureSlot& b, b2Contact*& head,
+                                                                   state_detail::ContactListTail& tail) {
     c->m_fixtureA = a.fixture;
     c->m_fixtureB = b.fixture;
     c->m_fixtureIdA = fixtureA;
@@ -64,8 +98,8 @@ inline void LinkRestoredContact(b2Contact* c, int32 fixtureA, int32 indexA, int3
     c->m_nodeA = b2ContactEdge{b.body, c, nullptr, nullptr};
     c->m_nodeB = b2ContactEdge{a.body, c, nullptr, nullptr};
     AppendToWorldList(c, head, tail.last);
-    AppendEdge(&c->m_nodeA, a.body->m_contactList, tail.edgeTails[static_cast<size_t>(a.bodyId)]);
-    AppendEdge(&c->m_nodeB, b.body->m_contactList, tail.edgeTails[static_cast<size_t>(b.bodyId)]);
+    state_detail::AppendEdge(&c->m_nodeA, a.body->m_contactList, tail.edgeTails[static_cast<size_t>(a.bodyId)]);
+    state_detail::AppendEdge(&c->m_nodeB, b.body->m_contactList, tail.edgeTails[static_cast<size_t>(b.bodyId)]);
 }
 
-}  // namespace lockbox::state_detail
+}  // namespace lockbox

@@ -9,6 +9,7 @@
 #include "SnapshotCheck.h"
 #include "SnapshotImage.h"
 #include "StateWalk.h"
+#include "dynamics/Access.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
@@ -203,7 +204,7 @@ void ReadFixtures(ImageReader& r, Image& img) {
             f.proxyCount = ReadCount(r, 20, "fixture.proxyCount");
             Check(f.proxyCount == 0 || f.proxyCount == f.childCount, "fixture.proxyCount",
                   "is neither 0 nor the child count", f.proxyCount);
-            const bool active = (b.flags & b2Body::e_activeFlag) != 0;
+            const bool active = (b.flags & core_detail::Engine::Bodies::kActiveFlag) != 0;
             Check((f.proxyCount != 0) == (active && f.childCount != 0), "fixture.proxyCount",
                   "does not match the body's active flag", f.proxyCount);
             f.proxyBegin = static_cast<int32>(img.proxies.size());

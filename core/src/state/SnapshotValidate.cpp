@@ -6,6 +6,7 @@
 
 #include "SnapshotCheck.h"
 #include "SnapshotImage.h"
+#include "dynamics/contacts/ContactRules.h"
 #include "lockbox/collision/BroadPhase.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/contacts/Contact.h"
@@ -46,7 +47,8 @@ void ValidateContacts(Image& img, const std::vector<int32>& fixtureIndex) {
         for (int32 b = 0; b < kTypes; ++b) {
             const auto typeA = static_cast<b2Shape::Type>(a);
             const auto typeB = static_cast<b2Shape::Type>(b);
-            registered[a][b] = b2Contact::CanCollide(typeA, typeB) && !b2Contact::NeedsSwap(typeA, typeB);
+            registered[a][b] =
+                core_detail::ShapesCanCollide(typeA, typeB) && !core_detail::ShapesNeedSwap(typeA, typeB);
         }
     }
     for (const ContactImage& c : img.contacts) {

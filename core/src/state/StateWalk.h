@@ -24,6 +24,8 @@
 
 namespace lockbox::state_detail {
 
+using StateWalk = core_detail::Engine::StateWalk;
+
 /// Calls f(std::type_identity<T>{}) with T the concrete joint class of `type` (nothing for
 /// e_unknownJoint): the one place the state code maps a joint type to its class.
 template <class F>
@@ -41,22 +43,6 @@ void WithJointClass(b2JointType type, F&& f) {
         case e_ropeJoint: f(std::type_identity<b2RopeJoint>{}); break;
         case e_unknownJoint: break;
     }
-}
-
-/// Calls j.VisitState(v) on the concrete joint type.
-template <class V>
-void VisitJointState(b2Joint& j, V& v) {
-    WithJointClass(j.GetType(), [&](auto cls) { static_cast<typename decltype(cls)::type&>(j).VisitState(v); });
-}
-
-/// Calls j.VisitReactionState(v) on the concrete joint type; nothing for a type whose reaction
-/// queries read only its VisitState fields (revolute, mouse, weld, friction).
-template <class V>
-void VisitJointReaction(b2Joint& j, V& v) {
-    WithJointClass(j.GetType(), [&](auto cls) {
-        using T = typename decltype(cls)::type;
-        if constexpr (requires(T & t) { t.VisitReactionState(v); }) static_cast<T&>(j).VisitReactionState(v);
-    });
 }
 
 /// Adapts a writer to the joints' VisitState protocol (read-only use of the fields).
@@ -153,44 +139,6 @@ void WriteSettings(W& w, const b2World& world, bool withContacts = true) {
     w.I32(withContacts ? world.GetContactCount() : 0);
 }
 
-template <class W>
-void WriteBody(W& w, const b2Body& b) {
-    auto c = w.Begin(kBodyRecordBytes);
-    c.I32(b.GetId());
-    c.U8(static_cast<uint32>(b.GetType()));
-    c.U16(b.m_flags);
-    c.V(b.m_xf.p);
-    c.F(b.m_xf.q.s);
-    c.F(b.m_xf.q.c);
-    const b2Sweep& sw = b.m_sweep;
-    c.V(sw.localCenter);
-    c.V(sw.c0);
-    c.V(sw.c);
-    c.F(sw.a0);
-    c.F(sw.a);
-    c.F(sw.alpha0);
-    c.V(b.m_linearVelocity);
-    c.F(b.m_angularVelocity);
-    c.V(b.m_force);
-    c.F(b.m_torque);
-    c.I32(b.m_sleepSteps);
-    c.W(b.m_mass);
-    c.W(b.m_invMass);
-    c.W(b.m_I);
-    c.W(b.m_invI);
-    c.F(b.m_linearDamping);
-    c.F(b.m_angularDamping);
-    c.F(b.m_gravityScale);
-    c.F(b.m_minExtent);
-    c.F(b.m_maxExtent);
-    c.U64(b.m_userData);
-    c.I32(b.m_fixtureCount);
-    w.End(c);
-    // The body's contact and joint edge lists are not written: both are always in world-list
-    // order (every create prepends to the world list and to both bodies' lists, every destroy
-    // unlinks), so the contact and joint sections already fix them. Restore rebuilds them.
-}
-
 /// A shape's fields, all but a chain's (WriteChainShape): type, radius, then by type.
 template <class C>
 void WriteShapeFixed(C& c, const b2Shape& shape) {
@@ -241,69 +189,6 @@ void WriteProxy(C& c, const b2FixtureProxy& proxy) {
     c.I32(proxy.proxyId);
 }
 
-template <class W>
-void WriteFixture(W& w, const b2Fixture& f) {
-    const b2Shape& shape = *f.GetShape();
-    auto c = w.Begin(kFixtureMaxBytes);
-    c.I32(f.GetId());
-    c.I32(f.GetBody()->GetId());
-    c.F(f.m_density);
-    c.F(f.m_friction);
-    c.F(f.m_restitution);
-    c.Bool(f.m_isSensor);
-    c.U16(f.m_filter.categoryBits);
-    c.U16(f.m_filter.maskBits);
-    c.U16(static_cast<uint16>(f.m_filter.groupIndex));
-    c.U64(f.m_userData);
-    WriteShapeFixed(c, shape);
-    // Proxies exist only while the body is active: 0 or one per child.
-    int32 i = 0;
-    if (shape.GetType() != b2Shape::e_chain) {
-        // One child: its proxy (if any) fits in the same record.
-        c.I32(f.m_proxyCount);
-        if (f.m_proxyCount > 0) WriteProxy(c, f.m_proxies[static_cast<size_t>(i++)]);
-        w.End(c);
-    } else {
-        w.End(c);
-        WriteChainShape(w, static_cast<const b2ChainShape&>(shape));
-        w.I32(f.m_proxyCount);
-    }
-    for (; i < f.m_proxyCount; ++i) {
-        auto pc = w.Begin(kProxyBytes);
-        WriteProxy(pc, f.m_proxies[static_cast<size_t>(i)]);
-        w.End(pc);
-    }
-}
-
-template <class W>
-void WriteContact(W& w, const b2Contact& contact) {
-    auto c = w.Begin(kContactMaxBytes);
-    c.I32(contact.GetId());
-    c.I32(contact.m_fixtureIdA);
-    c.I32(contact.m_indexA);
-    c.I32(contact.m_fixtureIdB);
-    c.I32(contact.m_indexB);
-    c.U32(contact.m_flags);
-    c.I32(contact.m_toiCount);
-    c.F(contact.m_toi);
-    c.F(contact.m_friction);
-    c.F(contact.m_restitution);
-    const b2Manifold& m = contact.m_manifold;
-    c.U8(static_cast<uint32>(m.type));
-    c.U8(static_cast<uint32>(m.pointCount));
-    c.V(m.localNormal);
-    c.V(m.localPoint);
-    // Points past pointCount are stale and never matched: left out.
-    for (int32 i = 0; i < m.pointCount; ++i) {
-        const b2ManifoldPoint& p = m.points[i];
-        c.V(p.localPoint);
-        c.W(p.normalImpulse);
-        c.W(p.tangentImpulse);
-        c.U32(p.id.Key());
-    }
-    w.End(c);
-}
-
 /// A joint record's fixed head: id, type, body A, body B, collideConnected, user data.
 inline constexpr size_t kJointHeadBytes = 4 + 1 + 4 + 4 + 1 + 8;
 /// Room for any joint record (head and VisitState fields; the largest, a gear joint's, is
@@ -311,20 +196,149 @@ inline constexpr size_t kJointHeadBytes = 4 + 1 + 4 + 4 + 1 + 8;
 /// against the counted sizes.
 inline constexpr size_t kJointRecordMaxBytes = 256;
 
-template <class W>
-void WriteJoint(W& w, const b2Joint& j) {
-    auto c = w.Begin(kJointRecordMaxBytes);
-    c.I32(j.GetId());
-    c.U8(static_cast<uint32>(j.GetType()));
-    c.I32(j.m_bodyA->GetId());
-    c.I32(j.m_bodyB->GetId());
-    c.Bool(j.m_collideConnected);
-    c.U64(j.m_userData);
-    JointFieldWriter<decltype(c)> visitor{c};
-    // VisitState is shared with the restore path, which writes the fields; here it only reads.
-    VisitJointState(const_cast<b2Joint&>(j), visitor);
-    w.End(c);
-}
+}  // namespace lockbox::state_detail
+
+namespace lockbox {
+
+/// The walk's records that read the core classes' private fields.
+struct core_detail::Engine::StateWalk {
+    /// Calls j.VisitState(v) on the concrete joint type.
+    template <class V>
+    static void VisitJointState(b2Joint& j, V& v) {
+        state_detail::WithJointClass(j.GetType(),
+                                     [&](auto cls) { static_cast<typename decltype(cls)::type&>(j).VisitState(v); });
+    }
+
+    /// Calls j.VisitReactionState(v) on the concrete joint type; nothing for a type whose reaction
+    /// queries read only its VisitState fields (revolute, mouse, weld, friction).
+    template <class V>
+    static void VisitJointReaction(b2Joint& j, V& v) {
+        state_detail::WithJointClass(j.GetType(), [&](auto cls) {
+            using T = typename decltype(cls)::type;
+            if constexpr (requires(T & t) { t.VisitReactionState(v); }) static_cast<T&>(j).VisitReactionState(v);
+        });
+    }
+
+    template <class W>
+    static void WriteBody(W& w, const b2Body& b) {
+        auto c = w.Begin(state_detail::kBodyRecordBytes);
+        c.I32(b.GetId());
+        c.U8(static_cast<uint32>(b.GetType()));
+        c.U16(b.m_flags);
+        c.V(b.m_xf.p);
+        c.F(b.m_xf.q.s);
+        c.F(b.m_xf.q.c);
+        const b2Sweep& sw = b.m_sweep;
+        c.V(sw.localCenter);
+        c.V(sw.c0);
+        c.V(sw.c);
+        c.F(sw.a0);
+        c.F(sw.a);
+        c.F(sw.alpha0);
+        c.V(b.m_linearVelocity);
+        c.F(b.m_angularVelocity);
+        c.V(b.m_force);
+        c.F(b.m_torque);
+        c.I32(b.m_sleepSteps);
+        c.W(b.m_mass);
+        c.W(b.m_invMass);
+        c.W(b.m_I);
+        c.W(b.m_invI);
+        c.F(b.m_linearDamping);
+        c.F(b.m_angularDamping);
+        c.F(b.m_gravityScale);
+        c.F(b.m_minExtent);
+        c.F(b.m_maxExtent);
+        c.U64(b.m_userData);
+        c.I32(b.m_fixtureCount);
+        w.End(c);
+        // The body's contact and joint edge lists are not written: both are always in world-list
+        // order (every create prepends to the world list and to both bodies' lists, every destroy
+        // unlinks), so the contact and joint sections already fix them. Restore rebuilds them.
+    }
+
+    template <class W>
+    static void WriteFixture(W& w, const b2Fixture& f) {
+        const b2Shape& shape = *f.GetShape();
+        auto c = w.Begin(state_detail::kFixtureMaxBytes);
+        c.I32(f.GetId());
+        c.I32(f.GetBody()->GetId());
+        c.F(f.m_density);
+        c.F(f.m_friction);
+        c.F(f.m_restitution);
+        c.Bool(f.m_isSensor);
+        c.U16(f.m_filter.categoryBits);
+        c.U16(f.m_filter.maskBits);
+        c.U16(static_cast<uint16>(f.m_filter.groupIndex));
+        c.U64(f.m_userData);
+        state_detail::WriteShapeFixed(c, shape);
+        // Proxies exist only while the body is active: 0 or one per child.
+        int32 i = 0;
+        if (shape.GetType() != b2Shape::e_chain) {
+            // One child: its proxy (if any) fits in the same record.
+            c.I32(f.m_proxyCount);
+            if (f.m_proxyCount > 0) state_detail::WriteProxy(c, f.m_proxies[static_cast<size_t>(i++)]);
+            w.End(c);
+        } else {
+            w.End(c);
+            state_detail::WriteChainShape(w, static_cast<const b2ChainShape&>(shape));
+            w.I32(f.m_proxyCount);
+        }
+        for (; i < f.m_proxyCount; ++i) {
+            auto pc = w.Begin(state_detail::kProxyBytes);
+            state_detail::WriteProxy(pc, f.m_proxies[static_cast<size_t>(i)]);
+            w.End(pc);
+        }
+    }
+
+    template <class W>
+    static void WriteContact(W& w, const b2Contact& contact) {
+        auto c = w.Begin(state_detail::kContactMaxBytes);
+        c.I32(contact.GetId());
+        c.I32(contact.m_fixtureIdA);
+        c.I32(contact.m_indexA);
+        c.I32(contact.m_fixtureIdB);
+        c.I32(contact.m_indexB);
+        c.U32(contact.m_flags);
+        c.I32(contact.m_toiCount);
+        c.F(contact.m_toi);
+        c.F(contact.m_friction);
+        c.F(contact.m_restitution);
+        const b2Manifold& m = contact.m_manifold;
+        c.U8(static_cast<uint32>(m.type));
+        c.U8(static_cast<uint32>(m.pointCount));
+        c.V(m.localNormal);
+        c.V(m.localPoint);
+        // Points past pointCount are stale and never matched: left out.
+        for (int32 i = 0; i < m.pointCount; ++i) {
+            const b2ManifoldPoint& p = m.points[i];
+            c.V(p.localPoint);
+            c.W(p.normalImpulse);
+            c.W(p.tangentImpulse);
+            c.U32(p.id.Key());
+        }
+        w.End(c);
+    }
+
+    template <class W>
+    static void WriteJoint(W& w, const b2Joint& j) {
+        auto c = w.Begin(state_detail::kJointRecordMaxBytes);
+        c.I32(j.GetId());
+        c.U8(static_cast<uint32>(j.GetType()));
+        c.I32(j.m_bodyA->GetId());
+        c.I32(j.m_bodyB->GetId());
+        c.Bool(j.m_collideConnected);
+        c.U64(j.m_userData);
+        state_detail::JointFieldWriter<decltype(c)> visitor{c};
+        // VisitState is shared with the restore path, which writes the fields; here it only reads.
+        VisitJointState(const_cast<b2Joint&>(j), visitor);
+        w.End(c);
+    }
+};
+
+}  // namespace lockbox
+
+namespace lockbox::state_detail {
 
 /// The joint-reaction section (snapshot only, not hashed): for every joint in joint-list
 /// order, the fields of its VisitReactionState (none for some types).
@@ -333,7 +347,7 @@ void WriteJointReactions(W& w, const b2World& world) {
     for (const b2Joint* j = world.GetJointList(); j; j = j->GetNext()) {
         auto c = w.Begin(kJointRecordMaxBytes);
         JointFieldWriter<decltype(c)> visitor{c};
-        VisitJointReaction(const_cast<b2Joint&>(*j), visitor);
+        StateWalk::VisitJointReaction(const_cast<b2Joint&>(*j), visitor);
         w.End(c);
     }
 }
@@ -383,7 +397,7 @@ template <class W>
 void WriteBodies(W& w, const b2World& world) {
     WritePool(w, core_detail::Engine::Of(world).m_bodies);
     WalkList(
-        world.GetBodyList(), [&](const b2Body& b) { WriteBody(w, b); }, [](const b2Body*) {});
+        world.GetBodyList(), [&](const b2Body& b) { StateWalk::WriteBody(w, b); }, [](const b2Body*) {});
 }
 
 /// The fixture section: pool, then each body's fixtures (body-list order, fixture-list order).
@@ -398,7 +412,7 @@ void WriteFixtures(W& w, const b2World& world) {
             if (next != nullptr && next->GetFixtureList() != nullptr) {
                 PrefetchBytes(next->GetFixtureList()->GetShape(), kShapePrefetchBytes);
             }
-            for (const b2Fixture* f = b.GetFixtureList(); f; f = f->GetNext()) WriteFixture(w, *f);
+            for (const b2Fixture* f = b.GetFixtureList(); f; f = f->GetNext()) StateWalk::WriteFixture(w, *f);
         },
         [](const b2Body* b) {
             if (b->GetFixtureList() != nullptr) PrefetchObject(b->GetFixtureList());
@@ -411,7 +425,7 @@ void WriteContacts(W& w, const b2World& world) {
     WritePool(w, core_detail::Engine::Of(world).m_contactManager.GetPool());
     // The record's fixture ids are cached in the contact: no fixture is visited.
     WalkList(
-        world.GetContactList(), [&](const b2Contact& c) { WriteContact(w, c); }, [](const b2Contact*) {});
+        world.GetContactList(), [&](const b2Contact& c) { StateWalk::WriteContact(w, c); }, [](const b2Contact*) {});
 }
 
 /// An empty contact section (an empty pool): a valid image of the world without its contacts.
@@ -425,7 +439,7 @@ void WriteNoContacts(W& w) {
 /// The joint section: every joint in joint-list order.
 template <class W>
 void WriteJoints(W& w, const b2World& world) {
-    for (const b2Joint* j = world.GetJointList(); j; j = j->GetNext()) WriteJoint(w, *j);
+    for (const b2Joint* j = world.GetJointList(); j; j = j->GetNext()) StateWalk::WriteJoint(w, *j);
 }
 
 }  // namespace lockbox::state_detail

@@ -27,6 +27,7 @@
 #include "SnapshotImage.h"
 #include "StateWalk.h"
 #include "dynamics/WorldState.h"
+#include "dynamics/joints/JointAccess.h"
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox {
@@ -242,8 +243,8 @@ struct core_detail::Engine::Frames {
                 auto c = w.Begin(8 + 2 * kJointRecordMaxBytes);
                 c.U64(j->m_userData);
                 JointFieldWriter<decltype(c)> visitor{c};
-                VisitJointState(const_cast<b2Joint&>(*j), visitor);
-                VisitJointReaction(const_cast<b2Joint&>(*j), visitor);
+                StateWalk::VisitJointState(const_cast<b2Joint&>(*j), visitor);
+                StateWalk::VisitJointReaction(const_cast<b2Joint&>(*j), visitor);
                 w.End(c);
             }
             w.Finish();
@@ -348,8 +349,8 @@ struct core_detail::Engine::Frames {
             if (j == nullptr) continue;
             j->m_userData = r.U64();
             JointStateReader reader{r, world};
-            VisitJointState(*j, reader);
-            VisitJointReaction(*j, reader);
+            StateWalk::VisitJointState(*j, reader);
+            StateWalk::VisitJointReaction(*j, reader);
             r = reader.r;
         }
 
@@ -416,17 +417,6 @@ bool KeepsEverySlot(const std::vector<uint8>& live, IsLive isLive) noexcept {
     return true;
 }
 
-/// Takes the first n nodes off a world list (drop(node) for each, before moving on).
-template <class T, class Drop>
-void DropFromHead(T*& head, size_t n, Drop drop) {
-    for (size_t k = 0; k < n; ++k) {
-        T* next = head->m_next;
-        drop(head);
-        head = next;
-    }
-    if (head != nullptr) head->m_prev = nullptr;
-}
-
 constexpr size_t kCannotUndo = static_cast<size_t>(-1);
 
 }  // namespace
@@ -442,6 +432,17 @@ struct core_detail::Engine::Frames::Undo {
     struct Heads {
         size_t bodies = 0, joints = 0;
     };
+
+    /// Takes the first n nodes off a world list (drop(node) for each, before moving on).
+    template <class T, class Drop>
+    static void DropFromHead(T*& head, size_t n, Drop drop) {
+        for (size_t k = 0; k < n; ++k) {
+            T* next = head->m_next;
+            drop(head);
+            head = next;
+        }
+        if (head != nullptr) head->m_prev = nullptr;
+    }
 
     /// How many of the log's entries precede the frame's epoch (the log keeps those), or
     /// kCannotUndo.
@@ -495,7 +496,7 @@ struct core_detail::Engine::Frames::Undo {
         // Joints: only new bodies' joint lists hold them, and those bodies go next.
         DropFromHead(world.m_jointList, heads.joints, [&](b2Joint* joint) {
             world.ReleaseJointId(joint->m_id);
-            b2Joint::Destroy(joint);
+            Joints::Destroy(joint);
         });
         world.m_jointCount -= static_cast<int32>(heads.joints);
         // Bodies: the pools below destroy them and their fixtures.

@@ -4,6 +4,8 @@
 
 #include "lockbox/state/WorldHash.h"
 
+#include <iterator>
+
 #include "HashWriter.h"
 #include "StateWalk.h"
 
@@ -50,9 +52,9 @@ void HashAll(const b2World& world, uint64 out[], std::vector<b2BodyHashEntry>* b
             if (b != nullptr) {
                 const b2Body* next = b->GetNext();
                 if (next != nullptr) PrefetchObject(next);
-                WriteBody(bodyStream, *b);
+                StateWalk::WriteBody(bodyStream, *b);
                 for (const b2Fixture* f = b->GetFixtureList(); f; f = f->GetNext()) {
-                    WriteFixture(fixtureStream, *f);
+                    StateWalk::WriteFixture(fixtureStream, *f);
                 }
                 if (next != nullptr && next->GetFixtureList() != nullptr) PrefetchObject(next->GetFixtureList());
                 b = next;
@@ -61,7 +63,7 @@ void HashAll(const b2World& world, uint64 out[], std::vector<b2BodyHashEntry>* b
             for (int k = 0; k < kContactsPerBody && c != nullptr; ++k) {
                 const b2Contact* next = c->GetNext();
                 if (next != nullptr) PrefetchObject(next);
-                WriteContact(contactStream, *c);
+                StateWalk::WriteContact(contactStream, *c);
                 c = next;
             }
         }
@@ -104,9 +106,92 @@ std::string_view b2HashCategoryName(b2HashCategory category) noexcept {
 uint64 b2BodyStateHash(const b2Body& body) {
     HashWriter w;
     w.U32(b2_hashVersion);
-    state_detail::WriteBody(w, body);
-    for (const b2Fixture* f = body.GetFixtureList(); f; f = f->GetNext()) state_detail::WriteFixture(w, *f);
+    state_detail::StateWalk::WriteBody(w, body);
+    for (const b2Fixture* f = body.GetFixtureList(); f; f = f->GetNext()) state_detail::StateWalk::WriteFixture(w, *f);
     return w.Digest();
+}
+
+namespace {
+
+/// Records the fields of one walk record, in order, with their formats.
+class FieldRecorder {
+public:
+    class Cursor {
+    public:
+        explicit Cursor(std::vector<b2BodyField>& out) : out_(&out) {}
+        void U8(uint32 v) { Int(v); }
+        void U16(uint32 v) { Int(v); }
+        void U32(uint32 v) { Int(v); }
+        void U64(uint64 v) { Int(static_cast<int64_t>(v)); }
+        void I32(int32 v) { Int(v); }
+        void Bool(bool v) { Int(v ? 1 : 0); }
+        void F(Fixed v) { out_->push_back({"", b2FieldFormat::e_fixed, v.Raw()}); }
+        void W(Wide v) { out_->push_back({"", b2FieldFormat::e_wide, v.Raw()}); }
+        void V(const b2Vec2& v) {
+            F(v.x);
+            F(v.y);
+        }
+
+    private:
+        void Int(int64_t v) { out_->push_back({"", b2FieldFormat::e_integer, v}); }
+        std::vector<b2BodyField>* out_;
+    };
+
+    Cursor Begin(size_t) { return Cursor(fields); }
+    void End(const Cursor&) {}
+
+    std::vector<b2BodyField> fields;
+};
+
+/// The names of a body record's fields, in the order StateWalk::WriteBody writes them (vectors
+/// as two fields). A test checks that the walk writes exactly this many.
+constexpr const char* kBodyFieldNames[] = {
+    "id",
+    "type",
+    "flags",
+    "position.x",
+    "position.y",
+    "rotation.s",
+    "rotation.c",
+    "sweep.localCenter.x",
+    "sweep.localCenter.y",
+    "sweep.c0.x",
+    "sweep.c0.y",
+    "sweep.c.x",
+    "sweep.c.y",
+    "sweep.a0",
+    "sweep.a",
+    "sweep.alpha0",
+    "linearVelocity.x",
+    "linearVelocity.y",
+    "angularVelocity",
+    "force.x",
+    "force.y",
+    "torque",
+    "sleepSteps",
+    "mass",
+    "invMass",
+    "I",
+    "invI",
+    "linearDamping",
+    "angularDamping",
+    "gravityScale",
+    "minExtent",
+    "maxExtent",
+    "userData",
+    "fixtureCount",
+};
+
+}  // namespace
+
+std::vector<b2BodyField> b2BodyStateFields(const b2Body& body) {
+    FieldRecorder recorder;
+    recorder.fields.reserve(std::size(kBodyFieldNames));
+    state_detail::StateWalk::WriteBody(recorder, body);
+    // A walk changed without this table falls back to positions, never to wrong names.
+    const bool named = recorder.fields.size() == std::size(kBodyFieldNames);
+    for (size_t i = 0; i < recorder.fields.size(); ++i) recorder.fields[i].name = named ? kBodyFieldNames[i] : "field";
+    return recorder.fields;
 }
 
 uint64 b2WorldHash(const b2World& world) {

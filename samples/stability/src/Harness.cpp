@@ -102,7 +102,10 @@ double Energy(const b2World& w, double g) {
     double e = 0;
     for (const b2Body* b = w.GetBodyList(); b; b = b->GetNext()) {
         if (b->GetType() != b2_dynamicBody) continue;
-        const double m = D(b->GetMass()), i = D(b->m_I);
+        // Rotational energy about the centre of mass: GetInertia() is about the origin.
+        const b2Vec2 lc = b->GetLocalCenter();
+        const double m = D(b->GetMass());
+        const double i = D(b->GetInertia()) - m * (D(lc.x) * D(lc.x) + D(lc.y) * D(lc.y));
         const double vx = D(b->GetLinearVelocity().x), vy = D(b->GetLinearVelocity().y);
         const double om = D(b->GetAngularVelocity());
         e += 0.5 * m * (vx * vx + vy * vy) + 0.5 * i * om * om + m * g * D(b->GetWorldCenter().y);

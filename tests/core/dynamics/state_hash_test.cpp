@@ -190,6 +190,35 @@ TEST(StateHash, StableAcrossTwoRunsOf600Steps) {
     }
 }
 
+TEST(StateHash, BodyFieldsNameTheWalksRecord) {
+    // b2BodyStateFields reads a body through the hash's own walk: every field it writes has a
+    // name, and a one-raw change of a body's state shows in exactly the field that moved.
+    auto a = MakeWorld();
+    auto b = MakeWorld();
+    for (int i = 0; i < 30; ++i) {
+        a->Step(kDt, 8, 3);
+        b->Step(kDt, 8, 3);
+    }
+    b2Body* moved = b->GetBodyList();
+    while (moved != nullptr && moved->GetType() != b2_dynamicBody) moved = moved->GetNext();
+    ASSERT_NE(moved, nullptr);
+    moved->SetAwake(true);  // so the change below moves the velocity alone
+    const std::vector<b2BodyField> before = b2BodyStateFields(*moved);
+    ASSERT_EQ(before.size(), 34u);
+    for (const b2BodyField& f : before) EXPECT_STRNE(f.name, "field");
+    moved->SetAngularVelocity(moved->GetAngularVelocity() + Fixed::FromRaw(1));
+    const std::vector<b2BodyField> after = b2BodyStateFields(*moved);
+    ASSERT_EQ(after.size(), before.size());
+    int changed = 0;
+    for (size_t i = 0; i < after.size(); ++i) {
+        if (after[i].raw == before[i].raw) continue;
+        ++changed;
+        EXPECT_STREQ(after[i].name, "angularVelocity");
+        EXPECT_EQ(after[i].format, b2FieldFormat::e_fixed);
+    }
+    EXPECT_EQ(changed, 1);
+}
+
 TEST(StateHash, CategoryNames) {
     EXPECT_EQ(b2HashCategoryName(b2HashCategory::e_broadphase), "broadphase");
     EXPECT_EQ(b2HashCategoryName(b2HashCategory::e_count), "none");

@@ -76,7 +76,13 @@ inline constexpr Fixed b2_linearSleepTolerance = Fixed::FromRaw(655);
 inline constexpr Fixed b2_angularSleepTolerance = Fixed::FromRaw(2288);
 
 /// Selects the restore constructors of joints and contacts: empty objects that a snapshot or a
-/// rollback frame then fills.
+/// rollback frame then fills (only the engine constructs them).
 struct b2RestoreTag {};
+
+namespace core_detail {
+/// The engine's own code (core/src): the one friend of the core's public classes, which keep
+/// their data private. Not part of the API.
+struct Engine;
+}  // namespace core_detail
 
 }  // namespace lockbox

@@ -155,7 +155,12 @@ public:
     /// Consecutive still steps counted toward sleep.
     int32 GetSleepSteps() const noexcept { return m_sleepSteps; }
 
-    // ---- internal state (world, island, contacts); public to avoid friend webs ----
+    b2Body(const b2Body&) = delete;
+    b2Body& operator=(const b2Body&) = delete;
+
+private:
+    friend struct core_detail::Engine;
+
     enum : uint16 {
         e_islandFlag = 0x0001,
         e_awakeFlag = 0x0002,
@@ -168,10 +173,8 @@ public:
     };
 
     b2Body(const b2BodyDef* def, b2World* world, int32 id);
-    b2Body(const b2Body&) = delete;
-    b2Body& operator=(const b2Body&) = delete;
+    ~b2Body() = default;
 
-    void SynchronizeFixtures();
     void SynchronizeTransform();
     /// Whether this body may collide with other (type rule and joints' collideConnected).
     bool ShouldCollide(const b2Body* other) const;

@@ -111,13 +111,14 @@ public:
     const b2AABB& GetAABB(int32 childIndex) const { return m_proxies[static_cast<size_t>(childIndex)].aabb; }
     /// Number of broad-phase proxies (0 when the body is inactive).
     int32 GetProxyCount() const noexcept { return m_proxyCount; }
-    /// Proxy of a child (valid while the body is active).
-    const b2FixtureProxy& GetProxy(int32 childIndex) const { return m_proxies[static_cast<size_t>(childIndex)]; }
-
-    // ---- internal (world, body and contact manager) ----
-    b2Fixture() = default;
     b2Fixture(const b2Fixture&) = delete;
     b2Fixture& operator=(const b2Fixture&) = delete;
+
+private:
+    friend struct core_detail::Engine;
+
+    b2Fixture() = default;
+    ~b2Fixture() = default;
     void Create(b2Body* body, const b2FixtureDef* def, int32 id);
     void CreateProxies(b2BroadPhase* broadPhase, const b2Transform& xf);
     void DestroyProxies(b2BroadPhase* broadPhase);

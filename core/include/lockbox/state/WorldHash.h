@@ -1,5 +1,5 @@
 #pragma once
-/// World state hash (issue 7, docs/determinism.md "State hash"): an XXH3-64 over a canonical
+/// World state hash (docs/determinism.md, "State hash"): an XXH3-64 over a canonical
 /// walk of every field that influences future steps, written as little-endian fixed-width
 /// integers (never raw memory, padding or free slots). Equal hashes on two machines mean, with
 /// overwhelming probability, bit-identical simulations from here on.
@@ -8,6 +8,7 @@
 /// broad-phase) with their own sub-hashes, and each body has a sub-hash (its fields plus its
 /// fixtures), so a mismatch can be narrowed to a category and then to a body.
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
@@ -84,6 +85,26 @@ LOCKBOX_API b2WorldHashReport b2WorldHashDetailed(const b2World& world);
 /// Sub-hash of one body: its own fields then its fixtures' fields (the b2WorldHashReport
 /// body entry).
 LOCKBOX_API uint64 b2BodyStateHash(const b2Body& body);
+
+/// The format of a body field's raw value (b2BodyField).
+enum class b2FieldFormat : uint8 {
+    e_integer = 0,  ///< an integer (id, flags, counts, user data)
+    e_fixed = 1,    ///< Q16.16 (Fixed::Raw)
+    e_wide = 2,     ///< Q32.32 (Wide::Raw)
+};
+
+/// One field of a body's record in the canonical state walk: what the hash and the snapshot
+/// read of the body itself (its fixtures are not listed; b2BodyStateHash covers them).
+struct b2BodyField {
+    const char* name = "";  ///< "position.x", "sweep.a0", "invMass", ...
+    b2FieldFormat format = b2FieldFormat::e_integer;
+    int64_t raw = 0;  ///< the value as the walk writes it
+};
+
+/// The fields of a body's record in walk order (about 40), values read by the same walk as
+/// the hash: two bodies whose lists differ nowhere have equal records. For telling where two
+/// runs split (the replay diff); allocates.
+std::vector<b2BodyField> b2BodyStateFields(const b2Body& body);
 
 /// The first category whose sub-hash differs and the first differing body (by position in
 /// list order; a differing body count reports the first body past the shorter list).

@@ -2,6 +2,7 @@
 #include "lockbox/dynamics/contacts/Contact.h"
 
 #include "dynamics/TimeStep.h"
+#include "dynamics/contacts/ContactRules.h"
 #include "lockbox/collision/ChainShape.h"
 #include "lockbox/collision/CircleShape.h"
 #include "lockbox/collision/EdgeShape.h"
@@ -23,14 +24,14 @@ Fixed b2MixFriction(Fixed friction1, Fixed friction2) {
     return Fixed::FromRaw(static_cast<int32>(r > static_cast<uint64_t>(Fixed::kMaxRaw) ? Fixed::kMaxRaw : r));
 }
 
-bool b2Contact::CanCollide(b2Shape::Type typeA, b2Shape::Type typeB) noexcept {
+bool core_detail::ShapesCanCollide(b2Shape::Type typeA, b2Shape::Type typeB) noexcept {
     // Edges and chains are one-sided surfaces: there is no edge/edge collider.
     const bool surfaceA = typeA == b2Shape::e_edge || typeA == b2Shape::e_chain;
     const bool surfaceB = typeB == b2Shape::e_edge || typeB == b2Shape::e_chain;
     return !(surfaceA && surfaceB);
 }
 
-bool b2Contact::NeedsSwap(b2Shape::Type typeA, b2Shape::Type typeB) noexcept {
+bool core_detail::ShapesNeedSwap(b2Shape::Type typeA, b2Shape::Type typeB) noexcept {
     // The registered (primary) orders are circle-circle, polygon-circle, polygon-polygon,
     // edge-circle, edge-polygon, chain-circle and chain-polygon: A is never "smaller" than B
     // unless A is a surface (edge or chain).
@@ -53,29 +54,29 @@ b2Contact::b2Contact(b2Fixture* fA, int32 indexA, b2Fixture* fB, int32 indexB, i
       m_fixtureIdB(fB->GetId()),
       m_id(id) {
     m_manifold.pointCount = 0;
-    m_friction = b2MixFriction(m_fixtureA->m_friction, m_fixtureB->m_friction);
-    m_restitution = b2MixRestitution(m_fixtureA->m_restitution, m_fixtureB->m_restitution);
+    m_friction = b2MixFriction(m_fixtureA->GetFriction(), m_fixtureB->GetFriction());
+    m_restitution = b2MixRestitution(m_fixtureA->GetRestitution(), m_fixtureB->GetRestitution());
     m_toi = Fixed();
 }
 
-void b2Contact::ResetFriction() { m_friction = b2MixFriction(m_fixtureA->m_friction, m_fixtureB->m_friction); }
+void b2Contact::ResetFriction() { m_friction = b2MixFriction(m_fixtureA->GetFriction(), m_fixtureB->GetFriction()); }
 
 void b2Contact::ResetRestitution() {
-    m_restitution = b2MixRestitution(m_fixtureA->m_restitution, m_fixtureB->m_restitution);
+    m_restitution = b2MixRestitution(m_fixtureA->GetRestitution(), m_fixtureB->GetRestitution());
 }
 
 void b2Contact::GetWorldManifold(b2WorldManifold* worldManifold) const {
     const b2Body* bodyA = m_fixtureA->GetBody();
     const b2Body* bodyB = m_fixtureB->GetBody();
-    const b2Shape* shapeA = m_fixtureA->m_shape.get();
-    const b2Shape* shapeB = m_fixtureB->m_shape.get();
+    const b2Shape* shapeA = m_fixtureA->GetShape();
+    const b2Shape* shapeB = m_fixtureB->GetShape();
     worldManifold->Initialize(&m_manifold, bodyA->GetTransform(), shapeA->m_radius, bodyB->GetTransform(),
                               shapeB->m_radius);
 }
 
 void b2Contact::Evaluate(b2Manifold* manifold, const b2Transform& xfA, const b2Transform& xfB) {
-    const b2Shape* shapeA = m_fixtureA->m_shape.get();
-    const b2Shape* shapeB = m_fixtureB->m_shape.get();
+    const b2Shape* shapeA = m_fixtureA->GetShape();
+    const b2Shape* shapeB = m_fixtureB->GetShape();
     const b2Shape::Type typeA = shapeA->GetType();
     const b2Shape::Type typeB = shapeB->GetType();
     const bool circleB = typeB == b2Shape::e_circle;
@@ -134,7 +135,7 @@ void b2Contact::Update(b2ContactListener* listener, b2Profile* profile) {
 
     if (profile) ++profile->contactsUpdated;
     if (sensor) {
-        touching = b2TestOverlap(m_fixtureA->m_shape.get(), m_indexA, m_fixtureB->m_shape.get(), m_indexB, xfA, xfB);
+        touching = b2TestOverlap(m_fixtureA->GetShape(), m_indexA, m_fixtureB->GetShape(), m_indexB, xfA, xfB);
         // Sensors don't generate manifolds.
         m_manifold.pointCount = 0;
     } else {

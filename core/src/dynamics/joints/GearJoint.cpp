@@ -23,13 +23,13 @@ b2GearJoint::Side b2GearJoint::MakeSide(b2Joint* joint) {
         s.localAnchorGround = revolute->GetLocalAnchorA();
         s.localAnchorBody = revolute->GetLocalAnchorB();
         s.referenceAngle = revolute->GetReferenceAngle();
-        s.angleBase = math::WrapAngle(s.body->m_sweep.a - s.ground->m_sweep.a - s.referenceAngle);
+        s.angleBase = math::WrapAngle(s.body->GetAngle() - s.ground->GetAngle() - s.referenceAngle);
     } else {
         const auto* prismatic = static_cast<const b2PrismaticJoint*>(joint);
-        s.localAnchorGround = prismatic->m_localAnchorA;
-        s.localAnchorBody = prismatic->m_localAnchorB;
-        s.referenceAngle = prismatic->m_referenceAngle;
-        s.localAxisGround = prismatic->m_localXAxisA;
+        s.localAnchorGround = prismatic->GetLocalAnchorA();
+        s.localAnchorBody = prismatic->GetLocalAnchorB();
+        s.referenceAngle = prismatic->GetReferenceAngle();
+        s.localAxisGround = prismatic->GetLocalAxisA();
     }
     return s;
 }
@@ -60,15 +60,15 @@ b2GearJoint::b2GearJoint(const b2GearJointDef* def) : b2Joint(def) {
 Fixed b2GearJoint::GetCoordinateA() const {
     const b2Body* g = m_sideA.ground;
     const b2Body* b = m_sideA.body;
-    return Coordinate(m_sideA, g->m_sweep.c, g->m_sweep.a, b->m_sweep.c, b->m_sweep.a, g->m_sweep.localCenter,
-                      b->m_sweep.localCenter);
+    return Coordinate(m_sideA, g->GetWorldCenter(), g->GetAngle(), b->GetWorldCenter(), b->GetAngle(),
+                      g->GetLocalCenter(), b->GetLocalCenter());
 }
 
 Fixed b2GearJoint::GetCoordinateB() const {
     const b2Body* g = m_sideB.ground;
     const b2Body* b = m_sideB.body;
-    return Coordinate(m_sideB, g->m_sweep.c, g->m_sweep.a, b->m_sweep.c, b->m_sweep.a, g->m_sweep.localCenter,
-                      b->m_sweep.localCenter);
+    return Coordinate(m_sideB, g->GetWorldCenter(), g->GetAngle(), b->GetWorldCenter(), b->GetAngle(),
+                      g->GetLocalCenter(), b->GetLocalCenter());
 }
 
 void b2GearJoint::InitVelocityConstraints(const b2SolverData& data) {

@@ -1,6 +1,7 @@
-// b2Joint: the parts of the abstract base that need b2Body, and the factory.
+// b2Joint: the parts of the abstract base that need b2Body, and the factory (JointAccess.h).
 #include "lockbox/dynamics/joints/Joint.h"
 
+#include "dynamics/joints/JointAccess.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/joints/DistanceJoint.h"
 #include "lockbox/dynamics/joints/FrictionJoint.h"
@@ -17,7 +18,7 @@ namespace lockbox {
 
 bool b2Joint::IsActive() const { return m_bodyA->IsActive() && m_bodyB->IsActive(); }
 
-b2Joint* b2Joint::Create(const b2JointDef* def) {
+b2Joint* core_detail::Engine::Joints::Create(const b2JointDef* def) {
     if (def == nullptr) return nullptr;
     if (def->type == e_gearJoint) {
         // The gear takes its bodies from the two joints, which must be revolute or prismatic.
@@ -45,7 +46,7 @@ b2Joint* b2Joint::Create(const b2JointDef* def) {
     return nullptr;
 }
 
-b2Joint* b2Joint::CreateEmpty(b2JointType type) {
+b2Joint* core_detail::Engine::Joints::CreateEmpty(b2JointType type) {
     const b2RestoreTag tag;
     switch (type) {
         case e_distanceJoint: return new b2DistanceJoint(tag);
@@ -63,6 +64,6 @@ b2Joint* b2Joint::CreateEmpty(b2JointType type) {
     return nullptr;
 }
 
-void b2Joint::Destroy(b2Joint* joint) { delete joint; }
+void core_detail::Engine::Joints::Destroy(b2Joint* joint) { delete joint; }
 
 }  // namespace lockbox

@@ -3,6 +3,7 @@
 // and positions with one rounding per component, and the soft-constraint coefficients.
 
 #include "dynamics/TimeStep.h"
+#include "dynamics/joints/JointAccess.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "lockbox/fixed/Math.h"
@@ -10,17 +11,8 @@
 
 namespace lockbox::jointmath {
 
-// The solver-side copy of what a joint needs from one body.
-struct BodyData {
-    int32 index = 0;
-    b2Vec2 localCenter;
-    Wide invMass;  // 1/kg
-    Wide invI;     // 1/(kg*m^2)
-};
-
-inline BodyData Load(const b2Body* b) noexcept {
-    return {b->m_islandIndex, b->m_sweep.localCenter, b->m_invMass, b->m_invI};
-}
+// What a joint's solver set-up reads of one body (JointAccess.h).
+inline BodyData Load(const b2Body* b) noexcept { return core_detail::Engine::Joints::Load(b); }
 
 // v -= invMass * P, w -= invI * (r x P): each velocity component rounded once.
 inline void ApplyNeg(b2Vec2& v, Fixed& w, const BodyData& b, const b2Vec2& r, const b2WideVec2& p) noexcept {

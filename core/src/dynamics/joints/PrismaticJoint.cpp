@@ -305,12 +305,12 @@ Fixed b2PrismaticJoint::GetJointTranslation() const {
 Fixed b2PrismaticJoint::GetJointSpeed() const {
     const b2Body* bA = m_bodyA;
     const b2Body* bB = m_bodyB;
-    const b2Vec2 rA = b2Mul(bA->m_xf.q, m_localAnchorA - bA->m_sweep.localCenter);
-    const b2Vec2 rB = b2Mul(bB->m_xf.q, m_localAnchorB - bB->m_sweep.localCenter);
-    const b2Vec2 d = (bB->m_sweep.c + rB) - (bA->m_sweep.c + rA);
-    const b2Vec2 axis = b2Mul(bA->m_xf.q, m_localXAxisA);
-    const b2Vec2 vA = bA->m_linearVelocity, vB = bB->m_linearVelocity;
-    const Fixed wA = bA->m_angularVelocity, wB = bB->m_angularVelocity;
+    const b2Vec2 rA = b2Mul(bA->GetTransform().q, m_localAnchorA - bA->GetLocalCenter());
+    const b2Vec2 rB = b2Mul(bB->GetTransform().q, m_localAnchorB - bB->GetLocalCenter());
+    const b2Vec2 d = (bB->GetWorldCenter() + rB) - (bA->GetWorldCenter() + rA);
+    const b2Vec2 axis = b2Mul(bA->GetTransform().q, m_localXAxisA);
+    const b2Vec2 vA = bA->GetLinearVelocity(), vB = bB->GetLinearVelocity();
+    const Fixed wA = bA->GetAngularVelocity(), wB = bB->GetAngularVelocity();
     return (b2DotWide(d, b2Cross(wA, axis)) + b2DotWide(axis, vB + b2Cross(wB, rB) - vA - b2Cross(wA, rA))).ToFixed();
 }
 

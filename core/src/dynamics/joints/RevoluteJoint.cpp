@@ -279,9 +279,9 @@ b2Vec2 b2RevoluteJoint::GetReactionForce(Fixed inv_dt) const {
 
 Fixed b2RevoluteJoint::GetReactionTorque(Fixed inv_dt) const { return MulToFixed(m_impulse.z, inv_dt); }
 
-Fixed b2RevoluteJoint::GetJointAngle() const { return ContinuousAngle(m_bodyA->m_sweep.a, m_bodyB->m_sweep.a); }
+Fixed b2RevoluteJoint::GetJointAngle() const { return ContinuousAngle(m_bodyA->GetAngle(), m_bodyB->GetAngle()); }
 
-Fixed b2RevoluteJoint::GetJointSpeed() const { return m_bodyB->m_angularVelocity - m_bodyA->m_angularVelocity; }
+Fixed b2RevoluteJoint::GetJointSpeed() const { return m_bodyB->GetAngularVelocity() - m_bodyA->GetAngularVelocity(); }
 
 Fixed b2RevoluteJoint::GetMotorTorque(Fixed inv_dt) const { return MulToFixed(m_motorImpulse, inv_dt); }
 

@@ -212,7 +212,7 @@ Fixed b2WheelJoint::GetJointTranslation() const {
     return b2Dot(pB - pA, axis);
 }
 
-Fixed b2WheelJoint::GetJointSpeed() const { return m_bodyB->m_angularVelocity - m_bodyA->m_angularVelocity; }
+Fixed b2WheelJoint::GetJointSpeed() const { return m_bodyB->GetAngularVelocity() - m_bodyA->GetAngularVelocity(); }
 
 Fixed b2WheelJoint::GetMotorTorque(Fixed inv_dt) const { return MulToFixed(m_motorImpulse, inv_dt); }
 

@@ -1,6 +1,7 @@
 // b2World::CreateJoint and DestroyJoint (Box2D 2.2.1 b2World.cpp), with lockbox's gear rule:
 // a gear joint never outlives the joints it couples.
 #include "dynamics/WorldState.h"
+#include "dynamics/joints/JointAccess.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 #include "lockbox/dynamics/joints/GearJoint.h"
@@ -10,23 +11,7 @@ namespace lockbox {
 using World = core_detail::Engine::World;
 
 namespace {
-// Links one edge at the head of its body's joint list.
-void LinkEdge(b2JointEdge* edge, b2Joint* joint, b2Body* body, b2Body* other) {
-    edge->joint = joint;
-    edge->other = other;
-    edge->prev = nullptr;
-    edge->next = body->m_jointList;
-    if (body->m_jointList) body->m_jointList->prev = edge;
-    body->m_jointList = edge;
-}
-
-void UnlinkEdge(b2JointEdge* edge, b2Body* body) {
-    if (edge->prev) edge->prev->next = edge->next;
-    if (edge->next) edge->next->prev = edge->prev;
-    if (edge == body->m_jointList) body->m_jointList = edge->next;
-    edge->prev = nullptr;
-    edge->next = nullptr;
-}
+using Joints = core_detail::Engine::Joints;
 
 // Contacts between the two bodies must be re-filtered when a joint changes whether they may
 // collide.
@@ -39,7 +24,7 @@ void FlagContactsBetween(b2Body* body, const b2Body* other) {
 
 b2Joint* World::CreateJoint(const b2JointDef* def) {
     if (CheckLocked("b2World::CreateJoint called inside a Step callback (the world is locked)")) return nullptr;
-    b2Joint* j = b2Joint::Create(def);
+    b2Joint* j = Joints::Create(def);
     if (j == nullptr) return nullptr;
 
     // The smallest free id: ids are small, stable and independent of addresses. Every id
@@ -60,8 +45,8 @@ b2Joint* World::CreateJoint(const b2JointDef* def) {
     ++m_jointCount;
 
     // Connect to the bodies' doubly linked lists.
-    LinkEdge(&j->m_edgeA, j, j->m_bodyA, j->m_bodyB);
-    LinkEdge(&j->m_edgeB, j, j->m_bodyB, j->m_bodyA);
+    Joints::LinkEdge(&j->m_edgeA, j, j->m_bodyA, j->m_bodyB);
+    Joints::LinkEdge(&j->m_edgeB, j, j->m_bodyB, j->m_bodyA);
 
     // If the joint prevents collisions, flag any contacts for filtering.
     if (!def->collideConnected) FlagContactsBetween(j->m_bodyB, j->m_bodyA);
@@ -109,11 +94,11 @@ void World::DestroyJoint(b2Joint* j) {
     bodyA->SetAwake(true);
     bodyB->SetAwake(true);
 
-    UnlinkEdge(&j->m_edgeA, bodyA);
-    UnlinkEdge(&j->m_edgeB, bodyB);
+    Joints::UnlinkEdge(&j->m_edgeA, bodyA);
+    Joints::UnlinkEdge(&j->m_edgeB, bodyB);
 
     ReleaseJointId(j->m_id);
-    b2Joint::Destroy(j);
+    Joints::Destroy(j);
     --m_jointCount;
 
     // If the joint prevented collisions, flag any contacts for filtering.

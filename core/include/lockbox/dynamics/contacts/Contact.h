@@ -72,10 +72,12 @@ public:
     /// Flags the contact for re-filtering at the next Step.
     void FlagForFiltering() noexcept { m_flags |= e_filterFlag; }
 
-    /// Computes the manifold for the current transforms (dispatches on the shape types).
-    void Evaluate(b2Manifold* manifold, const b2Transform& xfA, const b2Transform& xfB);
+    b2Contact(const b2Contact&) = delete;
+    b2Contact& operator=(const b2Contact&) = delete;
 
-    // ---- internal ----
+private:
+    friend struct core_detail::Engine;
+
     enum : uint32 {
         e_islandFlag = 0x0001,     ///< used when crawling the contact graph to form islands
         e_touchingFlag = 0x0002,   ///< set when the shapes are touching
@@ -84,12 +86,6 @@ public:
         e_bulletHitFlag = 0x0010,  ///< this bullet contact had a TOI event
         e_toiFlag = 0x0020         ///< m_toi is valid
     };
-
-    /// True when a collider exists for this pair of shape types (in either order).
-    static bool CanCollide(b2Shape::Type typeA, b2Shape::Type typeB) noexcept;
-    /// True when the pair must be swapped so that A has the "primary" type of the collider
-    /// (polygon before circle, edge/chain before circle or polygon).
-    static bool NeedsSwap(b2Shape::Type typeA, b2Shape::Type typeB) noexcept;
 
     b2Contact(b2Fixture* fixtureA, int32 indexA, b2Fixture* fixtureB, int32 indexB, int32 id);
     /// Rollback frames: a contact whose every field the frame then writes (no fixture is read).
@@ -101,9 +97,10 @@ public:
           m_fixtureIdA(-1),
           m_fixtureIdB(-1),
           m_id(id) {}
-    b2Contact(const b2Contact&) = delete;
-    b2Contact& operator=(const b2Contact&) = delete;
+    ~b2Contact() = default;
 
+    /// Computes the manifold for the current transforms (dispatches on the shape types).
+    void Evaluate(b2Manifold* manifold, const b2Transform& xfA, const b2Transform& xfB);
     /// Updates the manifold and touching state and calls the listener (Begin/End/PreSolve).
     /// Counts narrow-phase work and listener calls into profile (may be nullptr).
     void Update(b2ContactListener* listener, b2Profile* profile);

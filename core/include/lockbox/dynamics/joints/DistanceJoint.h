@@ -26,9 +26,6 @@ struct LOCKBOX_API b2DistanceJointDef : b2JointDef {
 /// Distance joint.
 class LOCKBOX_API b2DistanceJoint : public b2Joint {
 public:
-    /// Made by b2World::CreateJoint (through b2Joint::Create).
-    explicit b2DistanceJoint(const b2DistanceJointDef* def);
-
     /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
     /// Anchor on body B (world), m.
@@ -55,6 +52,12 @@ public:
     /// Damping ratio (dimensionless).
     Fixed GetDampingRatio() const noexcept { return m_dampingRatio; }
 
+private:
+    friend struct core_detail::Engine;
+
+    /// Made by b2World::CreateJoint.
+    explicit b2DistanceJoint(const b2DistanceJointDef* def);
+
     /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
     /// Solver hook (called by b2Island).
@@ -78,7 +81,6 @@ public:
         v(m_u);
     }
 
-private:
     Fixed m_frequencyHz;
     Fixed m_dampingRatio;
     Wide m_bias;  ///< m/s

@@ -25,9 +25,6 @@ struct LOCKBOX_API b2FrictionJointDef : b2JointDef {
 /// Friction joint.
 class LOCKBOX_API b2FrictionJoint : public b2Joint {
 public:
-    /// Made by b2World::CreateJoint (through b2Joint::Create).
-    explicit b2FrictionJoint(const b2FrictionJointDef* def);
-
     /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
     /// Anchor on body B (world), m.
@@ -50,6 +47,12 @@ public:
     /// Maximum torque, N*m.
     Fixed GetMaxTorque() const noexcept { return m_maxTorque; }
 
+private:
+    friend struct core_detail::Engine;
+
+    /// Made by b2World::CreateJoint.
+    explicit b2FrictionJoint(const b2FrictionJointDef* def);
+
     /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
     /// Solver hook (called by b2Island).
@@ -66,7 +69,6 @@ public:
         v(m_localAnchorA, m_localAnchorB, m_maxForce, m_maxTorque, m_linearImpulse, m_angularImpulse);
     }
 
-private:
     b2Vec2 m_localAnchorA;
     b2Vec2 m_localAnchorB;
     b2WideVec2 m_linearImpulse;  ///< N*s

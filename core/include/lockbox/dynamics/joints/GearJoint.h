@@ -30,9 +30,6 @@ struct b2GearJointDef : b2JointDef {
 /// Gear joint.
 class LOCKBOX_API b2GearJoint : public b2Joint {
 public:
-    /// Made by b2World::CreateJoint (through b2Joint::Create).
-    explicit b2GearJoint(const b2GearJointDef* def);
-
     /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
     /// Anchor on body B (world), m.
@@ -55,6 +52,12 @@ public:
     /// The two joint coordinates (rad or m) as the gear sees them now.
     Fixed GetCoordinateA() const;
     Fixed GetCoordinateB() const;
+
+private:
+    friend struct core_detail::Engine;
+
+    /// Made by b2World::CreateJoint.
+    explicit b2GearJoint(const b2GearJointDef* def);
 
     /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
@@ -83,7 +86,6 @@ public:
         v(m_JvAC, m_JwA);
     }
 
-private:
     /// One side of the gear: joint (A side: bodies C -> A; B side: bodies D -> B).
     struct Side {
         b2JointType type = e_unknownJoint;

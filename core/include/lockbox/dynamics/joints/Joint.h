@@ -53,8 +53,6 @@ struct b2JointDef {
 /// Base class of all joints. The world owns joints; the island calls the three solver hooks.
 class LOCKBOX_API b2Joint {
 public:
-    virtual ~b2Joint() = default;
-
     /// The joint type.
     b2JointType GetType() const noexcept { return m_type; }
     /// First attached body.
@@ -84,35 +82,8 @@ public:
     /// Whether the attached bodies collide.
     bool GetCollideConnected() const noexcept { return m_collideConnected; }
 
-    // ---- solver interface (called by b2Island) ----
-    /// Prepares the velocity constraints (and applies warm starting).
-    virtual void InitVelocityConstraints(const b2SolverData& data) = 0;
-    /// One velocity iteration.
-    virtual void SolveVelocityConstraints(const b2SolverData& data) = 0;
-    /// One position iteration; returns true when the position error is within tolerance.
-    virtual bool SolvePositionConstraints(const b2SolverData& data) = 0;
-
-    /// Factory used by b2World::CreateJoint: allocates the concrete joint for def->type
-    /// (nullptr for e_unknownJoint or a definition without two bodies).
-    static b2Joint* Create(const b2JointDef* def);
-    /// An empty joint of the given type for snapshot restore (nullptr for e_unknownJoint).
-    static b2Joint* CreateEmpty(b2JointType type);
-    /// Frees a joint made by Create (the world unlinks it first).
-    static void Destroy(b2Joint* joint);
-
-    // ---- graph state (used by the world and island; public to avoid friend webs) ----
-    b2JointType m_type = e_unknownJoint;
-    b2Joint* m_prev = nullptr;
-    b2Joint* m_next = nullptr;
-    b2JointEdge m_edgeA;
-    b2JointEdge m_edgeB;
-    b2Body* m_bodyA = nullptr;
-    b2Body* m_bodyB = nullptr;
-    int32 m_id = -1;
-    int32 m_index = 0;  ///< position in the island being solved
-    bool m_islandFlag = false;
-    bool m_collideConnected = false;
-    uint64 m_userData = 0;
+    b2Joint(const b2Joint&) = delete;
+    b2Joint& operator=(const b2Joint&) = delete;
 
 protected:
     b2Joint(b2RestoreTag, b2JointType type) : m_type(type) {}
@@ -122,6 +93,37 @@ protected:
           m_bodyB(def->bodyB),
           m_collideConnected(def->collideConnected),
           m_userData(def->userData) {}
+    /// Joints are destroyed by the world (b2World::DestroyJoint, DestroyBody).
+    virtual ~b2Joint() = default;
+
+private:
+    friend struct core_detail::Engine;
+
+    // The solver interface, called by the island.
+    /// Prepares the velocity constraints (and applies warm starting).
+    virtual void InitVelocityConstraints(const b2SolverData& data) = 0;
+    /// One velocity iteration.
+    virtual void SolveVelocityConstraints(const b2SolverData& data) = 0;
+    /// One position iteration; returns true when the position error is within tolerance.
+    virtual bool SolvePositionConstraints(const b2SolverData& data) = 0;
+
+    b2JointType m_type = e_unknownJoint;
+    b2Joint* m_prev = nullptr;
+    b2Joint* m_next = nullptr;
+    b2JointEdge m_edgeA;
+    b2JointEdge m_edgeB;
+
+protected:
+    /// The attached bodies (the concrete joints' solvers read them).
+    b2Body* m_bodyA = nullptr;
+    b2Body* m_bodyB = nullptr;
+
+private:
+    int32 m_id = -1;
+    int32 m_index = 0;  ///< position in the island being solved
+    bool m_islandFlag = false;
+    bool m_collideConnected = false;
+    uint64 m_userData = 0;
 };
 
 }  // namespace lockbox

@@ -25,9 +25,6 @@ struct b2MouseJointDef : b2JointDef {
 /// Mouse joint.
 class LOCKBOX_API b2MouseJoint : public b2Joint {
 public:
-    /// Made by b2World::CreateJoint (through b2Joint::Create).
-    explicit b2MouseJoint(const b2MouseJointDef* def);
-
     /// The target point, m.
     b2Vec2 GetAnchorA() const override;
     /// The grab point on B, m.
@@ -58,6 +55,12 @@ public:
     /// Accumulated impulse of the last step, N*s (Q32.32, never saturated).
     const b2WideVec2& GetImpulse() const noexcept { return m_impulse; }
 
+private:
+    friend struct core_detail::Engine;
+
+    /// Made by b2World::CreateJoint.
+    explicit b2MouseJoint(const b2MouseJointDef* def);
+
     /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
     /// Solver hook (called by b2Island).
@@ -74,7 +77,6 @@ public:
         v(m_localAnchorB, m_targetA, m_maxForce, m_frequencyHz, m_dampingRatio, m_impulse);
     }
 
-private:
     b2Vec2 m_localAnchorB;
     b2Vec2 m_targetA;
     Fixed m_frequencyHz;

@@ -35,9 +35,6 @@ struct LOCKBOX_API b2PrismaticJointDef : b2JointDef {
 /// Prismatic joint.
 class LOCKBOX_API b2PrismaticJoint : public b2Joint {
 public:
-    /// Made by b2World::CreateJoint (through b2Joint::Create).
-    explicit b2PrismaticJoint(const b2PrismaticJointDef* def);
-
     /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
     /// Anchor on body B (world), m.
@@ -87,6 +84,12 @@ public:
     /// Motor force applied in the last step, N.
     Fixed GetMotorForce(Fixed inv_dt) const;
 
+private:
+    friend struct core_detail::Engine;
+
+    /// Made by b2World::CreateJoint.
+    explicit b2PrismaticJoint(const b2PrismaticJointDef* def);
+
     /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
     /// Solver hook (called by b2Island).
@@ -119,7 +122,6 @@ public:
         v(m_axis, m_perp);
     }
 
-private:
     b2WideVec3 m_impulse;  ///< perpendicular (N*s), angular (N*m*s), axial limit (N*s)
     Wide m_motorImpulse;   ///< N*s
     Fixed m_lowerTranslation;

@@ -37,9 +37,6 @@ struct LOCKBOX_API b2PulleyJointDef : b2JointDef {
 /// Pulley joint.
 class LOCKBOX_API b2PulleyJoint : public b2Joint {
 public:
-    /// Made by b2World::CreateJoint (through b2Joint::Create).
-    explicit b2PulleyJoint(const b2PulleyJointDef* def);
-
     /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
     /// Anchor on body B (world), m.
@@ -66,6 +63,12 @@ public:
     /// The pulley ratio.
     Fixed GetRatio() const noexcept { return m_ratio; }
 
+private:
+    friend struct core_detail::Engine;
+
+    /// Made by b2World::CreateJoint.
+    explicit b2PulleyJoint(const b2PulleyJointDef* def);
+
     /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
     /// Solver hook (called by b2Island).
@@ -89,7 +92,6 @@ public:
         v(m_uB);
     }
 
-private:
     b2Vec2 m_groundAnchorA;
     b2Vec2 m_groundAnchorB;
     b2Vec2 m_localAnchorA;

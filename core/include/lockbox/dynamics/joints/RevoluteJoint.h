@@ -40,9 +40,6 @@ struct LOCKBOX_API b2RevoluteJointDef : b2JointDef {
 /// Revolute joint.
 class LOCKBOX_API b2RevoluteJoint : public b2Joint {
 public:
-    /// Made by b2World::CreateJoint (through b2Joint::Create).
-    explicit b2RevoluteJoint(const b2RevoluteJointDef* def);
-
     /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
     /// Anchor on body B (world), m.
@@ -91,6 +88,12 @@ public:
     /// Motor torque applied in the last step, N*m.
     Fixed GetMotorTorque(Fixed inv_dt) const;
 
+private:
+    friend struct core_detail::Engine;
+
+    /// Made by b2World::CreateJoint.
+    explicit b2RevoluteJoint(const b2RevoluteJointDef* def);
+
     /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
     /// Solver hook (called by b2Island).
@@ -108,7 +111,6 @@ public:
           m_motorSpeed, m_maxMotorTorque, m_impulse, m_motorImpulse, m_angleBase, m_limitState);
     }
 
-private:
     /// The continuous angle for body angles aA, aB: the branch nearest to m_angleBase.
     Fixed ContinuousAngle(Fixed aA, Fixed aB) const noexcept;
 

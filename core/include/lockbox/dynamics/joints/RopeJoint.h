@@ -25,9 +25,6 @@ struct b2RopeJointDef : b2JointDef {
 /// Rope joint.
 class LOCKBOX_API b2RopeJoint : public b2Joint {
 public:
-    /// Made by b2World::CreateJoint (through b2Joint::Create).
-    explicit b2RopeJoint(const b2RopeJointDef* def);
-
     /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
     /// Anchor on body B (world), m.
@@ -47,6 +44,12 @@ public:
     Fixed GetMaxLength() const noexcept { return m_maxLength; }
     /// e_atUpperLimit while the rope is taut, else e_inactiveLimit.
     b2LimitState GetLimitState() const noexcept { return m_state; }
+
+private:
+    friend struct core_detail::Engine;
+
+    /// Made by b2World::CreateJoint.
+    explicit b2RopeJoint(const b2RopeJointDef* def);
 
     /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
@@ -71,7 +74,6 @@ public:
         v(m_u);
     }
 
-private:
     b2Vec2 m_localAnchorA;
     b2Vec2 m_localAnchorB;
     Fixed m_maxLength;

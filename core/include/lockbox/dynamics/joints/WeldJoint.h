@@ -26,9 +26,6 @@ struct LOCKBOX_API b2WeldJointDef : b2JointDef {
 /// Weld joint.
 class LOCKBOX_API b2WeldJoint : public b2Joint {
 public:
-    /// Made by b2World::CreateJoint (through b2Joint::Create).
-    explicit b2WeldJoint(const b2WeldJointDef* def);
-
     /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
     /// Anchor on body B (world), m.
@@ -53,6 +50,12 @@ public:
     /// Damping ratio (dimensionless).
     Fixed GetDampingRatio() const noexcept { return m_dampingRatio; }
 
+private:
+    friend struct core_detail::Engine;
+
+    /// Made by b2World::CreateJoint.
+    explicit b2WeldJoint(const b2WeldJointDef* def);
+
     /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
     /// Solver hook (called by b2Island).
@@ -69,7 +72,6 @@ public:
         v(m_localAnchorA, m_localAnchorB, m_referenceAngle, m_frequencyHz, m_dampingRatio, m_impulse);
     }
 
-private:
     Fixed m_frequencyHz;
     Fixed m_dampingRatio;
     Wide m_bias;  ///< rad/s

@@ -32,9 +32,6 @@ struct LOCKBOX_API b2WheelJointDef : b2JointDef {
 /// Wheel joint.
 class LOCKBOX_API b2WheelJoint : public b2Joint {
 public:
-    /// Made by b2World::CreateJoint (through b2Joint::Create).
-    explicit b2WheelJoint(const b2WheelJointDef* def);
-
     /// Anchor on body A (world), m.
     b2Vec2 GetAnchorA() const override;
     /// Anchor on body B (world), m.
@@ -80,6 +77,12 @@ public:
     /// Suspension damping ratio.
     Fixed GetSpringDampingRatio() const noexcept { return m_dampingRatio; }
 
+private:
+    friend struct core_detail::Engine;
+
+    /// Made by b2World::CreateJoint.
+    explicit b2WheelJoint(const b2WheelJointDef* def);
+
     /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
     /// Solver hook (called by b2Island).
@@ -104,7 +107,6 @@ public:
         v(m_ax, m_ay);
     }
 
-private:
     Fixed m_frequencyHz;
     Fixed m_dampingRatio;
     b2Vec2 m_localAnchorA;

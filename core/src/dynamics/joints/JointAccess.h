@@ -1,0 +1,54 @@
+#pragma once
+// The engine's side of the joints: the factory the world and the restores use, the links of
+// the joint graph, and what a joint's solver set-up reads of its bodies.
+
+#include "Engine.h"
+#include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/joints/Joint.h"
+
+namespace lockbox {
+
+namespace jointmath {
+/// The solver-side copy of what a joint needs from one body.
+struct BodyData {
+    int32 index = 0;
+    b2Vec2 localCenter;
+    Wide invMass;  ///< 1/kg
+    Wide invI;     ///< 1/(kg*m^2)
+};
+}  // namespace jointmath
+
+struct core_detail::Engine::Joints {
+    /// Allocates the concrete joint for def->type (nullptr for e_unknownJoint, a definition
+    /// without two distinct bodies, or a gear whose joints are not revolute or prismatic).
+    static b2Joint* Create(const b2JointDef* def);
+    /// An empty joint of the given type for a restore (nullptr for e_unknownJoint).
+    static b2Joint* CreateEmpty(b2JointType type);
+    /// Frees a joint made by Create or CreateEmpty (the world unlinks it first).
+    static void Destroy(b2Joint* joint);
+
+    /// Links one edge at the head of its body's joint list.
+    static void LinkEdge(b2JointEdge* edge, b2Joint* joint, b2Body* body, b2Body* other) noexcept {
+        edge->joint = joint;
+        edge->other = other;
+        edge->prev = nullptr;
+        edge->next = body->m_jointList;
+        if (body->m_jointList) body->m_jointList->prev = edge;
+        body->m_jointList = edge;
+    }
+    /// Takes one edge out of its body's joint list.
+    static void UnlinkEdge(b2JointEdge* edge, b2Body* body) noexcept {
+        if (edge->prev) edge->prev->next = edge->next;
+        if (edge->next) edge->next->prev = edge->prev;
+        if (edge == body->m_jointList) body->m_jointList = edge->next;
+        edge->prev = nullptr;
+        edge->next = nullptr;
+    }
+
+    /// A body's island index, local centre and inverse masses, for a joint's solver set-up.
+    static jointmath::BodyData Load(const b2Body* b) noexcept {
+        return {b->m_islandIndex, b->m_sweep.localCenter, b->m_invMass, b->m_invI};
+    }
+};
+
+}  // namespace lockbox
