@@ -1,6 +1,6 @@
 #include "lockbox/collision/BroadPhase.h"
 
-#include <cassert>
+#include "lockbox/fixed/Assert.h"
 
 namespace lockbox {
 
@@ -35,7 +35,7 @@ void b2BroadPhase::MoveProxy(int32 proxyId, const b2AABB& aabb, const b2Vec2& di
 void b2BroadPhase::TouchProxy(int32 proxyId) { BufferMove(proxyId); }
 
 void b2BroadPhase::BufferMove(int32 proxyId) {
-    assert(proxyId >= 0 && "b2BroadPhase: buffering a null proxy");
+    LOCKBOX_ASSERT(proxyId >= 0, "b2BroadPhase: buffering a null proxy");
     m_moveBuffer.push_back(proxyId);
 }
 

@@ -1,7 +1,8 @@
 #include "lockbox/collision/DynamicTree.h"
 
-#include <cassert>
 #include <cstdlib>
+
+#include "lockbox/fixed/Assert.h"
 
 namespace lockbox {
 
@@ -57,7 +58,7 @@ int32 b2DynamicTree::AllocateNode() {
     if (m_freeList == b2_nullNode) {
         // Pool full: double it and chain the new slots in index order.
         const int32 capacity = static_cast<int32>(m_nodes.size());
-        assert(m_nodeCount == capacity && "b2DynamicTree: free list lost nodes");
+        LOCKBOX_ASSERT(m_nodeCount == capacity, "b2DynamicTree: the free list lost nodes");
         m_nodes.resize(static_cast<size_t>(capacity) * 2);
         for (int32 i = capacity; i < capacity * 2 - 1; ++i) m_nodes[static_cast<size_t>(i)].next = i + 1;
         m_freeList = capacity;
@@ -76,7 +77,8 @@ int32 b2DynamicTree::AllocateNode() {
 }
 
 void b2DynamicTree::FreeNode(int32 nodeId) {
-    assert(0 <= nodeId && nodeId < static_cast<int32>(m_nodes.size()) && m_nodeCount > 0);
+    LOCKBOX_ASSERT(0 <= nodeId && nodeId < static_cast<int32>(m_nodes.size()) && m_nodeCount > 0,
+                   "b2DynamicTree: freeing a node the tree does not have");
     // Reset the slot to the one canonical free state, so that equal histories give equal pools
     // and a snapshot of free slots carries no stale data.
     b2TreeNode& node = m_nodes[static_cast<size_t>(nodeId)];
@@ -97,15 +99,17 @@ int32 b2DynamicTree::CreateProxy(const b2AABB& aabb, uint64 userData) {
 }
 
 void b2DynamicTree::DestroyProxy(int32 proxyId) {
-    assert(0 <= proxyId && proxyId < static_cast<int32>(m_nodes.size()));
-    assert(m_nodes[static_cast<size_t>(proxyId)].height == 0 && "b2DynamicTree: not a live proxy");
+    LOCKBOX_ASSERT(0 <= proxyId && proxyId < static_cast<int32>(m_nodes.size()),
+                   "b2DynamicTree: a proxy id the tree never gave out");
+    LOCKBOX_ASSERT(m_nodes[static_cast<size_t>(proxyId)].height == 0, "b2DynamicTree: not a live proxy");
     RemoveLeaf(proxyId);
     FreeNode(proxyId);
 }
 
 bool b2DynamicTree::MoveProxy(int32 proxyId, const b2AABB& aabb, const b2Vec2& displacement) {
-    assert(0 <= proxyId && proxyId < static_cast<int32>(m_nodes.size()));
-    assert(m_nodes[static_cast<size_t>(proxyId)].height == 0 && "b2DynamicTree: not a live proxy");
+    LOCKBOX_ASSERT(0 <= proxyId && proxyId < static_cast<int32>(m_nodes.size()),
+                   "b2DynamicTree: a proxy id the tree never gave out");
+    LOCKBOX_ASSERT(m_nodes[static_cast<size_t>(proxyId)].height == 0, "b2DynamicTree: not a live proxy");
     if (m_nodes[static_cast<size_t>(proxyId)].aabb.Contains(aabb)) return false;
 
     RemoveLeaf(proxyId);

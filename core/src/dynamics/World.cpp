@@ -3,8 +3,6 @@
 #include "lockbox/dynamics/World.h"
 
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 
 #include "dynamics/WorldState.h"
 #include "dynamics/joints/JointAccess.h"
@@ -13,23 +11,11 @@
 namespace lockbox {
 
 namespace {
-void DefaultAssertHandler(const char* expr, const char* msg, const char* file, int line) {
-    std::fprintf(stderr, "lockbox: %s:%d: check '%s' failed: %s\n", file, line, expr, msg);
-    std::abort();
-}
-b2AssertHandler g_assertHandler = &DefaultAssertHandler;
-
 using Clock = std::chrono::steady_clock;
 int64_t Nanos(Clock::time_point from) {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
 }
 }  // namespace
-
-b2AssertHandler b2SetAssertHandler(b2AssertHandler handler) noexcept {
-    const b2AssertHandler previous = g_assertHandler;
-    g_assertHandler = handler ? handler : &DefaultAssertHandler;
-    return previous;
-}
 
 using World = core_detail::Engine::World;
 using Joints = core_detail::Engine::Joints;
@@ -60,10 +46,9 @@ void World::MarkJointStructureChanged(const b2Joint& joint) noexcept {
 
 bool World::CheckLocked(const char* what) const {
     if (!IsLocked()) return false;
-    if constexpr (b2_assertsEnabled) {
-        g_assertHandler("!world->IsLocked()", what, __FILE__, __LINE__);
-    }
-    // Refused: the caller returns nullptr or does nothing.
+    LOCKBOX_ASSERT(!IsLocked(), what);
+    // Refused (release builds, or a handler that returned): the caller returns nullptr or does
+    // nothing.
     return true;
 }
 
@@ -129,9 +114,7 @@ void World::DestroyBody(b2Body* b) {
 
 b2Fixture* World::CreateFixture(b2Body* body, const b2FixtureDef* def) {
     if (def == nullptr || def->shape == nullptr) {
-        if constexpr (b2_assertsEnabled) {
-            g_assertHandler("def->shape != nullptr", "b2Body::CreateFixture needs a shape", __FILE__, __LINE__);
-        }
+        LOCKBOX_ASSERT(def != nullptr && def->shape != nullptr, "b2Body::CreateFixture needs a shape");
         return nullptr;
     }
     MarkBodyStructureChanged(body->GetId());

@@ -4,12 +4,12 @@
 // platform (docs/determinism.md, "State hash"). Hot records go through Begin/End (one room
 // check per record, then an unchecked ByteCursor); the bytes are those of the field calls.
 
-#include <cassert>
 #include <cstddef>
 #include <cstdint>
 
 #include "ByteCursor.h"
 #include "FastXxh3.h"
+#include "lockbox/fixed/Assert.h"
 #include "lockbox/fixed/Math.h"
 #include "lockbox/state/WorldHash.h"
 
@@ -29,7 +29,7 @@ public:
 
     /// A cursor with room for `maxBytes` (at most kMaxRecord); hand it back to End.
     ByteCursor Begin(size_t maxBytes) noexcept {
-        assert(maxBytes <= kMaxRecord);
+        LOCKBOX_ASSERT(maxBytes <= kMaxRecord, "HashWriter: a record larger than kMaxRecord");
         if (m_used + maxBytes > kBuffer) Flush();
         return ByteCursor(m_buffer + m_used);
     }

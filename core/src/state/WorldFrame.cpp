@@ -14,7 +14,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstdio>
 #include <cstdlib>
 
 #include "ByteCursor.h"
@@ -568,12 +567,9 @@ b2RestoreResult core_detail::Engine::Frames::RestoreFrame(World& world, const b2
     cache.structureEpoch = f.m_epoch;
     Apply(f, world, cache);
 #ifdef LOCKBOX_CHECKED
-    if (b2WorldHash(*world.m_owner) != f.m_checkHash) {
-        std::fprintf(stderr,
-                     "lockbox: RestoreFrame did not give the saved state: a structural change did not mark the "
-                     "world's structure changed\n");
-        std::abort();
-    }
+    LOCKBOX_ASSERT(b2WorldHash(*world.m_owner) == f.m_checkHash,
+                   "RestoreFrame did not give the saved state: a structural change did not mark the world's "
+                   "structure changed (a shape edited other than through b2Fixture::EditShape?)");
 #endif
     return {};
 }

@@ -8,9 +8,9 @@
 /// order, newest first, as in 2.2.1.
 ///
 /// Locking: inside Step (and so inside any callback it makes) the world is locked. Create/
-/// Destroy calls made then are programmer errors: in debug and checked builds they go to the
-/// assert handler (b2SetAssertHandler); if the handler returns, or in release builds, the call
-/// does nothing and returns nullptr.
+/// Destroy calls made then are programmer errors (lockbox/fixed/Assert.h): in debug and checked
+/// builds they go to the assert handler (b2SetAssertHandler); if the handler returns, and always
+/// in release builds, the call does nothing and returns nullptr.
 
 #include <memory>
 #include <span>
@@ -27,6 +27,7 @@
 #include "lockbox/dynamics/WorldCallbacks.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 #include "lockbox/dynamics/joints/Joint.h"
+#include "lockbox/fixed/Assert.h"
 #include "lockbox/state/Snapshot.h"
 #include "lockbox/state/WorldFrame.h"
 
@@ -35,23 +36,6 @@ namespace lockbox {
 namespace core_detail {
 struct Engine;
 }  // namespace core_detail
-
-/// Called for programmer errors such as modifying a locked world. expr names the check, msg
-/// explains it. The default prints to stderr and aborts. If the handler returns, the call is
-/// refused (nothing changes; creators return nullptr).
-using b2AssertHandler = void (*)(const char* expr, const char* msg, const char* file, int line);
-
-/// Replaces the assert handler; returns the previous one. nullptr restores the default.
-LOCKBOX_API b2AssertHandler b2SetAssertHandler(b2AssertHandler handler) noexcept;
-
-/// True in builds where b2World's programmer-error checks call the assert handler (debug or
-/// LOCKBOX_CHECKED); release builds refuse the call silently.
-constexpr bool b2_assertsEnabled =
-#if defined(LOCKBOX_CHECKED) || !defined(NDEBUG)
-    true;
-#else
-    false;
-#endif
 
 /// Default world bounds: +-16000 m on both axes. Any two in-world positions differ by at
 /// most 32000 m, which still fits Q16.16 (ARCHITECTURE §5).
