@@ -134,7 +134,16 @@ def declared_name(decl):
         k = 1
         if k < len(d) and d[k] in ("class", "struct"):
             k += 1
-        return (d[k] if k < len(d) and IDENT.fullmatch(d[k]) else None), True, True
+        if k >= len(d) or not IDENT.fullmatch(d[k]):
+            return None, True, True
+        # `struct Outer::Inner {...}` defines a nested class declared inside Outer: its name is
+        # the whole qualified one (two files defining different nested classes of one class do
+        # not clash).
+        name = d[k]
+        while k + 2 < len(d) and d[k + 1] == "::" and IDENT.fullmatch(d[k + 2]):
+            k += 2
+            name += "::" + d[k]
+        return name, True, True
     if d[0] == "using":
         if len(d) > 2 and d[2] == "=":
             return d[1], True, True
