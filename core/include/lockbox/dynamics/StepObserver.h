@@ -1,5 +1,5 @@
 #pragma once
-/// Step fenceposts (issue 9): optional points inside b2World::Step where an observer may look
+/// Step fenceposts: optional points inside b2World::Step where an observer may look
 /// at (hash) the world. Replay bisection uses them to tell in which stage of a step two runs
 /// split. With no observer set (the default) a Step only tests one null pointer per stage.
 ///

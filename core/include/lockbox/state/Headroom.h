@@ -1,5 +1,5 @@
 #pragma once
-/// Headroom telemetry (issue 8, docs/stability.md): how close a world's state comes to the
+/// Headroom telemetry (docs/stability.md): how close a world's state comes to the
 /// limits of its number formats.
 ///
 /// For each quantity class the walk records the largest raw magnitude seen and the largest raw

@@ -1,5 +1,5 @@
 #pragma once
-/// World snapshots (issue 7, docs/determinism.md "Snapshot format"): b2World::Save writes
+/// World snapshots (docs/determinism.md "Snapshot format"): b2World::Save writes
 /// every field that influences future steps as a portable byte image (Cereal portable binary,
 /// little-endian, fixed widths), and b2World::Restore reads one back, either in place
 /// (rollback: surviving bodies, fixtures, contacts and joints keep their address and id) or
