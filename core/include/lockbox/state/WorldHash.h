@@ -104,7 +104,7 @@ struct b2BodyField {
 /// The fields of a body's record in walk order (about 40), values read by the same walk as
 /// the hash: two bodies whose lists differ nowhere have equal records. For telling where two
 /// runs split (the replay diff); allocates.
-std::vector<b2BodyField> b2BodyStateFields(const b2Body& body);
+LOCKBOX_API std::vector<b2BodyField> b2BodyStateFields(const b2Body& body);
 
 /// The first category whose sub-hash differs and the first differing body (by position in
 /// list order; a differing body count reports the first body past the shorter list).
