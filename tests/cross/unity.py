@@ -134,6 +134,9 @@ def declared_name(decl):
         k = 1
         if k < len(d) and d[k] in ("class", "struct"):
             k += 1
+        # An export macro (`class LOCKBOX_API b2World`) stands between the key and the name.
+        while k + 1 < len(d) and re.fullmatch(r"[A-Z][A-Z0-9_]*_API", d[k]) and IDENT.fullmatch(d[k + 1]):
+            k += 1
         if k >= len(d) or not IDENT.fullmatch(d[k]):
             return None, True, True
         # `struct Outer::Inner {...}` defines a nested class declared inside Outer: its name is
