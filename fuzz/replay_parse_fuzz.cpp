@@ -1,4 +1,4 @@
-// libFuzzer target for the replay parser (issue 9): any byte string must parse or be refused
+// libFuzzer target for the replay parser: any byte string must parse or be refused
 // with an error, never crash, hang or allocate without bound. A file that parses and names a
 // scene is also played for up to 32 frames (its snapshots go through b2World::Restore's own
 // validation). Seed corpus: tests/golden/replays.

@@ -1,4 +1,4 @@
-// libFuzzer target for b2World::Restore (issue 7). The first input byte picks how the rest
+// libFuzzer target for b2World::Restore. The first input byte picks how the rest
 // becomes an image, so the fuzzer reaches every layer of the reader:
 //   0: the bytes as they are (header checks, truncation, checksum);
 //   1: the bytes, resealed (the structural checks see arbitrary payloads);

@@ -1,4 +1,4 @@
-// lockbox_replay_bench: what a replay costs (issue 9). For a few scenes it records a run with
+// lockbox_replay_bench: what a replay costs. For a few scenes it records a run with
 // two players' scripted 8-byte inputs, then measures in the same process the thread CPU time
 // of (a) the bare simulation of the same frames (the game's inputs applied, Step, nothing
 // else) and (b) Player::Verify (restore the seed, the same frames, a state hash after every

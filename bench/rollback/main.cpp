@@ -1,4 +1,4 @@
-// lockbox_rollback_bench: the rollback budget of issue 11. One rollback of depth 8 is a
+// lockbox_rollback_bench: the rollback budget (docs/rollback.md). One rollback of depth 8 is a
 // restore of the oldest saved state, then 8 steps each followed by a save (the session saves
 // every re-simulated frame so a later rollback can start from it). The bar: at most 8 ms p99
 // for a 256-body scene on the CI machine (MK11 fits 8 frames in 16 ms; half is left to the

@@ -1,4 +1,4 @@
-// lockbox_state_bench: what the world state costs (issue 7). For scenes from ~200 to ~5000
+// lockbox_state_bench: what the world state costs. For scenes from ~200 to ~5000
 // bodies it measures, in the same run, the median time of a step, of a state hash (the walk
 // over the world, b2WorldHash, and the same value read from the image just saved,
 // b2SnapshotHash), of a save and of an in-place restore, and the snapshot's bytes per

@@ -1,5 +1,5 @@
 #pragma once
-// The main demo (issue 10): a lockstep match on loopback. A LockstepServer and N
+// The main demo: a lockstep match on loopback. A LockstepServer and N
 // LockstepClients, each on its own thread with its own socket (UDP or ENet on 127.0.0.1), play
 // a library scene for a number of frames; every player pushes bodies around with scripted
 // inputs. Every second the demo prints each client's frame, RTT, input delay and state hash;

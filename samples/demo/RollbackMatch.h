@@ -1,5 +1,5 @@
 #pragma once
-// The rollback demo (issue 11, `lockbox_demo --mode rollback`): a 2-player peer-to-peer
+// The rollback demo (`lockbox_demo --mode rollback`): a 2-player peer-to-peer
 // rollback match on loopback. Each player is a thread with its own UDP socket on 127.0.0.1,
 // its own world (a replay::SceneGame), a RollbackSession, a WorldGameAdapter and a
 // RollbackPeer; both push bodies around with scripted inputs at 60 Hz. A fixed one-way delay

@@ -1,4 +1,4 @@
-// stability: runs the numerical stability suite (issue 8) and prints one line per judged
+// stability: runs the numerical stability suite and prints one line per judged
 // figure, `case=NAME metric=WHAT value=V limit=L PASS|FAIL`, then the headroom table (per case,
 // then per library scene). Exits 1 when any figure fails.
 //

@@ -1,4 +1,4 @@
-// lockbox_testbed: the interactive viewer of the manual's "The Testbed" (issue 12), with
+// lockbox_testbed: the interactive viewer of the manual's "The Testbed", with
 // lockbox's own tools: state hash, headroom, replays and side-by-side accuracy.
 //
 //   lockbox_testbed [--scene NAME | --scene-file FILE.json] [--steps N] [--side-by-side] [--paused]

@@ -1,6 +1,6 @@
 #pragma once
-// Golden replays across builds (issue 9: "replays recorded on one architecture verify on the
-// others"). The cross driver plays every replay named with --replays through
+// Golden replays across builds: replays recorded on one architecture verify on the others.
+// The cross driver plays every replay named with --replays through
 // lockbox::replay::Player::Verify and prints one line per file; the line (frames, final hash)
 // must be the same in every cell, and a replay that does not verify fails the cell.
 //

@@ -1,6 +1,6 @@
 #pragma once
-// Snapshot bytes across builds (issue 7: "the snapshot bytes of one scene are also compared
-// across all these builds"). The cross driver runs one light scene for a few steps, saves the
+// Snapshot bytes across builds: the snapshot bytes of one scene must be the same in every
+// build. The cross driver runs one light scene for a few steps, saves the
 // world with b2World::Save, and hashes the image with XXH3-64; every compiler, flag set and
 // architecture must give the same bytes, hence the same hash. The golden value lives in
 // tests/cross/snapshot_golden.txt as

@@ -160,7 +160,7 @@ sources="$sources tests/cross/cross_driver.cpp"
 includes="-I$work/include"
 for d in $incdirs; do includes="$includes -I$src/$d"; done
 defines="-DXXH_INLINE_ALL"
-# The snapshot comparison needs b2World::Save (issue 7); it compiles in once core defines it.
+# The snapshot comparison needs b2World::Save; it compiles in once core defines it.
 if grep -rqs 'b2World::Save' "$src/core/src"; then defines="$defines -DLOCKBOX_CROSS_SNAPSHOT"; fi
 [ -n "$replay_files" ] && defines="$defines -DLOCKBOX_CROSS_REPLAY -DLOCKBOX_REPLAY_ZSTD=0"
 

@@ -1,4 +1,4 @@
-// End to end over real sockets on loopback (issue 10): a LockstepServer and two
+// End to end over real sockets on loopback: a LockstepServer and two
 // LockstepClients in one thread, over UdpTransport (127.0.0.1 and ::1) and EnetTransport
 // (127.0.0.1). Bounded by frames and wall seconds; the run stops by itself.
 

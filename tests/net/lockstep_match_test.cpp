@@ -1,4 +1,4 @@
-// Lockstep matches on SimNet (issue 10 "Tests"): a representative subset of the impairment
+// Lockstep matches on SimNet: a representative subset of the impairment
 // matrix (the whole matrix is in heavy/lockstep_matrix_test.cpp). Each cell asserts equal
 // final hashes, a moving world, no desync and the upstream bandwidth budget.
 

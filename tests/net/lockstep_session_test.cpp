@@ -1,4 +1,4 @@
-// Lockstep sessions under faults (issue 10 "Tests"): a forced divergence gives exactly one
+// Lockstep sessions under faults: a forced divergence gives exactly one
 // desync event naming the frame, spoofed slots are refused, a fuzzed packet stream leaves the
 // server running, a silent client is reported within the timeouts, and late joiners and
 // reconnecting players reach hash agreement.

@@ -1,4 +1,4 @@
-// Disconnect agreement with 3+ peers (issue 11, docs/rollback.md "Disconnects"): survivors
+// Disconnect agreement with 3+ peers (docs/rollback.md "Disconnects"): survivors
 // that received different amounts of a leaver's inputs still cut it at the same frame, and
 // every final hash agrees before and after the cut. Session-level cases first (no network),
 // then SimNet matches through rollback_harness.h.

@@ -1,4 +1,4 @@
-// Rollback matches over SimNet (fast subset of the issue 11 matrix; the full matrix and the
+// Rollback matches over SimNet (fast subset of the rollback matrix; the full matrix and the
 // 10,000-frame run are in heavy/rollback_matrix_test.cpp): confirmed-frame hashes agree on
 // every peer, rollbacks happen when latency exceeds the input delay, no false desync, frame
 // advantage stays within one frame, a forced divergence is reported once at the right frame.

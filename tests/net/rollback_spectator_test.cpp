@@ -1,5 +1,5 @@
 // Spectators that join a rollback match late from a snapshot, and refusal of bad snapshot
-// chunk streams (issue 11, docs/rollback.md "Spectators"). Every SimNet run is bounded in
+// chunk streams (docs/rollback.md "Spectators"). Every SimNet run is bounded in
 // ticks and prints its seed on failure.
 
 #include <xxhash.h>

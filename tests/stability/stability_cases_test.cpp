@@ -1,4 +1,4 @@
-// The stability suite's fast budget (issue 8): every case, with the limits written in
+// The stability suite's fast budget: every case, with the limits written in
 // samples/stability/src (the same functions the `stability` program prints).
 
 #include <string>

@@ -1,4 +1,4 @@
-// The whole impairment matrix of issue 10 on SimNet: RTT {0, 50, 150, 300 ms} x loss {0, 5 %,
+// The whole lockstep impairment matrix on SimNet: RTT {0, 50, 150, 300 ms} x loss {0, 5 %,
 // 20 %, bursts} x jitter {0, 30 ms} x {2, 4, 8} clients (the jitter-0 rows are the
 // constant-latency ones). Every cell: equal final hashes, a moving world, no desync, and the
 // upstream budget (tests/net/LockstepHarness.h, UpBudgetBitsPerSecond).

@@ -31,7 +31,7 @@ std::vector<Leave> AllLeaveCells() {
     return cells;
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue11, RollbackLeaveMatrix, ::testing::ValuesIn(AllLeaveCells()));
+INSTANTIATE_TEST_SUITE_P(Cells, RollbackLeaveMatrix, ::testing::ValuesIn(AllLeaveCells()));
 
 }  // namespace
 }  // namespace lockbox::net::rbtest

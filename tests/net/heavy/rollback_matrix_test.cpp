@@ -1,4 +1,4 @@
-// The issue 11 SimNet matrix for rollback: {2, 4} peers x RTT {0, 50, 150 ms} x loss {0, 5,
+// The SimNet matrix for rollback: {2, 4} peers x RTT {0, 50, 150 ms} x loss {0, 5,
 // 20 %} x jitter {0, 30 ms}, plus one 10,000-frame match with no false desync. Each cell
 // prints one line of figures (rollbacks, depth, waits, frame-advantage spread) for
 // docs/rollback.md; the assertions are behaviour only.
@@ -66,7 +66,7 @@ std::vector<Cell> AllCells() {
     return cells;
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue11, RollbackMatrix, ::testing::ValuesIn(AllCells()));
+INSTANTIATE_TEST_SUITE_P(Cells, RollbackMatrix, ::testing::ValuesIn(AllCells()));
 
 TEST(RollbackLong, TenThousandFramesNoFalseDesync) {
     RbSpec spec;

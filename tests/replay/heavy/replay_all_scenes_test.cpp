@@ -1,4 +1,4 @@
-// Record then verify every scene of the scene library (issue 9 "Done when"), with two players'
+// Record then verify every scene of the scene library, with two players'
 // scripted inputs, keyframes and fencepost hashes; seek to the middle equals straight play.
 #include "../ReplayTestUtil.h"
 #include "lockbox/replay/Bisect.h"

@@ -1,4 +1,4 @@
-// The stability suite's full budget (issue 8) for the cases whose fast budget is shorter:
+// The stability suite's full budget for the cases whose fast budget is shorter:
 // pyramids with base 40, every library scene (the heavy ones included) compared at two
 // quadrants' placements, and the 30- and 10-minute long runs. Release only (label heavy).
 

@@ -1,4 +1,4 @@
-// SyncTest over every scene of the library at full length (issue 7): 600 frames for the light
+// SyncTest over every scene of the library at full length: 600 frames for the light
 // scenes and 120 for the heavy ones, with and without mispredicted branches.
 
 #include <gtest/gtest.h>

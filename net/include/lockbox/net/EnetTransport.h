@@ -1,6 +1,6 @@
 #pragma once
 /// EnetTransport: the Transport interface over ENet 1.3.17 (Debian libenet-dev), for the
-/// lockstep server (issue 10, docs/net.md). One UDP socket, IPv4 only (an ENet 1.3 limit), and
+/// lockstep server (docs/net.md). One UDP socket, IPv4 only (an ENet 1.3 limit), and
 /// two channels per connection:
 ///  - channel 0, reliable and ordered (Delivery::e_reliable): control and snapshot chunks;
 ///  - channel 1, unsequenced and unreliable (Delivery::e_unreliable): inputs, acks, reports.

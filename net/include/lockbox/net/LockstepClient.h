@@ -1,5 +1,5 @@
 #pragma once
-/// The lockstep client (issue 10, docs/net.md "Sessions"): joins a LockstepServer, sends its
+/// The lockstep client (docs/net.md "Sessions"): joins a LockstepServer, sends its
 /// player's inputs, and steps its world one frame at a time, only when every player's input
 /// for that frame has been confirmed by the server. Before each step it calls the game's
 /// Apply(world, frame, inputs) with all players' inputs of the frame (playerCount * inputBytes

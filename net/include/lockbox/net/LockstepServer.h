@@ -1,5 +1,5 @@
 #pragma once
-/// The lockstep server (issue 10, docs/net.md "Sessions"): assigns slots, collects every
+/// The lockstep server (docs/net.md "Sessions"): assigns slots, collects every
 /// player's inputs, relays each confirmed frame's inputs to every client, compares the clients'
 /// state hashes, times out silent clients and brings late joiners in through a snapshot.
 ///

@@ -1,5 +1,5 @@
 #pragma once
-/// The lockstep wire protocol (issue 10, docs/net.md "Protocol"): one versioned codec for every
+/// The lockstep wire protocol (docs/net.md "Protocol"): one versioned codec for every
 /// datagram a LockstepServer and its LockstepClients exchange.
 ///
 /// A datagram is a 9-byte header (magic u16 'L' 'K', protocol version u8, session token u32,

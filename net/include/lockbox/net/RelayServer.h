@@ -1,5 +1,5 @@
 #pragma once
-/// RelayServer (issue 11, docs/rollback.md "Relayed matches"): forwards datagrams between the
+/// RelayServer (docs/rollback.md "Relayed matches"): forwards datagrams between the
 /// members of one match. A member claims its slot with a token (RelayWire.h join); from then
 /// on the relay knows the member by its PeerId on the relay's transport and forwards what it
 /// addresses to another slot, stamped with the sender's slot. The relay never reads the

@@ -1,5 +1,5 @@
 #pragma once
-/// RelayedTransport (issue 11, docs/rollback.md "Relayed matches"): a Transport that reaches
+/// RelayedTransport (docs/rollback.md "Relayed matches"): a Transport that reaches
 /// the other members of a match through a RelayServer. It wraps the transport that reaches the
 /// relay; the other members appear as PeerIds equal to their slot numbers, so a RollbackPeer
 /// (or any session) configured with remotes {slot j} runs unchanged over a relay.

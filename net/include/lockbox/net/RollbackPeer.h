@@ -1,5 +1,5 @@
 #pragma once
-/// RollbackPeer (issue 11, docs/rollback.md): carries one RollbackSession's inputs, acks,
+/// RollbackPeer (docs/rollback.md): carries one RollbackSession's inputs, acks,
 /// time-sync reports and final hashes over a Transport to the other peers of a peer-to-peer
 /// match, and the confirmed input stream to spectators (RollbackSpectator.h), including
 /// spectators that join late from a snapshot the game offers (SnapshotWanted, OfferSnapshot).

@@ -1,5 +1,5 @@
 #pragma once
-/// The rollback wire protocol (issue 11, docs/rollback.md): what RollbackPeer sessions and
+/// The rollback wire protocol (docs/rollback.md): what RollbackPeer sessions and
 /// their spectators exchange. Same conventions as the lockstep codec (Protocol.h): a header,
 /// then one or more messages, each a type byte and its fields; little-endian fixed widths,
 /// minimal LEB128 varints for frames, times and counts; input runs with the repeat bitmap.

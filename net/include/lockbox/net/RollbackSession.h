@@ -1,5 +1,5 @@
 #pragma once
-/// The rollback session core (issue 11, docs/rollback.md): inputs in, requests out. The game
+/// The rollback session core (docs/rollback.md): inputs in, requests out. The game
 /// adds its local inputs, calls AdvanceFrame once per tick and executes the requests it gets
 /// back, in order: SaveState (save the current state as frame f), LoadState (restore frame f)
 /// and Advance (apply these inputs, step once). The session never calls into the game, so any

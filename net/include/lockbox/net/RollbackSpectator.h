@@ -1,5 +1,5 @@
 #pragma once
-/// RollbackSpectator (issue 11): watches a rollback match. A host peer (a RollbackPeer with
+/// RollbackSpectator: watches a rollback match. A host peer (a RollbackPeer with
 /// this machine in RollbackPeerConfig::spectators) sends every player's confirmed inputs, the
 /// same stream a replay stores; the spectator acknowledges them and hands them out frame by
 /// frame. Confirmed inputs never change, so a spectator never rolls back: it applies each

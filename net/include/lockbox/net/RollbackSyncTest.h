@@ -1,5 +1,5 @@
 #pragma once
-/// SyncTestSession (issue 11): the sync test as a session type. It drives a replay::Game on a
+/// SyncTestSession: the sync test as a session type. It drives a replay::Game on a
 /// lockbox world through core's lockbox::SyncTest (state/SyncTest.h): every frame is run,
 /// hashed, then the last `checkDistance` frames are rolled back and re-simulated (in
 /// mispredict mode first with wrong inputs, then again with the right ones) and every

@@ -1,5 +1,5 @@
 #pragma once
-/// WorldGameAdapter (issue 11): executes a RollbackSession's requests for a game whose whole
+/// WorldGameAdapter: executes a RollbackSession's requests for a game whose whole
 /// state is one lockbox world plus the replay::Game's user blob. SaveState keeps a rollback
 /// frame of the world (b2World::SaveFrame) and the blob (Game::SaveUserState) in a ring slot and
 /// reports the folded hash when asked; LoadState restores both (RestoreFrame); Advance calls

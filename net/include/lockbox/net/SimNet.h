@@ -1,5 +1,5 @@
 #pragma once
-/// SimNet: an in-memory network for tests (issue 10, docs/net.md "SimNet"). Endpoints live in
+/// SimNet: an in-memory network for tests (docs/net.md "SimNet"). Endpoints live in
 /// one process, time is a virtual clock that only the test advances, and every link between
 /// two endpoints has its own seeded impairments. The same seed and the same calls give the
 /// same deliveries, bit for bit, so a failing test reproduces from its seed.

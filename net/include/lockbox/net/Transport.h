@@ -1,5 +1,5 @@
 #pragma once
-/// The datagram interface every lockbox session runs on (issue 10, docs/net.md): send bytes to
+/// The datagram interface every lockbox session runs on (docs/net.md): send bytes to
 /// a peer, poll what arrived, read the clock. Three implementations: SimNet (in memory, seeded,
 /// virtual clock; every net test), UdpTransport (POSIX, IPv4 and IPv6) and EnetTransport
 /// (libenet: a reliable channel beside the unreliable one).

@@ -1,5 +1,5 @@
 #pragma once
-/// UdpTransport: plain POSIX UDP behind the Transport interface (issue 10, docs/net.md). One
+/// UdpTransport: plain POSIX UDP behind the Transport interface (docs/net.md). One
 /// non-blocking socket, IPv4 or IPv6 (chosen by the bind address), a fixed-size peer table,
 /// the steady clock. No connection, no resend, no reliability: `Delivery` is ignored, as the
 /// sessions resend what matters.

@@ -1,5 +1,5 @@
 #pragma once
-/// Finding the first divergent frame of a replay quickly (issue 9, `lockbox_replay bisect`):
+/// Finding the first divergent frame of a replay quickly (`lockbox_replay bisect`):
 /// a binary search over the seed and the keyframes (O(log K) restores), then a scan of one
 /// keyframe interval, then the fencepost inside the step where re-simulation and the
 /// recording split (when the file stores fencepost hashes: RecorderConfig::stageHashes).

@@ -1,5 +1,5 @@
 #pragma once
-/// Finding where two runs disagree (issue 9, `lockbox_replay diff`): play two replays in
+/// Finding where two runs disagree (`lockbox_replay diff`): play two replays in
 /// lockstep, stop at the first frame whose states hash differently, then narrow it to the
 /// first differing hash category, body and field, with both values.
 

@@ -1,5 +1,5 @@
 #pragma once
-/// Replay file format (issue 9, docs/replay.md "File format"): a fixed header, then
+/// Replay file format (docs/replay.md "File format"): a fixed header, then
 /// self-describing chunks. Every integer is little-endian with a fixed width. Each chunk
 /// carries its type, a flag word (bit 0: the payload is zstd-compressed), the stored and raw
 /// payload sizes and an XXH3-64 checksum, so an older reader skips a chunk type it does not

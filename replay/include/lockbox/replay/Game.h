@@ -1,5 +1,5 @@
 #pragma once
-/// The game side of a replay (issue 9): what an input means is the game's business. The
+/// The game side of a replay: what an input means is the game's business. The
 /// recorder and the player call Apply before every Step with that frame's inputs, and save and
 /// load the game's own state (beyond the world) with every seed and keyframe, so a game with
 /// state outside the physics still replays and seeks exactly (ARCHITECTURE §4).

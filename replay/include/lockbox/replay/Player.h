@@ -1,5 +1,5 @@
 #pragma once
-/// Playing a replay back (issue 9): restore the seed into a world, then apply each frame's
+/// Playing a replay back: restore the seed into a world, then apply each frame's
 /// inputs through the game and step with the recorded settings, comparing the state hash
 /// wherever the file stores one. Seeking restores the nearest keyframe and steps forward.
 

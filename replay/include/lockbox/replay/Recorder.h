@@ -1,5 +1,5 @@
 #pragma once
-/// Recording a replay (issue 9): the Recorder owns the frame loop of a world and a game. Each
+/// Recording a replay: the Recorder owns the frame loop of a world and a game. Each
 /// Advance applies the frame's inputs through the game, steps the world with the recorded
 /// settings, hashes the result and appends it; blocks of frames are written as compressed
 /// chunks to a sink (memory or file) as they fill, so a crash loses at most one block.

@@ -1,5 +1,5 @@
 #pragma once
-/// A library scene as a replay game (issue 9, `lockbox_replay record --scene`): each frame
+/// A library scene as a replay game (`lockbox_replay record --scene`): each frame
 /// runs the scene's own pre-step action, then every player's 8-byte input: an impulse on a
 /// dynamic body, a box or circle spawned, or a spawned body destroyed. ScriptedInputs makes
 /// such inputs from a seed, so any scene can make a replay with bodies coming and going.

@@ -1,5 +1,5 @@
 #pragma once
-/// The numerical stability suite (issue 8, docs/stability.md): fifteen hard cases, each run on
+/// The numerical stability suite (docs/stability.md): fifteen hard cases, each run on
 /// lockbox in Q16.16/Q32.32 and judged by figures with written limits. The `stability` program
 /// prints them and the tests in tests/stability assert them, through these same functions, so
 /// each limit is defined once (in the case's source file).
@@ -45,7 +45,7 @@ struct CaseReport {
 
 /// A case of the suite.
 struct CaseInfo {
-    int id;                    ///< issue 8 numbering, 1..15
+    int id;                    ///< the case number in docs/stability.md, 1..15
     std::string_view name;     ///< command-line and test name
     std::string_view summary;  ///< one line
     /// True when the case's `fast` budget differs from `full` (the full run is a heavy test).
