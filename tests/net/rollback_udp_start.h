@@ -39,6 +39,26 @@ struct UdpStartResult {
     double seconds = 0;  ///< wall time of the run, the delay included
 };
 
+/// Builds one side of a UDP match on `transport`: the vertical_stack game, its session for
+/// slot `slot` of 2, the adapter with the scene's step settings, the peer (remote `other`,
+/// match `matchId`) and the scripted inputs. `S` has the members of UdpStartSide it fills.
+template <class S>
+inline void BuildUdpSide(S& s, uint32_t slot, Transport& transport, PeerId other, uint32_t matchId) {
+    s.game = std::make_unique<replay::SceneGame>("vertical_stack");
+    s.session =
+        RollbackSessionBuilder().Players(2).InputBytes(8).LocalPlayer(slot).InputDelay(1).DesyncInterval(5).Build();
+    const auto& info = s.game->info();
+    s.adapter = std::make_unique<WorldGameAdapter>(
+        s.game->world(), *s.game,
+        WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
+                          static_cast<uint32_t>(info.positionIterations)});
+    RollbackPeerConfig cfg;
+    cfg.matchId = matchId;
+    cfg.remotes.push_back(RollbackRemote{other, {1 - slot}});
+    s.peer = std::make_unique<RollbackPeer>(*s.session, transport, cfg);
+    s.script = std::make_unique<replay::ScriptedInputs>(matchId * 1000 + slot, 1);
+}
+
 /// Side `lateSide` (0 or 1) starts `delay` after the other; both play to `frames` confirmed
 /// frames. Bounded by the delay plus 20 wall seconds.
 inline void RunUdpStaggered(UdpStartResult& out, uint32_t lateSide, std::chrono::milliseconds delay, int32_t frames) {
@@ -62,19 +82,7 @@ inline void RunUdpStaggered(UdpStartResult& out, uint32_t lateSide, std::chrono:
         ASSERT_NE(s.transport, nullptr) << error;
         const PeerId other = s.transport->AddPeer("127.0.0.1", ports[1 - i], &error);
         ASSERT_NE(other, kNoPeer) << error;
-        s.game = std::make_unique<replay::SceneGame>("vertical_stack");
-        s.session =
-            RollbackSessionBuilder().Players(2).InputBytes(8).LocalPlayer(i).InputDelay(1).DesyncInterval(5).Build();
-        const auto& info = s.game->info();
-        s.adapter = std::make_unique<WorldGameAdapter>(
-            s.game->world(), *s.game,
-            WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
-                              static_cast<uint32_t>(info.positionIterations)});
-        RollbackPeerConfig cfg;
-        cfg.matchId = 32;
-        cfg.remotes.push_back(RollbackRemote{other, {1 - i}});
-        s.peer = std::make_unique<RollbackPeer>(*s.session, *s.transport, cfg);
-        s.script = std::make_unique<replay::ScriptedInputs>(32 * 1000 + i, 1);
+        BuildUdpSide(s, i, *s.transport, other, 32);
     };
     start(1 - lateSide);
     const auto deadline = t0 + delay + std::chrono::seconds(20);

@@ -43,19 +43,7 @@ TEST(RollbackUdp, TwoPeersOnLoopbackAgree) {
     } sides[2];
     for (uint32_t i = 0; i < 2; ++i) {
         Side& s = sides[i];
-        s.game = std::make_unique<replay::SceneGame>("vertical_stack");
-        s.session =
-            RollbackSessionBuilder().Players(2).InputBytes(8).LocalPlayer(i).InputDelay(1).DesyncInterval(5).Build();
-        const auto& info = s.game->info();
-        s.adapter = std::make_unique<WorldGameAdapter>(
-            s.game->world(), *s.game,
-            WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
-                              static_cast<uint32_t>(info.positionIterations)});
-        RollbackPeerConfig cfg;
-        cfg.matchId = 31;
-        cfg.remotes.push_back(RollbackRemote{others[i], {1 - i}});
-        s.peer = std::make_unique<RollbackPeer>(*s.session, *transports[i], cfg);
-        s.script = std::make_unique<replay::ScriptedInputs>(31 * 1000 + i, 1);
+        rbtest::BuildUdpSide(s, i, *transports[i], others[i], 31);
     }
     const int32_t frames = 150;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
