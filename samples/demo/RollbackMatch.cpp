@@ -7,7 +7,6 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -15,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "lockbox/net/LatencyTransport.h"
 #include "lockbox/net/RollbackBudgetGuard.h"
 #include "lockbox/net/RollbackPeer.h"
 #include "lockbox/net/RollbackSession.h"
@@ -28,43 +28,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Holds every outgoing datagram for a fixed delay before handing it to the socket: a long
-/// cable on loopback, so predictions miss and rollbacks happen.
-class DelayedTransport final : public net::Transport {
-public:
-    DelayedTransport(std::unique_ptr<net::Transport> inner, uint64_t delayMicros)
-        : inner_(std::move(inner)), delay_(delayMicros) {}
-    bool Send(net::PeerId peer, std::span<const uint8_t> bytes, net::Delivery delivery) override {
-        if (delay_ == 0) return inner_->Send(peer, bytes, delivery);
-        queue_.push_back(Held{NowMicros() + delay_, peer, std::vector<uint8_t>(bytes.begin(), bytes.end())});
-        return true;
-    }
-    size_t Poll(std::vector<net::Datagram>& out) override {
-        Pump();
-        return inner_->Poll(out);
-    }
-    uint64_t NowMicros() const override { return inner_->NowMicros(); }
-    const net::TransportStats& Stats() const noexcept override { return inner_->Stats(); }
-    /// Sends every held datagram that is due.
-    void Pump() {
-        const uint64_t now = NowMicros();
-        while (!queue_.empty() && queue_.front().due <= now) {
-            inner_->Send(queue_.front().peer, queue_.front().bytes);
-            queue_.pop_front();
-        }
-    }
-
-private:
-    struct Held {
-        uint64_t due;
-        net::PeerId peer;
-        std::vector<uint8_t> bytes;
-    };
-    std::unique_ptr<net::Transport> inner_;
-    uint64_t delay_;
-    std::deque<Held> queue_;
-};
-
 /// What a player thread publishes.
 struct Board {
     std::atomic<int32_t> frame{0}, confirmed{0};
@@ -75,8 +38,13 @@ struct Board {
     std::map<int32_t, uint64_t> finals;  // frame -> final hash (under lock)
 };
 
-void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net::PeerId other, const RollbackOptions o,
+void PlayerThread(uint32_t me, std::unique_ptr<net::UdpTransport> socket, net::PeerId other, const RollbackOptions o,
                   Board& board, Clock::time_point deadline) {
+    // A long cable on loopback, so predictions miss and rollbacks happen: what this player
+    // receives waits latencyMs first (the other player's transport delays the other way).
+    net::LatencyProfile cable;
+    cable.latencyMicros = static_cast<uint32_t>(o.latencyMs) * 1000;
+    net::LatencyTransport transport(*socket, cable, o.seed * 1000 + me);
     replay::SceneGame game(o.scene);
     auto session = net::RollbackSessionBuilder()
                        .Players(2)
@@ -94,7 +62,7 @@ void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net:
     net::RollbackPeerConfig cfg;
     cfg.matchId = 0x524F4C4Cu;
     cfg.remotes.push_back(net::RollbackRemote{other, {1 - me}});
-    net::RollbackPeer peer(*session, *transport, cfg);
+    net::RollbackPeer peer(*session, transport, cfg);
     replay::ScriptedInputs script(o.seed * 1000 + me, 1);
     std::vector<uint8_t> input;
     bool pending = false;  // a drawn input the session has not taken yet
@@ -157,12 +125,8 @@ void PlayerThread(uint32_t me, std::unique_ptr<DelayedTransport> transport, net:
         for (const net::RollbackEvent& e : session->TakeEvents())
             if (e.kind == net::RollbackEvent::Kind::e_desync) board.desync = true;
         if (session->ConfirmedFrame() >= o.frames) --lingerTicks;
-        // Sleep to the next tick in 1 ms steps so delayed datagrams leave on time.
         next += tick;
-        while (Clock::now() < next) {
-            transport->Pump();
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
+        std::this_thread::sleep_until(next);
     }
     board.done = true;
 }
@@ -193,7 +157,6 @@ int RunRollbackMatch(const RollbackOptions& o) {
         std::fprintf(stderr, "rollback: %s\n", error.c_str());
         return 1;
     }
-    const uint64_t delay = static_cast<uint64_t>(o.latencyMs) * 1000;
     std::printf("rollback match: scene %s, %d frames, input delay %d, window %d, one-way latency %d ms (loopback UDP)",
                 o.scene.c_str(), o.frames, o.inputDelay, o.window, o.latencyMs);
     if (o.budgetMs > 0) std::printf(", budget guard %d ms", o.budgetMs);
@@ -202,10 +165,8 @@ int RunRollbackMatch(const RollbackOptions& o) {
     // Three times real time plus slack: the match always ends.
     const auto deadline = start + std::chrono::milliseconds(int64_t{o.frames} * 50 + 15000);
     Board boards[2];
-    std::thread ta(PlayerThread, 0u, std::make_unique<DelayedTransport>(std::move(a), delay), aToB, o,
-                   std::ref(boards[0]), deadline);
-    std::thread tb(PlayerThread, 1u, std::make_unique<DelayedTransport>(std::move(b), delay), bToA, o,
-                   std::ref(boards[1]), deadline);
+    std::thread ta(PlayerThread, 0u, std::move(a), aToB, o, std::ref(boards[0]), deadline);
+    std::thread tb(PlayerThread, 1u, std::move(b), bToA, o, std::ref(boards[1]), deadline);
     uint64_t lastRollbacks[2] = {0, 0};
     auto nextPrint = start + std::chrono::seconds(1);
     while (!(boards[0].done && boards[1].done)) {
