@@ -140,7 +140,7 @@ uint64 Recorder::Advance(std::span<const uint8> inputs) {
     }
     const bool hashed = static_cast<uint32>(frame + 1) % m_config.hashInterval == 0;
     const uint64 hash = hashed ? m_world.Hash() : 0;
-    Record(hash, &m_world);
+    Record(hash, &m_world, nullptr);
     return hash;
 }
 
@@ -152,10 +152,24 @@ void Recorder::AppendConfirmed(std::span<const uint8> inputs, uint64 hashAfter, 
         m_stageBlock.insert(m_stageBlock.end(), kStagesPerFrame, 0);
         m_solveBlock.insert(m_solveBlock.end(), kSolvePhasesPerFrame, 0);
     }
-    Record(hashAfter, worldAtFrame);
+    Record(hashAfter, worldAtFrame, nullptr);
 }
 
-void Recorder::Record(uint64 hash, const b2World* keyframeWorld) {
+bool Recorder::KeyframeDue() const noexcept {
+    return m_config.keyframeInterval != 0 && static_cast<uint32>(m_frames + 1) % m_config.keyframeInterval == 0;
+}
+
+void Recorder::AppendFinal(std::span<const uint8> inputs, uint64 hashAfter, const Keyframe* stateAfter) {
+    if (!m_begun || m_finished) return;
+    PushInputs(inputs);
+    if (m_config.stageHashes) {
+        m_stageBlock.insert(m_stageBlock.end(), kStagesPerFrame, 0);
+        m_solveBlock.insert(m_solveBlock.end(), kSolvePhasesPerFrame, 0);
+    }
+    Record(hashAfter, nullptr, stateAfter);
+}
+
+void Recorder::Record(uint64 hash, const b2World* keyframeWorld, const Keyframe* keyframeState) {
     const int32 frame = m_frames;
     ++m_frames;
     if (static_cast<uint32>(m_frames) % m_config.hashInterval == 0) {
@@ -165,17 +179,24 @@ void Recorder::Record(uint64 hash, const b2World* keyframeWorld) {
     const bool keyframe =
         m_config.keyframeInterval != 0 && static_cast<uint32>(m_frames) % m_config.keyframeInterval == 0;
     if (keyframe || static_cast<uint32>(m_frames - m_blockStart) >= m_config.blockFrames) Flush();
-    if (keyframe && keyframeWorld != nullptr) {
+    if (!keyframe) return;
+    if (keyframeWorld != nullptr) {
         std::vector<uint8> image = keyframeWorld->Save();
         m_game.SaveUserState(m_user);
-        m_scratch.clear();
-        bytes::Writer w(m_scratch);
-        w.U32(static_cast<uint32>(m_frames));
-        w.U64(keyframeWorld->Hash());
-        w.Blob(image);
-        w.Blob(m_user);
-        Emit(e_chunkKeyframe, m_scratch);
+        EmitKeyframe(keyframeWorld->Hash(), image, m_user);
+    } else if (keyframeState != nullptr) {
+        EmitKeyframe(keyframeState->hash, keyframeState->world, keyframeState->user);
     }
+}
+
+void Recorder::EmitKeyframe(uint64 hash, std::span<const uint8> image, std::span<const uint8> user) {
+    m_scratch.clear();
+    bytes::Writer w(m_scratch);
+    w.U32(static_cast<uint32>(m_frames));
+    w.U64(hash);
+    w.Blob(image);
+    w.Blob(user);
+    Emit(e_chunkKeyframe, m_scratch);
 }
 
 void Recorder::Flush() {
@@ -219,12 +240,17 @@ void Recorder::EmitFrameHashes(uint32 type, int32 count, uint32 per, const std::
 
 Error Recorder::Finish() {
     if (!m_begun || m_finished) return m_writeError;
+    return Finish(m_world.Hash());
+}
+
+Error Recorder::Finish(uint64 finalHash) {
+    if (!m_begun || m_finished) return m_writeError;
     m_finished = true;
     Flush();
     m_scratch.clear();
     bytes::Writer w(m_scratch);
     w.U32(static_cast<uint32>(m_frames));
-    w.U64(m_world.Hash());
+    w.U64(finalHash);
     Emit(e_chunkEnd, m_scratch);
     return m_writeError;
 }

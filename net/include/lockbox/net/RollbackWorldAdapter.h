@@ -3,7 +3,8 @@
 /// state is one lockbox world plus the replay::Game's user blob. SaveState keeps a rollback
 /// frame of the world (b2World::SaveFrame) and the blob (Game::SaveUserState) in a ring slot and
 /// reports the folded hash when asked; LoadState restores both (RestoreFrame); Advance calls
-/// Game::Apply then steps once.
+/// Game::Apply then steps once. It can also record the match's final frames into a replay
+/// (Record), with no second simulation.
 
 #include <cstdint>
 #include <span>
@@ -18,7 +19,8 @@ class b2World;
 }
 namespace lockbox::replay {
 class Game;
-}
+class Recorder;
+}  // namespace lockbox::replay
 
 namespace lockbox::net {
 
@@ -53,6 +55,31 @@ public:
     /// before it touches the world; the game is untouched then).
     static bool RestoreSnapshot(b2World& world, replay::Game& game, std::span<const uint8_t> snapshot);
 
+    /// Records the match into `recorder` as its frames become final (docs/replay.md, "Replays
+    /// of rollback matches"): each final frame's inputs (a player's bytes are zero from its
+    /// disconnect cut on, as the game got them), the world hash after it, and keyframes of the
+    /// confirmed state with the confirmed user state. The recorder must be made on this
+    /// adapter's world and game (its settings matching WorldStepSettings) without stage hashes;
+    /// it is begun at the first SaveState{0} (the seed is the world at frame 0) and finished
+    /// once `frames` frames are recorded (0: only by FinishRecording). Call before the first
+    /// Execute, and execute each AdvanceFrame's requests before any new input reaches the
+    /// session (the documented order: Poll, AddLocalInput, AdvanceFrame, Execute, Flush), so
+    /// that the frames the session calls final are simulated with their final inputs. Every
+    /// peer that records `frames` frames with the same RecorderConfig writes the same bytes.
+    /// False (nothing changes) when a frame was already executed or `frames` is negative.
+    bool Record(replay::Recorder& recorder, int32_t frames = 0);
+    /// Records every frame final so far and finishes the recording early (the END record's
+    /// hash is the state after the last recorded frame). False when there is no recording, it
+    /// failed, or the recorder reports a write error; true when it was finished already.
+    bool FinishRecording(const RollbackSession& session);
+    /// Frames recorded so far.
+    int32_t RecordedFrames() const noexcept { return m_recorded; }
+    /// True once the recording is finished (its `frames` reached, or FinishRecording).
+    bool RecordingFinished() const noexcept { return m_recordFinished; }
+    /// True when recording stopped because a final frame's state was no longer kept (more
+    /// than `slots` frames between the final frame and the current one) or a visit failed.
+    bool RecordingFailed() const noexcept { return m_recordFailed; }
+
     /// The world hash folded with the game's user state, FoldedStateHash (StateHash.h): what
     /// ReportHash gets.
     uint64_t StateHash() const;
@@ -66,7 +93,16 @@ private:
         int32_t frame = -1;
         b2WorldFrame state;  ///< a rollback frame (b2World::SaveFrame), not a portable image
         std::vector<uint8_t> user;
+        bool hashed = false;  ///< worldHash holds b2World::Hash of `state`
+        uint64_t worldHash = 0;
+        int32_t inputFrame = -1;      ///< the frame whose Advance inputs `inputs` holds
+        std::vector<uint8_t> inputs;  ///< recording: the last inputs frame `inputFrame` advanced with
     };
+    Slot& SlotOf(int32_t frame) { return m_slots[static_cast<size_t>(frame) % m_slots.size()]; }
+    /// Brings the world to slot `s`'s state, takes what is asked, and comes back.
+    bool Visit(const Slot& s, std::vector<uint8_t>* image, uint64_t* hash) const;
+    bool RecordWantsHash(int32_t frame) const noexcept;
+    void RecordFinal(const RollbackSession& session);
     b2World& m_world;
     replay::Game& m_game;
     WorldStepSettings m_settings;
@@ -74,6 +110,10 @@ private:
     mutable b2WorldFrame m_scratch;  ///< the current state while ConfirmedSnapshot visits a slot
     uint64_t m_resimulated = 0;
     int32_t m_lastAdvanced = -1;
+    replay::Recorder* m_recorder = nullptr;
+    int32_t m_recordEnd = 0;  ///< frames to record (INT32_MAX: until FinishRecording)
+    int32_t m_recorded = 0;
+    bool m_recordFinished = false, m_recordFailed = false;
 };
 
 }  // namespace lockbox::net

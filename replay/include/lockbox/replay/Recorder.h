@@ -13,6 +13,7 @@
 #include "lockbox/dynamics/World.h"
 #include "lockbox/replay/Format.h"
 #include "lockbox/replay/Game.h"
+#include "lockbox/replay/ReplayFile.h"
 
 namespace lockbox::replay {
 
@@ -92,8 +93,24 @@ public:
     /// `worldAtFrame` (the state after the frame, e.g. a confirmed-state copy) is saved with the
     /// game's user state; nullptr skips that keyframe. Stage hashes cannot be recorded this way.
     void AppendConfirmed(std::span<const uint8> inputs, uint64 hashAfter, const b2World* worldAtFrame);
+    /// True when the frame appended next is followed by a keyframe (the keyframe interval).
+    bool KeyframeDue() const noexcept;
+    /// One final frame of a match simulated elsewhere, where neither the recorder's world nor
+    /// its game is at that frame (a rollback session runs ahead on predictions): nothing of
+    /// them is read. `hashAfter` is b2World::Hash of the state after the frame, needed when the
+    /// hash interval stores it (else ignored). When KeyframeDue(), `stateAfter` is that state:
+    /// its world image (b2World::Save), hash and the game's user state then (its frame field is
+    /// ignored); nullptr skips the keyframe. Finish with Finish(finalHash).
+    void AppendFinal(std::span<const uint8> inputs, uint64 hashAfter, const Keyframe* stateAfter);
     /// Writes the pending block and the END record. Further calls do nothing.
     Error Finish();
+    /// The same, with `finalHash` as the END record's hash (b2World::Hash after the last frame),
+    /// for frames appended with AppendFinal.
+    Error Finish(uint64 finalHash);
+    /// The settings (after the constructor's clamping).
+    const RecorderConfig& Config() const noexcept { return m_config; }
+    /// True once Begin has run.
+    bool Begun() const noexcept { return m_begun; }
     /// Frames recorded so far.
     int32 Frames() const noexcept { return m_frames; }
     /// The first write error (e_ok while all writes succeeded).
@@ -102,7 +119,8 @@ public:
 private:
     void Flush();
     std::span<const uint8> PushInputs(std::span<const uint8> inputs);
-    void Record(uint64 hash, const b2World* keyframeWorld);
+    void Record(uint64 hash, const b2World* keyframeWorld, const Keyframe* keyframeState);
+    void EmitKeyframe(uint64 hash, std::span<const uint8> image, std::span<const uint8> user);
     void Emit(uint32 type, std::span<const uint8> payload);
     void EmitFrameHashes(uint32 type, int32 count, uint32 per, const std::vector<uint64>& block);
 
