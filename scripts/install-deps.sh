@@ -30,6 +30,8 @@ PACKAGES=(
     libcereal-dev       # lockbox_dep::cereal: snapshot serialization in core/
     libzstd-dev         # lockbox_dep::zstd: replay file compression
     libenet-dev         # lockbox_dep::enet: UDP transport for netcode samples
+    libsodium-dev       # lockbox_dep::sodium: signing and checking admission tokens (tools/admission, lockbox_server, lockbox_token)
+    libcpp-httplib-dev  # lockbox_dep::httplib: /healthz, /readyz and /metrics of lockbox_server (tools/server)
     rapidjson-dev       # lockbox_dep::rapidjson: JSON reading and writing of scene files (scenefile/)
     libbox2d-dev        # lockbox_dep::box2d_float: float Box2D, differential tests and benchmarks only
     python3-matplotlib  # plotting benchmark / drift results

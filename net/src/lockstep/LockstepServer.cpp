@@ -66,7 +66,20 @@ void LockstepServer::Impl::OnHello(PeerId peer, const Hello& hello, uint64_t now
     };
     if (hello.determinismVersion != b2_determinismVersion) return reject(RejectReason::e_determinismVersion);
     int32_t target = -1;
-    if (hello.token != 0) {
+    if (config.admittedSlot) {
+        // The admission decided the slot: a reconnect token or a requested slot may not move it.
+        const int32_t allowed = config.admittedSlot(peer);
+        if (allowed < 0 || static_cast<size_t>(allowed) >= slots.size()) return reject(RejectReason::e_badToken);
+        const State st = slots[static_cast<size_t>(allowed)].state;
+        if (hello.token != 0) {
+            if (slots[static_cast<size_t>(allowed)].token != hello.token || st == State::e_free)
+                return reject(RejectReason::e_badToken);
+            if (st != State::e_disconnected) Drop(allowed, RejectReason::e_none);
+        } else if (st != State::e_free && st != State::e_disconnected) {
+            return reject(RejectReason::e_slotTaken);
+        }
+        target = allowed;
+    } else if (hello.token != 0) {
         for (size_t i = 0; i < slots.size(); ++i)
             if (slots[i].token == hello.token && slots[i].state != State::e_free) target = static_cast<int32_t>(i);
         if (target < 0) return reject(RejectReason::e_badToken);

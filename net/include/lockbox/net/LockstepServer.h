@@ -12,6 +12,7 @@
 /// what arrived, confirms frames and sends. Time is the transport's NowMicros.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -49,6 +50,11 @@ struct ServerConfig {
     replay::Game* game = nullptr;
     uint32_t velocityIterations = 8;  ///< authoritative mode step settings
     uint32_t positionIterations = 3;
+    /// Admission (a match server that admits clients by token): when set, a Hello from `peer`
+    /// may take only the slot this returns, whatever it requested or the token it carries
+    /// names; a negative value or a slot >= playerCount refuses it (Reject e_badToken). Unset:
+    /// any slot, as above.
+    std::function<int32_t(PeerId peer)> admittedSlot;
 };
 
 /// A state hash reported for one frame.

@@ -1,0 +1,132 @@
+#pragma once
+// The heart of lockbox_server: one UDP socket, many lockstep matches behind it.
+//
+// The front door reads every datagram. A sender it has admitted is routed to its match's
+// LockstepServer (through a MatchTransport, a Transport per match). Any other sender is
+// rate-limited per source address, then must present an admission token in an envelope
+// (lockbox/net/admission/AdmissionTransport.h); a valid token admits the sender to the match
+// and slot it names (creating the match on its first token) and the envelope's payload, the
+// client's Hello, goes to that match. Nothing is ever sent to a sender that was not admitted,
+// and until an admitted client's handshake completes (its first datagram without an envelope)
+// the server sends it no more bytes than it received from it.
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "JsonLog.h"
+#include "RateLimiter.h"
+#include "lockbox/net/LockstepServer.h"
+#include "lockbox/net/UdpTransport.h"
+#include "lockbox_admission/TokenAuthority.h"
+
+namespace lockbox::server {
+
+/// Why a datagram from a sender that is not admitted was dropped (besides token refusals).
+enum class Drop : uint8_t {
+    e_rateLimited = 0,  ///< its source address sent too much before being admitted
+    e_noToken,          ///< no admission envelope (or a malformed one)
+    e_serverFull,       ///< a valid token, but the match or player limit is reached
+    e_draining,         ///< a valid token, but the server is shutting down
+    e_strayEnvelope,    ///< an admitted sender presented another token
+    e_count
+};
+/// Metric label of a drop reason ("rate_limited", ...).
+const char* DropName(Drop drop) noexcept;
+
+/// Settings of a host.
+struct HostConfig {
+    admission::TokenKey key{};
+    std::vector<uint32_t> matchIds;  ///< hosted matches; empty: any id a token names
+    uint32_t maxMatches = 64;
+    uint32_t maxPlayers = 256;
+    net::ServerConfig match;  ///< settings of every match (playerCount, inputBytes, ...)
+    uint64_t startTimeoutMicros = 60'000'000;
+    uint64_t tokenMaxLifetimeSeconds = 3600;
+    size_t replayCacheSize = 65536;
+    uint32_t rateLimitPerSecond = 20;
+    uint32_t rateLimitBurst = 40;
+    std::string scene;      ///< library scene of the matches (replays)
+    std::string replayDir;  ///< where finished matches' replays go; empty: none
+    /// Wall clock in Unix seconds (token deadlines); tests replace it.
+    std::function<uint64_t()> unixNow;
+};
+
+/// Counters of a host (never reset).
+struct HostStats {
+    uint64_t datagramsIn = 0, bytesIn = 0, datagramsOut = 0, bytesOut = 0;
+    std::array<uint64_t, static_cast<size_t>(admission::Refusal::e_count)> refusedTokens{};
+    std::array<uint64_t, static_cast<size_t>(Drop::e_count)> dropped{};
+    uint64_t heldBeforeHandshake = 0;  ///< sends refused so a sender is never sent more than it sent
+    uint64_t admitted = 0, matchesCreated = 0, matchesEnded = 0;
+    uint64_t desyncs = 0, lateJoins = 0, replaysWritten = 0, replayFailures = 0;
+};
+
+class MatchHost {
+public:
+    /// Takes the socket; `log` must outlive the host.
+    MatchHost(std::unique_ptr<net::UdpTransport> socket, HostConfig config, JsonLog& log);
+    ~MatchHost();
+    MatchHost(const MatchHost&) = delete;
+    MatchHost& operator=(const MatchHost&) = delete;
+
+    /// Reads what arrived (at most one socket poll), routes it, updates every match and ends
+    /// the finished ones. Never blocks.
+    void Update();
+    /// Stops admitting: every new token is dropped (Drop::e_draining) from now on.
+    void BeginDrain();
+    /// Ends every match now (its clients are told the server is closing); replays are written.
+    void CloseAll();
+
+    bool Draining() const noexcept { return m_draining; }
+    size_t MatchCount() const noexcept { return m_matches.size(); }
+    size_t PlayerCount() const noexcept { return m_peers.size(); }
+    const HostStats& Stats() const noexcept { return m_stats; }
+    net::UdpTransport& Socket() noexcept { return *m_socket; }
+    /// Durations of the latest Updates, microseconds (the newest 4096).
+    const std::vector<uint32_t>& UpdateMicros() const noexcept { return m_updateMicros; }
+
+private:
+    class MatchTransport;
+    struct Match;
+    struct Peer {
+        uint32_t matchId = 0;
+        int32_t slot = -1;
+        admission::TokenBytes token{};
+        uint64_t bytesIn = 0, bytesOut = 0;  // before the handshake completed
+        bool handshakeDone = false;
+        std::string address;
+    };
+
+    void Route(net::Datagram& d);
+    void Admit(net::Datagram& d, uint64_t nowMicros);
+    bool SendFor(uint32_t matchId, net::PeerId peer, std::span<const uint8_t> bytes);
+    Match* CreateMatch(uint32_t id, uint64_t nowMicros);
+    void UpdateMatch(Match& m, uint64_t nowMicros);
+    void EndMatch(uint32_t id, const char* why);
+    void Refuse(net::PeerId peer, const std::string& address, const char* reason, bool isToken, size_t index);
+    uint64_t UnixNow() const;
+
+    std::unique_ptr<net::UdpTransport> m_socket;
+    HostConfig m_config;
+    JsonLog& m_log;
+    admission::TokenVerifier m_verifier;
+    RateLimiter m_limiter;
+    std::map<uint32_t, std::unique_ptr<Match>> m_matches;
+    std::map<uint32_t, uint64_t> m_ended;  // match id -> Unix second it ended (refused until forgotten)
+    std::map<net::PeerId, Peer> m_peers;
+    std::vector<net::Datagram> m_inbox;
+    std::vector<net::PeerId> m_forget;  // refused senders, forgotten after the poll's routing
+    std::vector<uint32_t> m_updateMicros;
+    size_t m_updateNext = 0;
+    uint64_t m_refusalLogSecond = 0;
+    uint32_t m_refusalLogged = 0;
+    bool m_draining = false;
+    HostStats m_stats;
+};
+
+}  // namespace lockbox::server
