@@ -83,5 +83,67 @@ TEST(RollbackSyncTest, StateOutsideTheSaveIsCaught) {
     EXPECT_FALSE(r.message.empty());
 }
 
+TEST(RollbackSyncTest, FramesAreTheDefaultPathAndTheCountersSayWhichRan) {
+    for (SyncTestRestore restore : {SyncTestRestore::e_frames, SyncTestRestore::e_images}) {
+        replay::SceneGame game("rain");  // spawns, so some restores undo creations
+        SyncTestSessionConfig config = ConfigFor(game, true);
+        if (restore == SyncTestRestore::e_images) config.restore = restore;
+        EXPECT_EQ(SyncTestSessionConfig{}.restore, SyncTestRestore::e_frames);
+        SyncTestSession session(game.world(), game, Scripted(13), config);
+        const SyncTestResult r = session.Run(40);
+        EXPECT_TRUE(r.ok) << r.message;
+        const SyncTestFrameRestores& f = r.frameRestores;
+        const uint64_t frameRestores = f.sameStructure + f.undoneCreations + f.restoredStructure;
+        if (restore == SyncTestRestore::e_frames) {
+            // Every rollback restores twice in mispredict mode (wrong branch, then right one).
+            EXPECT_EQ(frameRestores, 2u * static_cast<uint64_t>(r.rollbacks));
+            EXPECT_GT(f.undoneCreations, 0u);
+        } else {
+            EXPECT_EQ(frameRestores, 0u);
+        }
+    }
+}
+
+// A game that keeps a fuel gauge per body and forgets it in its save: the body it pushes
+// drifts on re-simulation, and the sync test names that body.
+class ForgetfulGame : public replay::Game {
+public:
+    ForgetfulGame(replay::SceneGame& inner, int32 bodyId) : m_inner(inner), m_bodyId(bodyId) {}
+    void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {
+        m_inner.Apply(world, frame, inputs);
+        ++m_burned;
+        if (b2Body* b = world.GetBody(m_bodyId))
+            b->ApplyLinearImpulse(b2Vec2(Fixed::FromRaw(0), Fixed::FromRaw(m_burned * 256)), b->GetWorldCenter());
+    }
+    // The save holds the frame count but forgets the fuel burned.
+    void SaveUserState(std::vector<uint8>& out) const override { out.assign(1, 7); }
+    void LoadUserState(std::span<const uint8>) override {}
+
+private:
+    replay::SceneGame& m_inner;
+    int32 m_bodyId;
+    int32 m_burned = 0;
+};
+
+TEST(RollbackSyncTest, AForgottenPieceOfStateIsNamedByBody) {
+    for (SyncTestRestore restore : {SyncTestRestore::e_frames, SyncTestRestore::e_images}) {
+        replay::SceneGame scene("vertical_stack");
+        // The third dynamic body of the list is the one the game pushes.
+        int32 target = -1, seen = 0;
+        for (b2Body* b = scene.world().GetBodyList(); b && target < 0; b = b->GetNext())
+            if (b->GetType() == b2_dynamicBody && ++seen == 3) target = b->GetId();
+        ASSERT_GE(target, 0);
+        ForgetfulGame game(scene, target);
+        SyncTestSessionConfig config = ConfigFor(scene, false);
+        config.restore = restore;
+        SyncTestSession session(scene.world(), game, Scripted(14), config);
+        const SyncTestResult r = session.Run(40);
+        ASSERT_FALSE(r.ok);
+        EXPECT_EQ(r.where.category, b2HashCategory::e_bodies) << r.message;
+        EXPECT_EQ(r.where.bodyId, target) << r.message;
+        EXPECT_NE(r.message.find("body " + std::to_string(target)), std::string::npos) << r.message;
+    }
+}
+
 }  // namespace
 }  // namespace lockbox::net

@@ -65,6 +65,7 @@ SyncTestResult SyncTestSession::Run(int32_t frames) {
     c.checkDistance = static_cast<int32>(m_impl->config.checkDistance);
     c.mispredict = m_impl->config.mispredict;
     c.seed = m_impl->config.seed;
+    c.frames = m_impl->config.restore == SyncTestRestore::e_frames;
     SyncTest test(m_impl->world, *m_impl, c);
     return test.Run(frames);
 }

@@ -3,7 +3,9 @@
 /// lockbox world through core's lockbox::SyncTest (state/SyncTest.h): every frame is run,
 /// hashed, then the last `checkDistance` frames are rolled back and re-simulated (in
 /// mispredict mode first with wrong inputs, then again with the right ones) and every
-/// re-simulated hash must equal the first. Run it in a game's debug build: a mismatch names
+/// re-simulated hash must equal the first. It rolls back through rollback frames, as the
+/// adapter does in a match (portable images as an option), and a mismatch names the first
+/// differing hash category and body. Run it in a game's debug build: a mismatch names
 /// state that the game's save misses, before any network is involved.
 
 #include <cstdint>
@@ -22,6 +24,16 @@ namespace lockbox::net {
 /// per frame: the session asks once and keeps the answer for every re-simulation.
 using SyncTestInputSource = std::function<void(int32_t frame, std::span<uint8_t> out)>;
 
+/// How a sync test session rolls back.
+enum class SyncTestRestore : uint8_t {
+    /// Rollback frames (b2World::SaveFrame/RestoreFrame), the path WorldGameAdapter takes in a
+    /// match: SyncTestResult::frameRestores counts how each restore went.
+    e_frames = 0,
+    /// Portable images (b2World::Save/Restore), the path of files, peers and late joins;
+    /// frameRestores stays zero.
+    e_images = 1,
+};
+
 /// Settings of a sync test session.
 struct SyncTestSessionConfig {
     uint32_t players = 2;        ///< 1 .. kRollbackMaxPlayers
@@ -29,7 +41,8 @@ struct SyncTestSessionConfig {
     uint32_t checkDistance = 8;  ///< frames re-simulated after each frame, 1 .. kRollbackMaxWindow
     bool mispredict = false;     ///< re-simulate with wrong inputs first
     uint64_t seed = 0x5eed;      ///< wrong-input generator (mispredict mode)
-    WorldStepSettings step;      ///< how each frame steps the world
+    SyncTestRestore restore = SyncTestRestore::e_frames;  ///< the restore path tested
+    WorldStepSettings step;                               ///< how each frame steps the world
 };
 
 /// The sync test settings of a session built with RollbackSessionBuilder (players, input
