@@ -12,6 +12,7 @@
 #include "lockbox/replay/ReplayFile.h"
 #include "lockbox/replay/SceneGame.h"
 #include "lockbox/replay/Tool.h"
+#include "lockbox/replay/VerifyDir.h"
 #include "lockbox_cli/OptionReader.h"
 
 using namespace lockbox;
@@ -177,6 +178,8 @@ int Record(int argc, char** argv) {
 int main(int argc, char** argv) {
     GameRegistry games;
     games.AddCommand("record", kRecordUsage, Record);
+    games.AddCommand("verify-dir", kVerifyDirUsage,
+                     [&games](int argc, char** argv) { return RunVerifyDir(argc, argv, games, "lockbox_replay"); });
     games.AddPrefix("scene:", OpenSceneGame);
     games.AddPrefix(std::string(kSceneFileGamePrefix), OpenSceneFileGame);
     games.AddOption(kSceneFileOption, "FILE.json");

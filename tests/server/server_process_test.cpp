@@ -1,12 +1,14 @@
 // lockbox_server as a real process: two clients in this process play a match through it over
 // loopback UDP, /healthz /readyz /metrics answer, and SIGTERM drains: the server stops admitting
-// (/readyz 503), lets the match finish (the clients leave), writes its replay and exits 0.
+// (/readyz 503), lets the match finish (the clients leave), writes its replay and exits 0; the
+// replay verifies with lockbox_replay verify-dir.
 
 #include <httplib.h>
 #include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -19,8 +21,6 @@
 #include <sys/socket.h>
 #include <sys/wait.h>
 
-#include "lockbox/replay/Player.h"
-#include "lockbox/replay/ReplayFile.h"
 #include "server_harness.h"
 
 namespace lockbox::server {
@@ -180,12 +180,17 @@ TEST(ServerProcess, PlaysServesMetricsAndDrainsOnSigterm) {
     EXPECT_NE(log.find("\"event\":\"draining\""), std::string::npos) << log;
     EXPECT_NE(log.find("\"event\":\"replay_written\""), std::string::npos) << log;
     EXPECT_NE(log.find("\"event\":\"stopped\""), std::string::npos) << log;
-    replay::ReplayFile file;
-    ASSERT_TRUE(replay::LoadReplay((dir / "replays" / "match-5.lbr").string(), file).ok());
-    replay::SceneGame game("vertical_stack");
-    replay::Player player(file, game.world(), game);
-    const replay::VerifyResult verified = player.Verify();
-    EXPECT_TRUE(verified.ok) << verified.message;
+    // Every replay written verifies with lockbox_replay verify-dir.
+    const std::string command =
+        std::string(LOCKBOX_REPLAY_PROGRAM) + " verify-dir " + (dir / "replays").string() + " 2>&1";
+    std::FILE* pipe = ::popen(command.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string printed;
+    char buffer[256];
+    while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) printed += buffer;
+    EXPECT_EQ(::pclose(pipe), 0) << printed;
+    EXPECT_NE(printed.find("match-5.lbr: verified"), std::string::npos) << printed;
+    EXPECT_NE(printed.find("1 replays: 1 verified, 0 diverged, 0 corrupt"), std::string::npos) << printed;
     fs::remove_all(dir);
 }
 
