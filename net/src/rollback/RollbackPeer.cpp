@@ -276,6 +276,10 @@ void RollbackPeer::Handle(Remote& r, const RollbackMessage& m, uint64_t now) {
         }
     } else if (const auto* h = std::get_if<RbHash>(&m)) {
         m_session.AddRemoteHash(r.index, h->frame, h->hash);
+        if (h->frame > r.finalHashFrame) {
+            r.finalHashFrame = h->frame;
+            r.finalHash = h->hash;
+        }
     } else if (const auto* v = std::get_if<RbView>(&m)) {
         OnView(r, *v);
     } else if (const auto* fz = std::get_if<RbFrozen>(&m)) {
@@ -424,6 +428,8 @@ RollbackRemoteStats RollbackPeer::RemoteStats(size_t index) const {
     out.rollbacks = s.rollbacks;
     out.framesResimulated = s.framesResimulated;
     out.deepestRollback = s.deepestRollback;
+    out.finalHashFrame = r.finalHashFrame;
+    out.finalHash = r.finalHash;
     return out;
 }
 

@@ -32,6 +32,8 @@ struct RollbackPeer::Remote {
     uint64_t echoTime = 0, echoReceivedAt = 0;
     std::deque<int32_t> localAdvantage, remoteAdvantage;
     std::map<int32_t, uint8_t> hashCopies;  // final hash frame -> datagrams that carried it
+    int32_t finalHashFrame = -1;            // the newest final hash it sent us (-1: none yet)
+    uint64_t finalHash = 0;
     bool interrupted = false;
     uint8_t delayWish = 0;  // the input delay it asked this peer for (RbDelayWish)
     RollbackIncompatibility incompatible = RollbackIncompatibility::e_none;

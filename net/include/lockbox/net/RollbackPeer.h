@@ -139,6 +139,11 @@ struct RollbackRemoteStats {
     uint64_t rollbacks = 0;
     uint64_t framesResimulated = 0;
     uint32_t deepestRollback = 0;
+    /// The newest final hash it sent (RbHash; a frame f with f % desyncInterval == 0 is sent
+    /// once f is final there), and its frame; -1 before the first. RollbackMatch's end of
+    /// match waits for every remote's hash of the last frame.
+    int32_t finalHashFrame = -1;
+    uint64_t finalHash = 0;
 };
 
 /// What OfferSnapshot made of a snapshot.
