@@ -158,7 +158,7 @@ TEST(LatencyTransport, DisconnectForgetsHeldDatagrams) {
 // Two peers on SimNet, each reading through a LatencyTransport (40 ms, 10 ms jitter, 5 % loss,
 // duplicates and reordering): the match runs, rolls back, and every final hash agrees.
 TEST(LatencyTransport, RollbackMatchThroughItAgrees) {
-    constexpr int32_t kFrames = 360;
+    constexpr int32_t kFrames = 180;
     SimNet net(5);
     LatencyProfile p;
     p.latencyMicros = 40000;

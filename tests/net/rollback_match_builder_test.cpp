@@ -200,7 +200,7 @@ TEST(MatchEnd, TwoPeersOnSimNetEndAtFrameNAndAgree) {
     link.jitterMicros = 10000;
     link.lossPpm = 50000;
     SimMatch sim(2, 11, link);
-    for (auto& m : sim.matches) ASSERT_TRUE(m->EndAt(300, 5000000));
+    for (auto& m : sim.matches) ASSERT_TRUE(m->EndAt(180, 5000000));
     sim.Run(2000);
     for (size_t i = 0; i < 2; ++i) {
         const RollbackMatchEnd& e = sim.matches[i]->End();
@@ -209,8 +209,8 @@ TEST(MatchEnd, TwoPeersOnSimNetEndAtFrameNAndAgree) {
         EXPECT_TRUE(e.finished) << e.failure;
         EXPECT_FALSE(e.timedOut);
         EXPECT_TRUE(e.Agreed());
-        EXPECT_EQ(e.frame, 300);
-        EXPECT_EQ(sim.matches[i]->Session().CurrentFrame(), 300);
+        EXPECT_EQ(e.frame, 180);
+        EXPECT_EQ(sim.matches[i]->Session().CurrentFrame(), 180);
         EXPECT_EQ(sim.matches[i]->Phase(), MatchPhase::e_ended);
         ASSERT_EQ(e.remotes.size(), 1u);
     }
@@ -233,7 +233,7 @@ TEST(MatchEnd, SameScriptSameFinalHashWhateverTheNetwork) {
     rough.lossPpm = 100000;
     SimMatch b(2, 2, rough);
     for (SimMatch* s : {&a, &b}) {
-        for (auto& m : s->matches) ASSERT_TRUE(m->EndAt(200, 5000000));
+        for (auto& m : s->matches) ASSERT_TRUE(m->EndAt(120, 5000000));
         s->Run(2000);
         for (auto& m : s->matches) ASSERT_TRUE(m->End().finished) << m->End().failure;
     }
@@ -247,7 +247,7 @@ TEST(MatchEnd, ThreePeersEndTogether) {
     link.jitterMicros = 5000;
     link.lossPpm = 20000;
     SimMatch sim(3, 5, link);
-    for (auto& m : sim.matches) ASSERT_TRUE(m->EndAt(240, 5000000));
+    for (auto& m : sim.matches) ASSERT_TRUE(m->EndAt(120, 5000000));
     sim.Run(2000);
     for (auto& m : sim.matches) {
         EXPECT_TRUE(m->End().finished) << m->End().failure;
