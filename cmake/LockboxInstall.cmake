@@ -7,6 +7,7 @@
 #   <libdir>/cmake/lockbox/lockbox-<module>-targets*.cmake   one export set per module
 #   <libdir>/cmake/lockbox/LockboxFindLibrary.cmake      how the config finds xxHash, zstd, ENet
 #   <libdir>/pkgconfig/lockbox.pc, lockbox-<module>.pc   pkg-config
+#   <docdir>/examples/first_match/main.cpp         the first-match example (docs/first-match.md)
 include_guard(GLOBAL)
 
 include(CMakePackageConfigHelpers)
@@ -14,6 +15,9 @@ include(CMakePackageConfigHelpers)
 get_property(_lockbox_modules GLOBAL PROPERTY LOCKBOX_MODULES)
 
 install(FILES "${PROJECT_BINARY_DIR}/include/lockbox/Version.h" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/lockbox")
+if("net" IN_LIST _lockbox_modules)
+    install(FILES "${PROJECT_SOURCE_DIR}/samples/first_match/main.cpp" DESTINATION "${CMAKE_INSTALL_DOCDIR}/examples/first_match")
+endif()
 
 # --- CMake package -------------------------------------------------------------------------------
 
