@@ -1,19 +1,23 @@
 // lockbox_server as a real process: two clients in this process play a match through it over
 // loopback UDP, /healthz /readyz /metrics answer, and SIGTERM drains: the server stops admitting
 // (/readyz 503), lets the match finish (the clients leave), writes its replay and exits 0; the
-// replay verifies with lockbox_replay verify-dir.
+// replay verifies with lockbox_replay verify-dir; the Agones lifecycle calls reach a recording
+// stand-in for the SDK sidecar.
 
 #include <httplib.h>
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <mutex>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -83,6 +87,38 @@ struct Child {
     }
 };
 
+// Records the calls an Agones SDK sidecar would get ("METHOD PATH BODY"), answering 200.
+struct AgonesRecorder {
+    httplib::Server server;
+    std::thread thread;
+    uint16_t port = 0;
+    std::mutex mutex;
+    std::vector<std::string> calls;
+
+    bool Start() {
+        auto record = [this](const httplib::Request& req, httplib::Response& res) {
+            std::lock_guard lock(mutex);
+            calls.push_back(req.method + " " + req.path + " " + req.body);
+            res.set_content("{}", "application/json");
+        };
+        server.Post(R"(/.*)", record);
+        server.Put(R"(/.*)", record);
+        const int bound = server.bind_to_any_port("127.0.0.1");
+        if (bound <= 0) return false;
+        port = static_cast<uint16_t>(bound);
+        thread = std::thread([this] { server.listen_after_bind(); });
+        return true;
+    }
+    std::vector<std::string> Calls() {
+        std::lock_guard lock(mutex);
+        return calls;
+    }
+    ~AgonesRecorder() {
+        server.stop();
+        if (thread.joinable()) thread.join();
+    }
+};
+
 TEST(ServerProcess, PlaysServesMetricsAndDrainsOnSigterm) {
     const fs::path dir = fs::temp_directory_path() / ("lockbox_server_process_" + std::to_string(::getpid()));
     fs::remove_all(dir);
@@ -93,6 +129,9 @@ TEST(ServerProcess, PlaysServesMetricsAndDrainsOnSigterm) {
     }
     const uint16_t httpPort = FreeTcpPort();
     ASSERT_NE(httpPort, 0);
+    // A stand-in for the Agones SDK sidecar that records every call.
+    AgonesRecorder agones;
+    ASSERT_TRUE(agones.Start());
     const std::vector<std::string> args = {LOCKBOX_SERVER_PROGRAM,
                                            "--token-key-file",
                                            (dir / "key").string(),
@@ -111,7 +150,9 @@ TEST(ServerProcess, PlaysServesMetricsAndDrainsOnSigterm) {
                                            "--replay-dir",
                                            (dir / "replays").string(),
                                            "--drain-seconds",
-                                           "20"};
+                                           "20",
+                                           "--agones-health-seconds",
+                                           "1"};
     Child child;
     child.pid = ::fork();
     ASSERT_GE(child.pid, 0);
@@ -119,6 +160,7 @@ TEST(ServerProcess, PlaysServesMetricsAndDrainsOnSigterm) {
         std::vector<char*> argv;
         for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
         argv.push_back(nullptr);
+        ::setenv("AGONES_SDK_HTTP_PORT", std::to_string(agones.port).c_str(), 1);
         ::execv(argv[0], argv.data());
         ::_exit(127);
     }
@@ -180,6 +222,17 @@ TEST(ServerProcess, PlaysServesMetricsAndDrainsOnSigterm) {
     EXPECT_NE(log.find("\"event\":\"draining\""), std::string::npos) << log;
     EXPECT_NE(log.find("\"event\":\"replay_written\""), std::string::npos) << log;
     EXPECT_NE(log.find("\"event\":\"stopped\""), std::string::npos) << log;
+    // The fleet lifecycle: ready first, health pings, the match count as a label, shutdown last.
+    const std::vector<std::string> calls = agones.Calls();
+    ASSERT_FALSE(calls.empty());
+    EXPECT_EQ(calls.front(), "POST /ready {}");
+    EXPECT_EQ(calls.back(), "POST /shutdown {}");
+    const auto has = [&](const std::string& c) { return std::find(calls.begin(), calls.end(), c) != calls.end(); };
+    EXPECT_TRUE(has("POST /health {}"));
+    EXPECT_TRUE(has("PUT /metadata/label {\"key\":\"matches\",\"value\":\"1\"}"));
+    EXPECT_TRUE(has("PUT /metadata/label {\"key\":\"players\",\"value\":\"2\"}"));
+    EXPECT_TRUE(has("PUT /metadata/label {\"key\":\"matches\",\"value\":\"0\"}"));
+
     // Every replay written verifies with lockbox_replay verify-dir.
     const std::string command =
         std::string(LOCKBOX_REPLAY_PROGRAM) + " verify-dir " + (dir / "replays").string() + " 2>&1";

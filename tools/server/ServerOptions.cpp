@@ -47,6 +47,10 @@ constexpr const char* kUsage =
     "  --log FILE              JSON-lines log, '-' for standard output (default -)\n"
     "  --scene NAME            the library scene the clients play (needed by --replay-dir)\n"
     "  --replay-dir DIR        write each finished match's replay to DIR/match-ID.lbr\n"
+    "  --agones-health-seconds S  when AGONES_SDK_HTTP_PORT is set (an Agones sidecar): the\n"
+    "                          health ping interval, 1 .. 300 (default 2); the server also calls\n"
+    "                          /ready once listening, labels 'matches' and 'players' as they\n"
+    "                          change, and /shutdown after its last match\n"
     "  --help                  this text\n"
     "\n"
     "Exit codes: 0 after a drain (SIGTERM or SIGINT), 1 when the socket or a file cannot be\n"
@@ -119,6 +123,8 @@ void ApplyOption(lockbox::cli::OptionReader& args, ServerOptions& o) {
         args.Text(o.scene);
     else if (args.Is("--replay-dir"))
         args.Text(o.replayDir);
+    else if (args.Is("--agones-health-seconds"))
+        args.Int(1, 300, o.agonesHealthSeconds);
     else
         args.Unknown();
 }

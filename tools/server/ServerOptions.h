@@ -31,6 +31,7 @@ struct ServerOptions {
     std::string replayDir;                    ///< where finished matches' replays go (needs scene)
     std::string scene;                        ///< library scene the clients play (for replays)
     std::string portFile;                     ///< when set, the bound UDP port is written there
+    uint32_t agonesHealthSeconds = 2;         ///< Agones health ping interval (AGONES_SDK_HTTP_PORT set)
 };
 
 /// Reads the command line (argv[1..]) into `out`, `--config FILE` lines included where it

@@ -4,9 +4,11 @@
 #include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 
+#include "AgonesLifecycle.h"
 #include "MatchHost.h"
 #include "Metrics.h"
 #include "OpsHttp.h"
@@ -108,6 +110,11 @@ int main(int argc, char** argv) {
         }
     }
     log.Event("listening").Str("bind", options.bindHost).Num("port", port).Num("http_port", options.httpPort);
+    std::unique_ptr<server::AgonesLifecycle> agones;
+    if (const uint16_t agonesPort = server::AgonesPortFromEnvironment(); agonesPort != 0) {
+        agones = std::make_unique<server::AgonesLifecycle>(agonesPort, options.agonesHealthSeconds * 1000, log);
+        agones->Ready();
+    }
 
     uint64_t drainDeadline = 0;
     uint64_t lastPublish = 0;
@@ -125,10 +132,16 @@ int main(int argc, char** argv) {
         if (now - lastPublish >= 200'000) {
             lastPublish = now;
             http.Publish(server::RenderMetrics(host), !host.Draining());
+            if (agones) agones->Counts(host.MatchCount(), host.PlayerCount());
         }
         socketView->WaitReadable(1);
     }
     http.Publish(server::RenderMetrics(host), false);
+    if (agones) {
+        // Every match has ended: the fleet may now replace this server.
+        agones->Counts(host.MatchCount(), host.PlayerCount());
+        agones->Finish(3000);
+    }
     log.Event("stopped")
         .Num("matches_ended", host.Stats().matchesEnded)
         .Num("replays_written", host.Stats().replaysWritten);
