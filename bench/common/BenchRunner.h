@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "Box2DFloatEngine.h"
+#include "lockbox/scenes/Box2DFloatEngine.h"
 
 namespace lockbox::scenes {
 

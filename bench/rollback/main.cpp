@@ -12,7 +12,7 @@
 //  - rain256: the rain scene once about 256 bodies have spawned (bodies falling, piling up,
 //    sleep on as the scene defines); every rep rolls back to that same state.
 //
-// Reference: the same scene on float Box2D 2.4.1 (bench/common/Box2DFloatEngine.h), the same
+// Reference: the same scene on float Box2D 2.4.1 (scenes/float/include/lockbox/scenes/Box2DFloatEngine.h), the same
 // warm-up, then `depth` plain steps per rep (float Box2D has no snapshot, so no restore and no
 // saves): what the re-simulation alone costs a float engine on this machine, in the same run.
 //
@@ -42,8 +42,8 @@
 #include <string>
 #include <vector>
 
-#include "Box2DFloatEngine.h"
 #include "lockbox/lockbox.h"
+#include "lockbox/scenes/Box2DFloatEngine.h"
 #include "lockbox/scenes/LockboxScenes.h"
 #include "lockbox/scenes/Registry.h"
 #include "lockbox_cli/OptionReader.h"

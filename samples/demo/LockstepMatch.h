@@ -13,7 +13,7 @@ namespace lockbox::demo {
 
 /// What the match plays.
 struct MatchOptions {
-    std::string scene = "ragdolls";  ///< a library scene (samples/scenes)
+    std::string scene = "ragdolls";  ///< a library scene (scenes)
     int clients = 4;                 ///< players, 1 .. 16
     int frames = 600;                ///< frames to play (10 s at 60 Hz)
     std::string transport = "udp";   ///< "udp" or "enet"

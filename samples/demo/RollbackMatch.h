@@ -15,7 +15,7 @@ namespace lockbox::demo {
 
 /// What the rollback match plays.
 struct RollbackOptions {
-    std::string scene = "ragdolls";  ///< a library scene (samples/scenes) without scene-side state
+    std::string scene = "ragdolls";  ///< a library scene (scenes) without scene-side state
     int frames = 600;                ///< frames to play (10 s at 60 Hz), 1 .. 1,000,000
     int inputDelay = 1;              ///< frames, 0 .. 16
     int window = 8;                  ///< prediction window, 1 .. 64

@@ -1,5 +1,5 @@
 #pragma once
-/// The testbed's list of scenes: every scene of the scene library (samples/scenes), then the
+/// The testbed's list of scenes: every scene of the scene library (scenes), then the
 /// testbed-only scenes in samples/testbed/scenes/. A b2dJson scene file opens by the name
 /// "file:PATH" (not in the list).
 ///

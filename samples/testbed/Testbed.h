@@ -146,7 +146,7 @@ private:
     bool dragging_ = false;
     size_t dragView_ = 0;
     char replayPath_[512] = "testbed.lbr";
-    char sceneFilePath_[512] = "samples/scenes/files/handmade/joints.json";
+    char sceneFilePath_[512] = "scenes/files/handmade/joints.json";
     char savePath_[512] = "testbed_world.json";
     std::vector<std::string> folderFiles_;  ///< .json files beside sceneFilePath_ (the picker's list)
     std::string listedFolder_;              ///< the folder folderFiles_ lists

@@ -4,7 +4,7 @@
 // recorded, how a scene is run for them, and the line format of tests/golden/hashes.txt:
 //   <scene> step1=0x<16 hex> step60=0x<16 hex> step600=0x<16 hex>
 // (step120 instead of step600 for the heavy scenes). Lines starting with '#' are comments.
-// Besides the scene library, the hand-written scene files (samples/scenes/files/handmade) are
+// Besides the scene library, the hand-written scene files (scenes/files/handmade) are
 // recorded as `file/<name>`: loaded with the scene-file loader, stepped at their own settings.
 
 #include <cstdint>
@@ -35,7 +35,7 @@ inline bool IsHeavyScene(std::string_view name) {
     return name == "large_pyramid" || name == "many_pyramids" || name == "joint_grid" || name == "rain";
 }
 
-/// The hand-written scene files recorded as `file/<name>` (samples/scenes/files/handmade).
+/// The hand-written scene files recorded as `file/<name>` (scenes/files/handmade).
 inline const std::vector<std::string>& GoldenSceneFiles() {
     static const std::vector<std::string> kFiles{"bodies", "shapes", "joints", "rube_bridge"};
     return kFiles;

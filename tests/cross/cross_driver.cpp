@@ -17,7 +17,7 @@
 //                        scenes run as usual).
 //   --replays LIST       comma-separated replay files to verify (ReplayVerify.h)
 //   --scene-files DIR    the folder of the hand-written scene files (`file/<name>` golden
-//                        lines; default: samples/scenes/files/handmade beside tests/golden)
+//                        lines; default: scenes/files/handmade beside tests/golden)
 //   --snapshot-golden F  the file holding the golden `snapshot ...` lines (SnapshotHash.h). A
 //                        missing line prints "new " and is not a failure (run.sh still
 //                        requires every cell to print the same line).
@@ -86,8 +86,7 @@ int main(int argc, char** argv) {
         if (std::strcmp(argv[i], "--scene-files") == 0 && i + 1 < argc) lockbox::golden::SceneFileDir() = argv[++i];
     }
     if (lockbox::golden::SceneFileDir().empty()) {
-        lockbox::golden::SceneFileDir() =
-            lockbox::golden::GoldenPathFrom(argv[1], "/../../samples/scenes/files/handmade");
+        lockbox::golden::SceneFileDir() = lockbox::golden::GoldenPathFrom(argv[1], "/../../scenes/files/handmade");
     }
     int mismatches = 0;
 

@@ -28,7 +28,7 @@
 #                 (arch/compiler/flag index: 0 = -O0, 1 = -O2, 2 = -O3 fast)
 #   --no-unity    compile one object per source instead of the jumbo TUs (for comparison)
 #   --keep DIR    keep the work directory (logs, unity TUs, executables) in DIR
-#   --rev REV     take fixed/, core/, replay/, samples/scenes/ and tests/golden/ from git
+#   --rev REV     take fixed/, core/, replay/, scenefile/, scenes/ and tests/golden/ from git
 #                 revision REV (e.g. HEAD) instead of the working tree; tests/cross/ always
 #                 comes from the working tree (for a long run while the tree is being edited)
 # Environment: LOCKBOX_CROSS_CLANG_CROSS=0 skips clang for the non-native architectures
@@ -107,17 +107,17 @@ fi
 # A private copy of the sources: a run takes minutes to hours, and the working tree may change
 # meanwhile; every cell must build the same code.
 src="$work/src"
-mkdir -p "$src/tests" "$src/samples/scenes/files"
+mkdir -p "$src/tests" "$src/scenes/files"
 if [ -n "$rev" ]; then
-    git -C "$root" archive "$rev" fixed core replay scenefile samples/scenes/include samples/scenes/src \
-        samples/scenes/files/handmade tests/golden |
+    git -C "$root" archive "$rev" fixed core replay scenefile scenes/include scenes/src scenes/replay \
+        scenes/files/handmade tests/golden |
         tar -x -C "$src" && cp -r "$root/tests/cross" "$src/tests/" ||
         { echo "run.sh: cannot extract the sources of $rev" >&2; exit 2; }
     echo "[cross] sources: $(git -C "$root" rev-parse --short "$rev") ($rev), tests/cross from the working tree"
 else
     cp -r "$root/fixed" "$root/core" "$root/replay" "$root/scenefile" "$src/" &&
-        cp -r "$root/samples/scenes/include" "$root/samples/scenes/src" "$src/samples/scenes/" &&
-        cp -r "$root/samples/scenes/files/handmade" "$src/samples/scenes/files/" &&
+        cp -r "$root/scenes/include" "$root/scenes/src" "$root/scenes/replay" "$src/scenes/" &&
+        cp -r "$root/scenes/files/handmade" "$src/scenes/files/" &&
         cp -r "$root/tests/cross" "$root/tests/golden" "$src/tests/" ||
         { echo "run.sh: cannot copy the sources" >&2; exit 2; }
 fi
@@ -142,15 +142,15 @@ sed -e "s/@PROJECT_VERSION_MAJOR@/$vmajor/g" -e "s/@PROJECT_VERSION_MINOR@/$vmin
 ln -s /usr/include/rapidjson "$work/include/rapidjson"
 
 # scenefile/ loads the hand-written scene files of the golden plan (file/<name> lines).
-sources=$(cd "$src" && find fixed/src core/src scenefile/src samples/scenes/src -name '*.cpp' | LC_ALL=C sort)
+sources=$(cd "$src" && find fixed/src core/src scenefile/src scenes/src -name '*.cpp' | LC_ALL=C sort)
 # core/src: the engine's sources include its internal headers from there (Engine.h, dynamics/, state/).
-incdirs="fixed/include core/include core/src scenefile/include samples/scenes/include tests/cross"
+incdirs="fixed/include core/include core/src scenefile/include scenes/include tests/cross"
 # The golden replays recorded uncompressed (the cross toolchains have no zstd: replay/ is built
 # with LOCKBOX_REPLAY_ZSTD=0) are verified in every cell (tests/cross/ReplayVerify.h).
 replay_files=""
 if [ -d "$src/replay/src" ]; then
     sources="$sources $(cd "$src" && find replay/src -name '*.cpp' | LC_ALL=C sort)"
-    incdirs="$incdirs replay/include replay/scenes/include"
+    incdirs="$incdirs replay/include scenes/replay/include"
     for f in "$src"/tests/golden/replays/*.lbr; do
         # record.sh records these with --level 0 (chunks stored raw) and names them *_raw.lbr.
         case "$f" in *_raw.lbr) replay_files="$replay_files${replay_files:+,}$f" ;; esac

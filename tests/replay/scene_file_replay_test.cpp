@@ -15,7 +15,7 @@ namespace lockbox::replay {
 namespace {
 
 std::string HandmadeFile(const char* name) {
-    return std::string(LOCKBOX_SOURCE_DIR) + "/samples/scenes/files/handmade/" + name + ".json";
+    return std::string(LOCKBOX_SOURCE_DIR) + "/scenes/files/handmade/" + name + ".json";
 }
 
 std::unique_ptr<SceneGame> FileGame(const char* name) {

@@ -87,8 +87,8 @@ inline void CheckLibraryRoundTrip(const std::string& name) {
     EXPECT_EQ(b2WorldHash(*loaded), b2WorldHash(original)) << "after 20 steps";
 }
 
-/// samples/scenes/files/<name>.json, the library scene exported by the saver.
-inline std::string LibraryFile(const std::string& name) { return SourcePath("samples/scenes/files/" + name + ".json"); }
+/// scenes/files/<name>.json, the library scene exported by the saver.
+inline std::string LibraryFile(const std::string& name) { return SourcePath("scenes/files/" + name + ".json"); }
 
 /// True when LOCKBOX_REGENERATE_SCENE_FILES=1: the committed-file tests rewrite the files.
 inline bool RegeneratingSceneFiles() {

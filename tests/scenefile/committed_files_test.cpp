@@ -1,4 +1,4 @@
-// The scene library exported as b2dJson files (samples/scenes/files/<scene>.json, written by
+// The scene library exported as b2dJson files (scenes/files/<scene>.json, written by
 // the saver): each loads to the C++-built scene's state hash, and is exactly what the saver
 // writes for that scene today. LOCKBOX_REGENERATE_SCENE_FILES=1 rewrites them instead (after a
 // deliberate change of a scene or of the saver's output; run the heavy suite too, which holds

@@ -1,4 +1,4 @@
-// The hand-written scene files (samples/scenes/files/handmade/) cover every body, fixture,
+// The hand-written scene files (scenes/files/handmade/) cover every body, fixture,
 // shape and joint field of the format, R.U.B.E.'s hexadecimal floats and the gear joint's
 // second pass. Each loads, keeps its hash through a save and load, and its step hashes are
 // golden (tests/golden/hashes.txt, checked by the golden-hash test on every architecture).
@@ -13,7 +13,7 @@ namespace {
 class HandmadeFiles : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(HandmadeFiles, LoadSaveLoadKeepsTheHash) {
-    const std::string text = ReadText(SourcePath("samples/scenes/files/handmade/" + GetParam() + ".json"));
+    const std::string text = ReadText(SourcePath("scenes/files/handmade/" + GetParam() + ".json"));
     ASSERT_FALSE(text.empty());
     SceneMetadata meta;
     SceneResult r;
@@ -42,7 +42,7 @@ INSTANTIATE_TEST_SUITE_P(Files, HandmadeFiles, ::testing::Values("bodies", "shap
 TEST(HandmadeFiles, FieldsArriveWhereTheyBelong) {
     SceneMetadata meta;
     SceneResult r;
-    auto w = LoadSceneWorld(ReadText(SourcePath("samples/scenes/files/handmade/bodies.json")), &r, &meta);
+    auto w = LoadSceneWorld(ReadText(SourcePath("scenes/files/handmade/bodies.json")), &r, &meta);
     ASSERT_TRUE(w) << r.Describe();
     using lockbox::literals::operator""_fx;
     EXPECT_EQ(w->GetGravity(), b2Vec2(0, Fixed::FromRaw(-642908)));  // -9.81f, 0xC11CF5C3
@@ -82,7 +82,7 @@ TEST(HandmadeFiles, FieldsArriveWhereTheyBelong) {
 TEST(HandmadeFiles, JointsInFileOrderWithTheGearLast) {
     SceneMetadata meta;
     SceneResult r;
-    auto w = LoadSceneWorld(ReadText(SourcePath("samples/scenes/files/handmade/joints.json")), &r, &meta);
+    auto w = LoadSceneWorld(ReadText(SourcePath("scenes/files/handmade/joints.json")), &r, &meta);
     ASSERT_TRUE(w) << r.Describe();
     EXPECT_EQ(w->GetJointCount(), 11);
     // The gear names joints after it: created last (b2dJson's second pass), so it has the

@@ -25,7 +25,7 @@ constexpr int kMaxStep = 60;
 std::string GoldenPath() { return GoldenPathFrom(__FILE__, "/../golden/hashes.txt"); }
 
 // The hand-written scene files of the plan live in the source tree.
-const bool kSceneFileDirSet = (SceneFileDir() = GoldenPathFrom(__FILE__, "/../../samples/scenes/files/handmade"), true);
+const bool kSceneFileDirSet = (SceneFileDir() = GoldenPathFrom(__FILE__, "/../../scenes/files/handmade"), true);
 
 TEST(GoldenHash, EverySceneMatchesTheGoldenFile) {
     const std::vector<ScenePlan> plan = GoldenPlan();

@@ -7,7 +7,7 @@
 
 #include "lockbox/scenes/LockboxScenes.h"
 // After the lockbox headers: float Box2D's macros would break them (see the adapter).
-#include "../../bench/common/Box2DFloatEngine.h"
+#include "lockbox/scenes/Box2DFloatEngine.h"
 
 namespace lockbox::scenes {
 namespace {

@@ -1,5 +1,5 @@
 // Two library scenes written with the JavaScript API, statement for statement as their C++
-// definitions (samples/scenes/include/lockbox/scenes/Pyramid20.h and Car.h): the same bodies
+// definitions (scenes/include/lockbox/scenes/Pyramid20.h and Car.h): the same bodies
 // in the same order with the same numbers (lb.ratio(n, d) is the scenes' E::R(n, d)).
 'use strict';
 

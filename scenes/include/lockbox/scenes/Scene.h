@@ -3,7 +3,7 @@
 ///
 /// A scene is written once, as a class template over an engine adapter `E`, so that the same
 /// definition builds on lockbox (LockboxEngine.h, in this library) and on float Box2D 2.4.1
-/// (bench/common/Box2DFloatEngine.h). An adapter provides:
+/// (scenes/float/include/lockbox/scenes/Box2DFloatEngine.h). An adapter provides:
 /// - the native types (`E::World`, `E::Body`, `E::BodyDef`, `E::FixtureDef`, `E::PolygonShape`,
 ///   `E::CircleShape`, `E::EdgeShape`, `E::ChainShape`, `E::Contact`, `E::Fixture`, `E::Vec`,
 ///   `E::Num`) and, where the engine has them, joint definitions, flagged by `E::kHasRevolute`
