@@ -242,3 +242,76 @@ TEST(MatchHost, WritesTheReplayOfAClosedMatchAndItAgreesWithTheClients) {
 
 }  // namespace
 }  // namespace lockbox::server
+
+namespace lockbox::server {
+namespace {
+
+// Two matches play while sixteen source ports of the same address flood the port with junk,
+// forged, expired and copied tokens: the matches finish and agree, nothing is answered, every
+// flood datagram is counted under one reason, and the socket's peer table does not grow.
+TEST(MatchHost, MatchesPlayOnThroughAFloodAndEveryDropIsCounted) {
+    Host h;
+    std::vector<std::unique_ptr<TestClient>> clients;
+    for (uint32_t match = 1; match <= 2; ++match)
+        for (uint8_t slot = 0; slot < 2; ++slot)
+            clients.push_back(std::make_unique<TestClient>(h.port, Mint(match, slot, match * 10 + slot),
+                                                           800 + clients.size(), kFrames - 1));
+    // The clients get in first (the flood shares their address, and the rate limit is per address).
+    testing::Pump([&] { h.host->Update(); }, clients,
+                  [&] {
+                      for (auto& c : clients)
+                          if (c->client->Frame() < 1) return false;
+                      return true;
+                  });
+    ASSERT_EQ(h.host->PlayerCount(), 4u);
+
+    std::vector<std::unique_ptr<RawSender>> flood;
+    for (int i = 0; i < 16; ++i) flood.push_back(std::make_unique<RawSender>(h.port));
+    const std::vector<uint8_t> hello = HelloBytes();
+    uint64_t sent = 0, counter = 12345;
+    std::vector<uint8_t> junk;
+    testing::Pump(
+        [&] {
+            for (size_t i = 0; i < flood.size(); ++i) {
+                counter = counter * 6364136223846793005ull + 1442695040888963407ull;
+                switch (counter >> 62) {
+                    case 0:
+                        junk.assign(1 + (counter >> 8) % 200, static_cast<uint8_t>(counter >> 16));
+                        flood[i]->Send(junk);
+                        break;
+                    case 1: flood[i]->SendToken(Mint(1, 0, 10), hello); break;                 // a copy of a live token
+                    case 2: flood[i]->SendToken(Mint(1, 1, counter, kNow - 1), hello); break;  // expired
+                    default: flood[i]->SendToken(Mint(2, 0, counter, kNow + 60, admission::TokenKey{}), hello);
+                }
+                ++sent;
+            }
+            h.host->Update();
+        },
+        clients,
+        [&] {
+            for (auto& c : clients)
+                if (c->client->Frame() < kFrames) return false;
+            return true;
+        });
+    Settle(*h.host, {});
+    for (size_t i = 0; i < clients.size(); ++i) EXPECT_GE(clients[i]->client->Frame(), kFrames) << "client " << i;
+    EXPECT_EQ(clients[0]->worldHash, clients[1]->worldHash);
+    EXPECT_EQ(clients[2]->worldHash, clients[3]->worldHash);
+    for (auto& f : flood) {
+        f->Drain();
+        EXPECT_EQ(f->bytesReceived, 0u);
+    }
+    const HostStats& s = h.host->Stats();
+    uint64_t counted = 0;
+    for (uint64_t n : s.refusedTokens) counted += n;
+    for (uint64_t n : s.dropped) counted += n;
+    EXPECT_GT(sent, 1000u);
+    EXPECT_EQ(counted, sent);
+    EXPECT_GT(Dropped(*h.host, Drop::e_rateLimited), 0u);
+    EXPECT_EQ(s.admitted, 4u);
+    // Refused senders leave the socket's table at once: only the four clients remain.
+    EXPECT_EQ(h.host->Socket().PeerCount(), 4u);
+}
+
+}  // namespace
+}  // namespace lockbox::server
