@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
             row.bodies = game.world().GetBodyCount();
         }
         ReplayFile file;
-        if (Error e = ParseReplay(sink.bytes(), file)) {
+        if (Error e = ParseReplay(sink.bytes(), file); !e.ok()) {
             std::fprintf(stderr, "%s: %s\n", scene, e.Describe().c_str());
             return 1;
         }
@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
                 const double t0 = ThreadMs();
                 const Error e = ParseReplay(sink.bytes(), again);
                 parses.push_back(ThreadMs() - t0);
-                if (e) return 1;
+                if (!e.ok()) return 1;
             }
             row.parseMs = Median(parses);
         }

@@ -55,7 +55,7 @@ BisectResult Bisect(Player& player) {
         const size_t mid = lo + (hi - lo) / 2;
         ++r.probes;
         if (!atLo) {
-            if (Error e = player.Restore(*points[lo].snapshot)) {
+            if (Error e = player.Restore(*points[lo].snapshot); !e.ok()) {
                 r.error = e;
                 return finish();
             }
@@ -74,7 +74,7 @@ BisectResult Bisect(Player& player) {
 
     // Scan the interval (lo, hi] frame by frame, with fencepost hashes when they are stored.
     if (!atLo) {
-        if (Error e = player.Restore(*points[lo].snapshot)) {
+        if (Error e = player.Restore(*points[lo].snapshot); !e.ok()) {
             r.error = e;
             return finish();
         }

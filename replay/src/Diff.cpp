@@ -108,12 +108,12 @@ DiffResult DiffReplays(Player& a, Player& b, const ReplayFile& fileA, const Repl
         const auto ia = fileA.Inputs(f), ib = fileB.Inputs(f);
         if (na != nb || !std::equal(ia.begin(), ia.end(), ib.begin())) r.firstInputFrame = f;
     }
-    if (Error e = a.Reset()) {
+    if (Error e = a.Reset(); !e.ok()) {
         r.error = e;
         r.same = false;
         return r;
     }
-    if (Error e = b.Reset()) {
+    if (Error e = b.Reset(); !e.ok()) {
         r.error = e;
         r.same = false;
         return r;

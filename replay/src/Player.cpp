@@ -49,7 +49,7 @@ Error Player::Seek(int32 frame) {
     const Keyframe& k = m_file.NearestKeyframe(frame);
     // Stepping on from where we are is cheaper than a restore when no keyframe lies between.
     if (!m_restored || frame < m_frame || k.frame > m_frame) {
-        if (Error e = Restore(k)) return e;
+        if (Error e = Restore(k); !e.ok()) return e;
     }
     while (m_frame < frame) Step();
     return {};
@@ -81,7 +81,7 @@ bool Player::Step() {
 
 VerifyResult Player::Verify() {
     VerifyResult r;
-    if (Error e = Reset()) {
+    if (Error e = Reset(); !e.ok()) {
         r.error = e;
         r.message = e.Describe();
         return r;

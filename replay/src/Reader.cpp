@@ -109,7 +109,7 @@ struct Parser {
             }
             case e_chunkSeed: {
                 if (haveSeed) return Fail(ErrorCode::e_badChunk, 0, "second SEED chunk");
-                if (Error e = Snapshot(r, out.seed)) return e;
+                if (Error e = Snapshot(r, out.seed); !e.ok()) return e;
                 if (out.seed.frame != 0) return Fail(ErrorCode::e_badChunk, out.seed.frame, "seed frame is not 0");
                 haveSeed = true;
                 return {};
@@ -160,7 +160,7 @@ struct Parser {
             case e_chunkSolve: return FrameHashes(r, "SOLV", kSolvePhasesPerFrame, solveFrames, out.solveHashes);
             case e_chunkKeyframe: {
                 Keyframe k;
-                if (Error e = Snapshot(r, k)) return e;
+                if (Error e = Snapshot(r, k); !e.ok()) return e;
                 const int32 previous = out.keyframes.empty() ? 0 : out.keyframes.back().frame;
                 if (k.frame <= previous || k.frame > inputFrames)
                     return Fail(ErrorCode::e_badChunk, k.frame,
@@ -198,7 +198,7 @@ struct Parser {
 Error ParseReplay(std::span<const uint8> bytes, ReplayFile& out) {
     out = ReplayFile{};
     out.fileBytes = bytes.size();
-    if (Error e = detail::DecodeHeader(bytes, out.header)) return e;
+    if (Error e = detail::DecodeHeader(bytes, out.header); !e.ok()) return e;
     const Header& h = out.header;
     // Snapshots of an older format that Restore still reads replay the same bits (format 2
     // only added the joints' reaction directions, which no step reads).
@@ -228,7 +228,7 @@ Error ParseReplay(std::span<const uint8> bytes, ReplayFile& out) {
     uint64 offset = kHeaderBytes;
     std::vector<uint8> payload;
     while (offset < bytes.size()) {
-        if (Error e = detail::ReadChunk(bytes, offset, p.index, p.chunk, payload)) {
+        if (Error e = detail::ReadChunk(bytes, offset, p.index, p.chunk, payload); !e.ok()) {
             e.frame = p.inputFrames;
             return e;
         }
@@ -238,7 +238,7 @@ Error ParseReplay(std::span<const uint8> bytes, ReplayFile& out) {
         ++stat->count;
         stat->storedBytes += kChunkHeaderBytes + p.chunk.storedBytes;
         stat->rawBytes += p.chunk.rawBytes;
-        if (Error e = p.Chunk(payload)) return e;
+        if (Error e = p.Chunk(payload); !e.ok()) return e;
         ++p.index;
     }
     Error e;
@@ -281,7 +281,7 @@ Error ReadFileBytes(const std::string& path, std::vector<uint8>& bytes) {
 
 Error LoadReplay(const std::string& path, ReplayFile& out) {
     std::vector<uint8> bytes;
-    if (Error e = ReadFileBytes(path, bytes)) return e;
+    if (Error e = ReadFileBytes(path, bytes); !e.ok()) return e;
     return ParseReplay(bytes, out);
 }
 

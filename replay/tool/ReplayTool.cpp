@@ -71,7 +71,7 @@ struct Context {
 
 // Parses a file and builds its game; prints the error and returns false on failure.
 bool Open(const Context& ctx, const char* path, ReplayFile& file, std::unique_ptr<ToolGame>& game) {
-    if (Error e = LoadReplay(path, file)) {
+    if (Error e = LoadReplay(path, file); !e.ok()) {
         std::printf("%s: %s\n", path, e.Describe().c_str());
         return false;
     }
@@ -84,7 +84,7 @@ bool Open(const Context& ctx, const char* path, ReplayFile& file, std::unique_pt
 
 int Info(const GameRegistry& games, const char* path) {
     ReplayFile f;
-    if (Error e = LoadReplay(path, f)) {
+    if (Error e = LoadReplay(path, f); !e.ok()) {
         std::printf("%s: %s\n", path, e.Describe().c_str());
         return 2;
     }

@@ -189,7 +189,7 @@ void PrintStatus(const std::vector<std::unique_ptr<ClientBoard>>& boards, double
 /// Plays the recorded replay in a fresh world; true when every stored hash matches.
 bool VerifyReplay(const std::string& path, uint64_t expectFinal) {
     replay::ReplayFile file;
-    if (replay::Error e = replay::LoadReplay(path, file)) {
+    if (replay::Error e = replay::LoadReplay(path, file); !e.ok()) {
         Say("replay: cannot load %s: %s\n", path.c_str(), e.Describe().c_str());
         return false;
     }
@@ -256,7 +256,7 @@ int RunLockstepMatch(const MatchOptions& o) {
     replay::RecorderConfig rc = games[0]->Config(static_cast<uint16_t>(o.clients));
     rc.keyframeInterval = 300;
     replay::Recorder recorder(games[0]->world(), *games[0], sink, rc);
-    if (replay::Error e = recorder.Begin()) {
+    if (replay::Error e = recorder.Begin(); !e.ok()) {
         std::fprintf(stderr, "lockbox_demo: replay: %s\n", e.Describe().c_str());
         return 2;
     }
@@ -325,7 +325,7 @@ int RunLockstepMatch(const MatchOptions& o) {
         std::printf("\nThe match did not complete: every client reached frame %d of %d.\n", common, o.frames);
     }
 
-    if (replay::Error e = recorder.Finish()) std::printf("replay: %s\n", e.Describe().c_str());
+    if (replay::Error e = recorder.Finish(); !e.ok()) std::printf("replay: %s\n", e.Describe().c_str());
     const bool closed = sink.Close();
     std::printf("replay: %d frames written to %s\n", recorder.Frames(), replayPath.c_str());
     const bool verified = closed && complete && VerifyReplay(replayPath, finalHash);

@@ -17,7 +17,7 @@ void FaultInjector::OnStage(int32 atFrame, uint32 atStage, b2World& world) {
 
 bool ReplayViewer::Open(const std::string& path, std::string& message) {
     replay::ReplayFile file;
-    if (replay::Error e = replay::LoadReplay(path, file)) {
+    if (replay::Error e = replay::LoadReplay(path, file); !e.ok()) {
         message = path + ": " + e.Describe();
         return false;
     }
@@ -33,7 +33,7 @@ bool ReplayViewer::Open(const std::string& path, std::string& message) {
     path_ = path;
     player_ = std::make_unique<replay::Player>(file_, *game_.world, *game_.game);
     player_->SetStageHook(&fault_);
-    if (replay::Error e = player_->Reset()) {
+    if (replay::Error e = player_->Reset(); !e.ok()) {
         message = path + ": " + e.Describe();
         Close();
         return false;
@@ -65,7 +65,7 @@ bool ReplayViewer::MatchesRecording() const noexcept {
 
 bool ReplayViewer::Seek(int32 frame, std::string& message) {
     if (!IsOpen()) return false;
-    if (replay::Error e = player_->Seek(frame)) {
+    if (replay::Error e = player_->Seek(frame); !e.ok()) {
         message = "seek failed: " + e.Describe();
         return false;
     }

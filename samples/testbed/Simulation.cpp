@@ -175,7 +175,7 @@ bool Simulation::StartRecording(const std::string& path, std::string& message) {
     config.keyframeInterval = 60;
     config.stageHashes = true;
     auto recorder = std::make_unique<replay::Recorder>(World(), *game_, *sink, config);
-    if (replay::Error e = recorder->Begin()) {
+    if (replay::Error e = recorder->Begin(); !e.ok()) {
         message = "recording failed: " + e.Describe();
         return false;
     }

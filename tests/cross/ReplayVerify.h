@@ -28,7 +28,7 @@ inline bool VerifyLine(const std::string& path) {
     const size_t slash = path.find_last_of('/');
     const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
     ReplayFile file;
-    if (Error e = LoadReplay(path, file)) {
+    if (Error e = LoadReplay(path, file); !e.ok()) {
         std::printf("FAIL replay %s load: %s\n", name.c_str(), e.Describe().c_str());
         return false;
     }

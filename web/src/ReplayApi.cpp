@@ -51,7 +51,7 @@ LOCKBOX_WEB_API int32_t lb_replay_verify(const uint8_t* bytes, int32_t size, int
     Fields().clear();
     if (size < 0) return Fail("replay: negative size");
     ReplayFile file;
-    if (Error e = ParseReplay(std::span<const uint8_t>(bytes, static_cast<size_t>(size)), file))
+    if (Error e = ParseReplay(std::span<const uint8_t>(bytes, static_cast<size_t>(size)), file); !e.ok())
         return Fail(e.Describe());
     const std::string sceneName = SceneGame::SceneName(file.gameName);
     SceneGame game(sceneName);

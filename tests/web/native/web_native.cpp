@@ -270,7 +270,7 @@ int RecordDivergent(const char* sceneName, int frames, int nudgeAfter, const cha
     config.keyframeInterval = 60;
     config.stageHashes = true;
     Recorder recorder(game.world(), game, sink, config);
-    if (Error e = recorder.Begin()) {
+    if (Error e = recorder.Begin(); !e.ok()) {
         std::fprintf(stderr, "%s\n", e.Describe().c_str());
         return 1;
     }
@@ -290,7 +290,7 @@ int RecordDivergent(const char* sceneName, int frames, int nudgeAfter, const cha
             }
         }
     }
-    if (Error e = recorder.Finish()) {
+    if (Error e = recorder.Finish(); !e.ok()) {
         std::fprintf(stderr, "%s\n", e.Describe().c_str());
         return 1;
     }

@@ -118,8 +118,9 @@ struct LOCKBOX_API Error {
     uint32 chunkType = 0;   ///< the chunk's type tag; 0 for the header
     int32 frame = -1;       ///< the frame concerned; -1 when none
     std::string message;    ///< what is wrong
+    /// True when nothing went wrong. (No conversion to bool: lockbox's result types convert to
+    /// true on success, and an error type that did so would invite the opposite reading.)
     bool ok() const noexcept { return code == ErrorCode::e_ok; }
-    explicit operator bool() const noexcept { return !ok(); }
     /// One line: "<code> at offset N (chunk i 'TYPE', frame f): message".
     std::string Describe() const;
 };
