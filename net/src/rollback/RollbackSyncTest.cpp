@@ -3,11 +3,14 @@
 #include "lockbox/net/RollbackSyncTest.h"
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "lockbox/lockbox.h"
 #include "lockbox/net/RollbackSession.h"
+#include "lockbox/net/RollbackWorldAdapter.h"
 #include "lockbox/replay/Game.h"
+#include "lockbox/state/WorldHash.h"
 #include "session/SessionCommon.h"
 
 namespace lockbox::net {
@@ -24,7 +27,9 @@ struct SyncTestSession::Impl : SyncTestGame {
     Impl(b2World& w, replay::Game& g, SyncTestInputSource s, SyncTestSessionConfig c)
         : world(w), game(g), source(std::move(s)), config(c) {}
 
-    void Advance(b2World& w, int32 frame) override {
+    SyncTestRequestCounts counts;
+
+    const std::vector<uint8_t>& InputsFor(int32_t frame) {
         const size_t f = static_cast<size_t>(frame < 0 ? 0 : frame);
         const size_t row = static_cast<size_t>(config.players) * config.inputBytes;
         while (inputs.size() <= f) {
@@ -32,8 +37,30 @@ struct SyncTestSession::Impl : SyncTestGame {
             if (source) source(static_cast<int32_t>(inputs.size()), in);
             inputs.push_back(std::move(in));
         }
-        StepConfirmedFrame(w, game, frame, inputs[f], config.step.tickRate, config.step.velocityIterations,
+        return inputs[f];
+    }
+    void Advance(b2World& w, int32 frame) override {
+        StepConfirmedFrame(w, game, frame, InputsFor(frame), config.step.tickRate, config.step.velocityIterations,
                            config.step.positionIterations);
+    }
+    // Wrong inputs of a mispredicted branch: seeded bytes (splitmix64 of the seed and frame).
+    std::vector<uint8_t> WrongInputs(int32_t frame) const {
+        std::vector<uint8_t> out(static_cast<size_t>(config.players) * config.inputBytes);
+        uint64_t state = config.seed ^ (static_cast<uint64_t>(frame) * 0xD1B54A32D192ED03ull);
+        for (size_t i = 0; i < out.size(); ++i) {
+            uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+            z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+            z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+            out[i] = static_cast<uint8_t>(z ^ (z >> 31));
+        }
+        return out;
+    }
+    AdvanceRequest MakeAdvance(int32_t frame, bool wrong) {
+        AdvanceRequest a;
+        a.frame = frame;
+        a.inputs = wrong ? WrongInputs(frame) : InputsFor(frame);
+        a.status.assign(config.players, wrong ? InputStatus::e_predicted : InputStatus::e_confirmed);
+        return a;
     }
     void SaveUserState(std::vector<uint8>& out) const override { game.SaveUserState(out); }
     void LoadUserState(std::span<const uint8> in) override { game.LoadUserState(in); }
@@ -68,6 +95,99 @@ SyncTestResult SyncTestSession::Run(int32_t frames) {
     c.frames = m_impl->config.restore == SyncTestRestore::e_frames;
     SyncTest test(m_impl->world, *m_impl, c);
     return test.Run(frames);
+}
+
+const SyncTestRequestCounts& SyncTestSession::RequestCounts() const noexcept { return m_impl->counts; }
+
+SyncTestResult SyncTestSession::RunRequests(int32_t frames) {
+    Impl& m = *m_impl;
+    WorldGameAdapter adapter(m.world, m.game, m.config.step, m.config.checkDistance + 2);
+    return RunRequests(frames, [&adapter](std::span<const RollbackRequest> requests, const RollbackHashReport& report) {
+        return adapter.Execute(requests, report);
+    });
+}
+
+SyncTestResult SyncTestSession::RunRequests(int32_t frames, const SyncTestExecutor& executor) {
+    Impl& m = *m_impl;
+    SyncTestResult result;
+    if (frames < 0) frames = 0;
+    const auto k = static_cast<int32_t>(m.config.checkDistance);
+    const size_t ring = static_cast<size_t>(k) + 1;
+    std::vector<uint64_t> first(static_cast<size_t>(frames) + 1, 0);
+    std::vector<uint8_t> known(static_cast<size_t>(frames) + 1, 0);
+    // The first run's breakdown of the last k + 1 frames, taken when their hashes are reported
+    // (the world is at that frame then), to name what differs on a mismatch.
+    std::vector<b2WorldHashReport> details(ring);
+    bool checking = false;
+    const RollbackHashReport report = [&](int32_t frame, uint64_t hash) {
+        if (!result.ok || frame < 0 || frame > frames) return;
+        const auto at = static_cast<size_t>(frame);
+        if (!checking) {
+            first[at] = hash;
+            known[at] = 1;
+            details[at % ring] = b2WorldHashDetailed(m.world);
+            return;
+        }
+        if (known[at] == 0 || first[at] == hash) return;
+        result.ok = false;
+        result.firstBadFrame = frame;
+        result.expected = first[at];
+        result.actual = hash;
+        result.where = b2CompareHashReports(details[at % ring], b2WorldHashDetailed(m.world));
+        const bool worldDiffers = result.where.category != b2HashCategory::e_count;
+        result.message = "state after frame " + std::to_string(frame) + " differs on re-simulation: " +
+                         (worldDiffers ? "category " + std::string(b2HashCategoryName(result.where.category)) +
+                                             ", body " + std::to_string(result.where.bodyId)
+                                       : std::string("user state"));
+    };
+    const RollbackHashReport ignore = [](int32_t, uint64_t) {};
+    std::vector<RollbackRequest> batch;
+    auto execute = [&](const RollbackHashReport& r) {
+        for (const RollbackRequest& q : batch) {
+            if (std::holds_alternative<SaveState>(q)) ++m.counts.saves;
+            if (std::holds_alternative<LoadState>(q)) ++m.counts.loads;
+            if (const auto* a = std::get_if<AdvanceRequest>(&q)) {
+                ++m.counts.advances;
+                if (!a->status.empty() && a->status[0] == InputStatus::e_predicted) ++m.counts.predictedAdvances;
+            }
+        }
+        if (!executor(batch, r) && result.ok) {
+            result.ok = false;
+            result.message = "the executor failed a batch of requests";
+        }
+        batch.clear();
+        return result.ok;
+    };
+    // Re-simulates frames [from, to) from the state saved at `from`; wrong inputs with no
+    // hashes asked, or the right ones with every hash checked.
+    auto branch = [&](int32_t from, int32_t to, bool wrong) {
+        batch.emplace_back(LoadState{from});
+        for (int32_t g = from; g < to; ++g) {
+            batch.emplace_back(m.MakeAdvance(g, wrong));
+            batch.emplace_back(SaveState{g + 1, !wrong});
+        }
+    };
+    batch.emplace_back(SaveState{0, true});
+    if (!execute(report)) return result;
+    for (int32_t f = 0; f < frames; ++f) {
+        checking = false;
+        batch.emplace_back(m.MakeAdvance(f, false));
+        batch.emplace_back(SaveState{f + 1, true});
+        if (!execute(report)) return result;
+        ++result.framesSimulated;
+        if (f + 1 < k) continue;
+        const int32_t from = f + 1 - k;
+        if (m.config.mispredict) {
+            branch(from, f + 1, true);
+            if (!execute(ignore)) return result;
+        }
+        checking = true;
+        branch(from, f + 1, false);
+        if (!execute(report)) return result;
+        ++result.rollbacks;
+        result.framesResimulated += k;
+    }
+    return result;
 }
 
 }  // namespace lockbox::net

@@ -123,6 +123,12 @@ bool WorldGameAdapter::RestoreSnapshot(b2World& world, replay::Game& game, std::
 }
 
 bool WorldGameAdapter::Execute(RollbackSession& session, std::span<const RollbackRequest> requests) {
+    const bool ok = Execute(requests, [&session](int32_t frame, uint64_t hash) { session.ReportHash(frame, hash); });
+    if (ok && m_recorder != nullptr && !m_recordFinished && !m_recordFailed) RecordFinal(session);
+    return ok;
+}
+
+bool WorldGameAdapter::Execute(std::span<const RollbackRequest> requests, const RollbackHashReport& reportHash) {
     bool rollingBack = false;
     for (const RollbackRequest& r : requests) {
         if (const auto* save = std::get_if<SaveState>(&r)) {
@@ -137,7 +143,7 @@ bool WorldGameAdapter::Execute(RollbackSession& session, std::span<const Rollbac
             // a recording for those it stores: a walk of the world, a few percent of a step.
             s.hashed = save->wantHash || RecordWantsHash(save->frame);
             if (s.hashed) s.worldHash = b2WorldHash(m_world);
-            if (save->wantHash) session.ReportHash(save->frame, FoldUserState(s.worldHash, s.user));
+            if (save->wantHash && reportHash) reportHash(save->frame, FoldUserState(s.worldHash, s.user));
         } else if (const auto* load = std::get_if<LoadState>(&r)) {
             if (load->frame < 0) return false;
             Slot& s = SlotOf(load->frame);
@@ -157,7 +163,6 @@ bool WorldGameAdapter::Execute(RollbackSession& session, std::span<const Rollbac
             }
         }
     }
-    if (m_recorder != nullptr && !m_recordFinished && !m_recordFailed) RecordFinal(session);
     return true;
 }
 

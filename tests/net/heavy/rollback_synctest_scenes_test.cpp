@@ -1,5 +1,6 @@
-// SyncTestSession on every library scene through rollback frames (the adapter's restore path),
-// with mispredicted branches: a scene whose state a rollback frame misses fails here.
+// SyncTestSession on every library scene with mispredicted branches, through rollback frames
+// (the adapter's restore path) and through the requests a live session makes, executed by the
+// adapter: a scene whose state a rollback frame misses fails here.
 
 #include <algorithm>
 #include <cctype>
@@ -18,9 +19,7 @@ namespace {
 
 class SyncTestScenes : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(SyncTestScenes, PassesThroughRollbackFrames) {
-    replay::SceneGame game(GetParam());
-    ASSERT_TRUE(game.ok());
+SyncTestSessionConfig Config(const replay::SceneGame& game) {
     SyncTestSessionConfig c;
     c.players = 2;
     c.inputBytes = replay::SceneInput::kBytes;
@@ -31,19 +30,35 @@ TEST_P(SyncTestScenes, PassesThroughRollbackFrames) {
     c.step =
         WorldStepSettings{static_cast<uint32_t>(game.info().hz), static_cast<uint32_t>(game.info().velocityIterations),
                           static_cast<uint32_t>(game.info().positionIterations)};
-    auto script = std::make_shared<replay::ScriptedInputs>(21, 2);
+    return c;
+}
+
+SyncTestInputSource Scripted(uint64_t seed) {
+    auto script = std::make_shared<replay::ScriptedInputs>(seed, 2);
     auto row = std::make_shared<std::vector<uint8_t>>();
-    SyncTestSession session(
-        game.world(), game,
-        [script, row](int32_t, std::span<uint8_t> out) {
-            script->Next(*row);
-            std::copy(row->begin(), row->end(), out.begin());
-        },
-        c);
+    return [script, row](int32_t, std::span<uint8_t> out) {
+        script->Next(*row);
+        std::copy(row->begin(), row->end(), out.begin());
+    };
+}
+
+TEST_P(SyncTestScenes, PassesThroughRollbackFrames) {
+    replay::SceneGame game(GetParam());
+    ASSERT_TRUE(game.ok());
+    SyncTestSession session(game.world(), game, Scripted(21), Config(game));
     const SyncTestResult r = session.Run(12);
     EXPECT_TRUE(r.ok) << GetParam() << ": " << r.message;
     const SyncTestFrameRestores& f = r.frameRestores;
     EXPECT_EQ(f.sameStructure + f.undoneCreations + f.restoredStructure, 2u * static_cast<uint64_t>(r.rollbacks));
+}
+
+TEST_P(SyncTestScenes, PassesThroughTheAdaptersRequests) {
+    replay::SceneGame game(GetParam());
+    ASSERT_TRUE(game.ok());
+    SyncTestSession session(game.world(), game, Scripted(22), Config(game));
+    const SyncTestResult r = session.RunRequests(12);
+    EXPECT_TRUE(r.ok) << GetParam() << ": " << r.message;
+    EXPECT_EQ(session.RequestCounts().loads, 2u * static_cast<uint64_t>(r.rollbacks));
 }
 
 std::vector<std::string> Scenes() {

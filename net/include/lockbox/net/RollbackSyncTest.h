@@ -50,6 +50,20 @@ struct SyncTestSessionConfig {
 LOCKBOX_API SyncTestSessionConfig SyncTestConfigFrom(const RollbackConfig& config, WorldStepSettings step,
                                                      bool mispredict);
 
+/// The game's own executor of rollback requests (what it runs in a live match): executes
+/// `requests` in order and hands the hash of every SaveState that wants one to `reportHash` at
+/// the save, as it would to RollbackSession::ReportHash. False when it cannot go on.
+using SyncTestExecutor =
+    std::function<bool(std::span<const RollbackRequest> requests, const RollbackHashReport& reportHash)>;
+
+/// Requests a request-driven sync test executed, by kind (SyncTestSession::RequestCounts).
+struct SyncTestRequestCounts {
+    uint64_t saves = 0;              ///< SaveState
+    uint64_t loads = 0;              ///< LoadState: rollbacks, wrong branches included
+    uint64_t advances = 0;           ///< AdvanceRequest
+    uint64_t predictedAdvances = 0;  ///< advances of a wrong branch (status e_predicted)
+};
+
 class LOCKBOX_API SyncTestSession {
 public:
     /// `world`, `game` and the source must outlive the session; the world must be in its
@@ -61,6 +75,22 @@ public:
 
     /// Runs frames [0, frames); stops at the first mismatch (SyncTestResult says where).
     SyncTestResult Run(int32_t frames);
+
+    /// The same check through the requests a live RollbackSession makes, executed by the
+    /// game's own executor (its save, load and advance code): per frame Advance{f} +
+    /// SaveState{f + 1}, then LoadState{f + 1 - checkDistance} and Advance + SaveState up to
+    /// f + 1 again, every hash reported for a re-simulated frame compared with the first one.
+    /// In mispredict mode a branch of wrong inputs (seeded bytes, status e_predicted) runs and
+    /// is rolled back first, as after a wrong prediction. A mismatch names the first
+    /// differing hash category and body (the world is inspected when the hash is reported, so
+    /// the executor must work on this session's world), or the user state. The world must be
+    /// at frame 0; config.restore does not apply (the executor restores its own way).
+    SyncTestResult RunRequests(int32_t frames, const SyncTestExecutor& executor);
+    /// RunRequests with a WorldGameAdapter on the session's world and game as the executor:
+    /// the match's own save, restore (rollback frames) and step.
+    SyncTestResult RunRequests(int32_t frames);
+    /// Requests executed by RunRequests so far.
+    const SyncTestRequestCounts& RequestCounts() const noexcept;
 
 private:
     struct Impl;

@@ -7,6 +7,7 @@
 /// (Record), with no second simulation.
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -23,6 +24,10 @@ class Recorder;
 }  // namespace lockbox::replay
 
 namespace lockbox::net {
+
+/// Where an executor hands the hash of a saved state: (frame, FoldedStateHash of the state
+/// saved for that frame), called at the save.
+using RollbackHashReport = std::function<void(int32_t frame, uint64_t hash)>;
 
 /// How the adapter steps the world.
 struct WorldStepSettings {
@@ -43,6 +48,9 @@ public:
     /// want one. False when a LoadState names a frame not kept or the restore failed (the
     /// world is then in an unknown state; the match cannot go on).
     bool Execute(RollbackSession& session, std::span<const RollbackRequest> requests);
+    /// The same with the hashes handed to `reportHash` (frame, folded hash) instead of a
+    /// session (a SyncTestSession drives the adapter this way). Records nothing.
+    bool Execute(std::span<const RollbackRequest> requests, const RollbackHashReport& reportHash);
 
     /// Late join, host side: the saved state of the newest final frame F = min(session's
     /// ConfirmedFrame, CurrentFrame) as one snapshot in the lockstep late join's layout
