@@ -6,16 +6,23 @@
 //   first_match --player 0 --port 7000 --peer-port 7001 [--frames N] [--latency-ms N]
 //   first_match --player 1 --port 7001 --peer-port 7000 [--frames N] [--latency-ms N]
 //   first_match --sync-test [--frames N]
+// `--replay FILE` records the match (both players write the same bytes), and
+// `first_match replay verify FILE` is the game's own replay tool (lockbox_replay's commands).
 #include <cinttypes>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "lockbox/lockbox.h"
 #include "lockbox/net/RollbackMatch.h"
 #include "lockbox/net/RollbackSyncTest.h"
 #include "lockbox/replay/Game.h"
+#include "lockbox/replay/Recorder.h"
+#include "lockbox/replay/Tool.h"
 #include "lockbox_cli/OptionReader.h"
 
 using namespace lockbox;
@@ -84,14 +91,35 @@ uint8_t Script(uint32_t player, int32_t frame) {
 }
 
 constexpr const char* kUsage =
-    "usage: first_match --player 0|1 --port P --peer-port P [--frames N] [--latency-ms N]\n"
-    "       first_match --sync-test [--frames N]\n";
+    "usage: first_match --player 0|1 --port P --peer-port P [--frames N] [--latency-ms N] [--replay FILE]\n"
+    "       first_match --sync-test [--frames N]\n"
+    "       first_match replay (info|verify|diff|bisect) ...\n";
+constexpr const char* kGameName = "first_match";  // the game name its replays carry
+
+// The game as its replay tool plays it: a fresh TinyGame for each replay.
+class TinyToolGame final : public replay::ToolGame {
+public:
+    b2World& World() override { return m_game.world(); }
+    replay::Game& Logic() override { return m_game; }
+
+private:
+    TinyGame m_game;
+};
+
+// `first_match replay verify FILE` and the other lockbox_replay commands, for this game.
+int ReplayTool(int argc, char** argv) {
+    replay::GameRegistry games;
+    games.Add(kGameName, [](const replay::ToolGameRequest&, std::string&) { return std::make_unique<TinyToolGame>(); });
+    return replay::RunTool(argc, argv, games, "first_match replay");
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    if (argc >= 2 && std::string_view(argv[1]) == "replay") return ReplayTool(argc - 1, argv + 1);
     long player = -1, port = 0, peerPort = 0, frames = 600, latencyMs = 0;
     bool syncTest = false;
+    std::string replayPath;
     cli::OptionReader args("first_match", argc, argv);
     while (args.Next()) {
         if (args.Is("--player"))
@@ -106,6 +134,8 @@ int main(int argc, char** argv) {
             args.Int(0, 500, latencyMs);
         else if (args.Is("--sync-test"))
             syncTest = true;
+        else if (args.Is("--replay"))
+            args.Text(replayPath);
         else
             args.Unknown();
     }
@@ -161,6 +191,25 @@ int main(int argc, char** argv) {
     std::printf("player %u on port %ld, waiting for 127.0.0.1:%ld\n", me, port, peerPort);
     std::fflush(stdout);
 
+    // The replay: the adapter records each frame once it is final, from the states the match
+    // keeps anyway; both players record the same frames with the same settings, so the same bytes.
+    std::unique_ptr<replay::FileSink> sink;
+    std::unique_ptr<replay::Recorder> recorder;
+    if (!replayPath.empty()) {
+        sink = std::make_unique<replay::FileSink>(replayPath);
+        replay::RecorderConfig rc;
+        rc.gameName = kGameName;
+        rc.tickRate = kTickRate;
+        rc.playerCount = kPlayers;
+        rc.inputBytes = kInputBytes;
+        rc.keyframeInterval = 120;
+        recorder = std::make_unique<replay::Recorder>(game.world(), game, *sink, rc);
+        if (!sink->ok() || !match.Adapter().Record(*recorder, static_cast<int32_t>(frames))) {
+            std::fprintf(stderr, "first_match: cannot record to %s\n", replayPath.c_str());
+            return 1;
+        }
+    }
+
     auto inputs = [](uint32_t who, int32_t frame, std::span<uint8_t> out) { out[0] = Script(who, frame); };
     const net::RollbackMatchEnd end = match.PlayTo(static_cast<int32_t>(frames), inputs, 5000000);
     const net::RollbackStats& stats = match.Session().Stats();
@@ -172,5 +221,12 @@ int main(int argc, char** argv) {
         return 1;
     }
     std::printf("final hash 0x%016" PRIx64 " at frame %d\n", end.hash, end.frame);
+    if (recorder) {
+        if (!match.Adapter().RecordingFinished() || match.Adapter().RecordingFailed() || !sink->Close()) {
+            std::printf("replay %s was not written whole\n", replayPath.c_str());
+            return 1;
+        }
+        std::printf("replay %s: %d frames\n", replayPath.c_str(), match.Adapter().RecordedFrames());
+    }
     return 0;
 }

@@ -1,6 +1,7 @@
 #!/bin/sh
 # The first-match example as two processes: player 0 starts, player 1 three seconds later, on
-# two free UDP ports of 127.0.0.1. Both must exit 0 and print the same final hash.
+# two free UDP ports of 127.0.0.1. Both must exit 0 and print the same final hash, and write
+# the same replay bytes, which the game's own replay tool (first_match replay) verifies.
 #   run_two.sh PROGRAM FRAMES LATENCY_MS
 set -u
 program=$1
@@ -15,10 +16,12 @@ for x in s: x.bind(("127.0.0.1", 0))
 print(" ".join(str(x.getsockname()[1]) for x in s))')
 port0=${ports% *}
 port1=${ports#* }
-"$program" --player 0 --port "$port0" --peer-port "$port1" --frames "$frames" --latency-ms "$latency" >"$dir/p0" 2>&1 &
+"$program" --player 0 --port "$port0" --peer-port "$port1" --frames "$frames" --latency-ms "$latency" \
+    --replay "$dir/p0.lbr" >"$dir/p0" 2>&1 &
 pid0=$!
 sleep 3
-"$program" --player 1 --port "$port1" --peer-port "$port0" --frames "$frames" --latency-ms "$latency" >"$dir/p1" 2>&1
+"$program" --player 1 --port "$port1" --peer-port "$port0" --frames "$frames" --latency-ms "$latency" \
+    --replay "$dir/p1.lbr" >"$dir/p1" 2>&1
 rc1=$?
 wait "$pid0"
 rc0=$?
@@ -33,3 +36,9 @@ if [ "$rc0" -ne 0 ] || [ "$rc1" -ne 0 ] || [ -z "$hash0" ] || [ "$hash0" != "$ha
     exit 1
 fi
 echo "both players: $hash0"
+if ! cmp "$dir/p0.lbr" "$dir/p1.lbr"; then
+    echo "FAILED: the players' replays differ"
+    exit 1
+fi
+echo "both replays: $(wc -c <"$dir/p0.lbr") bytes, identical"
+"$program" replay verify "$dir/p0.lbr" || { echo "FAILED: the replay does not verify"; exit 1; }
