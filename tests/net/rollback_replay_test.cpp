@@ -206,7 +206,7 @@ TEST(RollbackReplay, BothPeersRecordTheSameVerifiedReplay) {
 TEST(RollbackReplay, SpawningSceneRecordsTheSameReplay) {
     Spec spec;
     spec.scene = "rain";
-    spec.frames = 240;
+    spec.frames = 100;  // one keyframe; rain's rows of bodies make later frames dear under ASan
     spec.seed = 5;
     CheckReplays(spec, Play(spec), 0);
 }
