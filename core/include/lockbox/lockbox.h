@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// lockbox umbrella header (Box2D's Box2D.h): everything a user of the manual's API needs.
 /// `using namespace lockbox;` then makes the manual's code read as written.
 
@@ -27,3 +28,9 @@
 #include "lockbox/state/Snapshot.h"
 #include "lockbox/state/SyncTest.h"
 #include "lockbox/state/WorldHash.h"
+
+/// @namespace lockbox
+/// Everything of lockbox: the manual's b2 names (b2World, b2Body, b2Vec2...), the number types
+/// Fixed (Q16.16) and Wide (Q32.32), and the state functions (hash, snapshot, frames, sync
+/// test). The modules beside the engine have their own namespaces: lockbox::replay,
+/// lockbox::net and lockbox::scenefile; scalar helpers live in lockbox::math.

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// LOCKBOX_API marks what the lockbox libraries export: the public classes and the free functions
 /// that the public headers declare and the libraries define. Every lockbox library is compiled
 /// with hidden symbols (-fvisibility=hidden, -fvisibility-inlines-hidden), so a shared library's
@@ -12,9 +13,12 @@
 #if defined(_WIN32)
 // A Windows DLL would need dllexport/dllimport per library; lockbox builds static libraries
 // there (the top-level CMakeLists.txt refuses BUILD_SHARED_LIBS on Windows).
+/// Empty on Windows: the libraries are static there.
 #define LOCKBOX_API
 #elif defined(__GNUC__) || defined(__clang__)
+/// Default visibility: the marked class or function is part of a shared library's ABI.
 #define LOCKBOX_API __attribute__((visibility("default")))
 #else
+/// Empty on compilers without a visibility attribute.
 #define LOCKBOX_API
 #endif

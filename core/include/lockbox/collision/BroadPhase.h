@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2BroadPhase: Box2D v2.2.1's broad-phase on top of b2DynamicTree. It buffers the proxies that
 /// moved and, once per step, reports every new pair of overlapping fat AABBs.
 ///
@@ -16,7 +17,7 @@
 /// - Pairs are reported again in later steps while they stay overlapping and one of them moves:
 ///   the client (the contact manager) filters pairs it already has, as in 2.2.1.
 ///
-/// State (ARCHITECTURE.md §4): the tree (see b2DynamicTree), the proxy count and the move
+/// State (docs/determinism.md): the tree (see b2DynamicTree), the proxy count and the move
 /// buffer (GetMoveBuffer) carry over between steps; the pair buffer does not (it is cleared at
 /// the start of UpdatePairs). Buffers are std::vectors that keep their capacity, so a warm
 /// broad-phase does not allocate.
@@ -108,15 +109,16 @@ public:
     /// Sum of node perimeters over root perimeter (dimensionless).
     Wide GetTreeQuality() const { return m_tree.GetAreaRatio(); }
 
-    /// The tree (read-only), for snapshots and tests.
-    /// Snapshot restore: the tree (see b2DynamicTree::RestoreState), proxy count and move
-    /// buffer of a validated image. The pair buffer is scratch and starts empty.
+    /// Snapshot restore: the tree to fill in (see b2DynamicTree::RestoreState).
     b2DynamicTree& GetTreeForRestore() noexcept { return m_tree; }
+    /// Snapshot restore: the proxy count and move buffer of a validated image (the tree is
+    /// restored through GetTreeForRestore). The pair buffer is scratch and starts empty.
     void RestoreState(int32 proxyCount, const std::vector<int32>& moveBuffer) {
         m_proxyCount = proxyCount;
         m_moveBuffer = moveBuffer;
         m_pairBuffer.clear();
     }
+    /// The tree (read-only), for snapshots and tests.
     const b2DynamicTree& GetTree() const noexcept { return m_tree; }
     /// The pending move buffer (read-only, may contain e_nullProxy), for snapshots and tests.
     const std::vector<int32>& GetMoveBuffer() const noexcept { return m_moveBuffer; }

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2ChainShape: a free-form sequence of line segments (an open chain or a closed loop) whose
 /// children are b2EdgeShapes carrying their neighbours as ghost vertices. No interior, no mass.
 

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2CircleShape: a solid circle given by a centre in the body frame and a radius.
 
 #include <memory>

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Shared collision types (Box2D's b2Collision.h): contact ids, manifolds, world manifolds,
 /// point states, ray-cast input and output, AABBs, and the narrow-phase functions.
 
@@ -19,6 +20,7 @@ inline constexpr uint8 b2_nullFeature = 0xFF;
 /// The features that intersect to form a contact point. Plain bytes: the hash and snapshot
 /// write the four fields, never the struct.
 struct b2ContactFeature {
+    /// Kind of a feature: a vertex or a face (edge) of a polygon.
     enum Type : uint8 { e_vertex = 0, e_face = 1 };
     uint8 indexA = 0;  ///< feature index on shape A
     uint8 indexB = 0;  ///< feature index on shape B
@@ -30,6 +32,7 @@ struct b2ContactFeature {
 /// union with a `uint32 key`; reading one member of a union through another is undefined in
 /// C++, so lockbox keeps the feature and computes the same key on demand.
 struct b2ContactID {
+    /// The features of the two shapes that produce this point.
     b2ContactFeature cf;
     /// The four feature bytes packed little-end first (the same value on every platform).
     constexpr uint32 Key() const noexcept {
@@ -39,7 +42,7 @@ struct b2ContactID {
 
 /// A manifold point: the contact point in the frame that the manifold type names, plus the
 /// impulses the solver accumulated for warm starting. Impulses are Wide (Q32.32): an impact
-/// impulse of a 1000 kg body at 120 m/s overflows Q16.16 (NUMERICS Table 1).
+/// impulse of a 1000 kg body at 120 m/s overflows Q16.16 (docs/numerics.md, "Formats").
 struct b2ManifoldPoint {
     b2Vec2 localPoint;    ///< usage depends on manifold type
     Wide normalImpulse;   ///< the non-penetration impulse, N*s
@@ -50,11 +53,17 @@ struct b2ManifoldPoint {
 /// Contact points of two touching convex shapes, in the local frame of one of them so they
 /// survive small motions. See the manual's "Contact Manifolds".
 struct b2Manifold {
+    /// What the manifold's local point and normal mean: e_circles, localPoint is circle A's centre
+    /// (normal unused); e_faceA, localPoint and localNormal are on a face of shape A; e_faceB, on a
+    /// face of shape B.
     enum Type : uint8 { e_circles, e_faceA, e_faceB };
+    /// The contact points (pointCount of them are valid).
     b2ManifoldPoint points[b2_maxManifoldPoints];
     b2Vec2 localNormal;  ///< not used for e_circles
     b2Vec2 localPoint;   ///< usage depends on manifold type
+    /// How localPoint and localNormal are read (see Type).
     Type type = e_circles;
+    /// Number of valid points, 0 to b2_maxManifoldPoints (2).
     int32 pointCount = 0;
 };
 
@@ -83,19 +92,27 @@ LOCKBOX_API void b2GetPointStates(b2PointState state1[b2_maxManifoldPoints], b2P
 
 /// A vertex used to compute contact points by clipping.
 struct b2ClipVertex {
+    /// The clipped vertex, m.
     b2Vec2 v;
+    /// The features it comes from, kept to build the contact id.
     b2ContactID id;
 };
 
 /// Ray-cast input: the ray from p1 to p1 + maxFraction * (p2 - p1).
 struct b2RayCastInput {
+    /// Start and end of the ray (world or shape frame, m).
+    ///@{
     b2Vec2 p1, p2;
+    ///@}
+    /// Fraction of p1->p2 to test, >= 0 (1 tests the whole segment; larger values extend the ray).
     Fixed maxFraction;
 };
 
 /// Ray-cast output: hit point p1 + fraction * (p2 - p1) with the surface normal.
 struct b2RayCastOutput {
+    /// Unit surface normal at the hit point, pointing out of the shape.
     b2Vec2 normal;
+    /// Hit position as a fraction of p1->p2, in [0, maxFraction].
     Fixed fraction;
 };
 
@@ -117,7 +134,7 @@ struct LOCKBOX_API b2AABB {
                 Half(int64_t{upperBound.y.Raw()} - lowerBound.y.Raw())};
     }
     /// Perimeter 2*(wx + wy) as Q32.32: the tree's cost metric never overflows, whatever the
-    /// world size (NUMERICS Table 1: Q16.16 overflows once wx + wy > 8192 m).
+    /// world size (in Q16.16 it would overflow once wx + wy > 8192 m).
     constexpr Wide GetPerimeterWide() const noexcept {
         const int64_t wx = int64_t{upperBound.x.Raw()} - lowerBound.x.Raw();
         const int64_t wy = int64_t{upperBound.y.Raw()} - lowerBound.y.Raw();

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// GJK distance between two convex shapes (Box2D 2.2.1's b2Distance.h) on exact integers.
 ///
 /// The algorithm is 2.2.1's: a simplex of at most three Minkowski-difference vertices, the
@@ -68,7 +69,7 @@ struct b2SimplexCache {
     /// 0 for one vertex, the segment length (metres, widened exactly from the rounded Q16.16
     /// length) for two vertices, the exact signed doubled triangle area (m²) for three. Wide
     /// (Q32.32) because an area at the contact scale (linearSlop², 1.6 raw in Q16.16) does not
-    /// survive Q16.16 (NUMERICS Table 3).
+    /// survive Q16.16.
     Wide metric;
     uint16 count = 0;      ///< number of cached vertices, 0 to 3
     uint8 indexA[3] = {};  ///< vertex indices on shape A

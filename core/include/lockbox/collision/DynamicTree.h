@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2DynamicTree: the broad-phase bounding volume hierarchy of Box2D v2.2.1 on Q16.16.
 ///
 /// Leaves hold "fat" AABBs (the client box extended by b2_aabbExtension, plus a prediction of
@@ -6,7 +7,7 @@
 /// not touch the tree. Internal nodes are unions of their two children. Insertion descends by
 /// Box2D's surface-area heuristic and the tree is kept balanced by AVL-style rotations.
 ///
-/// Determinism and state (ARCHITECTURE.md §4): nodes live in a std::vector addressed by index
+/// Determinism and state (docs/determinism.md): nodes live in a std::vector addressed by index
 /// and every link is an int32 index (b2_nullNode = -1). The tree's whole future behaviour is a
 /// function of GetNodes() (every slot, free ones included, which are kept in one canonical
 /// cleared state), GetRoot(), GetFreeList(), GetNodeCount() and GetInsertionCount(); restoring
@@ -14,7 +15,7 @@
 ///
 /// Numerics: the insertion heuristic compares perimeters as Wide (Q32.32, exact: a perimeter is
 /// a sum of raw differences), so costs never overflow for boxes anywhere in the Fixed range
-/// (NUMERICS Table 1: Q16.16 costs overflow once wx + wy > 8192 m). Because the costs are exact
+/// (Q16.16 costs would overflow once wx + wy > 8192 m). Because the costs are exact
 /// integers the descent is a pure function of the boxes. Ties are resolved as in 2.2.1: a tie
 /// between stopping (new parent here) and descending descends, and a tie between the two
 /// children descends into child2. Balance keeps the taller grandchild up and, on a height tie,
@@ -182,8 +183,6 @@ public:
     /// ties to the lowest (i, j) position pair). O(n^3): for tests and tools, not per step.
     void RebuildBottomUp();
 
-    /// Read-only view of the node pool (size = capacity). With the four fields below this is
-    /// the tree's complete state.
     /// Snapshot restore: replaces the whole tree (nodes with their free-slot chain, root and
     /// counters) with a validated image of another tree's state.
     void RestoreState(const std::vector<b2TreeNode>& nodes, int32 root, int32 freeList, int32 nodeCount,
@@ -194,6 +193,8 @@ public:
         m_nodeCount = nodeCount;
         m_insertionCount = insertionCount;
     }
+    /// Read-only view of the node pool (size = capacity). With the four fields below this is
+    /// the tree's complete state.
     const std::vector<b2TreeNode>& GetNodes() const noexcept { return m_nodes; }
     /// Root index, or b2_nullNode when empty.
     int32 GetRoot() const noexcept { return m_root; }

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2EdgeShape: a line segment with optional ghost (adjacent) vertices for smooth collision
 /// along chains. Edges have no interior and no mass.
 

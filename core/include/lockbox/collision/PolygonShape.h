@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2PolygonShape: a solid convex polygon of 3 to b2_maxPolygonVertices vertices, with a skin
 /// of b2_polygonRadius.
 ///

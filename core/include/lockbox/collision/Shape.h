@@ -1,9 +1,10 @@
 #pragma once
+/// @file
 /// b2Shape (the manual's "Shapes" chapter): the abstract collision shape, its mass data and the
 /// validation errors shared by every concrete shape.
 ///
 /// Differences from Box2D 2.2.1, all deliberate:
-/// - Mass and rotational inertia are Wide (Q32.32): NUMERICS Table 1 shows that Q16.16
+/// - Mass and rotational inertia are Wide (Q32.32): in Q16.16 it
 ///   underflows the inertia of a 0.1 m box and overflows the inertia of a 10 m box at density 10.
 /// - Clone() returns a std::unique_ptr: lockbox has no block allocator.
 /// - Setters that can receive invalid geometry (polygon Set/SetAsBox/SetFromHull, chain
@@ -41,7 +42,7 @@ LOCKBOX_API const char* b2ShapeErrorMessage(b2ShapeError error) noexcept;
 
 /// Largest |x| or |y| of any shape vertex, centre or circle extent, in the body frame (m, raw
 /// 2^28). Why 4096 m: it keeps every polygon mass sum exact in 128 bits (edges < 2^29 raw, the
-/// quartic inertia terms < 2^123) and is twice the +-2000 m world NUMERICS recommends.
+/// quartic inertia terms < 2^123), far beyond any body a game builds.
 inline constexpr Fixed b2_maxShapeCoordinate = 4096;
 
 /// Minimum distance between two polygon vertices, and minimum distance of a polygon vertex from
@@ -108,9 +109,14 @@ public:
     Fixed m_radius;  ///< circle radius, or the skin radius of polygons, edges and chains (m)
 
 protected:
+    /// A shape of the given type and radius (m); for the concrete shapes to call.
     b2Shape(Type type, Fixed radius) noexcept : m_type(type), m_radius(radius) {}
+    /// Copying is for the concrete shapes (b2Fixture clones its shape through them); a b2Shape is
+    /// never copied on its own, which would slice it.
+    ///@{
     b2Shape(const b2Shape&) = default;
     b2Shape& operator=(const b2Shape&) = default;
+    ///@}
 };
 
 }  // namespace lockbox

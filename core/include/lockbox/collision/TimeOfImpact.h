@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Time of impact (Box2D 2.2.1's b2TimeOfImpact.h): conservative advancement along separating
 /// axes with a bracketing root finder, on Q16.16 time fractions. Every loop has an iteration
 /// cap and the root finder also stops when its bracket is one raw time unit wide, so the call

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Little-endian byte encoding for every format lockbox reads from outside: snapshot images,
 /// replay files, lockstep and rollback datagrams, relay headers.
 ///
@@ -19,6 +20,7 @@
 #include <span>
 #include <vector>
 
+/// The little-endian byte codec shared by every format lockbox reads from outside.
 namespace lockbox::bytes {
 
 /// Why a Reader stopped reading (the first failure only).
@@ -39,11 +41,15 @@ public:
 
     /// Fixed-width fields; 0 once the reader has failed.
     uint8_t U8() noexcept { return Get<uint8_t>(); }
+    /// More fixed-width fields (2, 4 and 8 bytes, low byte first; the signed ones as two's
+    /// complement); 0 once the reader has failed.
+    ///@{
     uint16_t U16() noexcept { return Get<uint16_t>(); }
     uint32_t U32() noexcept { return Get<uint32_t>(); }
     uint64_t U64() noexcept { return Get<uint64_t>(); }
     int32_t I32() noexcept { return static_cast<int32_t>(Get<uint32_t>()); }
     int64_t I64() noexcept { return static_cast<int64_t>(Get<uint64_t>()); }
+    ///@}
 
     /// A minimal LEB128 varint whose value fits 64 bits (e_badVarint otherwise).
     uint64_t Varint() noexcept {
@@ -152,14 +158,19 @@ private:
 /// Appends little-endian fields to a byte vector (after whatever it already holds).
 class Writer {
 public:
+    /// A writer appending to `out`, which must outlive it.
     explicit Writer(std::vector<uint8_t>& out) noexcept : m_out(out) {}
 
+    /// Unsigned fields of 1, 2, 4 and 8 bytes, low byte first.
+    ///@{
     void U8(uint8_t v) { m_out.push_back(v); }
     void U16(uint16_t v) { Put(v); }
     void U32(uint32_t v) { Put(v); }
     void U64(uint64_t v) { Put(v); }
+    ///@}
     /// Two's complement, so a negative value has one encoding everywhere.
     void I32(int32_t v) { Put(static_cast<uint32_t>(v)); }
+    /// Two's complement, so a negative value has one encoding everywhere.
     void I64(int64_t v) { Put(static_cast<uint64_t>(v)); }
 
     /// The minimal LEB128 spelling of `v` (1 to 10 bytes).
@@ -171,6 +182,7 @@ public:
         m_out.push_back(static_cast<uint8_t>(v));
     }
 
+    /// The bytes as they are, without a length (the reader must know the count).
     void Bytes(std::span<const uint8_t> b) { m_out.insert(m_out.end(), b.begin(), b.end()); }
     /// A blob: a u32 byte count, then the bytes (fewer than 2^32 of them).
     void Blob(std::span<const uint8_t> b) {

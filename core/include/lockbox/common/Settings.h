@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Global tuning constants (Box2D's b2Settings.h), re-derived for Q16.16.
 ///
 /// Every value is a Fixed (raw in the comment). Box2D's float epsilons are below the Q16.16
@@ -13,6 +14,9 @@
 
 namespace lockbox {
 
+/// The manual's fixed-width integer names (Box2D's b2Settings.h), as aliases of the standard
+/// fixed-width types.
+///@{
 using int8 = int8_t;
 using int16 = int16_t;
 using int32 = int32_t;
@@ -20,6 +24,7 @@ using uint8 = uint8_t;
 using uint16 = uint16_t;
 using uint32 = uint32_t;
 using uint64 = uint64_t;
+///@}
 
 // b2_pi (raw 205887) is defined with the other scalar math in lockbox/fixed/Functions.h.
 
@@ -55,6 +60,8 @@ inline constexpr Fixed b2_maxLinearCorrection = Fixed::FromRaw(13107);
 inline constexpr Fixed b2_maxAngularCorrection = Fixed::FromRaw(9151);
 /// Maximum translation of a body per step (m). Caps speed at 120 m/s at 60 Hz.
 inline constexpr Fixed b2_maxTranslation = 2;
+/// b2_maxTranslation squared (m^2), compared with a step's squared translation without a square
+/// root.
 inline constexpr Fixed b2_maxTranslationSquared = 4;
 /// Maximum rotation of a body per step: pi/2 (rad, raw 102944).
 inline constexpr Fixed b2_maxRotation = Fixed::FromRaw(102944);

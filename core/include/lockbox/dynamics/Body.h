@@ -1,9 +1,10 @@
 #pragma once
+/// @file
 /// b2Body (Box2D 2.2.1 b2Body.h): a rigid body. Create with b2World::CreateBody.
 ///
 /// Formats: position, angle, velocities, forces are Fixed (Q16.16); mass, inertia and their
 /// inverses are Wide (Q32.32) because Q16.16 under- and overflows for small and large bodies
-/// (NUMERICS Table 1). User data is a uint64 (an id or handle), never a pointer.
+/// (docs/numerics.md, "Formats"). User data is a uint64 (an id or handle), never a pointer.
 
 #include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
@@ -42,7 +43,8 @@ struct b2BodyDef {
     Fixed gravityScale = 1;           ///< multiplies the world gravity for this body
 };
 
-/// A rigid body.
+/// A rigid body: a position and angle, velocities, mass data from its fixtures, and its fixture,
+/// joint and contact lists. Created and destroyed by b2World; a user never deletes one.
 class LOCKBOX_API b2Body {
 public:
     /// Creates a fixture from a definition and attaches it (refused while the world is
@@ -69,9 +71,11 @@ public:
 
     /// Sets the linear velocity of the centre of mass (m/s); wakes the body if non-zero.
     void SetLinearVelocity(const b2Vec2& v);
+    /// Linear velocity of the centre of mass, m/s.
     const b2Vec2& GetLinearVelocity() const noexcept { return m_linearVelocity; }
     /// Sets the angular velocity (rad/s); wakes the body if non-zero.
     void SetAngularVelocity(Fixed omega);
+    /// Angular velocity, rad/s (positive is counter-clockwise).
     Fixed GetAngularVelocity() const noexcept { return m_angularVelocity; }
 
     /// Applies a force (N) at a world point (m); wakes the body. Dynamic bodies only.
@@ -110,46 +114,86 @@ public:
     /// Velocity of a local point attached to this body, m/s.
     b2Vec2 GetLinearVelocityFromLocalPoint(const b2Vec2& localPoint) const;
 
+    /// Linear damping, 1/s (>= 0; 0 is none, the manual suggests 0 to 0.1): each step scales the
+    /// linear velocity by 1 / (1 + h * damping), a drag that stays stable for any value.
+    ///@{
     Fixed GetLinearDamping() const noexcept { return m_linearDamping; }
     void SetLinearDamping(Fixed d) noexcept;
+    ///@}
+    /// Angular damping, 1/s (>= 0): each step scales the angular velocity by 1 / (1 + h * damping).
+    ///@{
     Fixed GetAngularDamping() const noexcept { return m_angularDamping; }
     void SetAngularDamping(Fixed d) noexcept;
+    ///@}
+    /// Multiplier of the world gravity for this body (1 is normal, 0 floats, negative rises).
+    ///@{
     Fixed GetGravityScale() const noexcept { return m_gravityScale; }
     void SetGravityScale(Fixed s) noexcept;
+    ///@}
 
     /// Changes the type; resets mass, wakes, and re-filters contacts (refused while locked).
     void SetType(b2BodyType type);
+    /// The body type (static, kinematic or dynamic).
     b2BodyType GetType() const noexcept { return m_type; }
 
+    /// A bullet takes part in continuous collision against dynamic bodies too (not only static and
+    /// kinematic ones), so a fast small body does not tunnel through other moving bodies; it costs
+    /// time.
+    ///@{
     void SetBullet(bool flag) noexcept;
     bool IsBullet() const noexcept { return (m_flags & e_bulletFlag) != 0; }
+    ///@}
     /// Whether the body may fall asleep; false wakes it.
     void SetSleepingAllowed(bool flag);
+    /// Whether the body may fall asleep after resting long enough.
     bool IsSleepingAllowed() const noexcept { return (m_flags & e_autoSleepFlag) != 0; }
     /// Wakes (resets the sleep counter) or puts to sleep (zeroes velocities and forces).
     void SetAwake(bool flag);
+    /// Whether the body is awake; a sleeping body is not simulated until something wakes it.
     bool IsAwake() const noexcept { return (m_flags & e_awakeFlag) != 0; }
     /// Adds or removes the body from the simulation: proxies and contacts are destroyed when
     /// deactivated and recreated at the next Step when activated (refused while locked).
     void SetActive(bool flag);
+    /// Whether the body takes part in the simulation (collision, solver, ray casts). An inactive
+    /// body keeps its fixtures and joints but has no broad-phase proxies or contacts.
     bool IsActive() const noexcept { return (m_flags & e_activeFlag) != 0; }
     /// True after the world bounds check took this body out of the simulation (cleared when
     /// the body is activated again).
     bool IsOutOfBounds() const noexcept { return (m_flags & e_outOfBoundsFlag) != 0; }
+    /// A body with fixed rotation has zero inverse inertia: forces, contacts and joints cannot turn
+    /// it. Changing the flag resets the mass data.
+    ///@{
     void SetFixedRotation(bool flag);
     bool IsFixedRotation() const noexcept { return (m_flags & e_fixedRotationFlag) != 0; }
+    ///@}
 
+    /// First fixture of the body's fixture list (newest first; follow b2Fixture::GetNext), or
+    /// nullptr.
+    ///@{
     b2Fixture* GetFixtureList() noexcept { return m_fixtureList; }
     const b2Fixture* GetFixtureList() const noexcept { return m_fixtureList; }
+    ///@}
+    /// First edge of the body's joint list (one b2JointEdge per attached joint), or nullptr.
     b2JointEdge* GetJointList() noexcept { return m_jointList; }
+    /// First edge of the body's contact list (one b2ContactEdge per contact of one of its
+    /// fixtures, touching or not), or nullptr. Contacts come and go with the broad-phase during
+    /// Step: do not keep pointers to them across steps.
     b2ContactEdge* GetContactList() noexcept { return m_contactList; }
     /// Next body in the world list (newest first).
     b2Body* GetNext() noexcept { return m_next; }
+    /// Next body in the world list (newest first).
     const b2Body* GetNext() const noexcept { return m_next; }
+    /// Application data: an id or handle, never a pointer, so it survives snapshot and restore and
+    /// hashes the same on every machine. It is part of the snapshot.
+    ///@{
     uint64 GetUserData() const noexcept { return m_userData; }
     void SetUserData(uint64 data) noexcept;
+    ///@}
+    /// The world that owns this body.
+    ///@{
     b2World* GetWorld() noexcept { return m_world; }
     const b2World* GetWorld() const noexcept { return m_world; }
+    ///@}
     /// Small integer id (stable across snapshot and restore).
     int32 GetId() const noexcept { return m_id; }
     /// Consecutive still steps counted toward sleep.

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2Draw (Box2D 2.2.1 b2Draw.h): the debug-draw interface. Colours are floats because they are
 /// display data only; coordinates stay Fixed and an implementation converts them with
 /// ToFloat() for rendering. Nothing drawn ever flows back into the simulation.
@@ -12,15 +13,21 @@ namespace lockbox {
 /// An RGB colour in [0, 1] (display only).
 struct b2Color {
     b2Color() = default;
+    /// A colour from red, green and blue components in [0, 1].
     b2Color(float rIn, float gIn, float bIn) : r(rIn), g(gIn), b(bIn) {}
+    /// Sets the red, green and blue components, each in [0, 1].
     void Set(float rIn, float gIn, float bIn) {
         r = rIn;
         g = gIn;
         b = bIn;
     }
+    /// Red, green and blue intensity in [0, 1]. float: colours are for display only and never reach
+    /// the simulation.
+    ///@{
     float r = 0.0f;
     float g = 0.0f;
     float b = 0.0f;
+    ///@}
 };
 
 /// Implement and register with b2World::SetDebugDraw to draw the world.
@@ -38,8 +45,11 @@ public:
 
     /// Sets the drawing flags.
     void SetFlags(uint32 flags) noexcept { m_drawFlags = flags; }
+    /// The drawing flags (a combination of the e_*Bit values).
     uint32 GetFlags() const noexcept { return m_drawFlags; }
+    /// Sets the given flags, keeping the others.
     void AppendFlags(uint32 flags) noexcept { m_drawFlags |= flags; }
+    /// Clears the given flags, keeping the others.
     void ClearFlags(uint32 flags) noexcept { m_drawFlags &= ~flags; }
 
     /// A closed polygon outline (counter-clockwise vertices, m).
@@ -56,6 +66,7 @@ public:
     virtual void DrawTransform(const b2Transform& xf) = 0;
 
 protected:
+    /// The drawing flags; b2World::DrawDebugData reads them through GetFlags.
     uint32 m_drawFlags = 0;
 };
 

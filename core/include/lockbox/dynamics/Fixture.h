@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2Fixture (Box2D 2.2.1 b2Fixture.h): binds a shape to a body with material properties,
 /// collision filtering and broad-phase proxies.
 
@@ -71,22 +72,30 @@ public:
 
     /// Makes this a sensor (or not). Takes effect at the next contact update.
     void SetSensor(bool sensor) noexcept;
+    /// Whether this fixture is a sensor: it detects overlaps (its contacts touch and are reported)
+    /// but produces no collision response.
     bool IsSensor() const noexcept { return m_isSensor; }
 
     /// Replaces the filter data. Contacts of this fixture are re-filtered at the start of the
     /// next Step, and its proxies are touched so new pairs can form then.
     void SetFilterData(const b2Filter& filter);
+    /// The collision filter (category and mask bits, group index).
     const b2Filter& GetFilterData() const noexcept { return m_filter; }
 
     /// The parent body.
     b2Body* GetBody() noexcept { return m_body; }
+    /// The parent body (read-only view).
     const b2Body* GetBody() const noexcept { return m_body; }
     /// Next fixture of the parent body (newest first).
     b2Fixture* GetNext() noexcept { return m_next; }
+    /// Next fixture of the parent body (read-only view).
     const b2Fixture* GetNext() const noexcept { return m_next; }
 
+    /// Application data: an id or handle, never a pointer (part of the snapshot and the hash).
+    ///@{
     uint64 GetUserData() const noexcept { return m_userData; }
     void SetUserData(uint64 data) noexcept;
+    ///@}
     /// Small integer id (world-wide, stable across snapshot and restore).
     int32 GetId() const noexcept { return m_id; }
 
@@ -99,10 +108,15 @@ public:
 
     /// Density, kg/m^2. Call b2Body::ResetMassData afterwards to update the body.
     void SetDensity(Fixed density) noexcept;
+    /// Density, kg/m^2 (>= 0); the body's mass is density times area summed over its fixtures.
     Fixed GetDensity() const noexcept { return m_density; }
+    /// Friction coefficient (dimensionless, usually in [0, 1]); contacts mix it with the other
+    /// fixture's as sqrt(f1 * f2).
     Fixed GetFriction() const noexcept { return m_friction; }
     /// Affects contacts created after the call only (as in 2.2.1).
     void SetFriction(Fixed friction) noexcept;
+    /// Restitution, or bounciness (dimensionless, 0 inelastic to 1 elastic); contacts use the
+    /// larger of the two fixtures' values.
     Fixed GetRestitution() const noexcept { return m_restitution; }
     /// Affects contacts created after the call only (as in 2.2.1).
     void SetRestitution(Fixed restitution) noexcept;

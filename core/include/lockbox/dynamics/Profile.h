@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2Profile (as in later Box2D releases): what one b2World::Step did and how long each stage
 /// took. The wall-clock figures are for benchmarks; the integer work counters are
 /// deterministic and are what tests check.

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Step fenceposts: optional points inside b2World::Step where an observer may look
 /// at (hash) the world. Replay bisection uses them to tell in which stage of a step two runs
 /// split. With no observer set (the default) a Step only tests one null pointer per stage.
@@ -19,13 +20,17 @@ class b2Body;
 
 /// Solver copy of a body's position: centre of mass (m) and angle (rad).
 struct b2Position {
+    /// Centre of mass in world coordinates, m.
     b2Vec2 c;
+    /// Angle, rad.
     Fixed a;
 };
 
 /// Solver copy of a body's velocity: linear (m/s) and angular (rad/s).
 struct b2Velocity {
+    /// Linear velocity of the centre of mass, m/s.
     b2Vec2 v;
+    /// Angular velocity, rad/s.
     Fixed w;
 };
 

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2World (Box2D 2.2.1 b2World.h): owns bodies, fixtures, contacts and joints, steps the
 /// simulation, and answers queries. lockbox adds the world's state (hash, snapshot, restore,
 /// rollback frames), ids, world bounds, the profile and the step observer.
@@ -38,10 +39,12 @@ struct Engine;
 }  // namespace core_detail
 
 /// Default world bounds: +-16000 m on both axes. Any two in-world positions differ by at
-/// most 32000 m, which still fits Q16.16 (ARCHITECTURE §5).
+/// most 32000 m, which still fits Q16.16 (docs/numerics.md).
 inline constexpr Fixed b2_defaultWorldExtent = 16000;
 
-/// The physics world.
+/// The physics world: creates and owns bodies and joints (and through them fixtures and
+/// contacts), advances them with Step, answers ray casts and AABB queries, and saves, hashes and
+/// restores its whole state (see the file comment).
 class LOCKBOX_API b2World {
 public:
     /// A world with the given gravity (m/s^2). Sleeping is allowed by default.
@@ -89,12 +92,15 @@ public:
 
     /// Bodies, newest first.
     b2Body* GetBodyList() noexcept;
+    /// Bodies, newest first (read-only view).
     const b2Body* GetBodyList() const noexcept;
     /// Joints, newest first.
     b2Joint* GetJointList() noexcept;
+    /// Joints, newest first (read-only view).
     const b2Joint* GetJointList() const noexcept;
     /// Contacts, newest first; use IsTouching to find touching ones.
     b2Contact* GetContactList() noexcept;
+    /// Contacts, newest first (read-only view); use IsTouching to find touching ones.
     const b2Contact* GetContactList() const noexcept;
 
     /// The body with a given id (b2Body::GetId); nullptr when the id is free.
@@ -142,32 +148,42 @@ public:
 
     /// Sleeping switch; turning it off wakes every body.
     void SetAllowSleeping(bool flag);
+    /// Whether bodies may fall asleep (on by default).
     bool GetAllowSleeping() const noexcept;
     /// Warm starting of the contact and joint impulses (on by default).
     void SetWarmStarting(bool flag) noexcept;
+    /// Whether warm starting is on.
     bool GetWarmStarting() const noexcept;
     /// Continuous collision (time of impact; on by default).
     void SetContinuousPhysics(bool flag) noexcept;
+    /// Whether continuous collision is on.
     bool GetContinuousPhysics() const noexcept;
     /// Sub-stepping of time-of-impact events (off by default).
     void SetSubStepping(bool flag) noexcept;
+    /// Whether time-of-impact sub-stepping is on.
     bool GetSubStepping() const noexcept;
     /// Whether each Step ends by clearing forces (on by default).
     void SetAutoClearForces(bool flag) noexcept;
+    /// Whether each Step ends by clearing the forces applied to bodies.
     bool GetAutoClearForces() const noexcept;
     /// Gravity, m/s^2.
     void SetGravity(const b2Vec2& gravity) noexcept;
+    /// Gravity, m/s^2 (given to the constructor or SetGravity).
     b2Vec2 GetGravity() const noexcept;
 
     /// Bounds for body centres (m); a body whose centre leaves them is taken out of the
     /// simulation and reported to the b2BoundaryListener. Default +-16000 m.
     void SetWorldBounds(const b2AABB& bounds) noexcept;
+    /// Bounds for body centres, m (default +-16000 m on each axis).
     const b2AABB& GetWorldBounds() const noexcept;
 
     /// Broad-phase proxies (one per child of each fixture of an active body).
     int32 GetProxyCount() const noexcept;
+    /// Number of bodies in the world.
     int32 GetBodyCount() const noexcept;
+    /// Number of joints in the world.
     int32 GetJointCount() const noexcept;
+    /// Number of contacts, touching or not (one per overlapping pair of fixture children's AABBs).
     int32 GetContactCount() const noexcept;
     /// True inside Step.
     bool IsLocked() const noexcept;
@@ -176,10 +192,12 @@ public:
     /// Headroom telemetry: when on, each Step ends by filling GetProfile().headroom (a walk of
     /// every body, contact, joint and tree node). Off by default, so a Step costs nothing extra.
     void SetHeadroomTelemetry(bool flag) noexcept;
+    /// Whether headroom telemetry is on.
     bool GetHeadroomTelemetry() const noexcept;
     /// Step fenceposts (StepObserver.h): the observer hears every stage of every Step; nullptr
     /// (the default) turns them off. Not state: snapshots and the hash ignore it.
     void SetStepObserver(b2StepObserver* observer) noexcept;
+    /// The step observer, or nullptr when none is set.
     b2StepObserver* GetStepObserver() const noexcept;
 
 private:

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// World callbacks (Box2D 2.2.1 b2WorldCallbacks.h): destruction, contact filtering, contact
 /// events, queries and ray casts, plus lockbox's world-bounds listener.
 
@@ -49,7 +50,11 @@ public:
 
 /// Impulses the solver applied to a contact, reported in PostSolve (N*s, Q32.32).
 struct b2ContactImpulse {
+    /// Normal impulse at each manifold point (N*s); entries past the manifold's point count are
+    /// zero.
     Wide normalImpulses[b2_maxManifoldPoints];
+    /// Friction impulse at each manifold point (N*s); entries past the manifold's point count are
+    /// zero.
     Wide tangentImpulses[b2_maxManifoldPoints];
 };
 

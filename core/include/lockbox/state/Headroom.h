@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Headroom telemetry (docs/stability.md): how close a world's state comes to the
 /// limits of its number formats.
 ///
@@ -66,6 +67,7 @@ struct LOCKBOX_API b2Headroom {
 
     /// The entry of one class.
     b2HeadroomEntry& operator[](b2HeadroomClass c) noexcept { return entries[static_cast<int32>(c)]; }
+    /// The entry of one class (read-only).
     const b2HeadroomEntry& operator[](b2HeadroomClass c) const noexcept { return entries[static_cast<int32>(c)]; }
 
     /// Running maximum: keeps the larger magnitude per class and adds the saturations.

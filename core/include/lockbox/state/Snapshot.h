@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// World snapshots (docs/determinism.md "Snapshot format"): b2World::Save writes
 /// every field that influences future steps as a portable byte image (Cereal portable binary,
 /// little-endian, fixed widths), and b2World::Restore reads one back, either in place
@@ -25,9 +26,11 @@ namespace lockbox {
 /// (Restore ignores it) and part of the bytes that the checksum and the image hash cover, so
 /// writing the library's version there would change every snapshot and replay at each release;
 /// the format and determinism versions below are what a reader checks.
+///@{
 inline constexpr uint16 b2_snapshotEngineMajor = 0;
 inline constexpr uint16 b2_snapshotEngineMinor = 7;
 inline constexpr uint16 b2_snapshotEnginePatch = 0;
+///@}
 
 /// Version of the snapshot layout; bump on any change to docs/determinism.md's format table.
 /// History: 1 the six state sections; 2 adds a seventh, the joints' reaction directions (so a
@@ -65,10 +68,12 @@ LOCKBOX_API const char* b2SnapshotErrorName(b2SnapshotError error) noexcept;
 
 /// Result of b2World::Restore.
 struct b2RestoreResult {
+    /// e_ok, or why the restore was refused (the world is then untouched).
     b2SnapshotError error = b2SnapshotError::e_ok;
     std::string message;  ///< what is wrong, naming the section, field and value; empty when ok
     /// True when the world now holds the image's state.
     bool ok() const noexcept { return error == b2SnapshotError::e_ok; }
+    /// True on success, as ok().
     explicit operator bool() const noexcept { return ok(); }
 };
 

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// lockbox::SyncTest: the rollback self-check of GGRS-style sessions, for any game built on a
 /// b2World. Every frame is simulated once and hashed; then the world is restored k frames back
 /// and the same k frames are simulated again, and every re-simulated hash must equal the first
@@ -31,6 +32,7 @@ public:
     /// State beyond the world that influences later frames, appended to every save (default:
     /// none). LoadUserState gets back exactly these bytes.
     virtual void SaveUserState(std::vector<uint8>& out) const { (void)out; }
+    /// Restores the user state from the bytes SaveUserState wrote for the frame being loaded.
     virtual void LoadUserState(std::span<const uint8> in) { (void)in; }
 };
 
@@ -58,6 +60,7 @@ struct SyncTestFrameRestores {
 
 /// What a sync test found.
 struct SyncTestResult {
+    /// True when every re-simulated frame hashed like the first run.
     bool ok = true;
     int32 framesSimulated = 0;    ///< frames advanced for the first time
     int32 rollbacks = 0;          ///< restores followed by a checked re-simulation
@@ -76,6 +79,7 @@ struct SyncTestResult {
 /// the last frame (after the final re-simulation).
 class LOCKBOX_API SyncTest {
 public:
+    /// A sync test of `game` on `world`; both must outlive it.
     SyncTest(b2World& world, SyncTestGame& game, SyncTestConfig config = {});
     /// Simulates frames [0, frames) with a rollback check after every frame from k on; stops
     /// at the first mismatch.

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Rollback frames (docs/determinism.md, "Rollback frames"): the state of a world kept
 /// in memory by that same world, for rollback rings. b2World::SaveFrame copies only what a step
 /// or an input can change without a structural call (body motion, forces, proxy boxes,
@@ -43,10 +44,16 @@ class LOCKBOX_API b2WorldFrame {
 public:
     b2WorldFrame() noexcept;
     ~b2WorldFrame();
+    /// Deep copy: the copy owns its own storage and restores the same state.
+    ///@{
     b2WorldFrame(const b2WorldFrame& other);
     b2WorldFrame& operator=(const b2WorldFrame& other);
+    ///@}
+    /// Move: takes the other frame's storage and leaves it empty (as a default-constructed frame).
+    ///@{
     b2WorldFrame(b2WorldFrame&& other) noexcept;
     b2WorldFrame& operator=(b2WorldFrame&& other) noexcept;
+    ///@}
 
     /// True before the first SaveFrame into it.
     bool IsEmpty() const noexcept;

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// World state hash (docs/determinism.md, "State hash"): an XXH3-64 over a canonical
 /// walk of every field that influences future steps, written as little-endian fixed-width
 /// integers (never raw memory, padding or free slots). Equal hashes on two machines mean, with
@@ -97,6 +98,7 @@ enum class b2FieldFormat : uint8 {
 /// read of the body itself (its fixtures are not listed; b2BodyStateHash covers them).
 struct b2BodyField {
     const char* name = "";  ///< "position.x", "sweep.a0", "invMass", ...
+    /// How to read `raw`: an integer, Q16.16 or Q32.32.
     b2FieldFormat format = b2FieldFormat::e_integer;
     int64_t raw = 0;  ///< the value as the walk writes it
 };
@@ -112,10 +114,12 @@ LOCKBOX_API b2HashMismatch b2CompareHashReports(const b2WorldHashReport& a, cons
 
 /// The world hash read back from a snapshot image (b2SnapshotHash).
 struct b2SnapshotHashResult {
+    /// e_ok, or why the image's framing could not be read.
     b2SnapshotError error = b2SnapshotError::e_ok;
     std::string message;  ///< what is wrong with the image's framing; empty when ok
     uint64 total = 0;     ///< b2WorldHash of the world the image was saved from
     uint64 categories[static_cast<uint32>(b2HashCategory::e_count)] = {};  ///< by b2HashCategory
+    /// True when the image was read and total and categories hold its hash.
     bool ok() const noexcept { return error == b2SnapshotError::e_ok; }
 };
 

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Programmer errors: LOCKBOX_ASSERT(cond, message) and its replaceable handler, shared by every
 /// module (fixed, core, replay, net).
 ///

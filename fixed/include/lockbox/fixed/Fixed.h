@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// lockbox::Fixed: the Q16.16 state type (positions, velocities, angles, rotations, the time
 /// step). Range [-32768, 32768) with a resolution of 2^-16 (1.53e-5).
 ///
@@ -55,13 +56,24 @@ constexpr int64_t ShiftRound(int64_t p, int shift) noexcept {
 }
 }  // namespace detail
 
+/// The integer types a Fixed converts from implicitly and exactly: every built-in integral type
+/// except bool.
 template <typename T>
 concept FixedIntegral = std::integral<T> && !std::same_as<T, bool>;
 
+/// Q16.16 fixed-point number: a 32-bit signed integer counting units of 2^-16. It is the type of
+/// positions (m), angles (rad), velocities, forces, coefficients and the time step (s); mass,
+/// inertia and impulses are Wide. Arithmetic rounds to nearest with ties away from zero and
+/// saturates to +-kMaxRaw (or traps in checked builds, see Overflow.h), so it never produces the
+/// raw INT32_MIN. Construct from integers, `_fx` literals, compile-time float literals, FromRatio,
+/// Parse or FromRaw.
 class LOCKBOX_API Fixed {
 public:
+    /// Number of fractional bits: a raw value r means r / 2^16.
     static constexpr int kFractionBits = 16;
+    /// The raw value of 1.0 (65536).
     static constexpr int32_t kOneRaw = int32_t{1} << kFractionBits;
+    /// Largest raw value (INT32_MAX, just under 32768.0); the saturation limit is +-kMaxRaw.
     static constexpr int32_t kMaxRaw = std::numeric_limits<int32_t>::max();
 
     /// Zero.
@@ -75,7 +87,8 @@ public:
     /// zero). A run-time float or double does not compile: use the `_fx` literal, FromRatio,
     /// Parse, or the named FromDoubleNondeterministic.
     consteval Fixed(double v) : m_raw(CheckedLiteral(detail::RoundDoubleToRaw(v, kFractionBits))) {}  // NOLINT
-    consteval Fixed(float v)                                                                          // NOLINT
+    /// Compile-time conversion of a float literal; same rules as the double overload.
+    consteval Fixed(float v)  // NOLINT
         : m_raw(CheckedLiteral(detail::RoundDoubleToRaw(static_cast<double>(v), kFractionBits))) {}
 
     /// Bit-exact construction from a raw Q16.16 value.
@@ -104,15 +117,22 @@ public:
 
     /// For display and debug draw only.
     constexpr double ToDouble() const noexcept { return static_cast<double>(m_raw) / kOneRaw; }
+    /// For display and debug draw only: ToDouble() narrowed to float.
     constexpr float ToFloat() const noexcept { return static_cast<float>(ToDouble()); }
 
     /// Run-time conversion from double for tools (scene editors, plots). NOT deterministic
     /// across platforms (x87 excess precision, FMA); never use it in simulation code.
     static Fixed FromDoubleNondeterministic(double v) noexcept;
 
+    /// Compares the raw values: the order and equality of the numbers they represent.
+    ///@{
     constexpr auto operator<=>(const Fixed&) const noexcept = default;
     constexpr bool operator==(const Fixed&) const noexcept = default;
+    ///@}
 
+    /// Unary plus returns the value; unary minus negates it exactly (the raw INT32_MIN, which
+    /// arithmetic never produces, saturates to kMaxRaw).
+    ///@{
     constexpr Fixed operator+() const noexcept { return *this; }
     constexpr Fixed operator-() const noexcept {
         if (m_raw == std::numeric_limits<int32_t>::min()) [[unlikely]] {
@@ -121,7 +141,13 @@ public:
         }
         return FromRaw(-m_raw);
     }
+    ///@}
 
+    /// Arithmetic on two Fixed values. + and - are exact unless the result leaves the range; * and
+    /// / round the exact result to the nearest multiple of 2^-16, ties away from zero. Out-of-range
+    /// results and division by zero saturate to +-kMaxRaw (or trap in checked builds, see
+    /// Overflow.h).
+    ///@{
     friend constexpr Fixed operator+(Fixed a, Fixed b) noexcept {
         return FromRaw(detail::NarrowRaw(int64_t{a.m_raw} + b.m_raw, "Fixed::operator+", a.m_raw, b.m_raw));
     }
@@ -135,11 +161,15 @@ public:
     friend constexpr Fixed operator/(Fixed a, Fixed b) noexcept {
         return FromRaw(DivRaw(int64_t{a.m_raw} * kOneRaw, b.m_raw, "Fixed::operator/", a.m_raw));
     }
+    ///@}
 
+    /// Compound assignment: `a op= b` is `a = a op b`, with the same rounding and saturation.
+    ///@{
     constexpr Fixed& operator+=(Fixed b) noexcept { return *this = *this + b; }
     constexpr Fixed& operator-=(Fixed b) noexcept { return *this = *this - b; }
     constexpr Fixed& operator*=(Fixed b) noexcept { return *this = *this * b; }
     constexpr Fixed& operator/=(Fixed b) noexcept { return *this = *this / b; }
+    ///@}
 
     /// round(num / den) into raw, ties away from zero, saturating; num is any int64 with
     /// |num| < 2^62. Shared by division, FromRatio and the wide type's narrowing.
@@ -249,9 +279,15 @@ consteval Fixed operator""_fx() {
 
 }  // namespace lockbox
 
+/// Fixed as a numeric type: a bounded, exact, signed binary format with 31 value bits, which rounds
+/// to nearest (ties away from zero) and has no infinity or NaN.
 template <>
 class std::numeric_limits<lockbox::Fixed> {
 public:
+    /// The traits of Q16.16: signed, exact (no representation error for the values it can hold),
+    /// not an integer type, bounded, not modular (overflow saturates), radix 2 with 31 value digits
+    /// (9 decimal), no infinity or NaN, rounding to nearest.
+    ///@{
     static constexpr bool is_specialized = true;
     static constexpr bool is_signed = true;
     static constexpr bool is_integer = false;
@@ -265,13 +301,21 @@ public:
     static constexpr int digits = 31;
     static constexpr int digits10 = 9;
     static constexpr std::float_round_style round_style = std::round_to_nearest;
-    /// Saturated arithmetic never produces INT32_MIN raw; min() is the symmetric limit.
+    ///@}
+    /// Smallest positive value (one raw unit, 2^-16), as min() means for floating types; the most
+    /// negative value is lowest().
     static constexpr lockbox::Fixed min() noexcept { return lockbox::Fixed::FromRaw(1); }
+    /// Most negative value: -kMaxRaw raw (about -32768.0); saturation never goes below it.
     static constexpr lockbox::Fixed lowest() noexcept { return lockbox::Fixed::FromRaw(-lockbox::Fixed::kMaxRaw); }
+    /// Largest value: kMaxRaw raw (32767.99998).
     static constexpr lockbox::Fixed max() noexcept { return lockbox::Fixed::FromRaw(lockbox::Fixed::kMaxRaw); }
+    /// Distance from 1.0 to the next value: one raw unit, 2^-16.
     static constexpr lockbox::Fixed epsilon() noexcept { return lockbox::Fixed::FromRaw(1); }
+    /// Largest rounding error of one operation in units of epsilon(), as the standard defines it
+    /// for float: 0.5 (round to nearest).
     static constexpr lockbox::Fixed round_error() noexcept {
         return lockbox::Fixed::FromRaw(lockbox::Fixed::kOneRaw / 2);
     }
+    /// Smallest positive value (one raw unit); the format has no subnormals.
     static constexpr lockbox::Fixed denorm_min() noexcept { return lockbox::Fixed::FromRaw(1); }
 };

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Scalar math functions on lockbox::Fixed (Q16.16): square root, sine/cosine, atan2 and angle
 /// wrapping, plus the angle constants. All are integer-only and bit-identical on every platform.
 /// Accuracy is given in ULP = 2^-16 (1.53e-5); "correctly rounded" means <= 0.5 ULP.

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2Mat22 (the manual's Math module): a 2x2 matrix stored in column-major order.
 ///
 /// The determinant is formed exactly (Q32.32 in 64 bits) and each result is one rounded
@@ -27,22 +28,29 @@ constexpr Fixed DivExactToFixed(const S128& num, const S128& den, int shift, con
 }
 }  // namespace detail
 
+/// A 2x2 matrix of Q16.16 entries stored by columns (ex, ey), as in Box2D: rotations, small
+/// effective-mass matrices and their inverses.
 struct b2Mat22 {
     b2Vec2 ex;  ///< first column
     b2Vec2 ey;  ///< second column
 
     constexpr b2Mat22() noexcept = default;
+    /// The matrix with columns c1 and c2.
     constexpr b2Mat22(const b2Vec2& c1, const b2Vec2& c2) noexcept : ex(c1), ey(c2) {}
+    /// The matrix [a11 a12; a21 a22], given row by row (stored by columns).
     constexpr b2Mat22(Fixed a11, Fixed a12, Fixed a21, Fixed a22) noexcept : ex(a11, a21), ey(a12, a22) {}
 
+    /// Sets the columns to c1 and c2.
     constexpr void Set(const b2Vec2& c1, const b2Vec2& c2) noexcept {
         ex = c1;
         ey = c2;
     }
+    /// Sets the identity matrix.
     constexpr void SetIdentity() noexcept {
         ex.Set(1, 0);
         ey.Set(0, 1);
     }
+    /// Sets every entry to zero.
     constexpr void SetZero() noexcept {
         ex.SetZero();
         ey.SetZero();
@@ -79,6 +87,7 @@ struct b2Mat22 {
     }
 };
 
+/// Entry-wise sum, each entry with Fixed's saturation.
 constexpr b2Mat22 operator+(const b2Mat22& A, const b2Mat22& B) noexcept { return {A.ex + B.ex, A.ey + B.ey}; }
 
 /// A * v, each component an exact sum rounded once.
@@ -94,6 +103,7 @@ constexpr b2Mat22 b2Mul(const b2Mat22& A, const b2Mat22& B) noexcept { return {b
 constexpr b2Mat22 b2MulT(const b2Mat22& A, const b2Mat22& B) noexcept {
     return {b2Vec2(b2Dot(A.ex, B.ex), b2Dot(A.ey, B.ex)), b2Vec2(b2Dot(A.ex, B.ey), b2Dot(A.ey, B.ey))};
 }
+/// Entry-wise absolute value.
 constexpr b2Mat22 b2Abs(const b2Mat22& A) noexcept { return {b2Abs(A.ex), b2Abs(A.ey)}; }
 
 }  // namespace lockbox

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2Mat33 (the manual's Math module): a 3x3 matrix in column-major order, for the joints'
 /// point-plus-angle constraints.
 ///
@@ -11,14 +12,21 @@
 
 namespace lockbox {
 
+/// A 3x3 matrix of Q16.16 entries stored by columns (ex, ey, ez), as in Box2D: the point-plus-angle
+/// effective mass of the weld, revolute and prismatic joints.
 struct b2Mat33 {
+    /// The three columns.
+    ///@{
     b2Vec3 ex;
     b2Vec3 ey;
     b2Vec3 ez;
+    ///@}
 
     constexpr b2Mat33() noexcept = default;
+    /// The matrix with columns c1, c2 and c3.
     constexpr b2Mat33(const b2Vec3& c1, const b2Vec3& c2, const b2Vec3& c3) noexcept : ex(c1), ey(c2), ez(c3) {}
 
+    /// Sets every entry to zero.
     constexpr void SetZero() noexcept {
         ex.SetZero();
         ey.SetZero();

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The manual's Math module on Q16.16: b2Vec2, b2Vec3, b2Mat22, b2Mat33, b2Rot, b2Transform,
 /// b2Sweep and the free functions, plus Fixed, Wide and the scalar functions.
 

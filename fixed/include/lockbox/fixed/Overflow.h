@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Overflow policy of the fixed-point layer.
 ///
 /// Overflow is never undefined behaviour. Every operation that can leave its format's range

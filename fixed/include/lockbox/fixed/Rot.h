@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2Rot (the manual's Math module): a rotation stored as its sine and cosine.
 
 #include "lockbox/fixed/Functions.h"
@@ -6,6 +7,8 @@
 
 namespace lockbox {
 
+/// A rotation stored as its sine and cosine (Q16.16, each within 1 ULP of the exact value), so that
+/// rotating a vector needs no trigonometry. The default is the identity (angle 0).
 struct b2Rot {
     Fixed s;      ///< sine
     Fixed c = 1;  ///< cosine
@@ -15,14 +18,18 @@ struct b2Rot {
     /// From an angle in radians (any value; sin and cos are within 1 ULP).
     explicit b2Rot(Fixed angle) noexcept { Set(angle); }
 
+    /// Sets the rotation to `angle` radians (any value; it is reduced modulo 2 pi).
     void Set(Fixed angle) noexcept { math::SinCos(angle, s, c); }
+    /// Sets the identity rotation (s = 0, c = 1).
     constexpr void SetIdentity() noexcept {
         s = 0;
         c = 1;
     }
     /// The angle in radians, in [-pi, pi].
     Fixed GetAngle() const noexcept { return math::Atan2(s, c); }
+    /// The rotated x axis (c, s): the first column of the rotation matrix.
     constexpr b2Vec2 GetXAxis() const noexcept { return {c, s}; }
+    /// The rotated y axis (-s, c): the second column of the rotation matrix.
     constexpr b2Vec2 GetYAxis() const noexcept { return {-s, c}; }
 };
 

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2Sweep (the manual's Math module): the motion of a body's centre of mass over a step, for
 /// continuous collision. Interpolation is c0 + beta*(c - c0), one rounding per component, so
 /// beta = 0 and beta = 1 give c0 and c exactly.
@@ -7,6 +8,8 @@
 
 namespace lockbox {
 
+/// The motion of a body's centre of mass and angle over one time step, used by time of impact: the
+/// centre moves linearly from c0 to c and the angle from a0 to a, starting at time fraction alpha0.
 struct b2Sweep {
     b2Vec2 localCenter;  ///< centre of mass in body coordinates
     b2Vec2 c0;           ///< centre at the start of the sweep (world)

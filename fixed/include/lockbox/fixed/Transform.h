@@ -1,22 +1,28 @@
 #pragma once
+/// @file
 /// b2Transform (the manual's Math module): a translation and a rotation, the frame of a body.
 
 #include "lockbox/fixed/Rot.h"
 
 namespace lockbox {
 
+/// A rigid transform: a translation p (metres) and a rotation q. It maps a body's local coordinates
+/// to world coordinates: world = q * local + p.
 struct b2Transform {
     b2Vec2 p;  ///< translation, metres
     b2Rot q;   ///< rotation
 
     /// The identity transform.
     constexpr b2Transform() noexcept = default;
+    /// The transform translating by `position` (metres) after rotating by `rotation`.
     constexpr b2Transform(const b2Vec2& position, const b2Rot& rotation) noexcept : p(position), q(rotation) {}
 
+    /// Sets the identity transform (no translation, no rotation).
     constexpr void SetIdentity() noexcept {
         p.SetZero();
         q.SetIdentity();
     }
+    /// Sets the translation (metres) and the rotation from an angle (radians).
     void Set(const b2Vec2& position, Fixed angle) noexcept {
         p = position;
         q.Set(angle);

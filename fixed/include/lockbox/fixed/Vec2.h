@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2Vec2 and its free functions (the manual's Math module) on Q16.16.
 ///
 /// Dot, cross and squared lengths accumulate exactly in 64 bits (a Q32.32 value) and are
@@ -27,6 +28,7 @@ constexpr int64_t SumOfProducts(int32_t a1, int32_t b1, int32_t a2, int32_t b2) 
     }
     return r;
 }
+/// a1*b1 - a2*b2 of raw Q16.16 values, exact as a Q32.32 raw (saturating like SumOfProducts).
 constexpr int64_t DiffOfProducts(int32_t a1, int32_t b1, int32_t a2, int32_t b2) noexcept {
     int64_t r = 0;
     if (__builtin_sub_overflow(int64_t{a1} * b1, int64_t{a2} * b2, &r)) [[unlikely]] {
@@ -39,27 +41,38 @@ constexpr int64_t DiffOfProducts(int32_t a1, int32_t b1, int32_t a2, int32_t b2)
 
 /// A 2D column vector (metres, metres per second, newtons...).
 struct b2Vec2 {
+    /// The components, in the vector's unit (metres for positions).
+    ///@{
     Fixed x;
     Fixed y;
+    ///@}
 
     /// The zero vector (unlike Box2D, never uninitialised).
     constexpr b2Vec2() noexcept = default;
+    /// The vector (xIn, yIn).
     constexpr b2Vec2(Fixed xIn, Fixed yIn) noexcept : x(xIn), y(yIn) {}
 
+    /// Sets both components to zero.
     constexpr void SetZero() noexcept {
         x = Fixed();
         y = Fixed();
     }
+    /// Sets the components to (x_, y_).
     constexpr void Set(Fixed x_, Fixed y_) noexcept {
         x = x_;
         y = y_;
     }
 
+    /// The negated vector (-x, -y); each component saturates like Fixed's negation.
     constexpr b2Vec2 operator-() const noexcept { return {-x, -y}; }
     /// Component access: 0 is x, 1 is y.
     constexpr Fixed operator()(int i) const noexcept { return i == 0 ? x : y; }
+    /// Mutable component access: 0 is x, any other index is y.
     constexpr Fixed& operator()(int i) noexcept { return i == 0 ? x : y; }
 
+    /// In-place sum, difference and scaling by a scalar, component by component with Fixed's
+    /// rounding and saturation.
+    ///@{
     constexpr b2Vec2& operator+=(const b2Vec2& v) noexcept {
         x += v.x;
         y += v.y;
@@ -75,6 +88,7 @@ struct b2Vec2 {
         y *= a;
         return *this;
     }
+    ///@}
 
     /// Exact x² + y² as Q32.32 (no overflow for any vector inside the world bounds).
     constexpr Wide LengthSquaredWide() const noexcept {
@@ -131,11 +145,17 @@ constexpr Fixed b2Vec2::Normalize() noexcept {
     return length;
 }
 
+/// Component-wise sum and difference, and scaling by a scalar (each product rounded once).
+///@{
 constexpr b2Vec2 operator+(const b2Vec2& a, const b2Vec2& b) noexcept { return {a.x + b.x, a.y + b.y}; }
 constexpr b2Vec2 operator-(const b2Vec2& a, const b2Vec2& b) noexcept { return {a.x - b.x, a.y - b.y}; }
 constexpr b2Vec2 operator*(Fixed s, const b2Vec2& v) noexcept { return {s * v.x, s * v.y}; }
+///@}
+/// Exact component-wise equality of the raw values.
+///@{
 constexpr bool operator==(const b2Vec2& a, const b2Vec2& b) noexcept { return a.x == b.x && a.y == b.y; }
 constexpr bool operator!=(const b2Vec2& a, const b2Vec2& b) noexcept { return !(a == b); }
+///@}
 
 /// Exact dot product as Q32.32.
 constexpr Wide b2DotWide(const b2Vec2& a, const b2Vec2& b) noexcept {

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2Vec3 (the manual's Math module): a 3D column vector, used by the 3x3 joint solves.
 
 #include "lockbox/fixed/Fixed.h"
@@ -7,22 +8,34 @@
 
 namespace lockbox {
 
+/// A 3D column vector of Q16.16 components; the 3x3 block solvers of the weld, revolute and
+/// prismatic joints use it for (linear x, linear y, angular) impulses and velocities.
 struct b2Vec3 {
+    /// The components; their unit is the quantity's (a joint's b2Vec3 impulse mixes N*s and N*m*s).
+    ///@{
     Fixed x;
     Fixed y;
     Fixed z;
+    ///@}
 
     constexpr b2Vec3() noexcept = default;
+    /// The vector (xIn, yIn, zIn).
     constexpr b2Vec3(Fixed xIn, Fixed yIn, Fixed zIn) noexcept : x(xIn), y(yIn), z(zIn) {}
 
+    /// Sets all three components to zero.
     constexpr void SetZero() noexcept { x = y = z = Fixed(); }
+    /// Sets the components to (x_, y_, z_).
     constexpr void Set(Fixed x_, Fixed y_, Fixed z_) noexcept {
         x = x_;
         y = y_;
         z = z_;
     }
 
+    /// The negated vector; each component saturates like Fixed's negation.
     constexpr b2Vec3 operator-() const noexcept { return {-x, -y, -z}; }
+    /// In-place sum, difference and scaling by a scalar, component by component with Fixed's
+    /// rounding and saturation.
+    ///@{
     constexpr b2Vec3& operator+=(const b2Vec3& v) noexcept {
         x += v.x;
         y += v.y;
@@ -41,11 +54,16 @@ struct b2Vec3 {
         z *= s;
         return *this;
     }
+    ///@}
 };
 
+/// Component-wise sum and difference, and scaling by a scalar (each product rounded once).
+///@{
 constexpr b2Vec3 operator+(const b2Vec3& a, const b2Vec3& b) noexcept { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 constexpr b2Vec3 operator-(const b2Vec3& a, const b2Vec3& b) noexcept { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 constexpr b2Vec3 operator*(Fixed s, const b2Vec3& a) noexcept { return {s * a.x, s * a.y, s * a.z}; }
+///@}
+/// Exact component-wise equality of the raw values.
 constexpr bool operator==(const b2Vec3& a, const b2Vec3& b) noexcept { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
 namespace detail {

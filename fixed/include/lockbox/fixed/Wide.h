@@ -1,5 +1,6 @@
 #pragma once
-/// lockbox::Wide: Q32.32 in an int64_t, for the quantities NUMERICS shows Q16.16 cannot carry:
+/// @file
+/// lockbox::Wide: Q32.32 in an int64_t, for the quantities Q16.16 cannot carry (docs/numerics.md):
 /// mass, rotational inertia and their inverses, effective masses, impulses, spring
 /// coefficients and squared lengths. Range +-2.1e9, resolution 2.3e-10.
 ///
@@ -116,10 +117,18 @@ constexpr int64_t DivShiftRound64(int64_t a, int64_t b, int shift, const char* o
 }
 }  // namespace detail
 
+/// Q32.32 fixed-point number in an int64_t: the type of mass, inertia and their inverses, effective
+/// masses, impulses and squared lengths, which overflow or lose too much precision in Q16.16. Range
+/// about +-2.1e9, resolution 2^-32. Arithmetic rounds to nearest (ties away from zero) and
+/// saturates to +-kMaxRaw (or traps in checked builds, see Overflow.h); conversions to and from
+/// Fixed are explicit.
 class Wide {
 public:
+    /// Number of fractional bits: a raw value r means r / 2^32.
     static constexpr int kFractionBits = 32;
+    /// The raw value of 1.0 (2^32).
     static constexpr int64_t kOneRaw = int64_t{1} << kFractionBits;
+    /// Largest raw value (INT64_MAX, just under 2^31); the saturation limit is +-kMaxRaw.
     static constexpr int64_t kMaxRaw = std::numeric_limits<int64_t>::max();
 
     constexpr Wide() noexcept = default;
@@ -134,11 +143,13 @@ public:
     /// Exact widening of a Q16.16 value.
     constexpr explicit Wide(Fixed f) noexcept : m_raw(int64_t{f.Raw()} * (int64_t{1} << 16)) {}
 
+    /// Bit-exact construction from a raw Q32.32 value.
     static constexpr Wide FromRaw(int64_t raw) noexcept {
         Wide w;
         w.m_raw = raw;
         return w;
     }
+    /// The raw Q32.32 value.
     constexpr int64_t Raw() const noexcept { return m_raw; }
 
     /// num/den correctly rounded; den must not be 0.
@@ -174,9 +185,15 @@ public:
     /// For display only.
     constexpr double ToDouble() const noexcept { return static_cast<double>(m_raw) / static_cast<double>(kOneRaw); }
 
+    /// Compares the raw values: the order and equality of the numbers they represent.
+    ///@{
     constexpr auto operator<=>(const Wide&) const noexcept = default;
     constexpr bool operator==(const Wide&) const noexcept = default;
+    ///@}
 
+    /// Unary plus returns the value; unary minus negates it exactly (the raw INT64_MIN, which
+    /// arithmetic never produces, saturates to kMaxRaw).
+    ///@{
     constexpr Wide operator+() const noexcept { return *this; }
     constexpr Wide operator-() const noexcept {
         if (m_raw == std::numeric_limits<int64_t>::min()) [[unlikely]] {
@@ -185,8 +202,13 @@ public:
         }
         return FromRaw(-m_raw);
     }
+    ///@}
     // The two tests of + and - are separate branches to the same saturation: GCC then
     // branches on the overflow flag directly instead of materialising it (same results).
+    /// Arithmetic on two Wide values. + and - are exact unless the result leaves the range; * and /
+    /// round the exact 128-bit result to the nearest multiple of 2^-32, ties away from zero.
+    /// Out-of-range results and division by zero saturate to +-kMaxRaw (or trap in checked builds).
+    ///@{
     [[gnu::always_inline]] friend constexpr Wide operator+(Wide a, Wide b) noexcept {
         int64_t r = 0;
         if (__builtin_add_overflow(a.m_raw, b.m_raw, &r)) [[unlikely]]
@@ -209,10 +231,14 @@ public:
     friend constexpr Wide operator/(Wide a, Wide b) noexcept {
         return FromRaw(detail::DivShiftRound64(a.m_raw, b.m_raw, kFractionBits, "Wide::operator/"));
     }
+    ///@}
+    /// Compound assignment: `a op= b` is `a = a op b`, with the same rounding and saturation.
+    ///@{
     constexpr Wide& operator+=(Wide b) noexcept { return *this = *this + b; }
     constexpr Wide& operator-=(Wide b) noexcept { return *this = *this - b; }
     constexpr Wide& operator*=(Wide b) noexcept { return *this = *this * b; }
     constexpr Wide& operator/=(Wide b) noexcept { return *this = *this / b; }
+    ///@}
 
 private:
     static Wide SaturateAdd(Wide a, Wide b) noexcept {

@@ -1,10 +1,11 @@
 #pragma once
+/// @file
 /// Q32.32 vectors and matrices for the joint solvers: impulses (N*s), effective-mass matrices
 /// K (1/kg) and their solves.
 ///
 /// Why: K's entries are inverse masses (up to ~1e3 1/kg) plus inverse inertias times squared
 /// arms (up to ~1e6 and more), which overflow Q16.16, and its 3x3 determinant spans 1e-9..5e11
-/// (NUMERICS Table 1). Here K is stored in Wide, normalised by a power of two so that its
+/// (docs/numerics.md, "Formats"). Here K is stored in Wide, normalised by a power of two so that its
 /// largest entry has kNormBits significant bits, and solved by Cramer's rule with exact 128-bit
 /// cofactors and one rounded division per component.
 
@@ -176,9 +177,12 @@ constexpr b2WideVec2 b2ClampLength(const b2WideVec2& v, Wide maxLength) noexcept
 /// (InitVelocityConstraints) and each iteration pays only for the right-hand side. Solve gives
 /// the bits of b2WideMat22::Solve, which is this same code run once.
 struct b2WideSolver22 {
-    int s = 0;                                   ///< the normalising exponent (NormShift)
-    int64_t a11 = 0, a21 = 0, a12 = 0, a22 = 0;  ///< K's entries scaled by 2^-s
-    detail::S128 det;                            ///< exact a11 a22 - a12 a21
+    int s = 0;  ///< the normalising exponent (NormShift)
+    /// K's entries scaled by 2^-s (raw Q32.32 values shifted right by the normalising exponent).
+    ///@{
+    int64_t a11 = 0, a21 = 0, a12 = 0, a22 = 0;
+    ///@}
+    detail::S128 det;  ///< exact a11 a22 - a12 a21
 
     constexpr b2WideSolver22() noexcept = default;
     /// Prepares K = [ex ey] (Q32.32 columns).
@@ -324,8 +328,11 @@ private:
 
 /// Symmetric or general 2x2 matrix of Q32.32 entries, column-major (an effective-mass K, 1/kg).
 struct b2WideMat22 {
+    /// The two columns (Q32.32 entries, 1/kg for an effective mass).
+    ///@{
     b2WideVec2 ex;
     b2WideVec2 ey;
+    ///@}
 
     /// Solves K x = b for a Q32.32 right-hand side (m/s); x is an impulse (N*s). A singular K
     /// gives x = 0. For many solves with one K, prepare a b2WideSolver22 once.
@@ -356,9 +363,12 @@ constexpr b2WideVec2 Mul(const b2WideMat22& m, const Vec& v) noexcept {
 /// 3x3 matrix of Q32.32 entries, column-major (the point-plus-angle K of revolute, prismatic
 /// and weld joints).
 struct b2WideMat33 {
+    /// The three columns (Q32.32 entries).
+    ///@{
     b2WideVec3 ex;
     b2WideVec3 ey;
     b2WideVec3 ez;
+    ///@}
 
     /// Solves K x = b (b in m/s and rad/s as Q32.32). A singular K gives x = 0. For many solves
     /// with one K, prepare a b2WideSolver33 once.
@@ -368,6 +378,8 @@ struct b2WideMat33 {
 
     /// Solves the upper 2x2 block: K22 x = b. A singular block gives x = 0.
     constexpr b2WideVec2 Solve22(const b2WideVec2& b) const noexcept { return Upper22().Solve(b); }
+    /// Solves the upper 2x2 block K22 x = b for a Q16.16 right-hand side; a singular block
+    /// gives x = 0.
     constexpr b2WideVec2 Solve22(const b2Vec2& b) const noexcept { return Solve22(b2WideVec2(b)); }
 
     /// The upper 2x2 block prepared for many solves.

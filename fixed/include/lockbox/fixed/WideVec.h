@@ -1,6 +1,7 @@
 #pragma once
+/// @file
 /// Q32.32 vectors: impulses (N*s) and wide velocities (m/s), for the contact and joint solvers,
-/// whose accumulated impulses and inverse-mass responses do not fit Q16.16 (NUMERICS Table 1).
+/// whose accumulated impulses and inverse-mass responses do not fit Q16.16 (docs/numerics.md, "Formats").
 
 #include <concepts>
 
@@ -12,8 +13,11 @@ namespace lockbox {
 
 /// A 2D vector in Q32.32: an impulse (N*s) or a wide velocity (m/s).
 struct b2WideVec2 {
+    /// The components as Q32.32 (N*s for an impulse, m/s for a velocity).
+    ///@{
     Wide x;
     Wide y;
+    ///@}
 
     /// Zero, or from components (Q32.32).
     constexpr b2WideVec2() noexcept = default;
@@ -72,14 +76,18 @@ constexpr b2WideVec2 operator*(W s, const b2Vec2& d) noexcept {
 
 /// A 3D vector in Q32.32 (point impulse plus angular impulse).
 struct b2WideVec3 {
+    /// The components as Q32.32 (x and y linear, z angular).
+    ///@{
     Wide x;
     Wide y;
     Wide z;
+    ///@}
 
     /// Zero, or from components (Q32.32).
     constexpr b2WideVec3() noexcept = default;
     /// Zero, or from components (Q32.32).
     constexpr b2WideVec3(Wide xIn, Wide yIn, Wide zIn) noexcept : x(xIn), y(yIn), z(zIn) {}
+    /// Exact widening of a Q16.16 vector.
     constexpr explicit b2WideVec3(const b2Vec3& v) noexcept : x(Wide(v.x)), y(Wide(v.y)), z(Wide(v.z)) {}
 
     /// Sets all components to zero.

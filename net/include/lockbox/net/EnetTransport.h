@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// EnetTransport: the Transport interface over ENet 1.3.17 (Debian libenet-dev), for the
 /// lockstep server (docs/net.md). One UDP socket, IPv4 only (an ENet 1.3 limit), and
 /// two channels per connection:
@@ -25,11 +26,18 @@
 #include "lockbox/Export.h"
 #include "lockbox/net/Transport.h"
 
+/// ENet's host and peer types, declared as enet/enet.h declares them so that this header does
+/// not pull ENet's header into every user of the transport.
+///@{
 typedef struct _ENetHost ENetHost;
 typedef struct _ENetPeer ENetPeer;
+///@}
 
 namespace lockbox::net {
 
+/// The Transport interface over ENet: one IPv4 UDP socket, a reliable ordered channel for
+/// Delivery::e_reliable and an unreliable one for the rest, ENet's wall clock (see the file
+/// comment).
 class LOCKBOX_API EnetTransport final : public Transport {
 public:
     /// ENet channel of Delivery::e_reliable datagrams (reliable, ordered).

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// LatencyTransport (docs/net.md "LatencyTransport"): a decorator over any Transport that
 /// impairs what it receives with seeded latency, jitter, loss, duplication and reordering, so
 /// a game can test its netcode on real sockets (or on SimNet) with a long cable between peers.
@@ -47,6 +48,9 @@ struct LatencyStats {
     uint64_t forgotten = 0;   ///< held ones dropped by Disconnect (copies included)
 };
 
+/// A Transport decorator that delays, drops, duplicates and reorders what the inner transport
+/// receives, by seeded integer draws (see the file comment); sends pass through. Wrap both ends to
+/// impair both directions.
 class LOCKBOX_API LatencyTransport final : public Transport {
 public:
     /// `inner` must outlive the decorator. Any seed is valid (print it when a test fails).
@@ -69,12 +73,14 @@ public:
 
     /// Changes the impairments for datagrams that arrive from now on (held ones keep theirs).
     void SetProfile(const LatencyProfile& profile) noexcept { m_profile = profile; }
+    /// The impairments applied to datagrams arriving now.
     const LatencyProfile& Profile() const noexcept { return m_profile; }
     /// Due time of the earliest held datagram, UINT64_MAX when none is held: a loop may sleep
     /// until then.
     uint64_t NextDueMicros() const noexcept;
     /// Datagrams held and not yet due.
     size_t Held() const noexcept { return m_held.size(); }
+    /// What the decorator did to the datagrams it received (counts since construction).
     const LatencyStats& Impairments() const noexcept { return m_impairments; }
     /// The seed the decorator was made with.
     uint64_t Seed() const noexcept { return m_seed; }

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The lockstep client (docs/net.md "Sessions"): joins a LockstepServer, sends its
 /// player's inputs, and steps its world one frame at a time, only when every player's input
 /// for that frame has been confirmed by the server. Before each step it calls the game's
@@ -54,11 +55,13 @@ struct ClientConfig {
     uint64_t pingMicros = 250'000;          ///< RTT probe period once running
     uint32_t maxCatchUpFrames = 16;         ///< frames stepped per Update at most
     uint32_t velocityIterations = 8;        ///< step settings (match the scene's)
+    /// Step settings: position iterations per step (match the scene's).
     uint32_t positionIterations = 3;
 };
 
 /// Something the caller may want to know about.
 struct ClientEvent {
+    /// What happened; frame and reason are set where the kind says.
     enum class Kind : uint8_t {
         e_connected,       ///< Welcome received (frame: the start frame)
         e_rejected,        ///< the server refused us (reason)
@@ -70,8 +73,12 @@ struct ClientEvent {
         e_disconnected,    ///< the session ended (reason: timeout, server closing, ...)
         e_desync,          ///< the server saw diverging hashes at `frame`
     };
+    /// What happened.
     Kind kind = Kind::e_connected;
+    /// The frame concerned (-1 when none): the start frame for e_connected, the diverging one for
+    /// e_desync.
     int32_t frame = -1;
+    /// Why the session ended or was refused (e_disconnected, e_rejected), else e_none.
     RejectReason reason = RejectReason::e_none;
 };
 
@@ -91,6 +98,9 @@ enum class ClientState : uint8_t {
 using ConfirmedFrameHook =
     std::function<void(int32_t frame, std::span<const uint8_t> inputs, uint64_t worldHash, const b2World& world)>;
 
+/// One player's end of a lockstep match: joins a LockstepServer, sends its local inputs and steps
+/// the world through confirmed frames only, so every client's world goes through the same states
+/// (see the file comment). Non-blocking; call Update often.
 class LOCKBOX_API LockstepClient {
 public:
     /// `server` is the server's PeerId on `transport`. The transport, world and game must
@@ -124,6 +134,8 @@ public:
     /// Events since the last call, oldest first.
     std::vector<ClientEvent> TakeEvents();
 
+    /// Where the client is in its session (connecting, syncing, loading, catching up, running,
+    /// closed).
     ClientState State() const noexcept;
     /// Next frame to step: the world holds the state after every frame before it.
     int32_t Frame() const noexcept;

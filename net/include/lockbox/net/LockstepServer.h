@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The lockstep server (docs/net.md "Sessions"): assigns slots, collects every
 /// player's inputs, relays each confirmed frame's inputs to every client, compares the clients'
 /// state hashes, times out silent clients and brings late joiners in through a snapshot.
@@ -47,8 +48,11 @@ struct ServerConfig {
     /// this game (both outlive the server), reports its own hash and serves late joiners from
     /// its own state. Both null: relay mode (late joiners get a live client's snapshot).
     b2World* world = nullptr;
+    /// The game that applies each confirmed frame's inputs to `world` (authoritative mode); null in
+    /// relay mode.
     replay::Game* game = nullptr;
     uint32_t velocityIterations = 8;  ///< authoritative mode step settings
+    /// Authoritative mode step settings: position iterations per step.
     uint32_t positionIterations = 3;
     /// Admission (a match server that admits clients by token): when set, a Hello from `peer`
     /// may take only the slot this returns, whatever it requested or the token it carries
@@ -60,11 +64,13 @@ struct ServerConfig {
 /// A state hash reported for one frame.
 struct SlotHash {
     int32_t slot = -1;  ///< the reporting slot; -1: the authoritative server
+    /// The reported hash of that frame (world hash folded with the game's user state).
     uint64_t hash = 0;
 };
 
 /// Something the caller may want to know about.
 struct ServerEvent {
+    /// What happened; the fields below that a kind uses are named next to it.
     enum class Kind : uint8_t {
         e_joined,        ///< a client got a slot (frame: the start frame, or -1 for a joiner)
         e_started,       ///< enough slots filled: frames start confirming
@@ -76,6 +82,7 @@ struct ServerEvent {
         e_desync,        ///< the first mismatching hash reports: `frame` and every hash known then
         e_spoofedInput,  ///< `peer` sent inputs claiming `claimedSlot`, which it does not own
     };
+    /// What happened.
     Kind kind = Kind::e_joined;
     int32_t slot = -1;                           ///< the slot concerned (-1 when none)
     PeerId peer = kNoPeer;                       ///< the transport peer concerned
@@ -95,6 +102,7 @@ struct ServerStats {
     uint64_t rejected = 0;          ///< Hellos answered with Reject
     uint64_t desyncFrames = 0;      ///< frames with mismatching reports (one event for the first)
     uint64_t snapshotsServed = 0;   ///< snapshots fully delivered to joiners
+    /// Datagrams the server sent.
     uint64_t datagramsSent = 0;
     int32_t confirmedFrames = 0;  ///< frames confirmed so far (= the next frame to confirm)
     /// Sum of malformed[].
@@ -107,13 +115,21 @@ struct ServerStats {
 
 /// What the server knows of one slot (for displays and tests).
 struct SlotInfo {
+    /// Lifecycle of a slot: free (no client), joining (a late joiner loading or catching up), live
+    /// (playing), interrupted (its client is silent but not yet timed out), disconnected (dropped;
+    /// it plays empty input).
     enum class State : uint8_t { e_free, e_joining, e_live, e_interrupted, e_disconnected };
+    /// Where the slot is in that lifecycle.
     State state = State::e_free;
+    /// The transport peer that owns the slot (kNoPeer when free).
     PeerId peer = kNoPeer;
     int32_t nextInputFrame = 0;  ///< every input of this slot before this frame has arrived
     int32_t ackedConfirmed = 0;  ///< the client has every confirmed frame before this one
 };
 
+/// The authoritative end of a lockstep match: confirms each frame once every live slot's input has
+/// arrived and relays the confirmed inputs to every client (see the file comment). Non-blocking;
+/// one per match.
 class LOCKBOX_API LockstepServer {
 public:
     /// The transport must outlive the server. Invalid settings are clamped into range.
@@ -130,7 +146,9 @@ public:
 
     /// Events since the last call, oldest first.
     std::vector<ServerEvent> TakeEvents();
+    /// Counters since construction.
     const ServerStats& Stats() const noexcept;
+    /// The settings in use (after clamping into range).
     const ServerConfig& Config() const noexcept;
     /// Next frame to confirm (every frame before it is confirmed).
     int32_t ConfirmedFrames() const noexcept;

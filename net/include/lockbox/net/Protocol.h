@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The lockstep wire protocol (docs/net.md "Protocol"): one versioned codec for every
 /// datagram a LockstepServer and its LockstepClients exchange.
 ///
@@ -52,6 +53,7 @@ struct Header {
     uint8_t version = kProtocolVersion;  ///< protocol version of the sender
     uint32_t token = 0;                  ///< session token (0 before a Welcome)
     uint16_t sequence = 0;               ///< per-destination datagram counter, wraps
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const Header&) const = default;
 };
 
@@ -78,6 +80,7 @@ struct Hello {
     uint32_t token = 0;                ///< a previous session's token to reconnect, else 0
     uint8_t requestedSlot = kAnySlot;  ///< 0 .. kMaxPlayers-1, or kAnySlot
     uint64_t clientTime = 0;           ///< the client's clock, microseconds (echoed in Welcome)
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const Hello&) const = default;
 };
 
@@ -94,12 +97,15 @@ struct Welcome {
     bool lateJoin = false;      ///< true: a snapshot follows, inputs only after Admit
     uint64_t echoTime = 0;      ///< Hello.clientTime, for a first RTT sample
     uint64_t holdMicros = 0;    ///< how long the server held the Hello before answering
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const Welcome&) const = default;
 };
 
 /// The server refuses a Hello (or drops a joiner).
 struct Reject {
+    /// Why the server refused.
     RejectReason reason = RejectReason::e_none;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const Reject&) const = default;
 };
 
@@ -109,6 +115,7 @@ struct Inputs {
     uint8_t slot = 0;            ///< the slot these inputs claim
     int32_t firstFrame = 0;      ///< >= 0
     std::vector<uint8_t> bytes;  ///< count * inputBytes, count in 1 .. kMaxRunFrames
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const Inputs&) const = default;
 };
 
@@ -117,6 +124,7 @@ struct Inputs {
 struct InputAck {
     int32_t nextFrame = 0;  ///< >= 0
     int32_t hashFrame = 0;  ///< >= 0
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const InputAck&) const = default;
 };
 
@@ -125,25 +133,34 @@ struct InputAck {
 struct Confirmed {
     int32_t firstFrame = 0;      ///< >= 0
     std::vector<uint8_t> bytes;  ///< count * playerCount * inputBytes, count in 1 .. kMaxRunFrames
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const Confirmed&) const = default;
 };
 
 /// Client -> server: every confirmed frame before nextFrame has arrived.
 struct ConfirmedAck {
     int32_t nextFrame = 0;  ///< >= 0
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const ConfirmedAck&) const = default;
 };
 
 /// RTT probe: the sender's clock in microseconds.
 struct Ping {
+    /// The sender's clock when it sent the probe, microseconds (any epoch: only the sender reads it
+    /// back).
     uint64_t time = 0;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const Ping&) const = default;
 };
 
 /// RTT answer: the probe's time and how long the answerer held it (microseconds).
 struct Pong {
+    /// Ping.time of the probe being answered, microseconds on the prober's clock.
     uint64_t echoTime = 0;
+    /// Microseconds between the answerer's receiving the Ping and sending this Pong; the prober
+    /// subtracts it from the round trip.
     uint64_t holdMicros = 0;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const Pong&) const = default;
 };
 
@@ -151,24 +168,30 @@ struct Pong {
 /// the game's user state). Resent until acked through InputAck.hashFrame.
 struct HashReport {
     int32_t frame = 0;  ///< >= 0
+    /// The state hash after that frame (b2WorldHash folded with the game's user state).
     uint64_t hash = 0;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const HashReport&) const = default;
 };
 
 /// Nothing to say, still here.
 struct KeepAlive {
+    /// Always equal: the message has no fields.
     bool operator==(const KeepAlive&) const = default;
 };
 
 /// The sender leaves (sent a few times; the receiver also times out).
 struct Disconnect {
+    /// Why the sender leaves (e_left when on purpose).
     RejectReason reason = RejectReason::e_left;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const Disconnect&) const = default;
 };
 
 /// Server -> client: send me a snapshot of your current confirmed state (relay mode late join).
 struct SnapshotRequest {
     int32_t minFrame = 0;  ///< the snapshot's frame must be >= this
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const SnapshotRequest&) const = default;
 };
 
@@ -178,26 +201,34 @@ struct SnapshotChunk {
     uint32_t totalSize = 0;      ///< 1 .. kMaxSnapshotBytes
     uint32_t index = 0;          ///< chunk index, index * kSnapshotChunkBytes < totalSize
     std::vector<uint8_t> bytes;  ///< exactly min(kSnapshotChunkBytes, totalSize - offset) bytes
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const SnapshotChunk&) const = default;
 };
 
 /// Receiver of a snapshot: chunk `index` of the snapshot of `frame` arrived.
 struct SnapshotAck {
+    /// The frame of the snapshot being acknowledged (SnapshotChunk.frame).
     int32_t frame = 0;
+    /// The chunk index received (SnapshotChunk.index).
     uint32_t index = 0;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const SnapshotAck&) const = default;
 };
 
 /// Server -> joiner: its hash matched; it sends inputs from joinFrame on (frames before are
 /// empty for its slot). Resent until inputs for joinFrame arrive.
 struct Admit {
+    /// First frame for which the joiner sends its inputs (>= 0).
     int32_t joinFrame = 0;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const Admit&) const = default;
 };
 
 /// Server -> client: the clients' states diverged at `frame` (first mismatching report).
 struct DesyncNotice {
+    /// First frame whose hash reports disagree (>= 0).
     int32_t frame = 0;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const DesyncNotice&) const = default;
 };
 
@@ -275,6 +306,7 @@ public:
     size_t MessageCount() const noexcept { return m_messages; }
     /// The datagram so far.
     std::span<const uint8_t> Bytes() const noexcept { return m_bytes; }
+    /// Bytes of the datagram so far (header included).
     size_t Size() const noexcept { return m_bytes.size(); }
 
 private:

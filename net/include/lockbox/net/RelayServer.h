@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// RelayServer (docs/rollback.md "Relayed matches"): forwards datagrams between the
 /// members of one match. A member claims its slot with a token (RelayWire.h join); from then
 /// on the relay knows the member by its PeerId on the relay's transport and forwards what it
@@ -22,6 +23,7 @@ namespace lockbox::net {
 
 /// Settings of a relay.
 struct RelayServerConfig {
+    /// The match this relay serves; datagrams with another match id are refused.
     uint32_t matchId = 1;
     /// One secret per slot (slot i is claimed with tokens[i]); 2 .. kRelayMaxSlots entries.
     /// Tokens are handed out by the matchmaker; 0 is a valid token but a poor secret.
@@ -38,6 +40,8 @@ struct RelayServerStats {
     uint64_t sendFailures = 0;    ///< the transport refused a forward or a welcome
 };
 
+/// Forwards opaque datagrams between the members of one match, each known by the slot its token
+/// claims (see the file comment). Non-blocking: call Poll often.
 class LOCKBOX_API RelayServer {
 public:
     /// `transport` must outlive the relay. Throws std::invalid_argument when the slot count is
@@ -50,6 +54,7 @@ public:
 
     /// The PeerId holding slot `slot`, or kNoPeer.
     PeerId SlotPeer(uint32_t slot) const noexcept;
+    /// Counters since construction.
     const RelayServerStats& Stats() const noexcept { return m_stats; }
 
 private:

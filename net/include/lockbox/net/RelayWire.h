@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The relay's datagram header (RelayServer.h, RelayedTransport.h; docs/rollback.md "Relayed
 /// matches"). A relay forwards opaque payloads between the members of one match, so players
 /// behind NATs that cannot reach each other directly still play a peer-to-peer-style session:
@@ -25,11 +26,14 @@
 
 namespace lockbox::net {
 
+/// Version byte of the relay header; a datagram with another version is refused.
 inline constexpr uint8_t kRelayVersion = 1;
+/// Bytes of the relay header (magic 2, version 1, kind 1, match id 4, slot 1).
 inline constexpr size_t kRelayHeaderBytes = 9;
 /// Largest slot count a relay serves (8 players plus spectators).
 inline constexpr uint32_t kRelayMaxSlots = 32;
 
+/// What a relay datagram is (byte 3 of the header).
 enum class RelayKind : uint8_t {
     e_join = 1,      ///< member -> relay: claim a slot with its token
     e_welcome = 2,   ///< relay -> member: the slot is yours (answer to every valid join)
@@ -39,8 +43,12 @@ enum class RelayKind : uint8_t {
 
 /// A parsed relay datagram; `payload` views the input bytes (data kinds only).
 struct RelayFrame {
+    /// What the datagram is.
     RelayKind kind = RelayKind::e_join;
+    /// The match id; the relay drops datagrams whose id is not the one it serves.
     uint32_t matchId = 0;
+    /// join: the slot claimed; welcome: the slot granted; e_toSlot: the destination; e_fromSlot:
+    /// the source (< kRelayMaxSlots).
     uint8_t slot = 0;
     uint64_t token = 0;                ///< join only
     std::span<const uint8_t> payload;  ///< e_toSlot / e_fromSlot only, never empty

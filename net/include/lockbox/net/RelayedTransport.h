@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// RelayedTransport (docs/rollback.md "Relayed matches"): a Transport that reaches
 /// the other members of a match through a RelayServer. It wraps the transport that reaches the
 /// relay; the other members appear as PeerIds equal to their slot numbers, so a RollbackPeer
@@ -21,6 +22,7 @@ namespace lockbox::net {
 /// Settings of a relayed member.
 struct RelayedTransportConfig {
     PeerId relay = kNoPeer;  ///< the relay's PeerId on the inner transport
+    /// The match id, the same for every member and the relay.
     uint32_t matchId = 1;
     uint32_t slot = 0;                  ///< this member's slot, < slots
     uint32_t slots = 2;                 ///< the relay's slot count, 2 .. kRelayMaxSlots
@@ -28,6 +30,8 @@ struct RelayedTransportConfig {
     uint64_t joinRetryMicros = 100000;  ///< join resend interval until welcomed, >= 1
 };
 
+/// A Transport to the other members of a match through a RelayServer: the members appear as PeerIds
+/// equal to their slots, so any session runs over a relay unchanged (see the file comment).
 class LOCKBOX_API RelayedTransport final : public Transport {
 public:
     /// `inner` must outlive this transport. Throws std::invalid_argument for a slot outside

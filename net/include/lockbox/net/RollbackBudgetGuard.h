@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// RollbackBudgetGuard (docs/rollback.md, "The budget guard"): chooses a rollback session's
 /// input delay from what its rollbacks measurably cost, so that the game's re-simulation
 /// stays inside a time budget per tick. Each frame of input delay takes about one frame off
@@ -69,8 +70,10 @@ public:
     /// Rollbacks kept since the last change.
     uint32_t RollbacksKept() const noexcept { return static_cast<uint32_t>(m_kept.size()); }
     /// Delay changes so far, up and down.
+    ///@{
     uint32_t Raises() const noexcept { return m_raises; }
     uint32_t Lowerings() const noexcept { return m_lowerings; }
+    ///@}
 
 private:
     struct Sample {

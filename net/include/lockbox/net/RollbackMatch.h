@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// RollbackMatch (docs/rollback.md, "One object for the common case"): a peer-to-peer rollback
 /// match of a game whose state is one lockbox world plus a replay::Game, assembled in one
 /// place. RollbackMatchBuilder takes the players (local ones, remote ones by address or by
@@ -67,8 +68,10 @@ LOCKBOX_API const char* MatchSettingName(MatchSetting setting) noexcept;
 
 /// Why Build() refused (setting e_none: it did not).
 struct RollbackMatchError {
+    /// The refused setting; e_none when Build() succeeded.
     MatchSetting setting = MatchSetting::e_none;
     std::string message;  ///< one line naming the setting and the bad value
+    /// True when Build() refused (an error is present), so `if (build.error)` reads "on error".
     explicit operator bool() const noexcept { return setting != MatchSetting::e_none; }
 };
 
@@ -76,7 +79,9 @@ class RollbackMatch;
 
 /// What Build() made: a match, or the error (exactly one of them).
 struct RollbackMatchBuild {
+    /// The match, or nullptr when `error` is set.
     std::unique_ptr<RollbackMatch> match;
+    /// Why Build() refused; empty (setting e_none) when `match` is set.
     RollbackMatchError error;
 };
 
@@ -109,6 +114,7 @@ struct RollbackMatchEnd {
     bool finished = false;  ///< frame `frame` is final here and every remote hashed it or left
     bool timedOut = false;  ///< the wait for the remotes hit the timeout
     bool failed = false;    ///< phase e_failed (`failure` says why)
+    /// Why the match failed (a one-line reason), empty unless `failed`.
     std::string failure;
     int32_t frame = -1;                      ///< the last frame (EndAt's)
     uint64_t hash = 0;                       ///< this peer's state hash at `frame` (FoldedStateHash), when finished
@@ -133,7 +139,7 @@ public:
     RollbackMatchBuilder& RemotePlayer(uint32_t player, PeerId peer);
     /// Bytes of one player's input per frame, 1 .. kRollbackMaxInputBytes (default 8).
     RollbackMatchBuilder& InputBytes(uint32_t bytes);
-    /// Frames between adding a local input and the frame it is applied in, 0 ..
+    /// Frames between adding a local input and the frame it is applied in, from 0 to
     /// kRollbackMaxInputDelay (default 2).
     RollbackMatchBuilder& InputDelay(uint32_t frames);
     /// Frames the match may run ahead on predictions, 1 .. kRollbackMaxWindow (default 8).
@@ -190,6 +196,10 @@ private:
     WorldStepSettings m_step;
 };
 
+/// A peer-to-peer rollback match of one lockbox world and a replay::Game: owns the session, the
+/// world adapter, the peer and the transports it opened, runs the per-tick order in Tick and ends
+/// the match cleanly at a frame every peer agrees on (see the file comment). Made by
+/// RollbackMatchBuilder.
 class LOCKBOX_API RollbackMatch {
 public:
     ~RollbackMatch();
@@ -215,6 +225,7 @@ public:
     /// Leaves now (RbDisconnect to every remote); the phase becomes e_ended (not finished).
     void Leave();
 
+    /// Where the match is (synchronizing, running, ending, ended, failed).
     MatchPhase Phase() const noexcept { return m_phase; }
     /// The end so far (complete once `ended`).
     const RollbackMatchEnd& End() const noexcept { return m_end; }
@@ -225,9 +236,13 @@ public:
     /// The folded state hash of the world and game now (FoldedStateHash).
     uint64_t StateHash() const;
 
+    /// The parts the match owns, for what it does not cover itself (spectators, the budget guard,
+    /// stats); they live as long as the match.
+    ///@{
     RollbackSession& Session() noexcept { return *m_session; }
     RollbackPeer& Peer() noexcept { return *m_peer; }
     WorldGameAdapter& Adapter() noexcept { return *m_adapter; }
+    ///@}
     /// The transport the peer runs on (the LatencyTransport when there is one).
     Transport& Net() noexcept { return *m_net; }
     /// The UdpTransport the match opened (UdpPort), else nullptr.

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// RollbackPeer (docs/rollback.md): carries one RollbackSession's inputs, acks,
 /// time-sync reports and final hashes over a Transport to the other peers of a peer-to-peer
 /// match, and the confirmed input stream to spectators (RollbackSpectator.h), including
@@ -67,6 +68,8 @@ struct RollbackPeerConfig {
     /// Silence after which an e_interrupted event names the remote (once per silence; an
     /// e_resumed follows when it is heard again). Should be < disconnectTimeoutMicros.
     uint64_t interruptTimeoutMicros = 500000;
+    /// The other peers of the match and which players each one adds; every player that is not local
+    /// to this session belongs to exactly one of them.
     std::vector<RollbackRemote> remotes;
     std::vector<PeerId> spectators;  ///< receive the confirmed inputs (RbConfirmed)
     /// Senders not listed anywhere whose first valid datagram carries an RbJoinRequest become
@@ -86,7 +89,9 @@ struct RollbackPeerConfig {
 
 /// Counters of a RollbackPeer.
 struct RollbackPeerStats {
+    /// Datagrams sent, to remotes and spectators.
     uint64_t datagramsSent = 0;
+    /// Datagrams received, accepted or refused.
     uint64_t datagramsReceived = 0;
     uint64_t refused = 0;             ///< malformed, other match, unknown or incompatible sender
     uint64_t waitsRecommended = 0;    ///< WaitThisTick returned true
@@ -124,26 +129,34 @@ struct RollbackRemoteStats {
     uint64_t bytesReceived = 0;      ///< payload bytes accepted from it
     /// Bit rates of the latest whole second (0 during the first), payload plus 28 bytes of
     /// IPv4 + UDP header per datagram.
+    ///@{
     uint64_t sendBitsPerSecond = 0;
     uint64_t receiveBitsPerSecond = 0;
+    ///@}
     /// Its datagrams to this peer that never arrived, estimated from their sequence numbers
     /// since the first one heard (a datagram still in flight counts until it lands; a
     /// duplicated one can hide a loss), and that as a share of those it sent, per mille.
+    ///@{
     uint64_t datagramsLost = 0;
     uint32_t lossPermille = 0;
+    ///@}
     /// Inputs of its players that arrived after a wrong prediction: the rollbacks it caused
     /// (RollbackSession::MispredictedInputs summed over its players).
     uint64_t mispredictedInputs = 0;
     /// The session's own figures, all remotes together (RollbackStats): rollbacks, frames
     /// re-simulated, and the deepest rollback.
+    ///@{
     uint64_t rollbacks = 0;
     uint64_t framesResimulated = 0;
     uint32_t deepestRollback = 0;
+    ///@}
     /// The newest final hash it sent (RbHash; a frame f with f % desyncInterval == 0 is sent
     /// once f is final there), and its frame; -1 before the first. RollbackMatch's end of
     /// match waits for every remote's hash of the last frame.
+    ///@{
     int32_t finalHashFrame = -1;
     uint64_t finalHash = 0;
+    ///@}
 };
 
 /// What OfferSnapshot made of a snapshot.
@@ -155,6 +168,9 @@ enum class SnapshotOfferResult : uint8_t {
     e_badSize,       ///< empty or larger than kRbMaxSnapshotBytes
 };
 
+/// One peer of a peer-to-peer rollback match: carries its RollbackSession's inputs, acks, time-sync
+/// reports and hashes over a Transport to the other peers and the confirmed inputs to spectators,
+/// and handles interruptions, disconnects and late-joining spectators (see the file comment).
 class LOCKBOX_API RollbackPeer {
 public:
     /// `session` and `transport` must outlive the peer; every remote player must be a

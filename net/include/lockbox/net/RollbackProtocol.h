@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The rollback wire protocol (docs/rollback.md): what RollbackPeer sessions and
 /// their spectators exchange. Same conventions as the lockstep codec (Protocol.h): a header,
 /// then one or more messages, each a type byte and its fields; little-endian fixed widths,
@@ -46,8 +47,11 @@ inline constexpr uint32_t kRbMaxSnapshotBytes = 16u << 20;
 
 /// The datagram header.
 struct RollbackHeader {
+    /// Protocol version of the sender (kRollbackProtocolVersion); another version is refused by
+    /// name.
     uint8_t version = kRollbackProtocolVersion;
     uint32_t matchId = 0;  ///< the match both peers were configured with
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RollbackHeader&) const = default;
 };
 
@@ -57,14 +61,17 @@ struct RbInputs {
     uint8_t player = 0;          ///< < players
     int32_t firstFrame = 0;      ///< >= 0
     std::vector<uint8_t> bytes;  ///< count * inputBytes, count in 1 .. kRollbackMaxRun
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbInputs&) const = default;
 };
 
 /// Every input of `player` before nextFrame has arrived. (Peers since version 3 send RbView
 /// instead, which carries the same for every player; this one still decodes.)
 struct RbInputAck {
+    /// The player whose inputs are acknowledged (< players).
     uint8_t player = 0;
     int32_t nextFrame = 0;  ///< >= 0
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbInputAck&) const = default;
 };
 
@@ -77,13 +84,18 @@ struct RbQuality {
     uint64_t time = 0;           ///< sender clock, microseconds
     /// Counts the sender's datagrams to this receiver, wrapping at 256 (loss estimate).
     uint8_t sequence = 0;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbQuality&) const = default;
 };
 
 /// Answer to RbQuality: its time and how long the answerer held it (microseconds).
 struct RbQualityReply {
+    /// RbQuality.time of the message being answered, microseconds on the asker's clock.
     uint64_t echoTime = 0;
+    /// Microseconds between the answerer's receiving the RbQuality and sending this reply; the
+    /// asker subtracts it from the round trip.
     uint64_t holdMicros = 0;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbQualityReply&) const = default;
 };
 
@@ -91,7 +103,9 @@ struct RbQualityReply {
 /// pending). Sent several times; duplicates are harmless.
 struct RbHash {
     int32_t frame = 0;  ///< >= 0
+    /// The state hash after that frame (the world hash folded with the game's saved state).
     uint64_t hash = 0;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbHash&) const = default;
 };
 
@@ -100,12 +114,15 @@ struct RbHash {
 struct RbConfirmed {
     int32_t firstFrame = 0;      ///< >= 0
     std::vector<uint8_t> bytes;  ///< count * players * inputBytes, count in 1 .. kRollbackMaxRun
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbConfirmed&) const = default;
 };
 
 /// Spectator -> host: every confirmed frame before nextFrame has arrived.
 struct RbConfirmedAck {
+    /// First confirmed frame the spectator does not hold yet (>= 0).
     int32_t nextFrame = 0;
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbConfirmedAck&) const = default;
 };
 
@@ -114,6 +131,7 @@ struct RbConfirmedAck {
 /// starts a new snapshot when it sees a larger attempt than the last one it served.
 struct RbJoinRequest {
     uint32_t attempt = 1;  ///< >= 1
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbJoinRequest&) const = default;
 };
 
@@ -127,6 +145,7 @@ struct RbSnapshotChunk {
     uint64_t checksum = 0;       ///< XXH3-64 of the whole snapshot
     uint32_t index = 0;          ///< index * kRbSnapshotChunkBytes < totalSize
     std::vector<uint8_t> bytes;  ///< exactly the payload length above
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbSnapshotChunk&) const = default;
 };
 
@@ -134,16 +153,19 @@ struct RbSnapshotChunk {
 struct RbSnapshotAck {
     int32_t frame = 0;   ///< >= 0
     uint32_t index = 0;  ///< < kRbMaxSnapshotBytes / kRbSnapshotChunkBytes
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbSnapshotAck&) const = default;
 };
 
 /// Nothing to say, still here.
 struct RbKeepAlive {
+    /// Always equal: the message has no fields.
     bool operator==(const RbKeepAlive&) const = default;
 };
 
 /// The sender leaves the match.
 struct RbDisconnect {
+    /// Always equal: the message has no fields.
     bool operator==(const RbDisconnect&) const = default;
 };
 
@@ -154,6 +176,7 @@ struct RbDisconnect {
 /// of them 0, so the encoding is canonical).
 struct RbView {
     std::vector<int32_t> received;  ///< exactly `players` entries, each >= 0
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbView&) const = default;
 };
 
@@ -164,6 +187,7 @@ struct RbView {
 struct RbFrozen {
     uint8_t player = 0;  ///< < players
     int32_t frame = 0;   ///< >= 0
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbFrozen&) const = default;
 };
 
@@ -177,6 +201,7 @@ struct RbHello {
     uint32_t determinismVersion = 0;  ///< the sender's b2_determinismVersion (state/WorldHash.h)
     uint8_t players = 0;              ///< 1 .. kRollbackMaxPlayers
     uint32_t inputBytes = 0;          ///< 1 .. kRollbackMaxInputBytes (varint)
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbHello&) const = default;
 };
 
@@ -186,6 +211,7 @@ struct RbHello {
 /// remote once the game has set a wish (RollbackPeer::AskInputDelay).
 struct RbDelayWish {
     uint8_t frames = 0;  ///< 0 .. kRollbackMaxInputDelay
+    /// Field-wise equality, as the round-trip tests compare decode(encode(m)) with m.
     bool operator==(const RbDelayWish&) const = default;
 };
 
@@ -246,8 +272,11 @@ public:
     /// Appends a message whose fields are in range; false (datagram unchanged) when a field is
     /// out of range or the datagram would exceed `limit` bytes.
     bool Add(const RollbackMessage& message, const RollbackShape& shape, size_t limit = 1200);
+    /// Number of messages appended since Begin.
     size_t MessageCount() const noexcept { return m_messages; }
+    /// The datagram so far.
     std::span<const uint8_t> Bytes() const noexcept { return m_bytes; }
+    /// Bytes of the datagram so far (header included).
     size_t Size() const noexcept { return m_bytes.size(); }
 
 private:

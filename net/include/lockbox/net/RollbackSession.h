@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The rollback session core (docs/rollback.md): inputs in, requests out. The game
 /// adds its local inputs, calls AdvanceFrame once per tick and executes the requests it gets
 /// back, in order: SaveState (save the current state as frame f), LoadState (restore frame f)
@@ -60,15 +61,19 @@ enum class InputStatus : uint8_t {
 /// Save the state as it is now as the state at `frame`. When `wantHash` is set the game must
 /// hand the state's hash to ReportHash(frame, hash) (desync detection); otherwise it may.
 struct SaveState {
+    /// The frame the state is saved as (the state before that frame's inputs), >= 0.
     int32_t frame = 0;
+    /// True when the session needs this state's hash (ReportHash) for desync detection.
     bool wantHash = false;
 };
 /// Replace the state with the one saved at `frame` (always one the session asked to save).
 struct LoadState {
+    /// The frame to restore, one the session asked to save and still keeps.
     int32_t frame = 0;
 };
 /// Apply frame `frame`'s inputs and step once.
 struct AdvanceRequest {
+    /// The frame whose inputs to apply; the step moves the state to frame + 1.
     int32_t frame = 0;
     std::vector<uint8_t> inputs;      ///< players * inputBytes bytes, player 0 first
     std::vector<InputStatus> status;  ///< one per player
@@ -90,6 +95,7 @@ LOCKBOX_API const char* RollbackIncompatibilityName(RollbackIncompatibility why)
 
 /// Something the game should know about (drained by TakeEvents).
 struct RollbackEvent {
+    /// What happened; the fields below say to whom and when.
     enum class Kind : uint8_t {
         e_desync = 0,        ///< a remote peer's hash of `frame` differs from ours (once per peer)
         e_disconnected = 1,  ///< `player` left; its input is zero from `frame` (the cut) on
@@ -122,7 +128,9 @@ struct RollbackEvent {
         /// did not start; RollbackPeer::State() is e_startFailed). `frame` is 0.
         e_startTimeout = 10,
     };
+    /// What happened.
     Kind kind = Kind::e_desync;
+    /// The frame concerned (see each kind; 0 where the kind names none).
     int32_t frame = 0;
     /// The player (e_disconnected, e_removed: a local one) or the remote peer tag (e_desync,
     /// e_interrupted, e_resumed, e_incompatible, e_synchronizing, e_synchronized,
@@ -257,6 +265,10 @@ private:
     RollbackConfig m_config;
 };
 
+/// The rollback session core: takes local and remote inputs, predicts missing remote ones and
+/// returns the save, load and advance requests that keep the game's state correct (see the file
+/// comment). Network-free; build one with RollbackSessionBuilder, carry it over a Transport with
+/// RollbackPeer.
 class LOCKBOX_API RollbackSession {
 public:
     /// Use RollbackSessionBuilder; `config` must pass its Check.

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// RollbackSpectator: watches a rollback match. A host peer (a RollbackPeer with
 /// this machine in RollbackPeerConfig::spectators) sends every player's confirmed inputs, the
 /// same stream a replay stores; the spectator acknowledges them and hands them out frame by
@@ -58,15 +59,20 @@ enum class SpectatorState : uint8_t {
 /// What happened to the link to the host (RollbackSpectator::TakeEvents), so a spectator can
 /// show "waiting for the host" before it gives up, as players do with their events.
 struct SpectatorEvent {
+    /// What happened to the link to the host.
     enum class Kind : uint8_t {
         e_interrupted = 0,  ///< nothing from the host for interruptTimeoutMicros
         e_resumed = 1,      ///< heard again after e_interrupted, or after an e_hostLost of silence
         e_hostLost = 2,     ///< timeoutMicros of silence, or the host's RbDisconnect
     };
+    /// What happened.
     Kind kind = Kind::e_interrupted;
     int32_t frame = 0;  ///< ReceivedFrame() at that moment
 };
 
+/// Watches a rollback match: receives and acknowledges the confirmed inputs from a host peer and
+/// hands them out frame by frame (Next), never rolling back; can join late from a snapshot (see the
+/// file comment).
 class LOCKBOX_API RollbackSpectator {
 public:
     /// `transport` must outlive the spectator.

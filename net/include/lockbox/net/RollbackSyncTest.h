@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// SyncTestSession: the sync test as a session type. It drives a replay::Game on a
 /// lockbox world through core's lockbox::SyncTest (state/SyncTest.h): every frame is run,
 /// hashed, then the last `checkDistance` frames are rolled back and re-simulated (in
@@ -64,6 +65,10 @@ struct SyncTestRequestCounts {
     uint64_t predictedAdvances = 0;  ///< advances of a wrong branch (status e_predicted)
 };
 
+/// The sync test as a session: runs a replay::Game on a world, rolls back and re-simulates the last
+/// checkDistance frames after each frame (Run, or through the requests a live session makes:
+/// RunRequests) and reports the first frame whose re-simulated hash differs, which names state
+/// the game's save misses (see the file comment).
 class LOCKBOX_API SyncTestSession {
 public:
     /// `world`, `game` and the source must outlive the session; the world must be in its

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// WorldGameAdapter: executes a RollbackSession's requests for a game whose whole
 /// state is one lockbox world plus the replay::Game's user blob. SaveState keeps a rollback
 /// frame of the world (b2World::SaveFrame) and the blob (Game::SaveUserState) in a ring slot and
@@ -32,7 +33,10 @@ using RollbackHashReport = std::function<void(int32_t frame, uint64_t hash)>;
 /// How the adapter steps the world.
 struct WorldStepSettings {
     uint32_t tickRate = 60;  ///< frames per second, >= 1 (time step 1/tickRate s)
+    /// Velocity iterations per step (the constraint solver's velocity passes, as b2World::Step
+    /// takes them).
     uint32_t velocityIterations = 8;
+    /// Position iterations per step (the solver's position correction passes).
     uint32_t positionIterations = 3;
 };
 

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// SimNet: an in-memory network for tests (docs/net.md "SimNet"). Endpoints live in
 /// one process, time is a virtual clock that only the test advances, and every link between
 /// two endpoints has its own seeded impairments. The same seed and the same calls give the
@@ -42,11 +43,14 @@ struct LinkProfile {
     /// Gilbert-Elliott burst loss: per-datagram chance to enter / leave the bad state, and the
     /// loss inside it. All zero: no bursts. The mean length of a bad period is
     /// 1e6 / burstLeavePpm datagrams.
+    ///@{
     uint32_t burstEnterPpm = 0;
     uint32_t burstLeavePpm = 0;
     uint32_t burstLossPpm = 0;
+    ///@}
     uint32_t duplicatePpm = 0;  ///< chance a datagram is delivered twice
     uint32_t reorderPpm = 0;    ///< chance a datagram is held back by reorderDelayMicros
+    /// How long a reordered datagram is held back, microseconds (added to its due time).
     uint32_t reorderDelayMicros = 0;
     /// 0: unlimited; else wire bytes queue at this rate. Valid range 1 .. 1e12 (1 Tbit/s);
     /// larger values act as 1e12.
@@ -72,6 +76,9 @@ struct LinkStats {
 
 class SimEndpoint;
 
+/// The in-memory network: endpoints (each a Transport), seeded per-link impairments and a virtual
+/// clock that only the test advances (see the file comment). Deterministic: the same seed and calls
+/// give the same deliveries.
 class LOCKBOX_API SimNet {
 public:
     /// IPv4 + UDP header bytes added to every payload for wire sizes and wire byte counters.

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The state hash lockbox's sessions compare between machines (rollback desync detection,
 /// lockstep hash reports, the spectator and late-join checks): the world's hash folded with
 /// the game's user state (docs/rollback.md, "The state hash"). A game that executes rollback

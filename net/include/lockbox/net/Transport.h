@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The datagram interface every lockbox session runs on (docs/net.md): send bytes to
 /// a peer, poll what arrived, read the clock. Three implementations: SimNet (in memory, seeded,
 /// virtual clock; every net test), UdpTransport (POSIX, IPv4 and IPv6) and EnetTransport
@@ -15,11 +16,15 @@
 
 #include "lockbox/Export.h"
 
+/// The network module: transports (SimNet, UDP, ENet, relayed, latency), the lockstep server
+/// and client, and the rollback session, peer and spectator, with their wire protocols.
 namespace lockbox::net {
 
 /// A peer as one transport names it: a small index into that transport's peer table. The same
 /// remote machine may have different PeerIds on different transports.
 using PeerId = uint32_t;
+/// "No peer": a PeerId no transport hands out (unset configuration fields, a slot without an
+/// owner).
 inline constexpr PeerId kNoPeer = 0xFFFFFFFFu;
 
 /// How a datagram should travel. Sessions are correct with either (they resend); reliable only
@@ -42,11 +47,15 @@ struct TransportStats {
     uint64_t payloadBytesSent = 0;   ///< payload bytes accepted by Send
     uint64_t wireBytesSent = 0;      ///< payload plus per-datagram header overhead
     uint64_t datagramsReceived = 0;  ///< handed out by Poll
+    /// Payload bytes handed out by Poll.
     uint64_t payloadBytesReceived = 0;
     uint64_t sendFailures = 0;    ///< Send returned false (unknown peer, too large, OS error)
     uint64_t droppedUnknown = 0;  ///< received from a sender the transport would not admit
 };
 
+/// A datagram transport: unreliable, unordered delivery of payloads of up to MaxDatagram() bytes to
+/// peers named by PeerId, plus a microsecond clock (see the file comment). Implementations:
+/// SimNet's endpoints, UdpTransport, EnetTransport, RelayedTransport.
 class LOCKBOX_API Transport {
 public:
     /// Largest payload every transport carries in one datagram (fits a 1280-byte IPv6 MTU).
@@ -68,6 +77,7 @@ public:
     /// The largest payload Send accepts.
     virtual size_t MaxDatagram() const noexcept { return kMaxDatagram; }
 
+    /// Counters since construction.
     virtual const TransportStats& Stats() const noexcept = 0;
 
     /// Forgets `peer` (closes its connection where there is one). Later datagrams from the same

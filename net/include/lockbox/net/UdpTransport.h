@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// UdpTransport: plain POSIX UDP behind the Transport interface (docs/net.md). One
 /// non-blocking socket, IPv4 or IPv6 (chosen by the bind address), a fixed-size peer table,
 /// the steady clock. No connection, no resend, no reliability: `Delivery` is ignored, as the
@@ -19,6 +20,8 @@
 
 namespace lockbox::net {
 
+/// Plain POSIX UDP (IPv4 or IPv6) behind the Transport interface: one non-blocking socket, a fixed
+/// peer table, the steady clock; no reliability of its own (see the file comment).
 class LOCKBOX_API UdpTransport final : public Transport {
 public:
     /// Most datagrams one Poll reads before returning, so one call never starves the caller.

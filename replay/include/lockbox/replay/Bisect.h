@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Finding the first divergent frame of a replay quickly (`lockbox_replay bisect`):
 /// a binary search over the seed and the keyframes (O(log K) restores), then a scan of one
 /// keyframe interval, then the fencepost inside the step where re-simulation and the
@@ -31,6 +32,7 @@ struct LOCKBOX_API BisectResult {
     int32 restores = 0;        ///< snapshots restored
     int64_t framesPlayed = 0;  ///< frames simulated
     int32 probes = 0;          ///< binary-search probes over keyframes
+    /// Why the bisection could not run (a replay that cannot be read or played); ok() when it ran.
     Error error;
     /// One or a few lines for people.
     std::string Describe() const;

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Finding where two runs disagree (`lockbox_replay diff`): play two replays in
 /// lockstep, stop at the first frame whose states hash differently, then narrow it to the
 /// first differing hash category, body and field, with both values.
@@ -16,15 +17,21 @@ namespace lockbox::replay {
 /// One field that differs between two bodies.
 struct FieldDifference {
     std::string field;  ///< e.g. "linearVelocity.x"
-    std::string a, b;   ///< values as "decimal (raw 0x...)"
+    /// The two values, as "decimal (raw 0x...)": a from the first body, b from the second.
+    ///@{
+    std::string a, b;
+    ///@}
 };
 
 /// Where two worlds or two runs first differ.
 struct LOCKBOX_API DiffResult {
-    bool same = true;                     ///< no difference found
-    int32 frame = -1;                     ///< first frame after which the states differ (-1: the seed)
-    int32 firstInputFrame = -1;           ///< first frame whose recorded inputs differ (-1: none)
-    uint64 hashA = 0, hashB = 0;          ///< world hashes at the difference
+    bool same = true;            ///< no difference found
+    int32 frame = -1;            ///< first frame after which the states differ (-1: the seed)
+    int32 firstInputFrame = -1;  ///< first frame whose recorded inputs differ (-1: none)
+    /// The two world hashes at the difference: A from the first world or run, B from the second.
+    ///@{
+    uint64 hashA = 0, hashB = 0;
+    ///@}
     b2HashMismatch where;                 ///< first differing category and body
     std::vector<FieldDifference> fields;  ///< differing fields of where.bodyId (all of them)
     std::string note;                     ///< anything else (different lengths, settings)

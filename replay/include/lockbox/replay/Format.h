@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Replay file format (docs/replay.md "File format"): a fixed header, then
 /// self-describing chunks. Every integer is little-endian with a fixed width. Each chunk
 /// carries its type, a flag word (bit 0: the payload is zstd-compressed), the stored and raw
@@ -12,6 +13,8 @@
 #include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 
+/// The replay module: recording a match's inputs and hashes into a replay file, playing it back,
+/// verifying it, and locating the first divergence between two runs (diff and bisect).
 namespace lockbox::replay {
 
 /// The four bytes that open every replay file: "LBRP".
@@ -27,6 +30,7 @@ inline constexpr uint32 kChunkHeaderBytes = 24;
 inline constexpr uint32 kMaxChunkBytes = 256u << 20;
 /// Largest number of players, and of input bytes per player per frame.
 inline constexpr uint32 kMaxPlayers = 64;
+/// Largest input bytes per player per frame.
 inline constexpr uint32 kMaxInputBytes = 1024;
 
 /// A chunk type as four ASCII characters, first character in the low byte.
@@ -76,13 +80,20 @@ LOCKBOX_API const char* SolvePhaseName(uint32 phase) noexcept;
 
 /// The fixed header.
 struct Header {
+    /// kFormatVersion of the writer; a reader refuses other versions.
     uint16 formatVersion = kFormatVersion;
-    uint16 engineMajor = 0, engineMinor = 0, enginePatch = 0;  ///< the snapshot's engine field (0.7.0)
-    uint32 determinismVersion = 0;                             ///< b2_determinismVersion of the recording engine
-    uint16 snapshotFormatVersion = 0;                          ///< b2_snapshotFormatVersion of its snapshots
-    uint16 tickRate = 60;                                      ///< frames per second (display and speed reports)
-    int32 timeStepRaw = 0;                                     ///< Q16.16 raw step length passed to b2World::Step, s
+    /// The snapshot's engine field (0.7.0 in every file, whatever the library version; see
+    /// b2_snapshotEngineMajor): informative only.
+    ///@{
+    uint16 engineMajor = 0, engineMinor = 0, enginePatch = 0;
+    ///@}
+    uint32 determinismVersion = 0;     ///< b2_determinismVersion of the recording engine
+    uint16 snapshotFormatVersion = 0;  ///< b2_snapshotFormatVersion of its snapshots
+    uint16 tickRate = 60;              ///< frames per second (display and speed reports)
+    int32 timeStepRaw = 0;             ///< Q16.16 raw step length passed to b2World::Step, s
+    /// Velocity iterations of every recorded b2World::Step.
     uint16 velocityIterations = 8;
+    /// Position iterations of every recorded b2World::Step.
     uint16 positionIterations = 3;
     uint32 worldFlags = 0;        ///< WorldFlag bits at the seed
     uint16 playerCount = 1;       ///< 1 .. kMaxPlayers
@@ -112,6 +123,7 @@ LOCKBOX_API const char* ErrorCodeName(ErrorCode code) noexcept;
 
 /// An error with where it happened.
 struct LOCKBOX_API Error {
+    /// e_ok, or what is wrong.
     ErrorCode code = ErrorCode::e_ok;
     uint64 offset = 0;      ///< byte offset in the file of the header or chunk concerned
     int32 chunkIndex = -1;  ///< 0-based chunk number; -1 for the header

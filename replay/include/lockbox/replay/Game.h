@@ -1,8 +1,9 @@
 #pragma once
+/// @file
 /// The game side of a replay: what an input means is the game's business. The
 /// recorder and the player call Apply before every Step with that frame's inputs, and save and
 /// load the game's own state (beyond the world) with every seed and keyframe, so a game with
-/// state outside the physics still replays and seeks exactly (ARCHITECTURE §4).
+/// state outside the physics still replays and seeks exactly (docs/replay.md).
 
 #include <span>
 #include <vector>
@@ -27,6 +28,7 @@ public:
     /// State beyond the world that influences later frames (default: none). LoadUserState
     /// gets back exactly these bytes.
     virtual void SaveUserState(std::vector<uint8>& out) const { out.clear(); }
+    /// Restores the state SaveUserState wrote for the frame being loaded (the same bytes).
     virtual void LoadUserState(std::span<const uint8> in) { (void)in; }
 };
 
@@ -37,6 +39,8 @@ public:
 class LOCKBOX_API StageHook {
 public:
     virtual ~StageHook() = default;
+    /// Called at stored stage `stage` (0 to 4, see above) of frame `frame`, before the stage is
+    /// hashed.
     virtual void OnStage(int32 frame, uint32 stage, b2World& world) = 0;
     /// Called inside the solve stage for every island's velocity and position phase, before
     /// the phase is hashed (b2StepObserver::OnIsland: changing the buffers injects a fault).

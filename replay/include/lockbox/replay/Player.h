@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Playing a replay back: restore the seed into a world, then apply each frame's
 /// inputs through the game and step with the recorded settings, comparing the state hash
 /// wherever the file stores one. Seeking restores the nearest keyframe and steps forward.
@@ -48,10 +49,13 @@ public:
     bool Step();
     /// Frames played since the seed (the next frame to play).
     int32 Frame() const noexcept { return m_frame; }
+    /// True once every recorded frame has been played.
     bool AtEnd() const noexcept { return m_frame >= m_file.frameCount; }
     /// The world being played, and the replay.
     b2World& world() noexcept { return m_world; }
+    /// The world being played (read-only view).
     const b2World& world() const noexcept { return m_world; }
+    /// The replay being played.
     const ReplayFile& file() const noexcept { return m_file; }
 
     /// Plays the whole replay from the seed, checking every stored hash; stops at the first

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Recording a replay: the Recorder owns the frame loop of a world and a game. Each
 /// Advance applies the frame's inputs through the game, steps the world with the recorded
 /// settings, hashes the result and appends it; blocks of frames are written as compressed
@@ -32,8 +33,11 @@ public:
         m_bytes.insert(m_bytes.end(), bytes.begin(), bytes.end());
         return true;
     }
+    /// The replay bytes written so far.
+    ///@{
     const std::vector<uint8>& bytes() const noexcept { return m_bytes; }
     std::vector<uint8>& bytes() noexcept { return m_bytes; }
+    ///@}
 
 private:
     std::vector<uint8> m_bytes;
@@ -42,6 +46,8 @@ private:
 /// A replay streamed to a file (created or truncated).
 class LOCKBOX_API FileSink : public Sink {
 public:
+    /// Creates or truncates the file at `path`; ok() tells whether that worked (Write then fails
+    /// otherwise).
     explicit FileSink(const std::string& path);
     ~FileSink() override;
     FileSink(const FileSink&) = delete;
@@ -61,7 +67,9 @@ struct RecorderConfig {
     std::string gameName;           ///< stored in META; tells a player what to build
     std::vector<uint8> gameParams;  ///< stored in META, opaque
     uint16 tickRate = 60;           ///< frames per second; the step is round(65536 / tickRate) raw
+    /// Velocity iterations of every step (the same value the replay player uses).
     uint16 velocityIterations = 8;
+    /// Position iterations of every step.
     uint16 positionIterations = 3;
     uint16 playerCount = 1;         ///< 1 .. 64
     uint16 inputBytes = 8;          ///< per player per frame, 0 .. 1024

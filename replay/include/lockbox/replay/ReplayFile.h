@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// A replay read into memory and validated (ParseReplay, LoadReplay): the header, the game's
 /// name and parameters, the seed, every frame's inputs, the stored hashes, the keyframes and
 /// the chunk statistics. Unknown chunk types are skipped (counted in unknownChunks).
@@ -22,7 +23,9 @@ struct Keyframe {
 
 /// Count and sizes of one chunk type in a file.
 struct ChunkStat {
+    /// The chunk type (a ChunkType tag such as META or INPT, see ChunkTag).
     uint32 type = 0;
+    /// How many chunks of this type the file holds.
     uint32 count = 0;
     uint64 storedBytes = 0;  ///< in the file, chunk frames included
     uint64 rawBytes = 0;     ///< payloads once decompressed
@@ -30,6 +33,7 @@ struct ChunkStat {
 
 /// A whole replay.
 struct LOCKBOX_API ReplayFile {
+    /// The fixed header (format and engine versions, step settings, session shape).
     Header header;
     std::string gameName;               ///< what the player must build (e.g. "scene:rain")
     std::vector<uint8> gameParams;      ///< the game's own parameters
@@ -43,6 +47,7 @@ struct LOCKBOX_API ReplayFile {
     std::vector<Keyframe> keyframes;    ///< increasing frame order, seed excluded
     uint64 finalHash = 0;               ///< hash after the last frame (END record)
     std::vector<ChunkStat> chunkStats;  ///< by first appearance
+    /// Size of the whole file, bytes.
     uint64 fileBytes = 0;
     uint32 unknownChunks = 0;  ///< chunks of types this reader does not know (skipped)
 

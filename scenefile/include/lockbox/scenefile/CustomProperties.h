@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Custom properties (R.U.B.E.'s "customProperties"): named values of six types attached to the
 /// world, a body, a fixture, a joint or an image. As in b2dJson, a name may hold one value of
 /// each type at once ("speed" as an int and "speed" as a float are two properties). Floats are
@@ -17,7 +18,11 @@ namespace lockbox::scenefile {
 
 /// An RGBA colour, each channel 0..255 (b2dJson's b2dJsonColor4; default opaque white).
 struct CustomColor {
+    /// Red, green, blue and alpha, each 0..255 (alpha 255 is opaque).
+    ///@{
     int32 r = 255, g = 255, b = 255, a = 255;
+    ///@}
+    /// Channel-wise equality.
     friend bool operator==(const CustomColor&, const CustomColor&) = default;
 };
 
@@ -30,8 +35,11 @@ LOCKBOX_API const char* CustomTypeName(const CustomValue& value) noexcept;
 
 /// One named value.
 struct CustomProperty {
+    /// The property's name (any text; one name may hold one value of each type).
     std::string name;
+    /// The value; its type is part of the property's identity.
     CustomValue value;
+    /// Equal name and equal value of the same type.
     friend bool operator==(const CustomProperty&, const CustomProperty&) = default;
 };
 
@@ -64,8 +72,11 @@ public:
 
     /// Every property, sorted by type then name.
     const std::vector<CustomProperty>& Items() const noexcept { return m_items; }
+    /// True when there is no property.
     bool Empty() const noexcept { return m_items.empty(); }
+    /// Number of properties.
     size_t Size() const noexcept { return m_items.size(); }
+    /// Equal when both hold the same properties (same names, types and values).
     friend bool operator==(const CustomProperties&, const CustomProperties&) = default;
 
 private:

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The numbers of a scene file, in and out, with integer arithmetic only.
 ///
 /// In: decimal text ("-12.375", "1e-3") is rounded to the nearest Q16.16 (or Q32.32) value,

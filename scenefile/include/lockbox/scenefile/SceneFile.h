@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Loading and saving b2dJson world files, the export format of the R.U.B.E. editor
 /// (docs/scene-files.md has the fields, the number rules, the error format and the limits).
 ///
@@ -25,6 +26,8 @@
 #include "lockbox/scenefile/SceneMetadata.h"
 #include "lockbox/scenefile/SceneResult.h"
 
+/// The scene-file module: b2dJson (R.U.B.E.) world files loaded into and saved from a world,
+/// with the names, custom properties and images they carry.
 namespace lockbox::scenefile {
 
 // ---- loading ----

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Bounds that protect a loader from hostile scene files: each one is checked while the file is
 /// read, before anything large is allocated, and exceeding it is an `e_limit` error naming the
 /// bound. The defaults admit every R.U.B.E. level we know of by a wide margin (a 10,000-body

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The result of loading or saving a scene file: ok, or an error that names the JSON path of
 /// the value at fault and what is wrong with it, in one line:
 ///   `body[3].fixture[1].polygon.vertices: 9 vertices, at most 8`
@@ -32,11 +33,13 @@ LOCKBOX_API const char* SceneErrorName(SceneError error) noexcept;
 
 /// Outcome of a scene-file operation.
 struct LOCKBOX_API SceneResult {
+    /// e_ok, or the kind of problem.
     SceneError error = SceneError::e_ok;
     std::string path;     ///< JSON path of the value at fault ("body[3].angle"); empty for the document
     std::string message;  ///< what is wrong; empty when ok
     /// True when the operation succeeded.
     bool ok() const noexcept { return error == SceneError::e_ok; }
+    /// True on success, as ok().
     explicit operator bool() const noexcept { return ok(); }
     /// "path: message", or the message alone when the path is empty; "ok" on success.
     std::string Describe() const;

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2Contact (Box2D 2.2.1 b2Contact.h): the manifold of two fixture children whose AABBs
 /// overlap. One class serves every shape pair: Evaluate dispatches on the two shape types to the
 /// b2Collide* functions (a chain collides through its child edge). Pairs without a collider
@@ -37,6 +38,7 @@ class LOCKBOX_API b2Contact {
 public:
     /// The manifold in local coordinates (do not modify).
     b2Manifold* GetManifold() noexcept { return &m_manifold; }
+    /// The manifold in local coordinates (read-only view).
     const b2Manifold* GetManifold() const noexcept { return &m_manifold; }
     /// The manifold in world coordinates.
     void GetWorldManifold(b2WorldManifold* worldManifold) const;
@@ -49,23 +51,38 @@ public:
         else
             m_flags &= ~e_enabledFlag;
     }
+    /// Whether the contact is enabled. SetEnabled(false) in a PreSolve callback disables it for the
+    /// current step only: the flag is set again before the next step's update.
     bool IsEnabled() const noexcept { return (m_flags & e_enabledFlag) != 0; }
     /// Next contact in the world's list (newest first).
     b2Contact* GetNext() noexcept { return m_next; }
+    /// Next contact in the world's list (read-only view).
     const b2Contact* GetNext() const noexcept { return m_next; }
+    /// The fixture on side A (the manifold's normal points from A to B).
+    ///@{
     b2Fixture* GetFixtureA() noexcept { return m_fixtureA; }
     const b2Fixture* GetFixtureA() const noexcept { return m_fixtureA; }
+    ///@}
+    /// Child index on fixture A: the edge of a chain, otherwise 0.
     int32 GetChildIndexA() const noexcept { return m_indexA; }
+    /// The fixture on side B.
+    ///@{
     b2Fixture* GetFixtureB() noexcept { return m_fixtureB; }
     const b2Fixture* GetFixtureB() const noexcept { return m_fixtureB; }
+    ///@}
+    /// Child index on fixture B: the edge of a chain, otherwise 0.
     int32 GetChildIndexB() const noexcept { return m_indexB; }
     /// Mixed friction; persists until ResetFriction.
     void SetFriction(Fixed friction) noexcept { m_friction = friction; }
+    /// The friction coefficient used by this contact (dimensionless, >= 0).
     Fixed GetFriction() const noexcept { return m_friction; }
+    /// Restores the friction to the mix of the two fixtures' values (b2MixFriction).
     void ResetFriction();
     /// Mixed restitution; persists until ResetRestitution.
     void SetRestitution(Fixed restitution) noexcept { m_restitution = restitution; }
+    /// The restitution used by this contact (dimensionless, 0 is inelastic, 1 perfectly elastic).
     Fixed GetRestitution() const noexcept { return m_restitution; }
+    /// Restores the restitution to the mix of the two fixtures' values (b2MixRestitution).
     void ResetRestitution();
     /// Small integer id (stable across snapshot and restore).
     int32 GetId() const noexcept { return m_id; }

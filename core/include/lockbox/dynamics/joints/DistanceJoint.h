@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2DistanceJoint (Box2D 2.2.1): keeps two anchor points at a fixed distance, rigidly or
 /// through a soft spring (frequencyHz > 0).
 
@@ -23,7 +24,8 @@ struct LOCKBOX_API b2DistanceJointDef : b2JointDef {
     Fixed dampingRatio;   ///< 0 = no damping, 1 = critical, in [0, 10]
 };
 
-/// Distance joint.
+/// A distance joint: the distance between an anchor on A and an anchor on B stays at length, as
+/// a rigid rod, or as a spring-damper when the frequency is positive.
 class LOCKBOX_API b2DistanceJoint : public b2Joint {
 public:
     /// Anchor on body A (world), m.

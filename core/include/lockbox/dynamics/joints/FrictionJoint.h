@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2FrictionJoint (Box2D 2.2.1): top-down friction. Resists relative linear and angular
 /// motion with at most maxForce and maxTorque.
 
@@ -8,7 +9,8 @@
 
 namespace lockbox {
 
-/// Friction joint definition.
+/// Friction joint definition: the local anchors and the force and torque limits. Initialize
+/// fills the anchors from one world point.
 struct LOCKBOX_API b2FrictionJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2FrictionJointDef() { type = e_frictionJoint; }
@@ -22,7 +24,8 @@ struct LOCKBOX_API b2FrictionJointDef : b2JointDef {
     Fixed maxTorque;      ///< N*m, >= 0
 };
 
-/// Friction joint.
+/// A friction joint: top-down friction between A and B, resisting their relative linear motion
+/// with at most maxForce and their relative rotation with at most maxTorque.
 class LOCKBOX_API b2FrictionJoint : public b2Joint {
 public:
     /// Anchor on body A (world), m.

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2GearJoint (Box2D 2.2.1): couples two revolute and/or prismatic joints so that
 /// coordinate1 + ratio * coordinate2 stays constant. Each of those joints must attach a
 /// dynamic body (its bodyB) to another body (its bodyA, usually static).
@@ -27,7 +28,8 @@ struct b2GearJointDef : b2JointDef {
     Fixed ratio = 1;            ///< gear ratio (dimensionless, or m/rad when mixing types)
 };
 
-/// Gear joint.
+/// A gear joint: couples two revolute or prismatic joints so that coordinate1 + ratio *
+/// coordinate2 stays constant (see the file comment for its lifetime rule).
 class LOCKBOX_API b2GearJoint : public b2Joint {
 public:
     /// Anchor on body A (world), m.
@@ -41,17 +43,22 @@ public:
 
     /// The first coupled joint.
     b2Joint* GetJoint1() noexcept { return m_joint1; }
+    /// The first coupled joint (read-only view).
     const b2Joint* GetJoint1() const noexcept { return m_joint1; }
     /// The second coupled joint.
     b2Joint* GetJoint2() noexcept { return m_joint2; }
+    /// The second coupled joint (read-only view).
     const b2Joint* GetJoint2() const noexcept { return m_joint2; }
-    /// Gear ratio.
+    /// Sets the gear ratio (any sign; in m or 1/m when one joint is prismatic and the other
+    /// revolute).
     void SetRatio(Fixed ratio) noexcept { m_ratio = ratio; }
-    /// Gear or pulley ratio.
+    /// The gear ratio.
     Fixed GetRatio() const noexcept { return m_ratio; }
     /// The two joint coordinates (rad or m) as the gear sees them now.
+    ///@{
     Fixed GetCoordinateA() const;
     Fixed GetCoordinateB() const;
+    ///@}
 
 private:
     friend struct core_detail::Engine;

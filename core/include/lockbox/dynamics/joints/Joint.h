@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// The abstract joint (Box2D 2.2.1 b2Joint.h): types, definition base, graph edges and the
 /// solver interface the island calls. The concrete joints live next to this header (one per
 /// file); b2World::CreateJoint goes through b2Joint::Create, which dispatches on the type.
@@ -57,9 +58,11 @@ public:
     b2JointType GetType() const noexcept { return m_type; }
     /// First attached body.
     b2Body* GetBodyA() noexcept { return m_bodyA; }
+    /// First attached body (read-only view).
     const b2Body* GetBodyA() const noexcept { return m_bodyA; }
     /// Second attached body.
     b2Body* GetBodyB() noexcept { return m_bodyB; }
+    /// Second attached body (read-only view).
     const b2Body* GetBodyB() const noexcept { return m_bodyB; }
     /// Anchor on body A in world coordinates (m).
     virtual b2Vec2 GetAnchorA() const = 0;
@@ -71,9 +74,12 @@ public:
     virtual Fixed GetReactionTorque(Fixed inv_dt) const = 0;
     /// Next joint in the world's list.
     b2Joint* GetNext() noexcept { return m_next; }
+    /// Next joint in the world's list (read-only view).
     const b2Joint* GetNext() const noexcept { return m_next; }
     /// Application data.
     uint64 GetUserData() const noexcept { return m_userData; }
+    /// Sets the application data: an id or handle, never a pointer (part of the snapshot and the
+    /// hash).
     void SetUserData(uint64 data) noexcept { m_userData = data; }
     /// Small integer id of this joint (stable across snapshot and restore).
     int32 GetId() const noexcept { return m_id; }
@@ -86,7 +92,10 @@ public:
     b2Joint& operator=(const b2Joint&) = delete;
 
 protected:
+    /// Restore constructor: an empty joint of the given type whose state a snapshot restore then
+    /// fills in.
     b2Joint(b2RestoreTag, b2JointType type) : m_type(type) {}
+    /// Copies the common fields (type, bodies, collideConnected, user data) from a definition.
     explicit b2Joint(const b2JointDef* def)
         : m_type(def->type),
           m_bodyA(def->bodyA),
@@ -115,8 +124,10 @@ private:
 
 protected:
     /// The attached bodies (the concrete joints' solvers read them).
+    ///@{
     b2Body* m_bodyA = nullptr;
     b2Body* m_bodyB = nullptr;
+    ///@}
 
 private:
     int32 m_id = -1;

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// All ten joint types of the manual (one include for applications and tests).
 
 #include "lockbox/dynamics/joints/DistanceJoint.h"

@@ -1,9 +1,10 @@
 #pragma once
+/// @file
 /// b2MouseJoint (Box2D 2.2.1): a soft spring pulling a point on body B toward a world target,
 /// with a force cap. bodyA is ignored (use any body, usually the ground).
 ///
 /// maxForce is Q32.32: the testbed's 1000 * mass reaches 1e6 N for a 1000 kg body, beyond
-/// Q16.16 (NUMERICS Table 1).
+/// Q16.16 (docs/numerics.md, "Formats").
 
 #include "lockbox/Export.h"
 #include "lockbox/dynamics/joints/Joint.h"
@@ -11,7 +12,8 @@
 
 namespace lockbox {
 
-/// Mouse joint definition.
+/// Mouse joint definition: the world target, the force cap and the spring (frequency and
+/// damping ratio). Set target to the grabbed point of bodyB when creating the joint.
 struct b2MouseJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2MouseJointDef() { type = e_mouseJoint; }
@@ -22,7 +24,9 @@ struct b2MouseJointDef : b2JointDef {
     Fixed dampingRatio = Fixed(0.7);  ///< 0 = no damping, 1 = critical
 };
 
-/// Mouse joint.
+/// A mouse joint: a soft spring drags a point of body B toward a world target, with at most
+/// maxForce and no restriction on rotation. Made for dragging bodies in a testbed; for precise
+/// game-play positioning a kinematic body works better.
 class LOCKBOX_API b2MouseJoint : public b2Joint {
 public:
     /// The target point, m.
@@ -48,7 +52,7 @@ public:
     void SetFrequency(Fixed hz) noexcept { m_frequencyHz = hz; }
     /// Spring frequency, Hz.
     Fixed GetFrequency() const noexcept { return m_frequencyHz; }
-    /// Damping ratio.
+    /// Damping ratio of the spring (dimensionless, >= 0; 1 is critical damping).
     void SetDampingRatio(Fixed ratio) noexcept { m_dampingRatio = ratio; }
     /// Damping ratio (dimensionless).
     Fixed GetDampingRatio() const noexcept { return m_dampingRatio; }

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2PrismaticJoint (Box2D 2.2.1): one translational degree of freedom along an axis fixed in
 /// body A, no relative rotation, with an optional translation limit and motor.
 
@@ -8,7 +9,8 @@
 
 namespace lockbox {
 
-/// Prismatic joint definition.
+/// Prismatic joint definition: the local anchors and axis, the reference angle, and the limit
+/// and motor settings. Initialize fills them from the bodies' current poses and a world axis.
 struct LOCKBOX_API b2PrismaticJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2PrismaticJointDef() {
@@ -32,7 +34,10 @@ struct LOCKBOX_API b2PrismaticJointDef : b2JointDef {
     Fixed motorSpeed;          ///< m/s
 };
 
-/// Prismatic joint.
+/// A prismatic joint: body B slides relative to body A along an axis fixed in A, without
+/// relative rotation; the one degree of freedom is the joint translation (m, zero for a
+/// definition made by Initialize). Like the revolute joint it has an optional limit and a
+/// motor, with force in place of torque.
 class LOCKBOX_API b2PrismaticJoint : public b2Joint {
 public:
     /// Anchor on body A (world), m.
@@ -62,9 +67,9 @@ public:
     bool IsLimitEnabled() const noexcept { return m_enableLimit; }
     /// Enables or disables the limit (wakes the bodies).
     void EnableLimit(bool flag);
-    /// Lower limit.
+    /// Lower bound of the joint translation, m (include 0, or the joint lurches at the start).
     Fixed GetLowerLimit() const noexcept { return m_lowerTranslation; }
-    /// Upper limit.
+    /// Upper bound of the joint translation, m (>= the lower bound).
     Fixed GetUpperLimit() const noexcept { return m_upperTranslation; }
     /// Sets the limits, m (lower <= upper; wakes the bodies).
     void SetLimits(Fixed lower, Fixed upper);

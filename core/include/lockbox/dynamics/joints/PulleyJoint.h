@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2PulleyJoint (Box2D 2.2.1): an ideal pulley. Each body hangs from a fixed ground anchor and
 /// lengthA + ratio * lengthB stays constant. When one side reaches zero length its direction
 /// is undefined: that side then contributes nothing (finite, no division), as in 2.2.1.
@@ -34,7 +35,8 @@ struct LOCKBOX_API b2PulleyJointDef : b2JointDef {
     Fixed ratio = 1;       ///< pulley ratio (block and tackle), > 0
 };
 
-/// Pulley joint.
+/// A pulley joint: each body hangs by a rope from its fixed ground anchor, and lengthA + ratio *
+/// lengthB stays constant, so one body rises as the other falls (see the file comment).
 class LOCKBOX_API b2PulleyJoint : public b2Joint {
 public:
     /// Anchor on body A (world), m.
@@ -60,7 +62,8 @@ public:
     Fixed GetLengthA() const;
     /// Current length of side B, m.
     Fixed GetLengthB() const;
-    /// The pulley ratio.
+    /// The pulley ratio (> 0): side A changes ratio times as fast as side B, and its rope carries
+    /// 1/ratio of B's tension (a block and tackle).
     Fixed GetRatio() const noexcept { return m_ratio; }
 
 private:

@@ -1,7 +1,8 @@
 #pragma once
+/// @file
 /// b2RevoluteJoint (Box2D 2.2.1): a shared point (hinge) with an optional angle limit and motor.
 ///
-/// Body angles are wrapped into [-pi, pi) every step (ARCHITECTURE §5), so the joint keeps its
+/// Body angles are wrapped into [-pi, pi) every step (docs/dynamics.md), so the joint keeps its
 /// own continuous angle: each step it moves to the branch of aB - aA - referenceAngle nearest
 /// to the previous value (the relative rotation per step is below pi). Limits may therefore
 /// span many turns (keep them within +-16000 rad, half the Q16.16 range).
@@ -17,7 +18,8 @@ namespace lockbox {
 /// limit restarts from its wrapped angle (see b2RevoluteJoint::GetJointAngle).
 inline constexpr Fixed kMaxContinuousAngle = 8192;
 
-/// Revolute joint definition.
+/// Revolute joint definition: the local anchors, the reference angle, and the limit and motor
+/// settings. Initialize fills the anchors and reference angle from the bodies' current poses.
 struct LOCKBOX_API b2RevoluteJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2RevoluteJointDef() { type = e_revoluteJoint; }
@@ -37,7 +39,12 @@ struct LOCKBOX_API b2RevoluteJointDef : b2JointDef {
     Fixed maxMotorTorque;      ///< N*m, >= 0
 };
 
-/// Revolute joint.
+/// A revolute joint: bodies A and B share one anchor point (a hinge) and keep one degree of
+/// freedom, their relative rotation (the joint angle, rad, positive when B turns
+/// counter-clockwise relative to A, zero for a definition made by Initialize). An optional
+/// limit keeps the angle in [lower, upper] with whatever torque it takes; an optional motor
+/// drives the joint speed toward a target with at most maxMotorTorque (speed 0 with a small
+/// torque acts as joint friction).
 class LOCKBOX_API b2RevoluteJoint : public b2Joint {
 public:
     /// Anchor on body A (world), m.
@@ -66,9 +73,9 @@ public:
     bool IsLimitEnabled() const noexcept { return m_enableLimit; }
     /// Enables or disables the limit (wakes the bodies).
     void EnableLimit(bool flag);
-    /// Lower limit.
+    /// Lower bound of the joint angle, rad (include 0, or the joint lurches at the start).
     Fixed GetLowerLimit() const noexcept { return m_lowerAngle; }
-    /// Upper limit.
+    /// Upper bound of the joint angle, rad (>= the lower bound).
     Fixed GetUpperLimit() const noexcept { return m_upperAngle; }
     /// Sets the limits, rad (lower <= upper; wakes the bodies).
     void SetLimits(Fixed lower, Fixed upper);

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2RopeJoint (Box2D 2.2.1): a maximum distance between two anchors (a slack rope). It keeps
 /// chains and ragdolls from stretching under large mass ratios.
 
@@ -8,7 +9,8 @@
 
 namespace lockbox {
 
-/// Rope joint definition.
+/// Rope joint definition: the local anchors and the maximum length (no Initialize: set the
+/// anchors in each body's frame).
 struct b2RopeJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2RopeJointDef() {
@@ -22,7 +24,8 @@ struct b2RopeJointDef : b2JointDef {
     Fixed maxLength;      ///< m, > linearSlop
 };
 
-/// Rope joint.
+/// A rope joint: the distance between an anchor on A and one on B never exceeds maxLength, and
+/// may be anything shorter (a slack rope).
 class LOCKBOX_API b2RopeJoint : public b2Joint {
 public:
     /// Anchor on body A (world), m.

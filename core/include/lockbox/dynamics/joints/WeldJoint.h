@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2WeldJoint (Box2D 2.2.1): glues two bodies together (point and angle), optionally with a
 /// soft angular spring (frequencyHz > 0).
 
@@ -8,7 +9,8 @@
 
 namespace lockbox {
 
-/// Weld joint definition.
+/// Weld joint definition: the local anchors, the reference angle and the optional softness.
+/// Initialize fills them from the bodies' current poses and one world anchor.
 struct LOCKBOX_API b2WeldJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2WeldJointDef() { type = e_weldJoint; }
@@ -23,7 +25,8 @@ struct LOCKBOX_API b2WeldJointDef : b2JointDef {
     Fixed dampingRatio;    ///< angular spring damping ratio
 };
 
-/// Weld joint.
+/// A weld joint: holds B fixed relative to A (anchor point and angle). The iterative solver makes
+/// chains of welded bodies flex a little; a single body with several fixtures is stiffer.
 class LOCKBOX_API b2WeldJoint : public b2Joint {
 public:
     /// Anchor on body A (world), m.

@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// b2WheelJoint (Box2D 2.2.1): B's anchor slides on a line fixed in A (the suspension axis)
 /// with a spring along it, and B rotates freely with an optional motor. For vehicles.
 
@@ -8,7 +9,8 @@
 
 namespace lockbox {
 
-/// Wheel joint definition.
+/// Wheel joint definition: the local anchors and suspension axis, the spring and the motor.
+/// Initialize fills the anchors and axis from the bodies' current poses and a world axis.
 struct LOCKBOX_API b2WheelJointDef : b2JointDef {
     /// Defaults as in Box2D 2.2.1.
     b2WheelJointDef() {
@@ -29,7 +31,8 @@ struct LOCKBOX_API b2WheelJointDef : b2JointDef {
     Fixed dampingRatio = Fixed(0.7);  ///< suspension damping ratio
 };
 
-/// Wheel joint.
+/// A wheel joint: body B's anchor moves along a line fixed in body A, held by a spring along
+/// that line (the suspension), and B turns freely about the anchor, optionally driven by a motor.
 class LOCKBOX_API b2WheelJoint : public b2Joint {
 public:
     /// Anchor on body A (world), m.

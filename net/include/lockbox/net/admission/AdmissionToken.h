@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// Admission tokens (docs/deploy.md "Admission tokens"): the matchmaker's permission for one
 /// client to play one slot of one match until a deadline. The matchmaker signs the token with a
 /// key it shares with the match servers; the client receives it as opaque bytes and presents it
@@ -41,11 +42,12 @@ inline constexpr size_t kTokenBytes = kTokenBodyBytes + kTokenSignatureBytes;
 
 /// What a token says (its signed fields).
 struct AdmissionToken {
-    uint32_t matchId = 0;
+    uint32_t matchId = 0;    ///< the match the token admits to; a server refuses matches it does not host
     uint8_t slot = 0;        ///< 0 .. kMaxPlayers - 1
     uint64_t clientId = 0;   ///< the matchmaker's player id
     uint64_t expiresAt = 0;  ///< seconds since the Unix epoch; refused from this second on
     uint64_t nonce = 0;      ///< random; a token is admitted once
+    /// Field-wise equality, as the tests compare ParseToken's result with what was encoded.
     bool operator==(const AdmissionToken&) const = default;
 };
 

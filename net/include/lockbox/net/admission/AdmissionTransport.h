@@ -1,4 +1,5 @@
 #pragma once
+/// @file
 /// How a client presents its admission token (AdmissionToken.h) to a match server: every
 /// datagram it sends before the server first answers is wrapped in an admission envelope that
 /// carries the token in front of the session's own bytes. The session (a LockstepClient, say)
