@@ -20,6 +20,7 @@ PACKAGES=(
     ninja-build         # generator used by every preset
     clang               # second compiler, to check the code builds and hashes the same with it
     clang-format        # the formatting check (scripts/check-format.sh) run by CI
+    doxygen             # the public API documentation check (scripts/check-docs.sh) run by CI
     libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes for clang (the sanitize preset)
     googletest          # GoogleTest / GoogleMock sources (tests/)
     libgtest-dev        # GTest::gtest, GTest::gtest_main (tests/)
