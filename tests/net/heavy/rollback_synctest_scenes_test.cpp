@@ -68,8 +68,8 @@ std::vector<std::string> Scenes() {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllScenes, SyncTestScenes, ::testing::ValuesIn(Scenes()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                             std::string name = info.param;
+                         [](const ::testing::TestParamInfo<std::string>& scene) {
+                             std::string name = scene.param;
                              for (char& ch : name)
                                  if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                              return name;
