@@ -1,8 +1,10 @@
 #pragma once
-// Two rollback peers over real UDP sockets on 127.0.0.1, the second started `delay` after the
-// first (its port is closed until then, so the first one's datagrams vanish as they would to
-// a machine not running yet). Shared by the fast test (a short delay) and the heavy one (3 s).
+// Rollback peers over real UDP sockets on 127.0.0.1, each started at its own offset (its port
+// is closed until then, so the others' datagrams vanish as they would to a machine not running
+// yet). Shared by the fast test (two peers, a short delay) and the heavy one (two peers 3 s
+// apart and a third 1 s later).
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -35,18 +37,26 @@ struct UdpStartSide {
 
 struct UdpStartResult {
     bool done = false;
-    UdpStartSide sides[2];
-    double seconds = 0;  ///< wall time of the run, the delay included
+    std::vector<UdpStartSide> sides;
+    double seconds = 0;  ///< wall time of the run, the delays included
 };
 
 /// Builds one side of a UDP match on `transport`: the vertical_stack game, its session for
-/// slot `slot` of 2, the adapter with the scene's step settings, the peer (remote `other`,
-/// match `matchId`) and the scripted inputs. `S` has the members of UdpStartSide it fills.
+/// slot `slot` of `others.size() + 1` players, the adapter with the scene's step settings, the
+/// peer (`others`: the PeerIds of the other slots in slot order; match `matchId`) and the
+/// scripted inputs. `S` has the members of UdpStartSide it fills.
 template <class S>
-inline void BuildUdpSide(S& s, uint32_t slot, Transport& transport, PeerId other, uint32_t matchId) {
+inline void BuildUdpSide(S& s, uint32_t slot, Transport& transport, const std::vector<PeerId>& others,
+                         uint32_t matchId) {
+    const uint32_t players = static_cast<uint32_t>(others.size()) + 1;
     s.game = std::make_unique<replay::SceneGame>("vertical_stack");
-    s.session =
-        RollbackSessionBuilder().Players(2).InputBytes(8).LocalPlayer(slot).InputDelay(1).DesyncInterval(5).Build();
+    s.session = RollbackSessionBuilder()
+                    .Players(players)
+                    .InputBytes(8)
+                    .LocalPlayer(slot)
+                    .InputDelay(1)
+                    .DesyncInterval(5)
+                    .Build();
     const auto& info = s.game->info();
     s.adapter = std::make_unique<WorldGameAdapter>(
         s.game->world(), *s.game,
@@ -54,25 +64,28 @@ inline void BuildUdpSide(S& s, uint32_t slot, Transport& transport, PeerId other
                           static_cast<uint32_t>(info.positionIterations)});
     RollbackPeerConfig cfg;
     cfg.matchId = matchId;
-    cfg.remotes.push_back(RollbackRemote{other, {1 - slot}});
+    for (uint32_t j = 0, k = 0; j < players; ++j)
+        if (j != slot) cfg.remotes.push_back(RollbackRemote{others[k++], {j}});
     s.peer = std::make_unique<RollbackPeer>(*s.session, transport, cfg);
     s.script = std::make_unique<replay::ScriptedInputs>(matchId * 1000 + slot, 1);
 }
 
-/// Side `lateSide` (0 or 1) starts `delay` after the other; both play to `frames` confirmed
-/// frames. Bounded by the delay plus 20 wall seconds.
-inline void RunUdpStaggered(UdpStartResult& out, uint32_t lateSide, std::chrono::milliseconds delay, int32_t frames) {
+/// Side i starts `startAfter[i]` after the run begins; all play to `frames` confirmed frames.
+/// Bounded by the latest start plus 20 wall seconds.
+inline void RunUdpStaggered(UdpStartResult& out, const std::vector<std::chrono::milliseconds>& startAfter,
+                            int32_t frames) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
+    const uint32_t n = static_cast<uint32_t>(startAfter.size());
     std::string error;
-    uint16_t ports[2] = {};
-    for (auto& side : out.sides) {
-        side.transport = UdpTransport::Open("127.0.0.1", 0, &error);
-        ASSERT_NE(side.transport, nullptr) << error;
+    std::vector<uint16_t> ports(n);
+    out.sides.resize(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        auto probe = UdpTransport::Open("127.0.0.1", 0, &error);
+        ASSERT_NE(probe, nullptr) << error;
+        ports[i] = probe->LocalPort();
+        if (startAfter[i].count() == 0) out.sides[i].transport = std::move(probe);  // else closed until it starts
     }
-    for (uint32_t i = 0; i < 2; ++i) ports[i] = out.sides[i].transport->LocalPort();
-    out.sides[lateSide].transport.reset();  // closed until the late side starts
-
     auto start = [&](uint32_t i) {
         UdpStartSide& s = out.sides[i];
         for (int attempt = 0; !s.transport && attempt < 100; ++attempt) {
@@ -80,18 +93,23 @@ inline void RunUdpStaggered(UdpStartResult& out, uint32_t lateSide, std::chrono:
             if (!s.transport) std::this_thread::sleep_for(std::chrono::milliseconds(10));
         }
         ASSERT_NE(s.transport, nullptr) << error;
-        const PeerId other = s.transport->AddPeer("127.0.0.1", ports[1 - i], &error);
-        ASSERT_NE(other, kNoPeer) << error;
-        BuildUdpSide(s, i, *s.transport, other, 32);
+        std::vector<PeerId> others;
+        for (uint32_t j = 0; j < n; ++j) {
+            if (j == i) continue;
+            others.push_back(s.transport->AddPeer("127.0.0.1", ports[j], &error));
+            ASSERT_NE(others.back(), kNoPeer) << error;
+        }
+        BuildUdpSide(s, i, *s.transport, others, 32);
     };
-    start(1 - lateSide);
-    const auto deadline = t0 + delay + std::chrono::seconds(20);
+    auto latest = std::chrono::milliseconds(0);
+    for (const auto& d : startAfter) latest = std::max(latest, d);
+    const auto deadline = t0 + latest + std::chrono::seconds(20);
     std::vector<uint8_t> input;
     while (!out.done && Clock::now() < deadline) {
-        if (!out.sides[lateSide].peer && Clock::now() >= t0 + delay) start(lateSide);
         out.done = true;
-        for (uint32_t i = 0; i < 2; ++i) {
+        for (uint32_t i = 0; i < n; ++i) {
             UdpStartSide& s = out.sides[i];
+            if (!s.peer && Clock::now() >= t0 + startAfter[i]) start(i);
             if (!s.peer) {
                 out.done = false;
                 continue;
@@ -112,11 +130,12 @@ inline void RunUdpStaggered(UdpStartResult& out, uint32_t lateSide, std::chrono:
     out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// Both sides ran (one e_running each, nobody cut, timed out or desynced) and agree on every
-/// final hash both know, `frames` included.
+/// Every side ran (one e_running each, nobody cut, timed out or desynced) and agrees with side
+/// 0 on every final hash both know, `frames` included.
 inline void ExpectUdpStartedTogether(const UdpStartResult& r, int32_t frames) {
     EXPECT_TRUE(r.done) << "after " << r.seconds << " s";
-    for (uint32_t i = 0; i < 2; ++i) {
+    ASSERT_FALSE(r.sides.empty());
+    for (uint32_t i = 0; i < r.sides.size(); ++i) {
         const UdpStartSide& s = r.sides[i];
         SCOPED_TRACE(::testing::Message() << "side " << i);
         ASSERT_NE(s.peer, nullptr);
@@ -132,14 +151,16 @@ inline void ExpectUdpStartedTogether(const UdpStartResult& r, int32_t frames) {
         EXPECT_EQ(running, 1);
         EXPECT_TRUE(s.finals.count(frames)) << "no final hash of frame " << frames;
     }
-    size_t common = 0;
-    for (const auto& [f, h] : r.sides[0].finals) {
-        auto it = r.sides[1].finals.find(f);
-        if (it == r.sides[1].finals.end()) continue;
-        ++common;
-        EXPECT_EQ(it->second, h) << "frame " << f;
+    for (uint32_t i = 1; i < r.sides.size(); ++i) {
+        size_t common = 0;
+        for (const auto& [f, h] : r.sides[0].finals) {
+            auto it = r.sides[i].finals.find(f);
+            if (it == r.sides[i].finals.end()) continue;
+            ++common;
+            EXPECT_EQ(it->second, h) << "side " << i << ", frame " << f;
+        }
+        EXPECT_GE(common, 10u) << "side " << i;
     }
-    EXPECT_GE(common, 10u);
 }
 
 }  // namespace lockbox::net::rbtest

@@ -43,7 +43,7 @@ TEST(RollbackUdp, TwoPeersOnLoopbackAgree) {
     } sides[2];
     for (uint32_t i = 0; i < 2; ++i) {
         Side& s = sides[i];
-        rbtest::BuildUdpSide(s, i, *transports[i], others[i], 31);
+        rbtest::BuildUdpSide(s, i, *transports[i], {others[i]}, 31);
     }
     const int32_t frames = 150;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
@@ -88,7 +88,8 @@ TEST(RollbackUdp, PeersStartedApartOnLoopbackAgree) {
     for (uint32_t late = 0; late < 2; ++late) {
         SCOPED_TRACE(::testing::Message() << "late side " << late);
         rbtest::UdpStartResult r;
-        rbtest::RunUdpStaggered(r, late, std::chrono::milliseconds(500), 120);
+        const auto none = std::chrono::milliseconds(0), later = std::chrono::milliseconds(500);
+        rbtest::RunUdpStaggered(r, {late == 0 ? later : none, late == 1 ? later : none}, 120);
         rbtest::ExpectUdpStartedTogether(r, 120);
     }
 }
