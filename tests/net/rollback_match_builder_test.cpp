@@ -70,7 +70,7 @@ protected:
 TEST_F(MatchBuilder, GoodConfigurationBuilds) {
     const RollbackMatchBuild built = Good().Build();
     ASSERT_NE(built.match, nullptr) << built.error.message;
-    EXPECT_FALSE(built.error);
+    EXPECT_TRUE(built.error.ok());
     EXPECT_EQ(built.match->Phase(), MatchPhase::e_synchronizing);
     EXPECT_EQ(built.match->TickMicros(), 16666u);
     EXPECT_EQ(&built.match->Net(), &end);

@@ -71,8 +71,9 @@ struct RollbackMatchError {
     /// The refused setting; e_none when Build() succeeded.
     MatchSetting setting = MatchSetting::e_none;
     std::string message;  ///< one line naming the setting and the bad value
-    /// True when Build() refused (an error is present), so `if (build.error)` reads "on error".
-    explicit operator bool() const noexcept { return setting != MatchSetting::e_none; }
+    /// True when Build() did not refuse. (No conversion to bool, like replay::Error: lockbox's
+    /// result types that convert to bool are true on success.)
+    bool ok() const noexcept { return setting == MatchSetting::e_none; }
 };
 
 class RollbackMatch;
