@@ -178,8 +178,9 @@ int Record(int argc, char** argv) {
 int main(int argc, char** argv) {
     GameRegistry games;
     games.AddCommand("record", kRecordUsage, Record);
-    games.AddCommand("verify-dir", kVerifyDirUsage,
-                     [&games](int argc, char** argv) { return RunVerifyDir(argc, argv, games, "lockbox_replay"); });
+    games.AddCommand("verify-dir", kVerifyDirUsage, [&games](int commandArgc, char** commandArgv) {
+        return RunVerifyDir(commandArgc, commandArgv, games, "lockbox_replay");
+    });
     games.AddPrefix("scene:", OpenSceneGame);
     games.AddPrefix(std::string(kSceneFileGamePrefix), OpenSceneFileGame);
     games.AddOption(kSceneFileOption, "FILE.json");

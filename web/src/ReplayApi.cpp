@@ -92,7 +92,7 @@ LOCKBOX_WEB_API int32_t lb_replay_verify(const uint8_t* bytes, int32_t size, int
     }
     SceneGame g(sceneName);
     Player p(file, g.world(), g);
-    if (p.Restore(file.NearestKeyframe(r.firstBadFrame))) return 0;
+    if (!p.Restore(file.NearestKeyframe(r.firstBadFrame)).ok()) return 0;
     while (p.Frame() < k->frame && p.Step()) {
     }
     b2World recorded(b2Vec2(0, 0));
