@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <chrono>
 
+#include "lockbox/net/RelayServer.h"
+#include "lockbox/net/RelayWire.h"
+#include "lockbox/net/RollbackProtocol.h"
 #include "lockbox/net/admission/AdmissionTransport.h"
 #include "lockbox/replay/Recorder.h"
 #include "lockbox/replay/SceneGame.h"
@@ -21,12 +24,27 @@ const char* DropName(Drop drop) noexcept {
         case Drop::e_serverFull: return "server_full";
         case Drop::e_draining: return "draining";
         case Drop::e_strayEnvelope: return "stray_envelope";
+        case Drop::e_peerBandwidth: return "peer_bandwidth";
+        case Drop::e_wrongSlot: return "wrong_slot";
         case Drop::e_count: break;
     }
     return "unknown";
 }
 
+const char* MatchKindName(MatchKind kind) noexcept {
+    switch (kind) {
+        case MatchKind::e_lockstepRelay: return "lockstep-relay";
+        case MatchKind::e_lockstepAuthoritative: return "lockstep-authoritative";
+        case MatchKind::e_rollbackRelay: return "rollback-relay";
+    }
+    return "unknown";
+}
+
 namespace {
+
+// Frames of rollback inputs the recorder keeps ahead of the first frame it still misses: the
+// peers' prediction window is far smaller, and the bound keeps a peer from filling memory.
+constexpr int32_t kRollbackRecordAhead = 1024;
 
 constexpr size_t kUpdateSamples = 4096;
 // Refusal lines per second in the log at most: a flood must not turn into a flood of lines
@@ -107,7 +125,16 @@ struct MatchHost::Match {
     uint64_t createdMicros = 0;
     std::map<PeerId, int32_t> admitted;  // peer -> the slot its token names
     std::unique_ptr<MatchTransport> transport;
+    // Lockstep kinds: the session's server; authoritative: with the scene's world to simulate.
+    std::unique_ptr<replay::SceneGame> authority;
     std::unique_ptr<net::LockstepServer> server;
+    // Rollback relay: the relay, and the inputs each slot sent for frames not yet recorded.
+    std::unique_ptr<net::RelayServer> relay;
+    std::map<int32_t, std::vector<uint8_t>> pendingInputs;  // frame -> every slot's input
+    std::map<int32_t, uint64_t> pendingSlots;               // frame -> bit mask of slots present
+    std::vector<uint64_t> lastHeard;                        // slot -> when it last sent (0: never)
+    std::vector<std::vector<net::RollbackMessage>> scratch;
+    int32_t sharedFrames = 0;  // the rollback peers have all inputs before this frame
     // The replay: the scene's world stepped through every confirmed frame.
     std::unique_ptr<replay::SceneGame> game;
     std::unique_ptr<replay::FileSink> sink;
@@ -116,9 +143,15 @@ struct MatchHost::Match {
     int32_t recorded = 0;
 
     ~Match() {
-        // The server talks through the transport: it goes first.
+        // The server and relay talk through the transport: they go first.
         server.reset();
+        relay.reset();
     }
+    bool Started() const {
+        if (server) return server->Started();
+        return std::all_of(lastHeard.begin(), lastHeard.end(), [](uint64_t t) { return t != 0; });
+    }
+    int32_t Frames() const { return server ? server->ConfirmedFrames() : sharedFrames; }
 };
 
 MatchHost::MatchHost(std::unique_ptr<net::UdpTransport> socket, HostConfig config, JsonLog& log)
@@ -183,8 +216,83 @@ void MatchHost::Route(Datagram& d) {
     } else {
         p.handshakeDone = true;
     }
+    if (!WithinBandwidth(p, d.bytes.size(), m_socket->NowMicros())) {
+        ++m_stats.dropped[static_cast<size_t>(Drop::e_peerBandwidth)];
+        return;
+    }
     if (!p.handshakeDone) p.bytesIn += d.bytes.size();
-    match->second->transport->Deliver(d.peer, payload);
+    Deliver(*match->second, d.peer, p, payload);
+}
+
+void MatchHost::Deliver(Match& m, PeerId peer, const Peer& p, std::span<const uint8_t> payload) {
+    if (m.relay) {
+        // The relay knows members by the slot they claim; the token decided which one.
+        const auto frame = net::ParseRelayFrame(payload);
+        if (frame && frame->kind == net::RelayKind::e_join && frame->slot != p.slot) {
+            ++m_stats.dropped[static_cast<size_t>(Drop::e_wrongSlot)];
+            return;
+        }
+        if (frame) {
+            m.lastHeard[static_cast<size_t>(p.slot)] = std::max<uint64_t>(1, m_socket->NowMicros());
+            if (frame->kind == net::RelayKind::e_toSlot) RecordRollbackInputs(m, p.slot, frame->payload);
+        }
+    }
+    m.transport->Deliver(peer, payload);
+}
+
+bool MatchHost::WithinBandwidth(Peer& p, size_t bytes, uint64_t nowMicros) const {
+    const uint64_t rate = m_config.peerBytesPerSecond;
+    if (rate == 0) return true;
+    // Credit in byte-microseconds: one second's worth at most, refilled at `rate`.
+    const uint64_t capacity = rate * 1'000'000;
+    if (p.creditTime == 0) {
+        p.credit = capacity;
+    } else if (nowMicros > p.creditTime) {
+        p.credit = std::min(capacity, p.credit + (nowMicros - p.creditTime) * rate);
+    }
+    p.creditTime = std::max<uint64_t>(1, nowMicros);
+    const uint64_t cost = uint64_t{bytes} * 1'000'000;
+    if (cost > p.credit) return false;
+    p.credit -= cost;
+    return true;
+}
+
+void MatchHost::RecordRollbackInputs(Match& m, int32_t slot, std::span<const uint8_t> payload) {
+    if (!m.recorder) return;
+    const net::RollbackShape shape{m_config.match.playerCount, m_config.match.inputBytes};
+    net::RollbackHeader header;
+    if (m.scratch.empty()) m.scratch.resize(1);
+    std::vector<net::RollbackMessage>& messages = m.scratch.front();
+    if (net::DecodeRollbackDatagram(payload, shape, header, messages) != net::DecodeError::e_ok) return;
+    if (header.matchId != m.id) return;
+    const size_t inputBytes = m_config.match.inputBytes;
+    const uint64_t everyone = (m_config.match.playerCount >= 64 ? ~0ull : (1ull << m_config.match.playerCount) - 1);
+    for (const net::RollbackMessage& message : messages) {
+        const auto* run = std::get_if<net::RbInputs>(&message);
+        // A peer speaks for its own slot only: inputs it relays for others are ignored.
+        if (run == nullptr || run->player != slot) continue;
+        const auto count = static_cast<int32_t>(run->bytes.size() / inputBytes);
+        for (int32_t i = 0; i < count; ++i) {
+            const int32_t f = run->firstFrame + i;
+            if (f < m.sharedFrames || f >= m.sharedFrames + kRollbackRecordAhead) continue;
+            uint64_t& present = m.pendingSlots[f];
+            if ((present >> slot) & 1) continue;
+            present |= 1ull << slot;
+            std::vector<uint8_t>& row = m.pendingInputs[f];
+            row.resize(m_config.match.playerCount * inputBytes);
+            std::copy_n(run->bytes.begin() + static_cast<ptrdiff_t>(i * inputBytes), inputBytes,
+                        row.begin() + static_cast<ptrdiff_t>(static_cast<size_t>(slot) * inputBytes));
+        }
+    }
+    // Every frame whose inputs all arrived, in order, goes to the replay.
+    while (!m.pendingSlots.empty() && m.pendingSlots.begin()->first == m.sharedFrames &&
+           m.pendingSlots.begin()->second == everyone) {
+        m.recorder->Advance(m.pendingInputs.begin()->second);
+        m.pendingSlots.erase(m.pendingSlots.begin());
+        m.pendingInputs.erase(m.pendingInputs.begin());
+        ++m.sharedFrames;
+        m.recorded = m.sharedFrames;
+    }
 }
 
 void MatchHost::Refuse(PeerId peer, const std::string& address, const char* reason, bool isToken, size_t index) {
@@ -238,7 +346,7 @@ void MatchHost::Admit(Datagram& d, uint64_t nowMicros) {
     std::copy(env.token.begin(), env.token.end(), p.token.begin());
     p.bytesIn = d.bytes.size();
     p.address = address;
-    m_peers[d.peer] = p;
+    const Peer& seated = m_peers[d.peer] = p;
     m->admitted[d.peer] = token.slot;
     ++m_stats.admitted;
     m_log.Event("admitted")
@@ -246,7 +354,7 @@ void MatchHost::Admit(Datagram& d, uint64_t nowMicros) {
         .Num("slot", token.slot)
         .Num("client", token.clientId)
         .Str("peer", address);
-    m->transport->Deliver(d.peer, env.payload);
+    Deliver(*m, d.peer, seated, env.payload);
 }
 
 bool MatchHost::SendFor(uint32_t matchId, PeerId peer, std::span<const uint8_t> bytes) {
@@ -272,37 +380,72 @@ MatchHost::Match* MatchHost::CreateMatch(uint32_t id, uint64_t nowMicros) {
     m->id = id;
     m->createdMicros = nowMicros;
     m->transport = std::make_unique<MatchTransport>(*this, id);
-    net::ServerConfig config = m_config.match;
-    Match* raw = m.get();
-    config.admittedSlot = [raw](PeerId peer) {
-        const auto it = raw->admitted.find(peer);
-        return it == raw->admitted.end() ? -1 : it->second;
-    };
-    config.tokenSeed = (static_cast<uint64_t>(id) << 20) ^ nowMicros;
-    m->server = std::make_unique<net::LockstepServer>(*m->transport, std::move(config));
+    if (m_config.kind == MatchKind::e_rollbackRelay) {
+        // The front door already bound every member to its token's slot (a join for another
+        // slot never reaches the relay), so the relay's own slot secrets are not needed.
+        net::RelayServerConfig rc;
+        rc.matchId = id;
+        rc.tokens.assign(std::max<uint32_t>(2, m_config.match.playerCount), 0);
+        m->relay = std::make_unique<net::RelayServer>(*m->transport, std::move(rc));
+        m->lastHeard.assign(m_config.match.playerCount, 0);
+    } else {
+        net::ServerConfig config = m_config.match;
+        Match* raw = m.get();
+        config.admittedSlot = [raw](PeerId peer) {
+            const auto it = raw->admitted.find(peer);
+            return it == raw->admitted.end() ? -1 : it->second;
+        };
+        config.tokenSeed = (static_cast<uint64_t>(id) << 20) ^ nowMicros;
+        if (m_config.kind == MatchKind::e_lockstepAuthoritative) {
+            // The server's own world, apart from the replay's: the two step independently.
+            m->authority = std::make_unique<replay::SceneGame>(m_config.scene);
+            if (m->authority->ok()) {
+                config.world = &m->authority->world();
+                config.game = m->authority.get();
+            }
+        }
+        m->server = std::make_unique<net::LockstepServer>(*m->transport, std::move(config));
+    }
     if (!m_config.replayDir.empty()) {
         m->game = std::make_unique<replay::SceneGame>(m_config.scene);
         if (m->game->ok()) {
             m->replayPath = m_config.replayDir + "/match-" + std::to_string(id) + ".lbr";
             m->sink = std::make_unique<replay::FileSink>(m->replayPath);
             replay::RecorderConfig rc = m->game->Config(static_cast<uint16>(m_config.match.playerCount));
-            // The clients step with the session's settings, so the replay does too.
-            rc.tickRate = static_cast<uint16>(m_config.match.tickRate);
             rc.inputBytes = static_cast<uint16>(m_config.match.inputBytes);
-            rc.velocityIterations = 8;
-            rc.positionIterations = 3;
             rc.hashInterval = m_config.match.hashInterval;
+            if (!m->relay) {
+                // Lockstep clients step with the session's settings, so the replay does too;
+                // rollback peers step with the scene's own (WorldGameAdapter).
+                rc.tickRate = static_cast<uint16>(m_config.match.tickRate);
+                rc.velocityIterations = 8;
+                rc.positionIterations = 3;
+            }
             m->recorder = std::make_unique<replay::Recorder>(m->game->world(), *m->game, *m->sink, rc);
             m->recorder->Begin();
         }
     }
     ++m_stats.matchesCreated;
-    m_log.Event("match_created").Num("match", id).Num("players", m_config.match.playerCount);
+    m_log.Event("match_created")
+        .Num("match", id)
+        .Str("kind", MatchKindName(m_config.kind))
+        .Num("players", m_config.match.playerCount);
     auto [it, inserted] = m_matches.emplace(id, std::move(m));
     return it->second.get();
 }
 
 void MatchHost::UpdateMatch(Match& m, uint64_t nowMicros) {
+    if (m.relay) {
+        m.relay->Poll();
+        // A relay sees no session: a match ends when every member fell silent.
+        bool anyLive = false;
+        for (uint64_t t : m.lastHeard)
+            anyLive = anyLive || (t != 0 && nowMicros - std::min(nowMicros, t) < m_config.match.disconnectMicros);
+        if (m.Started() && !anyLive) return EndMatch(m.id, "players_left");
+        if (!m.Started() && nowMicros > m.createdMicros && nowMicros - m.createdMicros > m_config.startTimeoutMicros)
+            return EndMatch(m.id, "start_timeout");
+        return;
+    }
     m.server->Update();
     for (const net::ServerEvent& e : m.server->TakeEvents()) {
         if (e.kind == net::ServerEvent::Kind::e_desync) ++m_stats.desyncs;
@@ -348,7 +491,7 @@ void MatchHost::EndMatch(uint32_t id, const char* why) {
             m_log.Event("replay_failed").Num("match", id).Str("path", m.replayPath);
         }
     }
-    m_log.Event("match_ended").Num("match", id).Str("why", why).Int("frames", m.server->ConfirmedFrames());
+    m_log.Event("match_ended").Num("match", id).Str("why", why).Int("frames", m.Frames());
     for (const auto& [peer, slot] : m.admitted) {
         m_peers.erase(peer);
         m_socket->Disconnect(peer);
@@ -366,6 +509,11 @@ void MatchHost::EndMatch(uint32_t id, const char* why) {
     m_matches.erase(it);
 }
 
+const net::LockstepServer* MatchHost::LockstepOf(uint32_t id) const {
+    const auto it = m_matches.find(id);
+    return it == m_matches.end() ? nullptr : it->second->server.get();
+}
+
 void MatchHost::BeginDrain() {
     if (m_draining) return;
     m_draining = true;
@@ -376,7 +524,7 @@ void MatchHost::CloseAll() {
     std::vector<uint32_t> ids;
     for (auto& [id, match] : m_matches) ids.push_back(id);
     for (uint32_t id : ids) {
-        m_matches.at(id)->server->Close();
+        if (m_matches.at(id)->server) m_matches.at(id)->server->Close();
         EndMatch(id, "server_closing");
     }
 }

@@ -1,8 +1,9 @@
 #pragma once
-// The heart of lockbox_server: one UDP socket, many lockstep matches behind it.
+// The heart of lockbox_server: one UDP socket, many matches behind it.
 //
-// The front door reads every datagram. A sender it has admitted is routed to its match's
-// LockstepServer (through a MatchTransport, a Transport per match). Any other sender is
+// The front door reads every datagram. A sender it has admitted is routed to its match (a
+// LockstepServer, relaying or authoritative, or a RelayServer for rollback peers) through a
+// MatchTransport, a Transport per match, after its per-peer bandwidth check. Any other sender is
 // rate-limited per source address, then must present an admission token in an envelope
 // (lockbox/net/admission/AdmissionTransport.h); a valid token admits the sender to the match
 // and slot it names (creating the match on its first token) and the envelope's payload, the
@@ -33,10 +34,21 @@ enum class Drop : uint8_t {
     e_serverFull,       ///< a valid token, but the match or player limit is reached
     e_draining,         ///< a valid token, but the server is shutting down
     e_strayEnvelope,    ///< an admitted sender presented another token
+    e_peerBandwidth,    ///< an admitted sender sent more bytes than its per-peer budget
+    e_wrongSlot,        ///< an admitted rollback peer claimed a relay slot its token does not name
     e_count
 };
 /// Metric label of a drop reason ("rate_limited", ...).
 const char* DropName(Drop drop) noexcept;
+
+/// What every match of a host runs (docs/deploy.md "Match kinds").
+enum class MatchKind : uint8_t {
+    e_lockstepRelay = 0,      ///< LockstepServer relaying inputs; the clients simulate
+    e_lockstepAuthoritative,  ///< LockstepServer that also simulates the scene and checks hashes
+    e_rollbackRelay,          ///< RelayServer between rollback peers; the server records inputs
+};
+/// Option value of a kind ("lockstep-relay", "lockstep-authoritative", "rollback-relay").
+const char* MatchKindName(MatchKind kind) noexcept;
 
 /// Settings of a host.
 struct HostConfig {
@@ -44,13 +56,17 @@ struct HostConfig {
     std::vector<uint32_t> matchIds;  ///< hosted matches; empty: any id a token names
     uint32_t maxMatches = 64;
     uint32_t maxPlayers = 256;
+    MatchKind kind = MatchKind::e_lockstepRelay;
     net::ServerConfig match;  ///< settings of every match (playerCount, inputBytes, ...)
+    /// Bytes a second an admitted client may send (one second's worth at once); more is dropped
+    /// unread (Drop::e_peerBandwidth). 0: no limit.
+    uint32_t peerBytesPerSecond = 65536;
     uint64_t startTimeoutMicros = 60'000'000;
     uint64_t tokenMaxLifetimeSeconds = 3600;
     size_t replayCacheSize = 65536;
     uint32_t rateLimitPerSecond = 20;
     uint32_t rateLimitBurst = 40;
-    std::string scene;      ///< library scene of the matches (replays)
+    std::string scene;      ///< library scene of the matches (replays; the authoritative world)
     std::string replayDir;  ///< where finished matches' replays go; empty: none
     /// Wall clock in Unix seconds (token deadlines); tests replace it.
     std::function<uint64_t()> unixNow;
@@ -87,6 +103,8 @@ public:
     size_t PlayerCount() const noexcept { return m_peers.size(); }
     const HostStats& Stats() const noexcept { return m_stats; }
     net::UdpTransport& Socket() noexcept { return *m_socket; }
+    /// The lockstep server of match `id` (lockstep kinds), or null: for inspection.
+    const net::LockstepServer* LockstepOf(uint32_t id) const;
     /// Durations of the latest Updates, microseconds (the newest 4096).
     const std::vector<uint32_t>& UpdateMicros() const noexcept { return m_updateMicros; }
 
@@ -99,10 +117,16 @@ private:
         admission::TokenBytes token{};
         uint64_t bytesIn = 0, bytesOut = 0;  // before the handshake completed
         bool handshakeDone = false;
+        uint64_t credit = 0;      // bandwidth budget, byte-microseconds
+        uint64_t creditTime = 0;  // when credit was last brought up to date
         std::string address;
     };
 
     void Route(net::Datagram& d);
+    void Deliver(Match& m, net::PeerId peer, const Peer& p, std::span<const uint8_t> payload);
+    bool WithinBandwidth(Peer& p, size_t bytes, uint64_t nowMicros) const;
+    void Record(Match& m);
+    void RecordRollbackInputs(Match& m, int32_t slot, std::span<const uint8_t> payload);
     void Admit(net::Datagram& d, uint64_t nowMicros);
     bool SendFor(uint32_t matchId, net::PeerId peer, std::span<const uint8_t> bytes);
     Match* CreateMatch(uint32_t id, uint64_t nowMicros);

@@ -61,7 +61,9 @@ std::string RenderMetrics(const MatchHost& host) {
                std::string(admission::RefusalName(static_cast<admission::Refusal>(i))) + "\"} " +
                std::to_string(s.refusedTokens[i]) + "\n";
     out +=
-        "# HELP lockbox_server_dropped_datagrams_total Datagrams from senders not admitted, dropped unanswered, "
+        "# HELP lockbox_server_dropped_datagrams_total Datagrams dropped unread (senders not admitted, admitted ones "
+        "over "
+        "their bandwidth or claiming another slot), "
         "by reason.\n# TYPE lockbox_server_dropped_datagrams_total counter\n";
     for (size_t i = 0; i < s.dropped.size(); ++i)
         out += std::string("lockbox_server_dropped_datagrams_total{reason=\"") + DropName(static_cast<Drop>(i)) +

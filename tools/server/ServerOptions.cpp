@@ -15,8 +15,8 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: lockbox_server --token-key-file FILE [options]\n"
-    "Runs many lockstep matches (the server relays inputs; clients simulate) on one UDP port,\n"
-    "admitting only clients with a signed admission token (lockbox_token mint).\n"
+    "Runs many matches on one UDP port (lockstep, relayed or authoritative, or rollback peers\n"
+    "through a relay), admitting only clients with a signed admission token (lockbox_token mint).\n"
     "\n"
     "  --config FILE           read options from FILE: one 'key = value' per line, keys are the\n"
     "                          option names without '--', '#' starts a comment; options after\n"
@@ -29,7 +29,16 @@ constexpr const char* kUsage =
     "  --matches ID,ID,...     the match ids this server hosts (default: any id a token names)\n"
     "  --max-matches N         matches at once, 1 .. 100000 (default 64)\n"
     "  --max-players N         admitted clients at once, 1 .. 1000000 (default 256)\n"
-    "  --players-per-match N   slots of every match, 1 .. 64 (default 2)\n"
+    "  --match-kind KIND       what every match runs (default lockstep-relay):\n"
+    "                          lockstep-relay: the server relays inputs, the clients simulate;\n"
+    "                          lockstep-authoritative: the server also simulates --scene and\n"
+    "                          checks the clients' hashes against its own;\n"
+    "                          rollback-relay: rollback peers exchange inputs through the server\n"
+    "                          (RelayedTransport), which records them for the replay\n"
+    "  --players-per-match N   slots of every match, 1 .. 64 (rollback-relay: 2 .. 32; default 2)\n"
+    "  --peer-bandwidth N      bytes a second one admitted client may send, one second's worth\n"
+    "                          at once; more is dropped and counted, 0 .. 1000000000 (default\n"
+    "                          65536; 0: no limit)\n"
     "  --input-bytes N         input bytes per player per frame, 1 .. 256 (default 8)\n"
     "  --tick-rate N           frames per second, 1 .. 1000 (default 60)\n"
     "  --hash-interval N       clients report a state hash every N frames, 1 .. 100000 (default 30)\n"
@@ -97,6 +106,10 @@ void ApplyOption(lockbox::cli::OptionReader& args, ServerOptions& o) {
         args.Int(1, 100000, o.maxMatches);
     else if (args.Is("--max-players"))
         args.Int(1, 1000000, o.maxPlayers);
+    else if (args.Is("--match-kind"))
+        args.Choice({"lockstep-relay", "lockstep-authoritative", "rollback-relay"}, o.matchKind);
+    else if (args.Is("--peer-bandwidth"))
+        args.Int(0, 1000000000, o.peerBytesPerSecond);
     else if (args.Is("--players-per-match"))
         args.Int(1, 64, o.playersPerMatch);
     else if (args.Is("--input-bytes"))
@@ -201,6 +214,10 @@ int ReadOptions(int argc, char** argv, ServerOptions& out) {
     }
     if (!args.Failed() && o.tokenKeyFile.empty()) args.Refuse("--token-key-file is required");
     if (!args.Failed() && !o.replayDir.empty() && o.scene.empty()) args.Refuse("--replay-dir needs --scene");
+    if (!args.Failed() && o.matchKind == "lockstep-authoritative" && o.scene.empty())
+        args.Refuse("--match-kind lockstep-authoritative needs --scene");
+    if (!args.Failed() && o.matchKind == "rollback-relay" && (o.playersPerMatch < 2 || o.playersPerMatch > 32))
+        args.Refuse("--match-kind rollback-relay needs --players-per-match in 2 .. 32");
     if (args.Failed()) return args.Fail(kUsage);
     out = std::move(o);
     return 0;

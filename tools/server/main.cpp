@@ -75,6 +75,10 @@ int main(int argc, char** argv) {
     config.matchIds = options.matchIds;
     config.maxMatches = options.maxMatches;
     config.maxPlayers = options.maxPlayers;
+    config.kind = options.matchKind == "lockstep-authoritative" ? server::MatchKind::e_lockstepAuthoritative
+                  : options.matchKind == "rollback-relay"       ? server::MatchKind::e_rollbackRelay
+                                                                : server::MatchKind::e_lockstepRelay;
+    config.peerBytesPerSecond = options.peerBytesPerSecond;
     config.match.playerCount = options.playersPerMatch;
     config.match.inputBytes = options.inputBytes;
     config.match.tickRate = options.tickRate;

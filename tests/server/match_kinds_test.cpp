@@ -1,0 +1,242 @@
+// The match kinds besides the lockstep relay, over real loopback UDP through MatchHost: an
+// authoritative lockstep match (the server simulates the scene and its hash agrees with the
+// clients'), rollback peers through the server's relay (the server records their inputs and the
+// replay equals the peers' confirmed state), the relay slot the token names, and the per-peer
+// bandwidth limit.
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "MatchHost.h"
+#include "lockbox/net/RelayWire.h"
+#include "lockbox/net/RelayedTransport.h"
+#include "lockbox/net/RollbackPeer.h"
+#include "lockbox/net/RollbackSession.h"
+#include "lockbox/net/RollbackWorldAdapter.h"
+#include "lockbox/replay/Player.h"
+#include "lockbox/replay/ReplayFile.h"
+#include "server_harness.h"
+
+namespace lockbox::server {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::kNow;
+using testing::Mint;
+using testing::TestClient;
+
+constexpr int32_t kFrames = 120;
+
+struct Host {
+    JsonLog log{nullptr};
+    std::unique_ptr<MatchHost> host;
+    uint16_t port = 0;
+
+    explicit Host(HostConfig config) {
+        std::string error;
+        auto socket = net::UdpTransport::Open("127.0.0.1", 0, &error, 4096);
+        EXPECT_TRUE(socket) << error;
+        port = socket->LocalPort();
+        config.key = testing::TestKey();
+        config.unixNow = [] { return kNow; };
+        host = std::make_unique<MatchHost>(std::move(socket), std::move(config), log);
+    }
+};
+
+uint64_t Dropped(const MatchHost& h, Drop d) { return h.Stats().dropped[static_cast<size_t>(d)]; }
+
+fs::path FreshDir(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+TEST(MatchKinds, AuthoritativeLockstepSimulatesAndAgreesWithItsClients) {
+    const fs::path dir = FreshDir("lockbox_server_authoritative_test");
+    HostConfig config;
+    config.kind = MatchKind::e_lockstepAuthoritative;
+    config.scene = "vertical_stack";
+    config.replayDir = dir.string();
+    config.match.playerCount = 2;
+    config.match.tickRate = 240;
+    config.match.hashInterval = 20;
+    Host h(std::move(config));
+    std::vector<std::unique_ptr<TestClient>> clients;
+    for (uint8_t slot = 0; slot < 2; ++slot)
+        clients.push_back(std::make_unique<TestClient>(h.port, Mint(3, slot, 30 + slot), 500 + slot, kFrames - 1));
+    testing::Pump([&] { h.host->Update(); }, clients,
+                  [&] {
+                      const net::LockstepServer* s = h.host->LockstepOf(3);
+                      return clients[0]->client->Frame() >= kFrames && clients[1]->client->Frame() >= kFrames &&
+                             s != nullptr && s->SimulatedFrames() >= kFrames;
+                  });
+    ASSERT_GE(clients[1]->client->Frame(), kFrames);
+    const net::LockstepServer* server = h.host->LockstepOf(3);
+    ASSERT_NE(server, nullptr);
+    // The server stepped the scene itself and compared its hashes with the clients'.
+    EXPECT_GE(server->SimulatedFrames(), kFrames);
+    EXPECT_EQ(server->Stats().desyncFrames, 0u);
+    EXPECT_EQ(h.host->Stats().desyncs, 0u);
+    EXPECT_EQ(clients[0]->worldHash, clients[1]->worldHash);
+    h.host->CloseAll();
+    ASSERT_EQ(h.host->Stats().replaysWritten, 1u);
+    replay::ReplayFile file;
+    ASSERT_TRUE(replay::LoadReplay((dir / "match-3.lbr").string(), file).ok());
+    replay::SceneGame game("vertical_stack");
+    replay::Player player(file, game.world(), game);
+    const replay::VerifyResult verified = player.Verify();
+    EXPECT_TRUE(verified.ok) << verified.message;
+    ASSERT_TRUE(player.Seek(kFrames).ok());
+    EXPECT_EQ(player.world().Hash(), clients[0]->worldHash);
+    fs::remove_all(dir);
+}
+
+// A rollback peer of a relayed match: UDP, the admission envelope, the relay's framing, the
+// session on the scene's world.
+struct RollbackClient {
+    std::unique_ptr<net::UdpTransport> udp;
+    std::unique_ptr<net::admission::AdmissionTransport> admission;
+    std::unique_ptr<net::RelayedTransport> relayed;
+    std::unique_ptr<replay::SceneGame> game;
+    std::unique_ptr<net::WorldGameAdapter> adapter;
+    std::unique_ptr<net::RollbackSession> session;
+    std::unique_ptr<net::RollbackPeer> peer;
+    std::unique_ptr<replay::ScriptedInputs> inputs;
+    std::vector<uint8_t> pending;
+    uint32_t slot = 0;
+
+    RollbackClient(uint16_t port, uint32_t match, uint32_t claimSlot, uint32_t players,
+                   const admission::TokenBytes& token, uint64_t seed)
+        : slot(claimSlot) {
+        std::string error;
+        udp = net::UdpTransport::Open("127.0.0.1", 0, &error);
+        EXPECT_TRUE(udp) << error;
+        const net::PeerId server = udp->AddPeer("127.0.0.1", port, &error);
+        admission = std::make_unique<net::admission::AdmissionTransport>(*udp, server, token);
+        relayed = std::make_unique<net::RelayedTransport>(
+            *admission, net::RelayedTransportConfig{server, match, claimSlot, players, 0, 20000});
+        game = std::make_unique<replay::SceneGame>("vertical_stack");
+        const auto& info = game->info();
+        adapter = std::make_unique<net::WorldGameAdapter>(
+            game->world(), *game,
+            net::WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
+                                   static_cast<uint32_t>(info.positionIterations)});
+        session = net::RollbackSessionBuilder()
+                      .Players(players)
+                      .InputBytes(replay::SceneInput::kBytes)
+                      .LocalPlayer(claimSlot)
+                      .InputDelay(2)
+                      .DesyncInterval(20)
+                      .Build();
+        net::RollbackPeerConfig cfg;
+        cfg.matchId = match;
+        for (uint32_t j = 0; j < players; ++j)
+            if (j != claimSlot) cfg.remotes.push_back(net::RollbackRemote{j, {j}});
+        peer = std::make_unique<net::RollbackPeer>(*session, *relayed, cfg);
+        inputs = std::make_unique<replay::ScriptedInputs>(seed, 1);
+    }
+
+    void Step(int32_t stopAt) {
+        peer->Poll();
+        if (!peer->WaitThisTick() && session->CurrentFrame() < stopAt) {
+            if (pending.empty()) inputs->Next(pending);
+            if (session->AddLocalInput(slot, pending) != net::InputResult::e_alreadyAdded) pending.clear();
+            (void)adapter->Execute(*session, session->AdvanceFrame());
+        }
+        peer->Flush();
+    }
+};
+
+TEST(MatchKinds, RollbackPeersPlayThroughTheRelayAndTheReplayIsTheirs) {
+    const fs::path dir = FreshDir("lockbox_server_rollback_test");
+    HostConfig config;
+    config.kind = MatchKind::e_rollbackRelay;
+    config.scene = "vertical_stack";
+    config.replayDir = dir.string();
+    config.match.playerCount = 2;
+    config.match.inputBytes = replay::SceneInput::kBytes;
+    config.match.hashInterval = 20;
+    Host h(std::move(config));
+    std::vector<std::unique_ptr<RollbackClient>> peers;
+    for (uint32_t slot = 0; slot < 2; ++slot)
+        peers.push_back(std::make_unique<RollbackClient>(h.port, 11, slot, 2,
+                                                         Mint(11, static_cast<uint8_t>(slot), 110 + slot), 900 + slot));
+    // A client whose token names slot 1 but whose relay link claims slot 0 is never seated.
+    RollbackClient impostor(h.port, 11, 0, 2, Mint(11, 1, 119), 999);
+    const int32_t target = kFrames + 40;  // the peers confirm kFrames once both reached it
+    const auto start = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
+        h.host->Update();
+        for (auto& p : peers) p->Step(target);
+        impostor.peer->Poll();
+        impostor.peer->Flush();
+        if (peers[0]->session->ConfirmedFrame() >= kFrames && peers[1]->session->ConfirmedFrame() >= kFrames) break;
+        std::this_thread::sleep_for(std::chrono::microseconds(300));
+    }
+    ASSERT_GE(peers[0]->session->ConfirmedFrame(), kFrames);
+    ASSERT_GE(peers[1]->session->ConfirmedFrame(), kFrames);
+    EXPECT_GT(Dropped(*h.host, Drop::e_wrongSlot), 0u);
+    // The peers' final hashes (frames that are multiples of 20) agree.
+    std::map<int32_t, uint64_t> finals;
+    for (const auto& [f, hash] : peers[0]->session->FinalHashes()) finals[f] = hash;
+    size_t compared = 0;
+    for (const auto& [f, hash] : peers[1]->session->FinalHashes())
+        if (finals.count(f) != 0) {
+            EXPECT_EQ(finals[f], hash) << "frame " << f;
+            ++compared;
+        }
+    EXPECT_GT(compared, 0u);
+    h.host->CloseAll();
+    ASSERT_EQ(h.host->Stats().replaysWritten, 1u);
+    replay::ReplayFile file;
+    ASSERT_TRUE(replay::LoadReplay((dir / "match-11.lbr").string(), file).ok());
+    EXPECT_GE(file.frameCount, kFrames);
+    replay::SceneGame game("vertical_stack");
+    replay::Player player(file, game.world(), game);
+    const replay::VerifyResult verified = player.Verify();
+    EXPECT_TRUE(verified.ok) << verified.message;
+    // The replay holds the peers' confirmed frames: its state equals their final hashes.
+    size_t matched = 0;
+    for (const auto& [f, hash] : finals) {
+        if (f > file.frameCount || f == 0) continue;
+        ASSERT_TRUE(player.Seek(f).ok());
+        EXPECT_EQ(player.world().Hash(), hash) << "frame " << f;
+        ++matched;
+    }
+    EXPECT_GT(matched, 0u);
+    fs::remove_all(dir);
+}
+
+TEST(MatchKinds, AnAdmittedClientOverItsBandwidthIsCutAndCounted) {
+    HostConfig config;
+    config.match.playerCount = 2;
+    config.peerBytesPerSecond = 2000;  // one second's worth at once: 2000 bytes
+    Host h(std::move(config));
+    std::vector<std::unique_ptr<TestClient>> clients;
+    clients.push_back(std::make_unique<TestClient>(h.port, Mint(4, 0, 40), 1, 10));
+    testing::Pump([&] { h.host->Update(); }, clients, [&] { return h.host->PlayerCount() == 1; },
+                  std::chrono::seconds(5));
+    ASSERT_EQ(h.host->PlayerCount(), 1u);
+    // 100 datagrams of 200 bytes at once from the admitted client's own address: about ten fit
+    // in its budget, the rest are dropped unread.
+    const std::vector<uint8_t> junk(200, 0x5A);
+    for (int i = 0; i < 100; ++i) clients[0]->udp->Send(clients[0]->server, junk);
+    const auto start = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - start < std::chrono::milliseconds(500)) {
+        h.host->Update();
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    EXPECT_GE(Dropped(*h.host, Drop::e_peerBandwidth), 80u);
+    EXPECT_LE(Dropped(*h.host, Drop::e_peerBandwidth), 95u);
+}
+
+}  // namespace
+}  // namespace lockbox::server
