@@ -2,7 +2,7 @@
 // authoritative lockstep match (the server simulates the scene and its hash agrees with the
 // clients'), rollback peers through the server's relay (the server records their inputs and the
 // replay equals the peers' confirmed state), the relay slot the token names, and the per-peer
-// bandwidth limit.
+// bandwidth limit, and spectators taking a relay slot in turn.
 
 #include <chrono>
 #include <cstdint>
@@ -19,6 +19,7 @@
 #include "lockbox/net/RelayedTransport.h"
 #include "lockbox/net/RollbackPeer.h"
 #include "lockbox/net/RollbackSession.h"
+#include "lockbox/net/RollbackSpectator.h"
 #include "lockbox/net/RollbackWorldAdapter.h"
 #include "lockbox/replay/Player.h"
 #include "lockbox/replay/ReplayFile.h"
@@ -111,10 +112,13 @@ struct RollbackClient {
     std::unique_ptr<net::RollbackPeer> peer;
     std::unique_ptr<replay::ScriptedInputs> inputs;
     std::vector<uint8_t> pending;
+    std::vector<uint8_t> snapshot;
     uint32_t slot = 0;
 
+    /// `spectatorSlots` > 0: this peer hosts late-join spectators at the relay slots after the
+    /// players' (slots = players + spectatorSlots).
     RollbackClient(uint16_t port, uint32_t match, uint32_t claimSlot, uint32_t players,
-                   const admission::TokenBytes& token, uint64_t seed)
+                   const admission::TokenBytes& token, uint64_t seed, uint32_t spectatorSlots = 0)
         : slot(claimSlot) {
         std::string error;
         udp = net::UdpTransport::Open("127.0.0.1", 0, &error);
@@ -122,7 +126,7 @@ struct RollbackClient {
         const net::PeerId server = udp->AddPeer("127.0.0.1", port, &error);
         admission = std::make_unique<net::admission::AdmissionTransport>(*udp, server, token);
         relayed = std::make_unique<net::RelayedTransport>(
-            *admission, net::RelayedTransportConfig{server, match, claimSlot, players, 0, 20000});
+            *admission, net::RelayedTransportConfig{server, match, claimSlot, players + spectatorSlots, 0, 20000});
         game = std::make_unique<replay::SceneGame>("vertical_stack");
         const auto& info = game->info();
         adapter = std::make_unique<net::WorldGameAdapter>(
@@ -140,6 +144,8 @@ struct RollbackClient {
         cfg.matchId = match;
         for (uint32_t j = 0; j < players; ++j)
             if (j != claimSlot) cfg.remotes.push_back(net::RollbackRemote{j, {j}});
+        cfg.maxLateSpectators = spectatorSlots;
+        cfg.lateSpectatorTimeoutMicros = 300'000;
         peer = std::make_unique<net::RollbackPeer>(*session, *relayed, cfg);
         inputs = std::make_unique<replay::ScriptedInputs>(seed, 1);
     }
@@ -150,6 +156,9 @@ struct RollbackClient {
             if (pending.empty()) inputs->Next(pending);
             if (session->AddLocalInput(slot, pending) != net::InputResult::e_alreadyAdded) pending.clear();
             (void)adapter->Execute(*session, session->AdvanceFrame());
+            int32_t f = 0;
+            if (peer->SnapshotWanted() && adapter->ConfirmedSnapshot(*session, f, snapshot))
+                (void)peer->OfferSnapshot(f, snapshot);
         }
         peer->Flush();
     }
@@ -213,6 +222,116 @@ TEST(MatchKinds, RollbackPeersPlayThroughTheRelayAndTheReplayIsTheirs) {
     }
     EXPECT_GT(matched, 0u);
     fs::remove_all(dir);
+}
+
+// A spectator of a relayed match, joining late from peer 0's snapshot.
+struct Watcher {
+    std::unique_ptr<net::UdpTransport> udp;
+    std::unique_ptr<net::admission::AdmissionTransport> admission;
+    std::unique_ptr<net::RelayedTransport> relayed;
+    std::unique_ptr<replay::SceneGame> game;
+    std::unique_ptr<net::RollbackSpectator> spectator;
+    std::map<int32_t, uint64_t> hashes;  // frame f (f % 20 == 0) -> world hash there
+    int32_t frames = 0;                  // frames applied (the next one to apply)
+
+    Watcher(uint16_t port, uint32_t match, uint32_t slot, uint32_t slots, const admission::TokenBytes& token) {
+        std::string error;
+        udp = net::UdpTransport::Open("127.0.0.1", 0, &error);
+        const net::PeerId server = udp->AddPeer("127.0.0.1", port, &error);
+        admission = std::make_unique<net::admission::AdmissionTransport>(*udp, server, token);
+        relayed = std::make_unique<net::RelayedTransport>(
+            *admission, net::RelayedTransportConfig{server, match, slot, slots, 0, 20000});
+        game = std::make_unique<replay::SceneGame>("vertical_stack");
+        net::RollbackSpectatorConfig sc;
+        sc.matchId = match;
+        sc.players = 2;
+        sc.inputBytes = replay::SceneInput::kBytes;
+        sc.host = 0;
+        sc.lateJoin = true;
+        spectator = std::make_unique<net::RollbackSpectator>(*relayed, sc);
+    }
+
+    void Step() {
+        spectator->Poll();
+        int32_t f = 0;
+        std::vector<uint8_t> bytes;
+        if (spectator->TakeSnapshot(f, bytes)) {
+            EXPECT_TRUE(net::WorldGameAdapter::RestoreSnapshot(game->world(), *game, bytes));
+            frames = f;
+        }
+        const auto& info = game->info();
+        while (spectator->Next(f, bytes)) {
+            game->Apply(game->world(), f, bytes);
+            game->world().Step(Fixed::FromRatio(1, info.hz), info.velocityIterations, info.positionIterations);
+            frames = f + 1;
+            if (frames % 20 == 0) hashes[frames] = game->world().Hash();
+        }
+        spectator->Flush();
+    }
+};
+
+// Two spectators take one spectator slot in turn: the first watches and leaves, the second is
+// seated once the first fell silent, joins late from the host's snapshot and sees the players'
+// state; a third, while the second is live, is refused the slot.
+TEST(MatchKinds, SpectatorsTakeASlotInTurnAndSeeThePlayersState) {
+    HostConfig config;
+    config.kind = MatchKind::e_rollbackRelay;
+    config.match.playerCount = 2;
+    config.match.inputBytes = replay::SceneInput::kBytes;
+    config.match.disconnectMicros = 600'000;  // a silent spectator's slot is free after 0.6 s
+    config.spectatorsPerMatch = 1;
+    Host h(std::move(config));
+    std::vector<std::unique_ptr<RollbackClient>> peers;
+    for (uint32_t slot = 0; slot < 2; ++slot)
+        peers.push_back(std::make_unique<RollbackClient>(
+            h.port, 12, slot, 2, Mint(12, static_cast<uint8_t>(slot), 120 + slot), 800 + slot, 1));
+    std::unique_ptr<Watcher> first = std::make_unique<Watcher>(h.port, 12, 2, 3, Mint(12, 2, 130));
+    std::unique_ptr<Watcher> second, third;
+    // The players step at about 250 frames a second; everyone else as fast as the loop turns.
+    const auto start = std::chrono::steady_clock::now();
+    int32_t ticks = 0;
+    bool firstLeft = false;
+    while (std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
+        const auto elapsed = std::chrono::steady_clock::now() - start;
+        h.host->Update();
+        if (elapsed >= std::chrono::milliseconds(4) * ticks) {
+            for (auto& p : peers) p->Step(1 << 30);
+            ++ticks;
+        } else {
+            for (auto& p : peers) {
+                p->peer->Poll();
+                p->peer->Flush();
+            }
+        }
+        if (first) first->Step();
+        if (second) second->Step();
+        if (third) third->Step();
+        if (!firstLeft && first->frames >= 100) {
+            // The first spectator leaves (its machine goes quiet); the second asks at once.
+            firstLeft = true;
+            first.reset();
+            second = std::make_unique<Watcher>(h.port, 12, 2, 3, Mint(12, 2, 131));
+        }
+        if (second && !third && second->frames > 0)
+            third = std::make_unique<Watcher>(h.port, 12, 2, 3, Mint(12, 2, 132));
+        if (second && second->hashes.size() >= 3) break;
+        std::this_thread::sleep_for(std::chrono::microseconds(300));
+    }
+    ASSERT_TRUE(firstLeft);
+    ASSERT_TRUE(second);
+    ASSERT_GE(second->hashes.size(), 3u);
+    EXPECT_EQ(third->frames, 0);
+    EXPECT_GT(Dropped(*h.host, Drop::e_slotTaken), 0u);
+    // The second spectator's state equals the players' at every frame both hashed.
+    size_t compared = 0;
+    for (const auto& p : peers)
+        for (const auto& [f, hash] : p->session->FinalHashes()) {
+            const auto it = second->hashes.find(f);
+            if (it == second->hashes.end()) continue;
+            EXPECT_EQ(it->second, hash) << "frame " << f;
+            ++compared;
+        }
+    EXPECT_GT(compared, 0u);
 }
 
 TEST(MatchKinds, AnAdmittedClientOverItsBandwidthIsCutAndCounted) {

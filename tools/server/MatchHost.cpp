@@ -26,6 +26,7 @@ const char* DropName(Drop drop) noexcept {
         case Drop::e_strayEnvelope: return "stray_envelope";
         case Drop::e_peerBandwidth: return "peer_bandwidth";
         case Drop::e_wrongSlot: return "wrong_slot";
+        case Drop::e_slotTaken: return "slot_taken";
         case Drop::e_count: break;
     }
     return "unknown";
@@ -132,7 +133,9 @@ struct MatchHost::Match {
     std::unique_ptr<net::RelayServer> relay;
     std::map<int32_t, std::vector<uint8_t>> pendingInputs;  // frame -> every slot's input
     std::map<int32_t, uint64_t> pendingSlots;               // frame -> bit mask of slots present
-    std::vector<uint64_t> lastHeard;                        // slot -> when it last sent (0: never)
+    std::vector<uint64_t> lastHeard;                        // slot -> when its holder last sent (0: never)
+    std::vector<PeerId> holder;                             // slot -> the peer seated there (relay)
+    uint32_t players = 0;
     std::vector<std::vector<net::RollbackMessage>> scratch;
     int32_t sharedFrames = 0;  // the rollback peers have all inputs before this frame
     // The replay: the scene's world stepped through every confirmed frame.
@@ -149,7 +152,7 @@ struct MatchHost::Match {
     }
     bool Started() const {
         if (server) return server->Started();
-        return std::all_of(lastHeard.begin(), lastHeard.end(), [](uint64_t t) { return t != 0; });
+        return std::all_of(lastHeard.begin(), lastHeard.begin() + players, [](uint64_t t) { return t != 0; });
     }
     int32_t Frames() const { return server ? server->ConfirmedFrames() : sharedFrames; }
 };
@@ -228,12 +231,29 @@ void MatchHost::Deliver(Match& m, PeerId peer, const Peer& p, std::span<const ui
     if (m.relay) {
         // The relay knows members by the slot they claim; the token decided which one.
         const auto frame = net::ParseRelayFrame(payload);
-        if (frame && frame->kind == net::RelayKind::e_join && frame->slot != p.slot) {
-            ++m_stats.dropped[static_cast<size_t>(Drop::e_wrongSlot)];
-            return;
+        const auto slot = static_cast<size_t>(p.slot);
+        const uint64_t now = std::max<uint64_t>(1, m_socket->NowMicros());
+        if (frame && frame->kind == net::RelayKind::e_join) {
+            if (frame->slot != p.slot) {
+                ++m_stats.dropped[static_cast<size_t>(Drop::e_wrongSlot)];
+                return;
+            }
+            const PeerId old = m.holder[slot];
+            if (old != peer && old != net::kNoPeer) {
+                // Spectators take a slot in turn: the next is seated once the last fell silent
+                // (its host forgets it by then, so the newcomer's join is a fresh one).
+                if (now - std::min(now, m.lastHeard[slot]) < m_config.match.disconnectMicros) {
+                    ++m_stats.dropped[static_cast<size_t>(Drop::e_slotTaken)];
+                    return;
+                }
+                m.admitted.erase(old);
+                m_peers.erase(old);
+                m_socket->Disconnect(old);
+            }
+            m.holder[slot] = peer;
         }
-        if (frame) {
-            m.lastHeard[static_cast<size_t>(p.slot)] = std::max<uint64_t>(1, m_socket->NowMicros());
+        if (frame && m.holder[slot] == peer) {
+            m.lastHeard[slot] = now;
             if (frame->kind == net::RelayKind::e_toSlot) RecordRollbackInputs(m, p.slot, frame->payload);
         }
     }
@@ -325,8 +345,9 @@ void MatchHost::Admit(Datagram& d, uint64_t nowMicros) {
     if (refusal == Refusal::e_none) {
         const bool listed = m_config.matchIds.empty() || std::find(m_config.matchIds.begin(), m_config.matchIds.end(),
                                                                    token.matchId) != m_config.matchIds.end();
-        if (!listed || m_ended.count(token.matchId) != 0 || token.slot >= m_config.match.playerCount)
-            refusal = Refusal::e_wrongMatch;
+        const uint32_t slots = m_config.match.playerCount +
+                               (m_config.kind == MatchKind::e_rollbackRelay ? m_config.spectatorsPerMatch : 0);
+        if (!listed || m_ended.count(token.matchId) != 0 || token.slot >= slots) refusal = Refusal::e_wrongMatch;
     }
     if (refusal != Refusal::e_none)
         return Refuse(d.peer, address, admission::RefusalName(refusal).data(), true, static_cast<size_t>(refusal));
@@ -385,9 +406,12 @@ MatchHost::Match* MatchHost::CreateMatch(uint32_t id, uint64_t nowMicros) {
         // slot never reaches the relay), so the relay's own slot secrets are not needed.
         net::RelayServerConfig rc;
         rc.matchId = id;
-        rc.tokens.assign(std::max<uint32_t>(2, m_config.match.playerCount), 0);
+        const uint32_t slots = std::max<uint32_t>(2, m_config.match.playerCount + m_config.spectatorsPerMatch);
+        rc.tokens.assign(slots, 0);
         m->relay = std::make_unique<net::RelayServer>(*m->transport, std::move(rc));
-        m->lastHeard.assign(m_config.match.playerCount, 0);
+        m->lastHeard.assign(slots, 0);
+        m->holder.assign(slots, net::kNoPeer);
+        m->players = m_config.match.playerCount;
     } else {
         net::ServerConfig config = m_config.match;
         Match* raw = m.get();
@@ -439,8 +463,9 @@ void MatchHost::UpdateMatch(Match& m, uint64_t nowMicros) {
         m.relay->Poll();
         // A relay sees no session: a match ends when every member fell silent.
         bool anyLive = false;
-        for (uint64_t t : m.lastHeard)
-            anyLive = anyLive || (t != 0 && nowMicros - std::min(nowMicros, t) < m_config.match.disconnectMicros);
+        for (uint32_t s = 0; s < m.players; ++s)
+            anyLive = anyLive || (m.lastHeard[s] != 0 &&
+                                  nowMicros - std::min(nowMicros, m.lastHeard[s]) < m_config.match.disconnectMicros);
         if (m.Started() && !anyLive) return EndMatch(m.id, "players_left");
         if (!m.Started() && nowMicros > m.createdMicros && nowMicros - m.createdMicros > m_config.startTimeoutMicros)
             return EndMatch(m.id, "start_timeout");

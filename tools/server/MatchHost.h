@@ -36,6 +36,7 @@ enum class Drop : uint8_t {
     e_strayEnvelope,    ///< an admitted sender presented another token
     e_peerBandwidth,    ///< an admitted sender sent more bytes than its per-peer budget
     e_wrongSlot,        ///< an admitted rollback peer claimed a relay slot its token does not name
+    e_slotTaken,        ///< a relay join for a slot whose holder is still heard (spectators in turn)
     e_count
 };
 /// Metric label of a drop reason ("rate_limited", ...).
@@ -58,6 +59,9 @@ struct HostConfig {
     uint32_t maxPlayers = 256;
     MatchKind kind = MatchKind::e_lockstepRelay;
     net::ServerConfig match;  ///< settings of every match (playerCount, inputBytes, ...)
+    /// Rollback relay: relay slots after the players' for spectators (tokens for slots
+    /// playerCount .. playerCount + spectatorsPerMatch - 1); players + spectators <= 32.
+    uint32_t spectatorsPerMatch = 0;
     /// Bytes a second an admitted client may send (one second's worth at once); more is dropped
     /// unread (Drop::e_peerBandwidth). 0: no limit.
     uint32_t peerBytesPerSecond = 65536;

@@ -36,6 +36,10 @@ constexpr const char* kUsage =
     "                          rollback-relay: rollback peers exchange inputs through the server\n"
     "                          (RelayedTransport), which records them for the replay\n"
     "  --players-per-match N   slots of every match, 1 .. 64 (rollback-relay: 2 .. 32; default 2)\n"
+    "  --spectators-per-match N  rollback-relay: relay slots for spectators after the players'\n"
+    "                          (tokens for slots players .. players + N - 1), taken in turn: a\n"
+    "                          new spectator is seated once the last one was silent 2 s;\n"
+    "                          players + N <= 32 (default 0)\n"
     "  --peer-bandwidth N      bytes a second one admitted client may send, one second's worth\n"
     "                          at once; more is dropped and counted, 0 .. 1000000000 (default\n"
     "                          65536; 0: no limit)\n"
@@ -108,6 +112,8 @@ void ApplyOption(lockbox::cli::OptionReader& args, ServerOptions& o) {
         args.Int(1, 1000000, o.maxPlayers);
     else if (args.Is("--match-kind"))
         args.Choice({"lockstep-relay", "lockstep-authoritative", "rollback-relay"}, o.matchKind);
+    else if (args.Is("--spectators-per-match"))
+        args.Int(0, 30, o.spectatorsPerMatch);
     else if (args.Is("--peer-bandwidth"))
         args.Int(0, 1000000000, o.peerBytesPerSecond);
     else if (args.Is("--players-per-match"))
@@ -216,8 +222,13 @@ int ReadOptions(int argc, char** argv, ServerOptions& out) {
     if (!args.Failed() && !o.replayDir.empty() && o.scene.empty()) args.Refuse("--replay-dir needs --scene");
     if (!args.Failed() && o.matchKind == "lockstep-authoritative" && o.scene.empty())
         args.Refuse("--match-kind lockstep-authoritative needs --scene");
-    if (!args.Failed() && o.matchKind == "rollback-relay" && (o.playersPerMatch < 2 || o.playersPerMatch > 32))
-        args.Refuse("--match-kind rollback-relay needs --players-per-match in 2 .. 32");
+    if (!args.Failed() && o.matchKind == "rollback-relay" &&
+        (o.playersPerMatch < 2 || o.playersPerMatch + o.spectatorsPerMatch > 32))
+        args.Refuse(
+            "--match-kind rollback-relay needs --players-per-match of at least 2 and at most 32 slots with "
+            "--spectators-per-match");
+    if (!args.Failed() && o.matchKind != "rollback-relay" && o.spectatorsPerMatch != 0)
+        args.Refuse("--spectators-per-match needs --match-kind rollback-relay");
     if (args.Failed()) return args.Fail(kUsage);
     out = std::move(o);
     return 0;

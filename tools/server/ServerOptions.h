@@ -19,6 +19,7 @@ struct ServerOptions {
     uint32_t maxPlayers = 256;                 ///< admitted clients at once, all matches together
     std::string matchKind = "lockstep-relay";  ///< lockstep-relay, lockstep-authoritative or rollback-relay
     uint32_t playersPerMatch = 2;              ///< slots of each match, 1 .. 64 (rollback relay: 2 .. 32)
+    uint32_t spectatorsPerMatch = 0;           ///< rollback-relay: spectator slots after the players'
     uint32_t peerBytesPerSecond = 65536;       ///< bytes a second one admitted client may send (0: no limit)
     uint32_t inputBytes = 8;                   ///< per player per frame, 1 .. 256
     uint32_t tickRate = 60;                    ///< frames per second

@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
                   : options.matchKind == "rollback-relay"       ? server::MatchKind::e_rollbackRelay
                                                                 : server::MatchKind::e_lockstepRelay;
     config.peerBytesPerSecond = options.peerBytesPerSecond;
+    config.spectatorsPerMatch = options.spectatorsPerMatch;
     config.match.playerCount = options.playersPerMatch;
     config.match.inputBytes = options.inputBytes;
     config.match.tickRate = options.tickRate;

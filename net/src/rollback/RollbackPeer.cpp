@@ -95,6 +95,16 @@ RollbackPeer::Remote* RollbackPeer::Find(PeerId peer) {
     return nullptr;
 }
 
+void RollbackPeer::ForgetSilentSpectators(uint64_t now) {
+    const auto silent = [&](const Spectator& s) {
+        return s.late && now - std::min(now, s.lastHeard) > m_config.lateSpectatorTimeoutMicros;
+    };
+    const auto gone = static_cast<uint32_t>(std::count_if(m_spectators.begin(), m_spectators.end(), silent));
+    if (gone == 0) return;
+    m_spectators.erase(std::remove_if(m_spectators.begin(), m_spectators.end(), silent), m_spectators.end());
+    m_lateSpectators -= gone;
+}
+
 void RollbackPeer::Poll() {
     m_inbox.clear();
     m_transport.Poll(m_inbox);
@@ -149,6 +159,7 @@ void RollbackPeer::Poll() {
             // A stranger becomes a spectator only by asking to join, and only up to the limit.
             Spectator s;
             s.peer = d.peer;
+            s.late = true;
             m_spectators.push_back(std::move(s));
             ++m_lateSpectators;
             spec = &m_spectators.back();
@@ -158,8 +169,10 @@ void RollbackPeer::Poll() {
             continue;
         }
         ++m_stats.datagramsReceived;
+        spec->lastHeard = now;
         for (const RollbackMessage& m : m_messages) HandleSpectator(*spec, m, now);
     }
+    if (m_config.lateSpectatorTimeoutMicros != 0) ForgetSilentSpectators(now);
     if (m_state == RollbackPeerState::e_synchronizing) AdvanceStart(now);
     // The disconnect and interruption timers run only in the match: before it, a remote that
     // starts late is waited for (up to the start timeout), not cut at frame 0.

@@ -19,6 +19,8 @@ struct RollbackPeer::Spectator {
     uint64_t checksum = 0;       // XXH3-64 of the snapshot being sent
     SnapshotSender sender;
     bool incompatible = false;  // its hello named another version or shape: not served
+    bool late = false;          // joined by asking (maxLateSpectators), not listed
+    uint64_t lastHeard = 0;     // when its latest datagram arrived
 };
 
 }  // namespace lockbox::net

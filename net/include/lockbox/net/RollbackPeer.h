@@ -75,6 +75,11 @@ struct RollbackPeerConfig {
     /// Senders not listed anywhere whose first valid datagram carries an RbJoinRequest become
     /// late-join spectators, up to this many (0: only the listed spectators).
     uint32_t maxLateSpectators = 0;
+    /// A late-join spectator silent this long (microseconds) is forgotten: nothing more is sent
+    /// to it and its place counts no more against maxLateSpectators, so a new spectator may
+    /// join from the same address (a relay slot that spectators take in turn). 0: never
+    /// forgotten. Listed spectators are never forgotten.
+    uint64_t lateSpectatorTimeoutMicros = 0;
     /// A snapshot chunk not acked this long after it was sent goes again (microseconds, >= 1);
     /// once acks show the round trip, the resend waits at least that plus four deviations.
     uint64_t snapshotResendMicros = 100000;
@@ -252,6 +257,7 @@ private:
     struct Spectator;
     Remote* Find(PeerId peer);
     Spectator* FindSpectator(PeerId peer);
+    void ForgetSilentSpectators(uint64_t now);
     void HandleSpectator(Spectator& s, const RollbackMessage& m, uint64_t now);
     // The disconnect agreement (RollbackAgreement.cpp).
     void DropRemote(Remote& r, bool tell = true);
