@@ -1,7 +1,10 @@
 // Prometheus text of a MatchHost (Metrics.h).
 #include "Metrics.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <fstream>
 
 #include "MatchHost.h"
 
@@ -20,6 +23,14 @@ std::string Seconds(uint32_t micros) {
     return std::to_string(micros / 1'000'000) + "." + std::string(6 - frac.size(), '0') + frac;
 }
 
+// Resident memory of this process (Linux /proc/self/statm: pages; 0 when unreadable).
+uint64_t ResidentBytes() {
+    std::ifstream statm("/proc/self/statm");
+    uint64_t size = 0, resident = 0;
+    if (!(statm >> size >> resident)) return 0;
+    return resident * static_cast<uint64_t>(::sysconf(_SC_PAGESIZE));
+}
+
 }  // namespace
 
 uint32_t Quantile(std::vector<uint32_t> samples, uint32_t perMille) {
@@ -36,6 +47,7 @@ std::string RenderMetrics(const MatchHost& host) {
     std::string out;
     Metric(out, "lockbox_server_matches", "gauge", "Matches running now.", host.MatchCount());
     Metric(out, "lockbox_server_players", "gauge", "Clients admitted now.", host.PlayerCount());
+    Metric(out, "lockbox_server_resident_bytes", "gauge", "Resident memory of the process (RSS).", ResidentBytes());
     Metric(out, "lockbox_server_draining", "gauge", "1 once SIGTERM started the drain.", host.Draining() ? 1 : 0);
     Metric(out, "lockbox_server_datagrams_in_total", "counter", "Datagrams received.", s.datagramsIn);
     Metric(out, "lockbox_server_datagrams_out_total", "counter", "Datagrams sent.", s.datagramsOut);
