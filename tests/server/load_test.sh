@@ -8,7 +8,9 @@
 #   flood: 20 four-player lockstep matches while 50,000 datagrams a second of junk, copied,
 #          forged and expired tokens arrive from 64 source ports; every match agrees, nothing
 #          is answered to the flood, every flood datagram is counted as refused or dropped.
-# usage: load_test.sh soak|flood SECONDS SERVER LOAD TOKEN REPLAY
+#   authoritative: 4 two-player matches the server simulates (vertical_stack); no desync
+#          between the server's hashes and the clients', the drain writes 4 replays that verify.
+# usage: load_test.sh soak|flood|authoritative SECONDS SERVER LOAD TOKEN REPLAY
 set -euo pipefail
 mode=$1 seconds=$2 server=$3 load=$4 token=$5 replay=$6
 dir=$(mktemp -d)
@@ -50,6 +52,10 @@ if [ "$mode" = soak ]; then
         --match-kind rollback-relay --players-per-match 8 --spectators-per-match 24 \
         --peer-bandwidth 1000000 --rate-limit 1000 --rate-burst 2000 \
         --scene vertical_stack --replay-dir "$dir/replays" --log "$dir/server.log" --drain-seconds 1 &
+elif [ "$mode" = authoritative ]; then
+    "$server" --token-key-file "$dir/key" --port-file "$dir/port" --http-port "$http_port" \
+        --match-kind lockstep-authoritative --players-per-match 2 --rate-limit 1000 --rate-burst 2000 \
+        --scene vertical_stack --replay-dir "$dir/replays" --log "$dir/server.log" --drain-seconds 1 &
 else
     "$server" --token-key-file "$dir/key" --port-file "$dir/port" --http-port "$http_port" \
         --players-per-match 4 --max-matches 64 --rate-limit 1000 --rate-burst 2000 \
@@ -64,6 +70,9 @@ rss_start=$(metric lockbox_server_resident_bytes)
 if [ "$mode" = soak ]; then
     result=$("$load" --port "$port" --key-file "$dir/key" --kind rollback --players 8 --spectators 24 \
         --matches 1 --seconds "$seconds" --loss 20 --jitter 20) || { echo "load: $result"; exit 1; }
+elif [ "$mode" = authoritative ]; then
+    result=$("$load" --port "$port" --key-file "$dir/key" --players 2 --matches 4 --scene vertical_stack \
+        --seconds "$seconds") || { echo "load: $result"; exit 1; }
 else
     result=$("$load" --port "$port" --key-file "$dir/key" --players 4 --matches 20 --threads 2 \
         --seconds "$seconds" --flood 50000 --flood-ports 64) || { echo "load: $result"; exit 1; }
@@ -83,7 +92,7 @@ echo "server: rss_start=$rss_start rss_end=$rss_end tick_p99_s=$p99 desyncs=$des
 if [ "$mode" = soak ]; then
     grep -q '"spectators_disagreed":0' <<<"$result" || { echo "FAIL: a spectator disagreed"; exit 1; }
     grep -q '"spectators_agreed":0,' <<<"$result" && { echo "FAIL: no spectator was checked"; exit 1; }
-else
+elif [ "$mode" = flood ]; then
     sent=$(sed -n 's/.*"flood_sent":\([0-9]*\).*/\1/p' <<<"$result")
     # Every flood datagram the socket read is counted under one reason; the kernel may drop
     # a few on a loaded machine, never the server's counters more than were sent.
@@ -99,7 +108,10 @@ wait "$server_pid" || status=$?
 server_pid=
 [ "$status" = 0 ] || { echo "FAIL: the server exited $status"; exit 1; }
 if [ "$mode" = soak ]; then
-    "$replay" verify-dir "$dir/replays"
-    ls "$dir/replays"/*.lbr >/dev/null
+    "$replay" verify-dir "$dir/replays" | tee "$dir/verify.txt"
+    grep -q "1 replays: 1 verified" "$dir/verify.txt" || { echo "FAIL: the replay"; exit 1; }
+elif [ "$mode" = authoritative ]; then
+    "$replay" verify-dir "$dir/replays" | tee "$dir/verify.txt"
+    grep -q "4 replays: 4 verified" "$dir/verify.txt" || { echo "FAIL: the replays"; exit 1; }
 fi
 echo "PASS"
