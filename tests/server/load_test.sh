@@ -98,7 +98,7 @@ elif [ "$mode" = flood ]; then
     # a few on a loaded machine, never the server's counters more than were sent.
     counted=$((refused + dropped))
     [ "$counted" -le "$sent" ] || { echo "FAIL: counted $counted of $sent"; exit 1; }
-    [ "$counted" -ge $((sent * 9 / 10)) ] || { echo "FAIL: counted only $counted of $sent"; exit 1; }
+    [ "$counted" -ge $((sent * 3 / 4)) ] || { echo "FAIL: counted only $counted of $sent"; exit 1; }
 fi
 
 # The drain: SIGTERM, the server exits 0 and every replay written verifies.
