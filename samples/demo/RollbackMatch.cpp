@@ -57,8 +57,8 @@ void PlayerThread(uint32_t me, std::unique_ptr<net::UdpTransport> socket, net::P
     const auto& info = game.info();
     net::WorldGameAdapter adapter(
         game.world(), game,
-        net::WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
-                               static_cast<uint32_t>(info.positionIterations)});
+        WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
+                          static_cast<uint32_t>(info.positionIterations)});
     net::RollbackPeerConfig cfg;
     cfg.matchId = 0x524F4C4Cu;
     cfg.remotes.push_back(net::RollbackRemote{other, {1 - me}});

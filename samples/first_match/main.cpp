@@ -20,9 +20,9 @@
 #include "lockbox/lockbox.h"
 #include "lockbox/net/RollbackMatch.h"
 #include "lockbox/net/RollbackSyncTest.h"
-#include "lockbox/replay/Game.h"
 #include "lockbox/replay/Recorder.h"
 #include "lockbox/replay/Tool.h"
+#include "lockbox/state/WorldGame.h"
 #include "lockbox_cli/OptionReader.h"
 
 using namespace lockbox;
@@ -35,7 +35,7 @@ constexpr uint32_t kTickRate = 60;
 
 // The whole game state is the world: two player boxes (user data 1 and 2) and a stack of
 // crates on a ground, inside two walls. Inputs push the player boxes.
-class TinyGame final : public replay::Game {
+class TinyGame final : public WorldGame {
 public:
     TinyGame() : m_world(b2Vec2(0, -10)) {
         b2BodyDef groundDef;
@@ -100,7 +100,7 @@ constexpr const char* kGameName = "first_match";  // the game name its replays c
 class TinyToolGame final : public replay::ToolGame {
 public:
     b2World& World() override { return m_game.world(); }
-    replay::Game& Logic() override { return m_game; }
+    WorldGame& Logic() override { return m_game; }
 
 private:
     TinyGame m_game;
@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
     if (args.Failed()) return args.Fail(kUsage);
 
     TinyGame game;
-    const net::WorldStepSettings step{kTickRate, 8, 3};
+    const WorldStepSettings step{kTickRate, 8, 3};
     if (syncTest) {
         // Every frame is rolled back 8 frames and re-simulated (first with wrong inputs): any
         // state the game forgets to save shows up here, before any network is involved.

@@ -3,7 +3,7 @@
 /// joint that drags bodies, the figures shown as text (hash, profile, headroom) and recording
 /// to a replay file.
 ///
-/// Every step goes through the replay::Game interface (TestbedGame::Apply, then b2World::Step
+/// Every step goes through the WorldGame interface (TestbedGame::Apply, then b2World::Step
 /// with dt = round(65536 / hz) raw), whether or not a recorder is attached, so a recorded run
 /// is the run on screen, bit for bit.
 

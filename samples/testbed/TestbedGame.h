@@ -20,8 +20,8 @@
 
 namespace lockbox::testbed {
 
-/// A built catalog scene driven through the replay::Game interface.
-class TestbedGame : public replay::Game {
+/// A built catalog scene driven through the WorldGame interface.
+class TestbedGame : public WorldGame {
 public:
     /// Builds scene `name` with the world switches and step settings of `settings` (check ok()).
     TestbedGame(std::string_view name, const scenes::RunSettings& settings);
@@ -52,8 +52,8 @@ private:
 /// "scene:NAME" (inputs mean what lockbox_replay recorded) and for "scenefile:STEM" (played from
 /// the replay's seed: no file needed), TestbedGame for "testbed:NAME".
 struct ReplayGame {
-    std::unique_ptr<replay::Game> game;  ///< nullptr when the name is not playable here
-    b2World* world = nullptr;            ///< the game's world
+    std::unique_ptr<WorldGame> game;  ///< nullptr when the name is not playable here
+    b2World* world = nullptr;         ///< the game's world
 };
 
 /// Builds the game for a replay's game name (see ReplayGame).

@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "lockbox/lockbox.h"
-#include "lockbox/replay/Game.h"
 #include "lockbox/replay/SceneGame.h"
+#include "lockbox/state/WorldGame.h"
 
 namespace lockbox::net::test_games {
 
-class NudgeGame : public replay::Game {
+class NudgeGame : public WorldGame {
 public:
     explicit NudgeGame(replay::SceneGame& inner) : m_inner(inner) {}
     void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {

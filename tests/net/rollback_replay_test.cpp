@@ -26,7 +26,7 @@ constexpr uint64_t kTick = 16666;
 
 // A scene game with state beyond the world: a running sum over the inputs it was given. A
 // keyframe saved with a predicted frame's user state would differ from a single world's.
-class TallyGame : public replay::Game {
+class TallyGame : public WorldGame {
 public:
     explicit TallyGame(replay::SceneGame& inner) : m_inner(inner) {}
     void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {

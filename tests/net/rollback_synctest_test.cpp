@@ -45,7 +45,7 @@ TEST(RollbackSyncTest, SceneGamePassesBothModes) {
 }
 
 // Pushes the first dynamic body by an amount that grows with a counter the save misses.
-class LeakyGame : public replay::Game {
+class LeakyGame : public WorldGame {
 public:
     explicit LeakyGame(replay::SceneGame& inner) : m_inner(inner) {}
     void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {
@@ -109,7 +109,7 @@ TEST(RollbackSyncTest, FramesAreTheDefaultPathAndTheCountersSayWhichRan) {
 
 // A game that keeps a fuel gauge per body and forgets it in its save: the body it pushes
 // drifts on re-simulation, and the sync test names that body.
-class ForgetfulGame : public replay::Game {
+class ForgetfulGame : public WorldGame {
 public:
     ForgetfulGame(replay::SceneGame& inner, int32 bodyId) : m_inner(inner), m_bodyId(bodyId) {}
     void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {
@@ -184,7 +184,7 @@ TEST(RollbackSyncTest, RequestsNameTheBodyAGameForgetsToSave) {
 // that forgets the game's own state.
 class ImageExecutor {
 public:
-    ImageExecutor(b2World& world, replay::Game& game, WorldStepSettings step)
+    ImageExecutor(b2World& world, WorldGame& game, WorldStepSettings step)
         : m_world(world), m_game(game), m_step(step) {}
     bool operator()(std::span<const RollbackRequest> requests, const RollbackHashReport& report) {
         for (const RollbackRequest& r : requests) {
@@ -213,13 +213,13 @@ private:
         std::vector<uint8_t> image, user;
     };
     b2World& m_world;
-    replay::Game& m_game;
+    WorldGame& m_game;
     WorldStepSettings m_step;
     std::map<int32_t, Saved> m_saved;
 };
 
 // A scene game that counts its frames in its user state (the count changes nothing in the world).
-class CountingGame : public replay::Game {
+class CountingGame : public WorldGame {
 public:
     explicit CountingGame(replay::SceneGame& inner) : m_inner(inner) {}
     void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {

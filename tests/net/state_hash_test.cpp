@@ -22,7 +22,7 @@ namespace {
 
 // A scene game with state beyond the world: a running sum of every input byte applied, four
 // bytes little-endian, so the fold has user state to take in.
-class ScoredGame : public replay::Game {
+class ScoredGame : public WorldGame {
 public:
     explicit ScoredGame(replay::SceneGame& inner) : m_inner(inner) {}
     void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {
@@ -47,7 +47,7 @@ private:
 // step, and the fold for the hash.
 class OwnExecutor {
 public:
-    OwnExecutor(b2World& world, replay::Game& game) : m_world(world), m_game(game) {}
+    OwnExecutor(b2World& world, WorldGame& game) : m_world(world), m_game(game) {}
     bool Execute(RollbackSession& session, std::span<const RollbackRequest> requests) {
         for (const RollbackRequest& r : requests) {
             if (const auto* save = std::get_if<SaveState>(&r)) {
@@ -72,7 +72,7 @@ private:
         std::vector<uint8> image, user;
     };
     b2World& m_world;
-    replay::Game& m_game;
+    WorldGame& m_game;
     std::map<int32_t, Saved> m_saved;
 };
 

@@ -1,6 +1,6 @@
 #pragma once
-// A library scene as a SyncTestGame: each frame runs the scene's pre-step action and one
-// Step with the scene's settings. Scenes keep no state outside the world that a later frame
+// A library scene as a WorldGame: each frame runs the scene's pre-step action, and the tool
+// steps once with the scene's settings (Step()). Scenes keep no state outside the world that a later frame
 // reads, so there is no user state to save.
 
 #include <string_view>
@@ -11,13 +11,15 @@
 
 namespace lockbox::testing_state {
 
-class SceneSyncGame : public SyncTestGame {
+class SceneSyncGame : public WorldGame {
 public:
     explicit SceneSyncGame(SceneRun& run) : run_(run) {}
-    void Advance(b2World& world, int32 frame) override {
+    void Apply(b2World&, int32 frame, std::span<const uint8>) override { run_.scene->BeforeStep(*run_.engine, frame); }
+    /// The scene's step settings.
+    WorldStepSettings Step() const {
         const auto& info = run_.scene->Info();
-        run_.scene->BeforeStep(*run_.engine, frame);
-        world.Step(scenes::LockboxEngine::TimeStep(info.hz), info.velocityIterations, info.positionIterations);
+        return {static_cast<uint32>(info.hz), static_cast<uint32>(info.velocityIterations),
+                static_cast<uint32>(info.positionIterations)};
     }
 
 private:
@@ -25,7 +27,7 @@ private:
 };
 
 /// The scenes the sync tests treat as heavy (120 frames, rollback windows tiling the run):
-/// the four (large_pyramid, many_pyramids, joint_grid, rain) plus tumbler, whose
+/// the four largest (large_pyramid, many_pyramids, joint_grid, rain) plus tumbler, whose
 /// 2000 bodies cost as much per step as rain's.
 inline bool IsLargeScene(const scenes::LockboxScene& scene) {
     const auto name = scene.Info().name;
@@ -58,7 +60,8 @@ inline SyncTestResult RunSceneSyncTest(std::string_view name, int32 frames, bool
     config.mispredict = mispredict;
     config.stride = stride;
     config.frames = useFrames;
-    SyncTest test(run.world(), game, config);
+    config.step = game.Step();
+    SyncTest test(run.world(), game, {}, config);
     return test.Run(frames);
 }
 

@@ -53,7 +53,9 @@ TEST(SyncTestTool, EdgeListsFollowWorldListsAfterChurn) {
     for (const char* name : {"ragdolls", "pulley_gear", "bullet_stack_dynamic", "car"}) {
         testing_state::SceneRun run(name);
         testing_state::SceneSyncGame game(run);
-        SyncTest test(run.world(), game, SyncTestConfig{4, 1, true, 99});
+        SyncTestConfig config{4, 1, true, 99};
+        config.step = game.Step();
+        SyncTest test(run.world(), game, {}, config);
         const SyncTestResult r = test.Run(40);
         EXPECT_TRUE(r.ok) << name << ": " << r.message;
         EXPECT_TRUE(testing_state::EdgesFollowWorldLists(run.world())) << name;
@@ -69,7 +71,7 @@ TEST(SyncTestTool, EdgeListsFollowWorldListsAfterChurn) {
             b2DistanceJointDef jd;
             jd.Initialize(body, run.world().GetBodyList()->GetNext(), body->GetPosition(), b2Vec2(0, 0));
             if (run.world().GetBodyList()->GetNext() != body) run.world().CreateJoint(&jd);
-            game.Advance(run.world(), 40 + i);
+            AdvanceWorldFrame(run.world(), game, 40 + i, {}, game.Step());
             if (i % 3 == 0) run.world().DestroyBody(run.world().GetBodyList()->GetNext());
         }
         EXPECT_TRUE(testing_state::EdgesFollowWorldLists(run.world())) << name;
@@ -81,13 +83,13 @@ INSTANTIATE_TEST_SUITE_P(Light, SceneSync, ::testing::ValuesIn(testing_state::Sc
 
 // A game that keeps a counter outside the world but does not save it: the sync test must
 // catch it (the counter feeds the inputs of later frames).
-class LeakyGame : public SyncTestGame {
+class LeakyGame : public WorldGame {
 public:
     explicit LeakyGame(b2Body* body) : body_(body) {}
-    void Advance(b2World& world, int32) override {
+    // The sync test's default step settings: 1/60 s, 8 and 3 iterations.
+    void Apply(b2World&, int32, std::span<const uint8>) override {
         ++pushes_;
         body_->SetLinearVelocity(b2Vec2(Fixed(pushes_) / 16, 0));
-        world.Step(Fixed::FromRatio(1, 60), 8, 3);
     }
     void SaveUserState(std::vector<uint8>& out) const override {
         if (saves_) out.push_back(static_cast<uint8>(pushes_));
@@ -127,10 +129,73 @@ TEST(SyncTestTool, PassesWhenTheGameSavesItsState) {
     b2World world(b2Vec2(0, -10));
     LeakyGame game(MakeBox(world));
     game.saves_ = true;
-    SyncTest test(world, game, SyncTestConfig{4, 1, true, 7});
+    SyncTest test(world, game, {}, SyncTestConfig{4, 1, true, 7});
     const SyncTestResult r = test.Run(30);
     EXPECT_TRUE(r.ok) << r.message;
     EXPECT_EQ(r.rollbacks, 27);
+}
+
+// A game that reads its inputs: a push per frame, from the frame's first byte.
+class PushGame : public WorldGame {
+public:
+    explicit PushGame(b2Body* body) : body_(body) {}
+    void Apply(b2World&, int32, std::span<const uint8> inputs) override {
+        body_->ApplyLinearImpulse(b2Vec2(Fixed(inputs[0]) / 64, Fixed(inputs[1]) / 64), body_->GetWorldCenter());
+    }
+
+private:
+    b2Body* body_;
+};
+
+TEST(SyncTestTool, AsksTheInputSourceOncePerFrame) {
+    b2World world(b2Vec2(0, -10));
+    PushGame game(MakeBox(world));
+    // Not a pure function of the frame: a re-simulation must get the first run's bytes back.
+    int32 calls = 0;
+    std::vector<int32> frames;
+    SyncTestConfig config{4, 1, true, 7};
+    config.inputBytes = 2;
+    config.step = {30, 6, 2};
+    SyncTest test(
+        world, game,
+        [&](int32 frame, std::span<uint8> out) {
+            frames.push_back(frame);
+            out[0] = static_cast<uint8>(++calls * 37);
+            out[1] = static_cast<uint8>(calls * 11);
+        },
+        config);
+    const SyncTestResult r = test.Run(20);
+    EXPECT_TRUE(r.ok) << r.message;
+    EXPECT_EQ(calls, 20);
+    for (int32 f = 0; f < 20; ++f) EXPECT_EQ(frames[static_cast<size_t>(f)], f);
+}
+
+TEST(SyncTestTool, StepsWithTheConfiguredSettings) {
+    // The same pushes stepped by hand at 30 Hz with 6 and 2 iterations end where the sync test
+    // leaves the world (it ends on a re-simulation of the last frames).
+    auto run = [](bool byHand) {
+        b2World world(b2Vec2(0, -10));
+        PushGame game(MakeBox(world));
+        const auto source = [](int32 frame, std::span<uint8> out) {
+            out[0] = static_cast<uint8>(frame * 13);
+            out[1] = static_cast<uint8>(frame * 7);
+        };
+        SyncTestConfig config{4, 1, false, 7};
+        config.inputBytes = 2;
+        config.step = {30, 6, 2};
+        if (byHand) {
+            std::vector<uint8> in(2);
+            for (int32 f = 0; f < 12; ++f) {
+                source(f, in);
+                AdvanceWorldFrame(world, game, f, in, config.step);
+            }
+        } else {
+            SyncTest test(world, game, source, config);
+            EXPECT_TRUE(test.Run(12).ok);
+        }
+        return world.Hash();
+    };
+    EXPECT_EQ(run(true), run(false));
 }
 
 }  // namespace

@@ -27,6 +27,7 @@
 #include "lockbox/fixed/Math.h"
 #include "lockbox/state/Snapshot.h"
 #include "lockbox/state/SyncTest.h"
+#include "lockbox/state/WorldGame.h"
 #include "lockbox/state/WorldHash.h"
 
 /// @namespace lockbox

@@ -3,6 +3,8 @@
 
 #include "lockbox/state/SyncTest.h"
 
+#include <utility>
+
 #include "FastXxh3.h"
 #include "dynamics/WorldState.h"
 #include "lockbox/collision/PolygonShape.h"
@@ -29,8 +31,8 @@ Fixed RandomFixed(uint64& state, int32 limit) {
 
 }  // namespace
 
-SyncTest::SyncTest(b2World& world, SyncTestGame& game, SyncTestConfig config)
-    : m_world(world), m_game(game), m_config(config) {
+SyncTest::SyncTest(b2World& world, WorldGame& game, SyncTestInputSource inputs, SyncTestConfig config)
+    : m_world(world), m_game(game), m_source(std::move(inputs)), m_config(config) {
     if (m_config.checkDistance < 1) m_config.checkDistance = 1;
     if (m_config.stride < 1) m_config.stride = 1;
     const size_t ring = static_cast<size_t>(m_config.checkDistance) + 1;
@@ -38,6 +40,18 @@ SyncTest::SyncTest(b2World& world, SyncTestGame& game, SyncTestConfig config)
     m_user.resize(ring);
     if (m_config.frames) m_frames.resize(ring);
 }
+
+std::span<const uint8> SyncTest::InputsFor(int32 frame) {
+    const size_t f = static_cast<size_t>(frame < 0 ? 0 : frame);
+    while (m_inputs.size() <= f) {
+        std::vector<uint8> in(m_config.inputBytes, 0);
+        if (m_source && !in.empty()) m_source(static_cast<int32>(m_inputs.size()), in);
+        m_inputs.push_back(std::move(in));
+    }
+    return m_inputs[f];
+}
+
+void SyncTest::Advance(int32 frame) { AdvanceWorldFrame(m_world, m_game, frame, InputsFor(frame), m_config.step); }
 
 uint64 SyncTest::StateHash() {
     m_scratch.clear();
@@ -174,7 +188,7 @@ SyncTestResult SyncTest::RunFrames(int32 frames) {
     m_hashes.assign(static_cast<size_t>(frames < 0 ? 0 : frames) + 1, 0);
     m_hashes[0] = SaveFrame(0);
     for (int32 f = 0; f < frames; ++f) {
-        m_game.Advance(m_world, f);
+        Advance(f);
         ++result.framesSimulated;
         m_hashes[static_cast<size_t>(f) + 1] = SaveFrame(f + 1);
         if (f + 1 < k || (f + 1 - k) % m_config.stride != 0) continue;
@@ -186,13 +200,13 @@ SyncTestResult SyncTest::RunFrames(int32 frames) {
             std::vector<int32> spawned;
             for (int32 g = from; g <= f; ++g) {
                 WrongInputs(g, spawnOnly, spawned);
-                m_game.Advance(m_world, g);
+                Advance(g);
             }
         }
         if (!LoadFrame(from, result)) return result;
         ++result.rollbacks;
         for (int32 g = from; g <= f; ++g) {
-            m_game.Advance(m_world, g);
+            Advance(g);
             ++result.framesResimulated;
             if (!CheckFrame(g + 1, result)) return result;
         }

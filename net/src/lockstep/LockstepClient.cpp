@@ -4,13 +4,13 @@
 #include <algorithm>
 
 #include "lockbox/dynamics/World.h"
-#include "lockbox/replay/Game.h"
+#include "lockbox/state/WorldGame.h"
 #include "lockstep/LockstepClientImpl.h"
 
 namespace lockbox::net {
 
 LockstepClient::LockstepClient(Transport& transport, PeerId server, ClientConfig config, b2World& world,
-                               replay::Game& game)
+                               WorldGame& game)
     : m_impl(std::make_unique<Impl>(transport, server, config, world, game)) {
     Impl& s = *m_impl;
     s.config.maxCatchUpFrames = std::max<uint32_t>(s.config.maxCatchUpFrames, 1);
@@ -92,7 +92,7 @@ void LockstepClient::Impl::StepFrames() {
         return;
     for (uint32_t n = 0; n < config.maxCatchUpFrames && !confirmed.empty(); ++n) {
         const std::vector<uint8_t>& row = confirmed.front();
-        StepConfirmedFrame(world, game, frame, row, tickRate, config.velocityIterations, config.positionIterations);
+        AdvanceWorldFrame(world, game, frame, row, {tickRate, config.velocityIterations, config.positionIterations});
         const uint64_t worldHash = world.Hash();
         lastHash = FoldUserState(worldHash, game);
         if (frame % static_cast<int64_t>(hashInterval) == 0) {
@@ -175,11 +175,9 @@ uint64_t LockstepClient::LastHash() const noexcept { return m_impl->lastHash; }
 SessionShape LockstepClient::Shape() const noexcept { return m_impl->shape; }
 const DecodeErrorCounts& LockstepClient::Malformed() const noexcept { return m_impl->malformed; }
 
-uint64_t LockstepClient::StateHash(const b2World& world, const replay::Game& game) {
-    return FoldedStateHash(world, game);
-}
+uint64_t LockstepClient::StateHash(const b2World& world, const WorldGame& game) { return FoldedStateHash(world, game); }
 
-std::vector<uint8_t> LockstepClient::SnapshotBlob(const b2World& world, const replay::Game& game) {
+std::vector<uint8_t> LockstepClient::SnapshotBlob(const b2World& world, const WorldGame& game) {
     std::vector<uint8> image;
     world.Save(image);
     std::vector<uint8> user;
@@ -189,7 +187,7 @@ std::vector<uint8_t> LockstepClient::SnapshotBlob(const b2World& world, const re
     return blob;
 }
 
-bool LockstepClient::LoadSnapshotBlob(std::span<const uint8_t> blob, b2World& world, replay::Game& game) {
+bool LockstepClient::LoadSnapshotBlob(std::span<const uint8_t> blob, b2World& world, WorldGame& game) {
     return LoadStateBlob(blob, world, game);
 }
 

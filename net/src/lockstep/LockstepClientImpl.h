@@ -12,14 +12,14 @@
 namespace lockbox::net {
 
 struct LockstepClient::Impl {
-    Impl(Transport& t, PeerId s, ClientConfig c, b2World& w, replay::Game& g)
+    Impl(Transport& t, PeerId s, ClientConfig c, b2World& w, WorldGame& g)
         : transport(t), server(s), config(c), world(w), game(g) {}
 
     Transport& transport;
     PeerId server;
     ClientConfig config;
     b2World& world;
-    replay::Game& game;
+    WorldGame& game;
 
     ClientState state = ClientState::e_connecting;
     SessionShape shape;

@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "lockbox/dynamics/World.h"
-#include "lockbox/replay/Game.h"
+#include "lockbox/state/WorldGame.h"
 #include "lockbox/state/WorldHash.h"
 #include "lockstep/LockstepClientImpl.h"
 

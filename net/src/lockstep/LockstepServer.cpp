@@ -6,7 +6,7 @@
 
 #include "lockbox/dynamics/World.h"
 #include "lockbox/net/LockstepClient.h"
-#include "lockbox/replay/Game.h"
+#include "lockbox/state/WorldGame.h"
 #include "lockbox/state/WorldHash.h"
 #include "lockstep/LockstepServerImpl.h"
 
@@ -258,8 +258,8 @@ void LockstepServer::Impl::Simulate() {
     if (config.world == nullptr) return;
     for (uint32_t n = 0; n < config.maxCatchUpFrames && simulated < confirmedNext; ++n) {
         const std::span<const uint8_t> row(Row(simulated), RowBytes());
-        StepConfirmedFrame(*config.world, *config.game, simulated, row, config.tickRate, config.velocityIterations,
-                           config.positionIterations);
+        AdvanceWorldFrame(*config.world, *config.game, static_cast<int32_t>(simulated), row,
+                          {config.tickRate, config.velocityIterations, config.positionIterations});
         if (simulated % static_cast<int64_t>(config.hashInterval) == 0)
             OnHash(-1, simulated, FoldedStateHash(*config.world, *config.game));
         ++simulated;

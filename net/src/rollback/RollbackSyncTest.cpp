@@ -1,4 +1,4 @@
-// SyncTestSession: a replay::Game through core's lockbox::SyncTest (RollbackSyncTest.h).
+// SyncTestSession: a WorldGame through core's lockbox::SyncTest (RollbackSyncTest.h).
 
 #include "lockbox/net/RollbackSyncTest.h"
 
@@ -9,22 +9,22 @@
 #include "lockbox/lockbox.h"
 #include "lockbox/net/RollbackSession.h"
 #include "lockbox/net/RollbackWorldAdapter.h"
-#include "lockbox/replay/Game.h"
+#include "lockbox/state/WorldGame.h"
 #include "lockbox/state/WorldHash.h"
 #include "session/SessionCommon.h"
 
 namespace lockbox::net {
 
-struct SyncTestSession::Impl : SyncTestGame {
+struct SyncTestSession::Impl {
     b2World& world;
-    replay::Game& game;
+    WorldGame& game;
     SyncTestInputSource source;
     SyncTestSessionConfig config;
     // Inputs by frame: a re-simulation must see exactly the first run's inputs even when the
     // source is not a pure function of the frame.
     std::vector<std::vector<uint8_t>> inputs;
 
-    Impl(b2World& w, replay::Game& g, SyncTestInputSource s, SyncTestSessionConfig c)
+    Impl(b2World& w, WorldGame& g, SyncTestInputSource s, SyncTestSessionConfig c)
         : world(w), game(g), source(std::move(s)), config(c) {}
 
     SyncTestRequestCounts counts;
@@ -38,10 +38,6 @@ struct SyncTestSession::Impl : SyncTestGame {
             inputs.push_back(std::move(in));
         }
         return inputs[f];
-    }
-    void Advance(b2World& w, int32 frame) override {
-        StepConfirmedFrame(w, game, frame, InputsFor(frame), config.step.tickRate, config.step.velocityIterations,
-                           config.step.positionIterations);
     }
     // Wrong inputs of a mispredicted branch: seeded bytes (splitmix64 of the seed and frame).
     std::vector<uint8_t> WrongInputs(int32_t frame) const {
@@ -62,11 +58,9 @@ struct SyncTestSession::Impl : SyncTestGame {
         a.status.assign(config.players, wrong ? InputStatus::e_predicted : InputStatus::e_confirmed);
         return a;
     }
-    void SaveUserState(std::vector<uint8>& out) const override { game.SaveUserState(out); }
-    void LoadUserState(std::span<const uint8> in) override { game.LoadUserState(in); }
 };
 
-SyncTestSession::SyncTestSession(b2World& world, replay::Game& game, SyncTestInputSource inputs,
+SyncTestSession::SyncTestSession(b2World& world, WorldGame& game, SyncTestInputSource inputs,
                                  SyncTestSessionConfig config)
     : m_impl(std::make_unique<Impl>(world, game, std::move(inputs), config)) {
     SyncTestSessionConfig& c = m_impl->config;
@@ -93,7 +87,16 @@ SyncTestResult SyncTestSession::Run(int32_t frames) {
     c.mispredict = m_impl->config.mispredict;
     c.seed = m_impl->config.seed;
     c.frames = m_impl->config.restore == SyncTestRestore::e_frames;
-    SyncTest test(m_impl->world, *m_impl, c);
+    c.inputBytes = m_impl->config.players * m_impl->config.inputBytes;
+    c.step = m_impl->config.step;
+    // The session's own input memory, so Run and RunRequests see the same bytes per frame.
+    SyncTest test(
+        m_impl->world, m_impl->game,
+        [impl = m_impl.get()](int32 frame, std::span<uint8> out) {
+            const std::vector<uint8_t>& in = impl->InputsFor(frame);
+            std::copy(in.begin(), in.end(), out.begin());
+        },
+        c);
     return test.Run(frames);
 }
 

@@ -1,4 +1,4 @@
-// WorldGameAdapter: rollback requests on a lockbox world and a replay::Game.
+// WorldGameAdapter: rollback requests on a lockbox world and a WorldGame.
 
 #include "lockbox/net/RollbackWorldAdapter.h"
 
@@ -9,14 +9,14 @@
 
 #include "lockbox/lockbox.h"
 #include "lockbox/net/StateHash.h"
-#include "lockbox/replay/Game.h"
 #include "lockbox/replay/Recorder.h"
+#include "lockbox/state/WorldGame.h"
 #include "lockbox/state/WorldHash.h"
 #include "session/SessionCommon.h"
 
 namespace lockbox::net {
 
-WorldGameAdapter::WorldGameAdapter(b2World& world, replay::Game& game, WorldStepSettings settings, uint32_t slots)
+WorldGameAdapter::WorldGameAdapter(b2World& world, WorldGame& game, WorldStepSettings settings, uint32_t slots)
     : m_world(world), m_game(game), m_settings(settings), m_slots(slots < 3 ? 3 : slots) {
     if (m_settings.tickRate == 0) m_settings.tickRate = 1;
 }
@@ -118,7 +118,7 @@ bool WorldGameAdapter::FinishRecording(const RollbackSession& session) {
     return m_recorder->Finish(hash).ok();
 }
 
-bool WorldGameAdapter::RestoreSnapshot(b2World& world, replay::Game& game, std::span<const uint8_t> snapshot) {
+bool WorldGameAdapter::RestoreSnapshot(b2World& world, WorldGame& game, std::span<const uint8_t> snapshot) {
     return LoadStateBlob(snapshot, world, game);
 }
 
@@ -152,8 +152,7 @@ bool WorldGameAdapter::Execute(std::span<const RollbackRequest> requests, const 
             m_game.LoadUserState(s.user);
             rollingBack = true;
         } else if (const auto* adv = std::get_if<AdvanceRequest>(&r)) {
-            StepConfirmedFrame(m_world, m_game, adv->frame, adv->inputs, m_settings.tickRate,
-                               m_settings.velocityIterations, m_settings.positionIterations);
+            AdvanceWorldFrame(m_world, m_game, adv->frame, adv->inputs, m_settings);
             m_lastAdvanced = adv->frame;
             if (rollingBack) ++m_resimulated;
             if (m_recorder != nullptr && adv->frame >= m_recorded) {

@@ -88,7 +88,7 @@ RollbackMatchBuilder& RollbackMatchBuilder::Latency(const LatencyProfile& profil
     m_latencySeed = seed;
     return *this;
 }
-RollbackMatchBuilder& RollbackMatchBuilder::World(b2World& world, replay::Game& game, WorldStepSettings step) {
+RollbackMatchBuilder& RollbackMatchBuilder::World(b2World& world, WorldGame& game, WorldStepSettings step) {
     m_world = &world;
     m_game = &game;
     m_step = step;

@@ -11,10 +11,8 @@
 
 namespace lockbox {
 class b2World;
-}
-namespace lockbox::replay {
-class Game;
-}
+class WorldGame;
+}  // namespace lockbox
 
 namespace lockbox::net {
 
@@ -45,16 +43,12 @@ private:
 /// Microseconds per frame, rounded down (tickRate >= 1).
 inline uint64_t TickMicros(uint32_t tickRate) noexcept { return 1'000'000u / (tickRate == 0 ? 1u : tickRate); }
 
-/// Applies `inputs` through the game and steps the world once at 1/tickRate seconds.
-void StepConfirmedFrame(b2World& world, replay::Game& game, int32_t frame, std::span<const uint8_t> inputs,
-                        uint32_t tickRate, uint32_t velocityIterations, uint32_t positionIterations);
-
 /// The late-join state blob of lockstep and rollback sessions, from a b2World::Save image and
 /// the game's user state: u32 image size, the image, u32 user size, the user state (sizes
 /// little-endian). Replaces `out`.
 void PackStateBlob(std::span<const uint8_t> image, std::span<const uint8_t> user, std::vector<uint8_t>& out);
 /// Restores a PackStateBlob into `world` and `game`; false when the sizes do not add up or the
 /// world refuses the image (the game is then untouched).
-bool LoadStateBlob(std::span<const uint8_t> blob, b2World& world, replay::Game& game);
+bool LoadStateBlob(std::span<const uint8_t> blob, b2World& world, WorldGame& game);
 
 }  // namespace lockbox::net

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "lockbox/dynamics/World.h"
-#include "lockbox/replay/Game.h"
+#include "lockbox/state/WorldGame.h"
 
 namespace lockbox::net {
 
@@ -22,12 +22,12 @@ uint64_t FoldUserState(uint64_t worldHash, std::span<const uint8_t> user) noexce
     return h;
 }
 
-uint64_t FoldUserState(uint64_t worldHash, const replay::Game& game) {
+uint64_t FoldUserState(uint64_t worldHash, const WorldGame& game) {
     std::vector<uint8> user;
     game.SaveUserState(user);
     return FoldUserState(worldHash, user);
 }
 
-uint64_t FoldedStateHash(const b2World& world, const replay::Game& game) { return FoldUserState(world.Hash(), game); }
+uint64_t FoldedStateHash(const b2World& world, const WorldGame& game) { return FoldUserState(world.Hash(), game); }
 
 }  // namespace lockbox::net

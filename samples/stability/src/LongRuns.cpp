@@ -29,7 +29,7 @@ public:
 }  // namespace
 
 void LongRuns(CaseReport& r, Budget budget) {
-    // The fast budget runs 1 simulated minute where the issue asks for 30 or 10; the limits are
+    // The fast budget runs 1 simulated minute where the full one runs 30 or 10; the limits are
     // the same (they are per-step or per-minute properties).
     const int spinMinutes = budget == Budget::full ? 30 : 1;
     const int creepMinutes = budget == Budget::full ? 10 : 1;

@@ -43,7 +43,7 @@ Settle RunSettle(Sim& sim, b2Body* top, double restY, int maxSteps, int settleFr
 /// Sleep step as a judged figure: "never" counts as maxSteps + 1, which fails a limit < that.
 double SleepFigure(const Settle& s, int maxSteps) { return s.sleepStep < 0 ? maxSteps + 1 : s.sleepStep; }
 
-/// 2 * b2_linearSlop = 0.01 m: the resting-penetration bound (a stack settles at about
+/// 2 * b2_linearSlop = 0.01 m: the suite's resting-penetration bound (a stack settles at about
 /// one slop, since position correction stops at linearSlop).
 constexpr double kTwoSlop = 2 * 328.0 / 65536.0;
 
@@ -89,7 +89,7 @@ b2Body* BuildPyramid(Sim& sim, int base) {
 // 2. Pyramids with bases 20 and 40 for 1200 steps; penetration judged after 300 steps (5 s).
 void Pyramids(CaseReport& r, Budget b) {
     // Limits. Base 20 must not collapse (SCENES.md: the apex moves less than 0.5 m either way;
-    // measured 0.03 m). The penetration bound, 2 linearSlop (0.01 m), is beyond
+    // measured 0.03 m). The suite's penetration bound, 2 linearSlop (0.01 m), is beyond
     // 2.2.1's solver at these heights: the bottom rows carry the pyramid with 8 velocity and 3
     // position iterations and sink further. Documented limitations, bounded at the measured
     // figures plus margin:

@@ -45,7 +45,7 @@ INSTANTIATE_TEST_SUITE_P(All, LockstepMatrix,
                                             ::testing::Values(0u, 30u), ::testing::Values(2u, 4u, 8u)),
                          CellName);
 
-// Ten per cent loss, the second budget point: at most twice the no-loss budget.
+// Ten per cent loss, the budget's second point: at most twice the no-loss budget.
 TEST(LockstepBudget, TenPercentLossStaysWithinTwiceTheBudget) {
     for (uint32_t rtt : {50u, 150u, 300u}) {
         MatchSpec s;

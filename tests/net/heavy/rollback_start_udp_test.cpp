@@ -1,4 +1,4 @@
-// The start phase on real sockets at the spacing: on 127.0.0.1, two peers started 3 s
+// The start phase on real sockets at the start phase's promised spacing: on 127.0.0.1, two peers started 3 s
 // apart, in either order, and a third started 1 s after the later of them, play the same match
 // (about 15 s of wall time for both orders).
 

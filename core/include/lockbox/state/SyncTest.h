@@ -13,28 +13,22 @@
 /// without their structure image. State that leaks out of a discarded branch (contact caches, pair buffers, id reuse,
 /// free-list order) shows up as a mismatch.
 
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "lockbox/Export.h"
 #include "lockbox/dynamics/World.h"
+#include "lockbox/state/WorldGame.h"
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox {
 
-/// The game side of a sync test.
-class LOCKBOX_API SyncTestGame {
-public:
-    virtual ~SyncTestGame() = default;
-    /// Applies frame `frame`'s (right) inputs to the world, then steps it once.
-    virtual void Advance(b2World& world, int32 frame) = 0;
-    /// State beyond the world that influences later frames, appended to every save (default:
-    /// none). LoadUserState gets back exactly these bytes.
-    virtual void SaveUserState(std::vector<uint8>& out) const { (void)out; }
-    /// Restores the user state from the bytes SaveUserState wrote for the frame being loaded.
-    virtual void LoadUserState(std::span<const uint8> in) { (void)in; }
-};
+/// Fills frame `frame`'s inputs (SyncTestConfig::inputBytes bytes, every player's). The sync
+/// test asks once per frame and keeps the answer for every re-simulation, so a source need not
+/// be a pure function of the frame.
+using SyncTestInputSource = std::function<void(int32 frame, std::span<uint8> out)>;
 
 /// Sync test settings.
 struct SyncTestConfig {
@@ -49,6 +43,10 @@ struct SyncTestConfig {
     /// images (Save/Restore). The images are still saved: they give each frame's hash and the
     /// first run's state for a mismatch report.
     bool frames = false;
+    /// Bytes of one frame's inputs, every player's (0: the game gets an empty span and the
+    /// input source is never called).
+    uint32 inputBytes = 0;
+    WorldStepSettings step;  ///< how every frame steps the world after WorldGame::Apply
 };
 
 /// How a sync test's RestoreFrame calls went (frames mode), by the path each took.
@@ -79,8 +77,10 @@ struct SyncTestResult {
 /// the last frame (after the final re-simulation).
 class LOCKBOX_API SyncTest {
 public:
-    /// A sync test of `game` on `world`; both must outlive it.
-    SyncTest(b2World& world, SyncTestGame& game, SyncTestConfig config = {});
+    /// A sync test of `game` on `world`, fed by `inputs` (may be empty: every frame's inputs
+    /// are then zero bytes); the world and the game must outlive it. Each frame is
+    /// AdvanceWorldFrame with the frame's inputs and `config.step`.
+    SyncTest(b2World& world, WorldGame& game, SyncTestInputSource inputs = {}, SyncTestConfig config = {});
     /// Simulates frames [0, frames) with a rollback check after every frame from k on; stops
     /// at the first mismatch.
     SyncTestResult Run(int32 frames);
@@ -97,13 +97,19 @@ private:
     /// branch's own bodies: the game may destroy some of them meanwhile).
     void WrongInputs(int32 frame, bool spawnOnly, std::vector<int32>& spawned);
 
+    /// Frame `frame`'s inputs, asked of the source the first time and kept after.
+    std::span<const uint8> InputsFor(int32 frame);
+    void Advance(int32 frame);
+
     b2World& m_world;
-    SyncTestGame& m_game;
+    WorldGame& m_game;
+    SyncTestInputSource m_source;
     SyncTestConfig m_config;
     std::vector<std::vector<uint8>> m_images;  ///< ring of k + 1 world images, by frame
     std::vector<b2WorldFrame> m_frames;        ///< same ring, in frames mode
     std::vector<std::vector<uint8>> m_user;    ///< the game's state, same ring
     std::vector<uint64> m_hashes;              ///< first-run hash after each frame
+    std::vector<std::vector<uint8>> m_inputs;  ///< every frame's inputs asked so far, by frame
     std::vector<uint8> m_scratch;
 };
 

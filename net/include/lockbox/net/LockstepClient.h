@@ -4,7 +4,7 @@
 /// player's inputs, and steps its world one frame at a time, only when every player's input
 /// for that frame has been confirmed by the server. Before each step it calls the game's
 /// Apply(world, frame, inputs) with all players' inputs of the frame (playerCount * inputBytes
-/// bytes, slot 0 first): the replay::Game contract, so a replay::SceneGame plugs in directly.
+/// bytes, slot 0 first): the WorldGame contract, so a replay::SceneGame plugs in directly.
 ///
 /// Input delay: a local input submitted now is for frame (local tick + input delay). Fixed
 /// (ClientConfig::inputDelay or the server's), or automatic: from the handshake's RTT samples,
@@ -31,8 +31,8 @@
 namespace lockbox {
 class b2World;
 }
-namespace lockbox::replay {
-class Game;
+namespace lockbox {
+class WorldGame;
 }
 
 namespace lockbox::net {
@@ -106,7 +106,7 @@ public:
     /// `server` is the server's PeerId on `transport`. The transport, world and game must
     /// outlive the client; the world must be in the match's start state (or any state, for a
     /// late joiner: the snapshot replaces it).
-    LockstepClient(Transport& transport, PeerId server, ClientConfig config, b2World& world, replay::Game& game);
+    LockstepClient(Transport& transport, PeerId server, ClientConfig config, b2World& world, WorldGame& game);
     ~LockstepClient();
     LockstepClient(const LockstepClient&) = delete;
     LockstepClient& operator=(const LockstepClient&) = delete;
@@ -158,12 +158,12 @@ public:
     const DecodeErrorCounts& Malformed() const noexcept;
 
     /// The state hash a client reports: b2World::Hash folded with the user state bytes.
-    static uint64_t StateHash(const b2World& world, const replay::Game& game);
+    static uint64_t StateHash(const b2World& world, const WorldGame& game);
     /// Snapshot blob layout: u32 world image size, the image, u32 user state size, the bytes
     /// (little-endian). Used by late join; exposed for tests and tools.
-    static std::vector<uint8_t> SnapshotBlob(const b2World& world, const replay::Game& game);
+    static std::vector<uint8_t> SnapshotBlob(const b2World& world, const WorldGame& game);
     /// Restores a blob into world and game; false (nothing changed in the world) when malformed.
-    static bool LoadSnapshotBlob(std::span<const uint8_t> blob, b2World& world, replay::Game& game);
+    static bool LoadSnapshotBlob(std::span<const uint8_t> blob, b2World& world, WorldGame& game);
 
 private:
     struct Impl;

@@ -25,8 +25,8 @@
 namespace lockbox {
 class b2World;
 }
-namespace lockbox::replay {
-class Game;
+namespace lockbox {
+class WorldGame;
 }
 
 namespace lockbox::net {
@@ -50,7 +50,7 @@ struct ServerConfig {
     b2World* world = nullptr;
     /// The game that applies each confirmed frame's inputs to `world` (authoritative mode); null in
     /// relay mode.
-    replay::Game* game = nullptr;
+    WorldGame* game = nullptr;
     uint32_t velocityIterations = 8;  ///< authoritative mode step settings
     /// Authoritative mode step settings: position iterations per step.
     uint32_t positionIterations = 3;

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// RollbackMatch (docs/rollback.md, "One object for the common case"): a peer-to-peer rollback
-/// match of a game whose state is one lockbox world plus a replay::Game, assembled in one
+/// match of a game whose state is one lockbox world plus a WorldGame, assembled in one
 /// place. RollbackMatchBuilder takes the players (local ones, remote ones by address or by
 /// PeerId), the input size, input delay, prediction window, desync interval, start and
 /// disconnect timeouts, the transport (or a UDP port to open one on, optionally behind a
@@ -38,8 +38,8 @@
 namespace lockbox {
 class b2World;
 }
-namespace lockbox::replay {
-class Game;
+namespace lockbox {
+class WorldGame;
 }
 
 namespace lockbox::net {
@@ -162,7 +162,7 @@ public:
     RollbackMatchBuilder& Latency(const LatencyProfile& profile, uint64_t seed);
     /// The game: `world` and `game` (both must outlive the match, the world at its start) and
     /// how to step (a tick rate >= 1; it is also the match's tick rate).
-    RollbackMatchBuilder& World(b2World& world, replay::Game& game, WorldStepSettings step);
+    RollbackMatchBuilder& World(b2World& world, WorldGame& game, WorldStepSettings step);
 
     /// The match, or the first bad setting (checked in the order of MatchSetting; the socket
     /// is opened last, so nothing is opened for a bad configuration).
@@ -193,11 +193,11 @@ private:
     LatencyProfile m_latencyProfile;
     uint64_t m_latencySeed = 0;
     b2World* m_world = nullptr;
-    replay::Game* m_game = nullptr;
+    WorldGame* m_game = nullptr;
     WorldStepSettings m_step;
 };
 
-/// A peer-to-peer rollback match of one lockbox world and a replay::Game: owns the session, the
+/// A peer-to-peer rollback match of one lockbox world and a WorldGame: owns the session, the
 /// world adapter, the peer and the transports it opened, runs the per-tick order in Tick and ends
 /// the match cleanly at a frame every peer agrees on (see the file comment). Made by
 /// RollbackMatchBuilder.
@@ -262,7 +262,7 @@ private:
     std::unique_ptr<WorldGameAdapter> m_adapter;
     std::unique_ptr<RollbackPeer> m_peer;
     b2World* m_world = nullptr;
-    replay::Game* m_game = nullptr;
+    WorldGame* m_game = nullptr;
     uint32_t m_tickRate = 60;
     std::vector<uint32_t> m_local;
     std::vector<std::string> m_remoteNames;  // "host:port" or "peer N", per remote

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// SyncTestSession: the sync test as a session type. It drives a replay::Game on a
+/// SyncTestSession: the sync test as a session type. It drives a WorldGame on a
 /// lockbox world through core's lockbox::SyncTest (state/SyncTest.h): every frame is run,
 /// hashed, then the last `checkDistance` frames are rolled back and re-simulated (in
 /// mispredict mode first with wrong inputs, then again with the right ones) and every
@@ -20,10 +20,6 @@
 #include "lockbox/state/SyncTest.h"
 
 namespace lockbox::net {
-
-/// Fills frame `frame`'s inputs (players * inputBytes bytes). May be called more than once
-/// per frame: the session asks once and keeps the answer for every re-simulation.
-using SyncTestInputSource = std::function<void(int32_t frame, std::span<uint8_t> out)>;
 
 /// How a sync test session rolls back.
 enum class SyncTestRestore : uint8_t {
@@ -65,7 +61,7 @@ struct SyncTestRequestCounts {
     uint64_t predictedAdvances = 0;  ///< advances of a wrong branch (status e_predicted)
 };
 
-/// The sync test as a session: runs a replay::Game on a world, rolls back and re-simulates the last
+/// The sync test as a session: runs a WorldGame on a world, rolls back and re-simulates the last
 /// checkDistance frames after each frame (Run, or through the requests a live session makes:
 /// RunRequests) and reports the first frame whose re-simulated hash differs, which names state
 /// the game's save misses (see the file comment).
@@ -73,7 +69,7 @@ class LOCKBOX_API SyncTestSession {
 public:
     /// `world`, `game` and the source must outlive the session; the world must be in its
     /// starting state (frame 0).
-    SyncTestSession(b2World& world, replay::Game& game, SyncTestInputSource inputs, SyncTestSessionConfig config);
+    SyncTestSession(b2World& world, WorldGame& game, SyncTestInputSource inputs, SyncTestSessionConfig config);
     ~SyncTestSession();
     SyncTestSession(const SyncTestSession&) = delete;
     SyncTestSession& operator=(const SyncTestSession&) = delete;

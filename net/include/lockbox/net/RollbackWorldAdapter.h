@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// WorldGameAdapter: executes a RollbackSession's requests for a game whose whole
-/// state is one lockbox world plus the replay::Game's user blob. SaveState keeps a rollback
+/// state is one lockbox world plus the WorldGame's user blob. SaveState keeps a rollback
 /// frame of the world (b2World::SaveFrame) and the blob (Game::SaveUserState) in a ring slot and
 /// reports the folded hash when asked; LoadState restores both (RestoreFrame); Advance calls
 /// Game::Apply then steps once. It can also record the match's final frames into a replay
@@ -15,12 +15,12 @@
 #include "lockbox/Export.h"
 #include "lockbox/net/RollbackSession.h"
 #include "lockbox/state/WorldFrame.h"
+#include "lockbox/state/WorldGame.h"
 
 namespace lockbox {
 class b2World;
 }
 namespace lockbox::replay {
-class Game;
 class Recorder;
 }  // namespace lockbox::replay
 
@@ -30,23 +30,13 @@ namespace lockbox::net {
 /// saved for that frame), called at the save.
 using RollbackHashReport = std::function<void(int32_t frame, uint64_t hash)>;
 
-/// How the adapter steps the world.
-struct WorldStepSettings {
-    uint32_t tickRate = 60;  ///< frames per second, >= 1 (time step 1/tickRate s)
-    /// Velocity iterations per step (the constraint solver's velocity passes, as b2World::Step
-    /// takes them).
-    uint32_t velocityIterations = 8;
-    /// Position iterations per step (the solver's position correction passes).
-    uint32_t positionIterations = 3;
-};
-
 /// Runs rollback requests against a world and a game. Both must outlive the adapter.
 class LOCKBOX_API WorldGameAdapter {
 public:
     /// `slots`: saved states kept. A match driven by a RollbackPeer needs kRollbackMaxFinalLag + 2
     /// (66, the default): a disconnect cut may roll back to the final frame, which can lag the
     /// current one by that much. A session without peers needs only its prediction window + 2.
-    WorldGameAdapter(b2World& world, replay::Game& game, WorldStepSettings settings, uint32_t slots = 66);
+    WorldGameAdapter(b2World& world, WorldGame& game, WorldStepSettings settings, uint32_t slots = 66);
 
     /// Executes `requests` in order, reporting hashes to `session` for SaveState requests that
     /// want one. False when a LoadState names a frame not kept or the restore failed (the
@@ -65,7 +55,7 @@ public:
     /// Late join, spectator side: loads a ConfirmedSnapshot image into `world` and `game`.
     /// False when the bytes are not such a snapshot (b2World::Restore validates the image
     /// before it touches the world; the game is untouched then).
-    static bool RestoreSnapshot(b2World& world, replay::Game& game, std::span<const uint8_t> snapshot);
+    static bool RestoreSnapshot(b2World& world, WorldGame& game, std::span<const uint8_t> snapshot);
 
     /// Records the match into `recorder` as its frames become final (docs/replay.md, "Replays
     /// of rollback matches"): each final frame's inputs (a player's bytes are zero from its
@@ -116,7 +106,7 @@ private:
     bool RecordWantsHash(int32_t frame) const noexcept;
     void RecordFinal(const RollbackSession& session);
     b2World& m_world;
-    replay::Game& m_game;
+    WorldGame& m_game;
     WorldStepSettings m_settings;
     std::vector<Slot> m_slots;
     mutable b2WorldFrame m_scratch;  ///< the current state while ConfirmedSnapshot visits a slot

@@ -24,8 +24,8 @@
 namespace lockbox {
 class b2World;
 }
-namespace lockbox::replay {
-class Game;
+namespace lockbox {
+class WorldGame;
 }
 
 namespace lockbox::net {
@@ -34,9 +34,9 @@ namespace lockbox::net {
 /// `worldHash` (b2World::Hash) as described above.
 LOCKBOX_API uint64_t FoldUserState(uint64_t worldHash, std::span<const uint8_t> user) noexcept;
 /// The same fold with the game's current user state (calls Game::SaveUserState).
-LOCKBOX_API uint64_t FoldUserState(uint64_t worldHash, const replay::Game& game);
+LOCKBOX_API uint64_t FoldUserState(uint64_t worldHash, const WorldGame& game);
 /// FoldUserState(world.Hash(), game): the hash of a world and a game as sessions compare it.
 /// Call outside Step.
-LOCKBOX_API uint64_t FoldedStateHash(const b2World& world, const replay::Game& game);
+LOCKBOX_API uint64_t FoldedStateHash(const b2World& world, const WorldGame& game);
 
 }  // namespace lockbox::net

@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// The game side of a replay: what an input means is the game's business. The
-/// recorder and the player call Apply before every Step with that frame's inputs, and save and
-/// load the game's own state (beyond the world) with every seed and keyframe, so a game with
-/// state outside the physics still replays and seeks exactly (docs/replay.md).
+/// The game side of a replay: the recorder and the player call WorldGame::Apply before every
+/// Step with that frame's inputs, and save and load the game's own state (beyond the world)
+/// with every seed and keyframe, so a game with state outside the physics still replays and
+/// seeks exactly (docs/replay.md). Also the player's stage hook.
 
 #include <span>
 #include <vector>
@@ -11,26 +11,13 @@
 #include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/StepObserver.h"
-
-namespace lockbox {
-class b2World;
-}
+#include "lockbox/state/WorldGame.h"
 
 namespace lockbox::replay {
 
-/// Applies recorded inputs; mirror of SyncTestGame with the step taken by the replay.
-class LOCKBOX_API Game {
-public:
-    virtual ~Game() = default;
-    /// Applies frame `frame`'s inputs (0-based frame number) to the world, which is unlocked.
-    /// `inputs` holds playerCount * inputBytes bytes: player 0's bytes first.
-    virtual void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) = 0;
-    /// State beyond the world that influences later frames (default: none). LoadUserState
-    /// gets back exactly these bytes.
-    virtual void SaveUserState(std::vector<uint8>& out) const { out.clear(); }
-    /// Restores the state SaveUserState wrote for the frame being loaded (the same bytes).
-    virtual void LoadUserState(std::span<const uint8> in) { (void)in; }
-};
+/// The game a recorder and a player drive: core's WorldGame, the one game interface of every
+/// state tool (a sync test, a session and a replay take the same game object).
+using Game = WorldGame;
 
 /// Called by a player at every stored fencepost of a frame (stage numbers as in Format.h's
 /// StageName: 0 inputs applied, 1 collide, 2 solve, 3 broadphase, 4 toi), before the stage is

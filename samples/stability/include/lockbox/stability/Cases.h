@@ -16,8 +16,8 @@
 
 namespace lockbox::stability {
 
-/// How much simulated time a case spends where the issue allows a choice. The limits are the
-/// same for both; `full` is what the issue asks for (the program and the heavy tests), `fast`
+/// How much simulated time a case spends where the suite allows a choice. The limits are the
+/// same for both; `full` is the suite's own length (the program and the heavy tests), `fast`
 /// shortens the long cases so the fast test suite fits its time budget (see AllCases()).
 enum class Budget { fast, full };
 
@@ -52,7 +52,7 @@ struct CaseInfo {
     bool hasFastBudget;
 };
 
-/// The fifteen cases in issue order.
+/// The fifteen cases in the suite's order (docs/stability.md).
 const std::vector<CaseInfo>& AllCases();
 
 /// Runs one case by name; an unknown name gives a report with one failing "unknown_case" line.
