@@ -131,8 +131,8 @@ struct RollbackClient {
         const auto& info = game->info();
         adapter = std::make_unique<net::WorldGameAdapter>(
             game->world(), *game,
-            net::WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
-                                   static_cast<uint32_t>(info.positionIterations)});
+            WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
+                              static_cast<uint32_t>(info.positionIterations)});
         session = net::RollbackSessionBuilder()
                       .Players(players)
                       .InputBytes(replay::SceneInput::kBytes)

@@ -324,8 +324,8 @@ private:
         const auto& info = c->game->info();
         c->adapter = std::make_unique<net::WorldGameAdapter>(
             c->game->world(), *c->game,
-            net::WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
-                                   static_cast<uint32_t>(info.positionIterations)});
+            WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
+                              static_cast<uint32_t>(info.positionIterations)});
         c->session = net::RollbackSessionBuilder()
                          .Players(m_o.players)
                          .InputBytes(replay::SceneInput::kBytes)
