@@ -18,9 +18,9 @@ namespace lockbox::scenes {
 inline void PrintLine(const RunResult& r) {
     std::printf(
         "scene=%s engine=%s steps=%d ms_per_step=%.4f p95_ms=%.4f bodies=%d awake=%d "
-        "contacts=%d hash=0x%016" PRIx64 "\n",
+        "contacts=%d hash=0x%016" PRIx64 "%s\n",
         r.scene.c_str(), r.engine.c_str(), r.settings.steps, r.msPerStep, r.p95Ms, r.bodies, r.awake, r.contacts,
-        r.hash);
+        r.hash, r.workers > 1 ? (" workers=" + std::to_string(r.workers)).c_str() : "");
 }
 
 /// The per-stage profile: wall-clock stages (ms per step) then work counters (per step).

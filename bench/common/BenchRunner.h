@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "lockbox/scenes/Box2DFloatEngine.h"
@@ -27,6 +28,7 @@ struct RunResult {
     uint64_t hash = 0;                                    ///< HashWorld for lockbox, 0 for float
     std::vector<std::pair<std::string, double>> profile;  ///< per-step averages (ms or counts)
     std::vector<Metric> metrics;                          ///< scene metrics (when tracked)
+    int workers = 1;                                      ///< lockbox worker threads (float: 1)
 };
 
 /// Per-step profile figures of lockbox: wall-clock stages in ms and work counters.
@@ -71,15 +73,22 @@ inline void AddProfile(Box2DFloatEngine& e, std::map<std::string, double>& acc) 
     acc["solveTOI_ms"] += p.solveTOI;
 }
 
+/// Worker threads for a run: the lockbox world's pool; float Box2D 2.4.1 has none.
+inline void SetWorkers(LockboxEngine& e, int workers) { e.world().SetWorkerCount(workers); }
+inline void SetWorkers(Box2DFloatEngine&, int) {}
+
 /// The lockbox state hash (0 for float).
 inline uint64_t EngineHash(LockboxEngine& e) { return HashWorld(e.world()); }
 inline uint64_t EngineHash(Box2DFloatEngine&) { return 0; }
 
-/// Runs a scene once on engine E (`name` is what the result reports); false for no scene.
+/// Runs a scene once on engine E (`name` is what the result reports), lockbox on `workers`
+/// threads; false for no scene.
 template <class E>
-bool RunSceneOnce(std::unique_ptr<Scene<E>> scene, std::string_view name, const RunSettings& s, RunResult& out) {
+bool RunSceneOnce(std::unique_ptr<Scene<E>> scene, std::string_view name, const RunSettings& s, RunResult& out,
+                  int workers = 1) {
     if (!scene) return false;
     E e;
+    SetWorkers(e, workers);
     const Resolved r = Resolve(scene->Info(), s);
     ConfigureWorld(e, scene->Info(), s);
     scene->Prepare(r);
@@ -100,6 +109,7 @@ bool RunSceneOnce(std::unique_ptr<Scene<E>> scene, std::string_view name, const 
     out.scene = std::string(name);
     out.engine = E::kName;
     out.settings = r;
+    out.workers = std::is_same_v<E, LockboxEngine> ? workers : 1;
     double total = 0;
     for (double t : times) total += t;
     out.msPerStep = r.steps > 0 ? total / r.steps : 0;
@@ -118,10 +128,11 @@ bool RunSceneOnce(std::unique_ptr<Scene<E>> scene, std::string_view name, const 
     return true;
 }
 
-/// Runs the named scene once on engine E; false when the scene is unknown or unavailable.
+/// Runs the named scene once on engine E (lockbox on `workers` threads); false when the scene
+/// is unknown or unavailable.
 template <class E>
-bool RunOnce(std::string_view name, const RunSettings& s, RunResult& out) {
-    return RunSceneOnce<E>(MakeScene<E>(name), name, s, out);
+bool RunOnce(std::string_view name, const RunSettings& s, RunResult& out, int workers = 1) {
+    return RunSceneOnce<E>(MakeScene<E>(name), name, s, out, workers);
 }
 
 /// Median of a list (0 when empty).

@@ -2,6 +2,8 @@
 /// `lockbox_bench --all --compare`: every SCENES.md scene on both engines, alternating engine
 /// order between repeats (so drift in machine speed hits both), with the same iterations and
 /// time step. Writes bench/results/<machine>/compare.csv and the table in docs/benchmarks.md.
+/// With --workers N (N > 1) lockbox also runs on N threads in the same alternation, and the
+/// table gains a column: its time per step and the speed-up over one worker.
 ///
 /// The geometric mean counts each SCENES.md scene once: bullet's six 60-step variants enter as
 /// one scene whose ratio is their summed lockbox time over their summed float time.
@@ -10,6 +12,7 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -50,6 +53,8 @@ struct CompareRow {
     double lbMs = 0, lbP95 = 0, flMs = 0, flP95 = 0;
     int bodies = 0, lbAwake = 0, flAwake = 0, lbContacts = 0, flContacts = 0;
     std::string hash, topCosts;
+    int workers = 1;         ///< worker count of the extra lockbox run (1: none)
+    double lbWorkersMs = 0;  ///< lockbox ms/step on `workers` threads
 };
 
 /// Splits one CSV line (quoted fields may hold commas).
@@ -88,6 +93,10 @@ inline std::vector<CompareRow> ReadCompareCsv(const std::filesystem::path& path)
         r.lbContacts = static_cast<int>(num(f[13])), r.flContacts = static_cast<int>(num(f[14]));
         r.hash = f[15];
         r.topCosts = f[16];
+        if (f.size() >= 19) {
+            r.workers = std::max(1, static_cast<int>(num(f[17])));
+            r.lbWorkersMs = num(f[18]);
+        }
         rows.push_back(r);
     }
     return rows;
@@ -96,7 +105,7 @@ inline std::vector<CompareRow> ReadCompareCsv(const std::filesystem::path& path)
 /// Runs the comparison for `only` (every SCENES.md scene when empty; other rows are kept from
 /// the existing compare.csv) and rewrites compare.csv and the table; false when nothing could
 /// be compared.
-inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}) {
+inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, int workers = 1) {
     RunSettings s;
     s.trackMetrics = false;
     const std::string machine = MachineName();
@@ -115,14 +124,16 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}) {
                 if (p.name == key) rows.push_back(p);
             continue;
         }
-        std::vector<RunResult> lbRuns, flRuns;
+        std::vector<RunResult> lbRuns, flRuns, wkRuns;
         for (int i = 0; i < repeat; ++i) {
-            RunResult a, b;
+            RunResult a, b, w;
             bool okA = true;
             if (i % 2 == 0) {
                 okA = RunOnce<LockboxEngine>(name, s, a);
                 RunOnce<Box2DFloatEngine>(name, s, b);
+                if (okA && workers > 1 && RunOnce<LockboxEngine>(name, s, w, workers)) wkRuns.push_back(w);
             } else {
+                if (workers > 1 && RunOnce<LockboxEngine>(name, s, w, workers)) wkRuns.push_back(w);
                 RunOnce<Box2DFloatEngine>(name, s, b);
                 okA = RunOnce<LockboxEngine>(name, s, a);
             }
@@ -147,6 +158,14 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}) {
             std::snprintf(hash, sizeof hash, "0x%016" PRIx64, lb.hash);
             row.hash = hash;
             row.topCosts = TopCosts(lb);
+            if (!wkRuns.empty()) {
+                const RunResult wk = MedianOf(wkRuns);
+                PrintLine(wk);
+                // The bits do not depend on the workers.
+                if (wk.hash != lb.hash) std::printf("scene=%s WORKERS CHANGED THE HASH\n", key.c_str());
+                row.workers = workers;
+                row.lbWorkersMs = wk.msPerStep;
+            }
         } else {
             std::printf("scene=%s engine=lockbox unavailable (needs joints)\n", key.c_str());
         }
@@ -179,16 +198,18 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}) {
         std::ofstream csv(dir / "compare.csv");
         csv << "scene,steps,vel_iters,pos_iters,hz,lockbox_ms_per_step,lockbox_p95_ms,float_ms_per_step,"
                "float_p95_ms,ratio,bodies,lockbox_awake,float_awake,lockbox_contacts,float_contacts,"
-               "lockbox_hash,top_costs\n";
+               "lockbox_hash,top_costs,workers,lockbox_workers_ms_per_step\n";
         for (const CompareRow& r : rows) {
             csv << r.name << "," << r.steps << "," << r.vel << "," << r.pos << "," << r.hz << ",";
             if (r.lockboxOk) {
                 csv << r.lbMs << "," << r.lbP95 << "," << r.flMs << "," << r.flP95 << "," << r.lbMs / r.flMs << ","
                     << r.bodies << "," << r.lbAwake << "," << r.flAwake << "," << r.lbContacts << "," << r.flContacts
-                    << "," << r.hash << ",\"" << r.topCosts << "\"\n";
+                    << "," << r.hash << ",\"" << r.topCosts << "\"," << r.workers << ",";
+                if (r.workers > 1) csv << r.lbWorkersMs;
+                csv << "\n";
             } else {
                 csv << ",," << r.flMs << "," << r.flP95 << ",," << r.bodies << ",," << r.flAwake << ",," << r.flContacts
-                    << ",,unavailable\n";
+                    << ",,unavailable,1,\n";
             }
         }
     }
@@ -197,20 +218,38 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}) {
     md << "Machine `" << machine << "`, " << repeat << " repeat(s) per engine, engines alternating; "
        << "release build; only `b2World::Step` is timed. Same scene definitions, iterations and time step "
           "(1092/65536 s) on both engines.\n\n";
+    // The workers column appears when every measured row has a run on more than one worker.
+    int tableWorkers = 0;
+    for (const CompareRow& r : rows) {
+        if (!r.lockboxOk) continue;
+        if (tableWorkers == 0) tableWorkers = r.workers;
+        if (r.workers != tableWorkers) tableWorkers = 1;
+    }
+    const bool workersColumn = tableWorkers > 1;
     md << "| scene | steps | vel/pos | lockbox ms/step | float ms/step | ratio | lockbox p95 | float p95 | "
-          "bodies | contacts lockbox/float | lockbox top costs |\n";
-    md << "| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |\n";
+          "bodies | contacts lockbox/float | lockbox top costs |";
+    if (workersColumn) md << " lockbox " << tableWorkers << " workers ms/step (speed-up) |";
+    md << "\n| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |"
+       << (workersColumn ? " ---: |" : "") << "\n";
     char buf[512];
     for (const CompareRow& r : rows) {
         if (r.lockboxOk) {
             std::snprintf(buf, sizeof buf, "| %s | %d | %d/%d | %.4f | %.4f | %.2f | %.4f | %.4f | %d | %d/%d | %s |\n",
                           r.name.c_str(), r.steps, r.vel, r.pos, r.lbMs, r.flMs, r.lbMs / r.flMs, r.lbP95, r.flP95,
                           r.bodies, r.lbContacts, r.flContacts, r.topCosts.c_str());
+            if (workersColumn) {
+                md << std::string(buf, std::strlen(buf) - 1);
+                std::snprintf(buf, sizeof buf, " %.4f (%.2fx) |\n", r.lbWorkersMs, r.lbMs / r.lbWorkersMs);
+            }
         } else {
             std::snprintf(buf, sizeof buf,
                           "| %s | %d | %d/%d | n/a | %.4f | n/a | n/a | %.4f | %d | -/%d | "
                           "needs joints |\n",
                           r.name.c_str(), r.steps, r.vel, r.pos, r.flMs, r.flP95, r.bodies, r.flContacts);
+            if (workersColumn) {
+                md << std::string(buf, std::strlen(buf) - 1);
+                std::snprintf(buf, sizeof buf, " n/a |\n");
+            }
         }
         md << buf;
     }

@@ -2,6 +2,8 @@
 //
 //   lockbox_bench --scene NAME [--steps N] [--velocity-iterations V] [--position-iterations P]
 //                 [--hz H] [--engine lockbox|box2d-float] [--repeat R] [--metrics]
+//   lockbox_bench ... --workers N   (lockbox steps on N threads, b2World::SetWorkerCount; with
+//                 --compare, lockbox runs at 1 and at N workers and the table gains a column)
 //   lockbox_bench --all --compare [--repeat R]   (every SCENES.md scene, both engines,
 //                 alternating; writes bench/results/<machine>/compare.csv and the table in
 //                 docs/benchmarks.md)
@@ -40,18 +42,18 @@ namespace {
 constexpr const char* kUsage =
     "usage: lockbox_bench --scene NAME [--steps N] [--velocity-iterations V]\n"
     "         [--position-iterations P] [--hz H] [--engine lockbox|box2d-float]\n"
-    "         [--repeat R] [--metrics] [--no-profile] [--headroom]\n"
-    "       lockbox_bench --all --compare [--scenes a,b,...] [--repeat R]\n"
+    "         [--repeat R] [--metrics] [--no-profile] [--headroom] [--workers N]\n"
+    "       lockbox_bench --all --compare [--scenes a,b,...] [--repeat R] [--workers N]\n"
     "       lockbox_bench --scene-file FILE.json [--steps N] [--repeat R] [--metrics]\n"
     "       lockbox_bench --list\n";
 
 /// Runs one scene `repeat` times on engine E and prints the median line and profile.
 template <class E>
-bool RunAndPrint(std::string_view name, const RunSettings& s, int repeat, bool profile) {
+bool RunAndPrint(std::string_view name, const RunSettings& s, int repeat, bool profile, int workers = 1) {
     std::vector<RunResult> runs;
     for (int i = 0; i < repeat; ++i) {
         RunResult r;
-        if (!RunOnce<E>(name, s, r)) {
+        if (!RunOnce<E>(name, s, r, workers)) {
             std::fprintf(stderr, "scene %.*s is unknown or not available on %s\n", static_cast<int>(name.size()),
                          name.data(), E::kName);
             return false;
@@ -138,7 +140,7 @@ int main(int argc, char** argv) {
     std::string scene, engine = "lockbox", sceneFile;
     RunSettings s;
     s.trackMetrics = false;
-    int repeat = 1;
+    int repeat = 1, workers = 1;
     bool all = false, compare = false, list = false, profile = true, headroom = false;
     std::vector<std::string> only;
     lockbox::cli::OptionReader args("lockbox_bench", argc, argv);
@@ -159,6 +161,8 @@ int main(int argc, char** argv) {
             args.Int(1, 10000, s.hz);
         } else if (args.Is("--repeat")) {
             args.Int(1, 100000, repeat);
+        } else if (args.Is("--workers")) {
+            args.Int(1, 64, workers);
         } else if (args.Is("--metrics")) {
             s.trackMetrics = true;
         } else if (args.Is("--no-profile")) {
@@ -195,7 +199,7 @@ int main(int argc, char** argv) {
         }
         return 0;
     }
-    if (all && compare) return RunCompare(repeat, only) ? 0 : 1;
+    if (all && compare) return RunCompare(repeat, only, workers) ? 0 : 1;
     if (!sceneFile.empty()) return RunSceneFile(sceneFile, s, repeat, profile) ? 0 : 1;
     if (scene.empty()) {
         args.Refuse("give --scene NAME, --scene-file FILE, --all --compare or --list");
@@ -211,7 +215,7 @@ int main(int argc, char** argv) {
     bool ok = true;
     for (auto n : names) {
         if (engine == "lockbox") {
-            ok = RunAndPrint<LockboxEngine>(n, s, repeat, profile) && ok;
+            ok = RunAndPrint<LockboxEngine>(n, s, repeat, profile, workers) && ok;
             if (headroom) PrintHeadroom(n, s);
         } else if (engine == "box2d-float")
             ok = RunAndPrint<Box2DFloatEngine>(n, s, repeat, profile) && ok;

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <string>
@@ -60,15 +61,20 @@ inline std::vector<ScenePlan> GoldenPlan() {
     return plan;
 }
 
+/// Called on a scene's fresh world before anything is built in it (worker settings, ...).
+using WorldSetup = std::function<void(b2World&)>;
+
 /// Loads scene file `file/<name>` into a new world and returns b2WorldHash after each step count
 /// in `steps`, stepping at the file's rate and iterations. Empty when the file cannot be loaded.
-inline std::vector<uint64_t> RunSceneFileHashes(const std::string& name, const std::vector<int>& steps) {
+inline std::vector<uint64_t> RunSceneFileHashes(const std::string& name, const std::vector<int>& steps,
+                                                const WorldSetup& setup = nullptr) {
     std::vector<uint64_t> out;
     std::string bytes;
     if (!scenefile::ReadSceneFileBytes(SceneFileDir() + "/" + name + ".json", bytes)) return out;
     scenefile::SceneMetadata meta;
     auto world = scenefile::LoadSceneWorld(bytes, nullptr, &meta);
     if (!world || steps.empty()) return out;
+    if (setup) setup(*world);
     const Fixed dt = meta.step.TimeStep();
     size_t next = 0;
     for (int i = 0; i < steps.back() && next < steps.size(); ++i) {
@@ -82,9 +88,11 @@ inline std::vector<uint64_t> RunSceneFileHashes(const std::string& name, const s
 }
 
 /// Runs the scene from a fresh world with its default settings (as RunScene does, without
-/// metrics) and returns b2WorldHash after each step count in `steps`.
-inline std::vector<uint64_t> RunSceneHashes(std::string_view name, const std::vector<int>& steps) {
-    if (name.substr(0, 5) == "file/") return RunSceneFileHashes(std::string(name.substr(5)), steps);
+/// metrics) and returns b2WorldHash after each step count in `steps`. `setup`, when given, is
+/// called on the world before the scene builds it.
+inline std::vector<uint64_t> RunSceneHashes(std::string_view name, const std::vector<int>& steps,
+                                            const WorldSetup& setup = nullptr) {
+    if (name.substr(0, 5) == "file/") return RunSceneFileHashes(std::string(name.substr(5)), steps, setup);
     std::vector<uint64_t> out;
     auto scene = scenes::MakeLockboxScene(name);
     if (!scene || steps.empty()) return out;
@@ -94,6 +102,7 @@ inline std::vector<uint64_t> RunSceneHashes(std::string_view name, const std::ve
     s.trackMetrics = false;
     const scenes::Resolved r = scenes::Resolve(scene->Info(), s);
     scenes::ConfigureWorld(e, scene->Info(), s);
+    if (setup) setup(e.world());
     scene->Prepare(r);
     scene->Build(e);
     size_t next = 0;
@@ -138,11 +147,12 @@ inline std::map<std::string, std::string> ReadGolden(const std::string& path) {
 
 /// Runs scene `p` up to the recorded steps <= maxStep and compares with its golden line (a
 /// shortened run must match the golden line's leading fields). Returns the computed line in
-/// *computed.
-inline bool MatchesGolden(ScenePlan p, int maxStep, const std::string& goldenLine, std::string* computed) {
+/// *computed. `setup` as in RunSceneHashes.
+inline bool MatchesGolden(ScenePlan p, int maxStep, const std::string& goldenLine, std::string* computed,
+                          const WorldSetup& setup = nullptr) {
     const size_t full = p.steps.size();
     while (!p.steps.empty() && p.steps.back() > maxStep) p.steps.pop_back();
-    *computed = FormatLine(p, RunSceneHashes(p.name, p.steps));
+    *computed = FormatLine(p, RunSceneHashes(p.name, p.steps, setup));
     if (p.steps.size() == full) return goldenLine == *computed;
     return goldenLine.compare(0, computed->size() + 1, *computed + " ") == 0;
 }

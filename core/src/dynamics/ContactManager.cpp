@@ -6,7 +6,9 @@
 #include "dynamics/contacts/ContactRules.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
+#include "lockbox/dynamics/Tasks.h"
 #include "lockbox/dynamics/WorldCallbacks.h"
+#include "lockbox/fixed/Overflow.h"
 
 namespace lockbox {
 
@@ -133,9 +135,67 @@ void b2ContactManager::Destroy(b2Contact* c) {
     --m_contactCount;
 }
 
-void b2ContactManager::Collide() {
+namespace {
+// Below this many contacts a parallel loop costs more than it saves.
+constexpr size_t kMinParallelContacts = 64;
+// Contacts per block: enough work to amortise taking a block, few enough to balance the load.
+constexpr int32 kContactsPerBlock = 32;
+
+// The checks of the list walk before a contact's update, minus the filtering.
+bool IsActivePair(const b2Body* bodyA, const b2Body* bodyB) {
+    const bool activeA = bodyA->IsAwake() && bodyA->GetType() != b2_staticBody;
+    const bool activeB = bodyB->IsAwake() && bodyB->GetType() != b2_staticBody;
+    return activeA || activeB;
+}
+}  // namespace
+
+void b2ContactManager::EvaluateRange(int32 begin, int32 end, void* self) {
+    auto* manager = static_cast<b2ContactManager*>(self);
+    for (int32 i = begin; i < end; ++i) {
+        b2Contact* c = manager->m_evaluatedContacts[static_cast<size_t>(i)];
+        Evaluated& e = manager->m_evaluated[static_cast<size_t>(i)];
+        e.saturations = 0;
+        const SaturationCapture capture(&e.saturations);
+        // The evaluation starts from the old manifold, as the serial update does in place.
+        e.manifold = c->m_manifold;
+        e.sensor = c->IsSensorPair();
+        e.touching = c->EvaluateUpdate(e.sensor, &e.manifold);
+    }
+}
+
+void b2ContactManager::EvaluateAhead(b2TaskSystem& tasks) {
+    // The contacts the walk would update if no listener intervened. The walk repeats every
+    // test and uses an evaluation only for a contact it updates; what an evaluation reads
+    // (shapes and transforms) no step callback can change, as the world is locked.
+    m_evaluatedContacts.clear();
+    for (b2Contact* c = m_contactList; c; c = c->m_next) {
+        if (c->m_flags & b2Contact::e_filterFlag) continue;
+        const b2Fixture* fixtureA = c->GetFixtureA();
+        const b2Fixture* fixtureB = c->GetFixtureB();
+        if (!IsActivePair(fixtureA->GetBody(), fixtureB->GetBody())) continue;
+        const int32 proxyIdA = fixtureA->m_proxies[static_cast<size_t>(c->GetChildIndexA())].proxyId;
+        const int32 proxyIdB = fixtureB->m_proxies[static_cast<size_t>(c->GetChildIndexB())].proxyId;
+        if (!m_broadPhase.TestOverlap(proxyIdA, proxyIdB)) continue;
+        m_evaluatedContacts.push_back(c);
+    }
+    if (m_evaluated.size() < m_evaluatedContacts.size()) m_evaluated.resize(m_evaluatedContacts.size());
+    if (m_evaluatedContacts.empty()) return;
+    tasks.ParallelFor(static_cast<int32>(m_evaluatedContacts.size()), kContactsPerBlock, &EvaluateRange, this);
+}
+
+void b2ContactManager::Collide(b2TaskSystem* tasks) {
+    m_evaluatedContacts.clear();
+    if (tasks != nullptr && tasks->GetWorkerCount() > 1 && static_cast<size_t>(m_contactCount) >= kMinParallelContacts)
+        EvaluateAhead(*tasks);
+    size_t nextEvaluated = 0;
+
     b2Contact* c = m_contactList;
     while (c) {
+        // The walk meets the contacts evaluated ahead in the same order (it only removes).
+        const Evaluated* evaluated = nullptr;
+        if (nextEvaluated < m_evaluatedContacts.size() && m_evaluatedContacts[nextEvaluated] == c)
+            evaluated = &m_evaluated[nextEvaluated++];
+
         b2Fixture* fixtureA = c->GetFixtureA();
         b2Fixture* fixtureB = c->GetFixtureB();
         const int32 indexA = c->GetChildIndexA();
@@ -145,6 +205,8 @@ void b2ContactManager::Collide() {
 
         // Re-filter contacts whose filter data or body type changed.
         if (c->m_flags & b2Contact::e_filterFlag) {
+            // Flagged by a listener since the evaluation: the serial path decides.
+            evaluated = nullptr;
             if (!bodyB->ShouldCollide(bodyA) || !ShouldCollide(fixtureA, fixtureB)) {
                 b2Contact* cNuke = c;
                 c = cNuke->GetNext();
@@ -155,9 +217,7 @@ void b2ContactManager::Collide() {
         }
 
         // At least one body must be awake and dynamic or kinematic.
-        const bool activeA = bodyA->IsAwake() && bodyA->m_type != b2_staticBody;
-        const bool activeB = bodyB->IsAwake() && bodyB->m_type != b2_staticBody;
-        if (!activeA && !activeB) {
+        if (!IsActivePair(bodyA, bodyB)) {
             c = c->GetNext();
             continue;
         }
@@ -172,7 +232,13 @@ void b2ContactManager::Collide() {
             continue;
         }
 
-        c->Update(m_contactListener, m_profile);
+        if (evaluated != nullptr && evaluated->sensor == c->IsSensorPair()) {
+            // Counted here, on the stepping thread, exactly when the serial update would.
+            AddSaturations(evaluated->saturations);
+            c->UpdateFrom(m_contactListener, m_profile, evaluated->sensor, evaluated->manifold, evaluated->touching);
+        } else {
+            c->Update(m_contactListener, m_profile);
+        }
         c = c->GetNext();
     }
 }

@@ -2,6 +2,8 @@
 // b2ContactManager (Box2D 2.2.1 b2ContactManager.h): owns the broad phase and the contacts,
 // turns broad-phase pairs into contacts and keeps their manifolds up to date.
 
+#include <vector>
+
 #include "Engine.h"
 #include "dynamics/Pool.h"
 #include "dynamics/TimeStep.h"
@@ -15,6 +17,7 @@ namespace lockbox {
 class b2ContactFilter;
 class b2ContactListener;
 class b2Fixture;
+class b2TaskSystem;
 
 /// Contact bookkeeping for one world.
 class core_detail::Engine::ContactManager {
@@ -32,8 +35,10 @@ public:
     /// Destroys a contact (EndContact first when it was touching).
     void Destroy(b2Contact* c);
     /// Re-filters flagged contacts, drops contacts whose fat AABBs separated, and updates the
-    /// manifolds of contacts with an awake, non-static body.
-    void Collide();
+    /// manifolds of contacts with an awake, non-static body. With a task system of more than
+    /// one worker, the manifolds are evaluated in parallel first; everything else (and every
+    /// listener call) then happens in list order, exactly as with one worker.
+    void Collide(b2TaskSystem* tasks);
 
     /// The contact with a given id (nullptr when free).
     b2Contact* GetContact(int32 id) noexcept { return m_contacts.Get(id); }
@@ -53,7 +58,23 @@ public:
     b2Profile* m_profile = nullptr;                  ///< counters of the current step (owned by the world)
 
 private:
+    /// A manifold evaluated ahead of the list walk (possibly on a worker thread).
+    struct Evaluated {
+        b2Manifold manifold;
+        uint64 saturations = 0;  ///< fixed-point saturations of the evaluation
+        bool sensor = false;     ///< the pair was a sensor pair when evaluated
+        bool touching = false;
+    };
+
     bool ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB);
+    /// Evaluates, on the task system, the contacts the list walk will update unless a listener
+    /// changes their filtering first: m_evaluatedContacts in list order, m_evaluated beside.
+    void EvaluateAhead(b2TaskSystem& tasks);
+    static void EvaluateRange(int32 begin, int32 end, void* self);
+
+    // Narrow-phase scratch of the parallel path (grown, never shrunk; not state).
+    std::vector<b2Contact*> m_evaluatedContacts;
+    std::vector<Evaluated> m_evaluated;
 
     b2Pool<b2Fixture>* m_fixtures;
     b2Pool<b2Contact> m_contacts;

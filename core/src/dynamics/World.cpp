@@ -233,7 +233,7 @@ void World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
     // Update contacts: this is where some contacts are destroyed.
     {
         const Clock::time_point timer = Clock::now();
-        m_contactManager.Collide();
+        m_contactManager.Collide(Tasks());
         m_profile.collideNs = Nanos(timer);
     }
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_collide, *m_owner);

@@ -1,5 +1,7 @@
 // b2World's calls (World.h), each handed to the world's engine (dynamics/WorldState.h). The
 // snapshot and frame calls live with the state code (state/Snapshot.cpp, state/WorldFrame.cpp).
+#include <algorithm>
+
 #include "dynamics/WorldState.h"
 #include "lockbox/dynamics/World.h"
 
@@ -48,6 +50,23 @@ b2Contact* b2World::GetContact(int32 id) noexcept { return m_state->m_contactMan
 b2Joint* b2World::GetJoint(int32 id) noexcept { return m_state->GetJoint(id); }
 
 uint64 b2World::GetSaturationCount() const noexcept { return m_state->m_saturationCount; }
+
+void b2World::SetWorkerCount(int32 count) {
+    if (m_state->CheckLocked("b2World::SetWorkerCount called inside a Step callback (the world is locked)")) return;
+    const int32 current = m_state->m_pool ? m_state->m_pool->GetWorkerCount() : 1;
+    if (std::clamp(count, int32{1}, int32{64}) == current) return;
+    m_state->m_pool.reset();
+    if (count > 1) m_state->m_pool = std::make_unique<b2ThreadPool>(count);
+}
+int32 b2World::GetWorkerCount() const noexcept {
+    const b2TaskSystem* tasks = m_state->Tasks();
+    return tasks != nullptr ? tasks->GetWorkerCount() : 1;
+}
+void b2World::SetTaskSystem(b2TaskSystem* tasks) {
+    if (m_state->CheckLocked("b2World::SetTaskSystem called inside a Step callback (the world is locked)")) return;
+    m_state->m_userTasks = tasks;
+}
+b2TaskSystem* b2World::GetTaskSystem() const noexcept { return m_state->m_userTasks; }
 
 void b2World::SetAllowSleeping(bool flag) { m_state->SetAllowSleeping(flag); }
 bool b2World::GetAllowSleeping() const noexcept { return m_state->m_allowSleep; }

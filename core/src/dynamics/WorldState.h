@@ -12,6 +12,7 @@
 #include "dynamics/TimeStep.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
+#include "lockbox/dynamics/Tasks.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/joints/Joint.h"
 #include "state/FrameBook.h"
@@ -112,6 +113,11 @@ public:
     b2Profile m_profile;
     bool m_headroomTelemetry = false;          ///< fill m_profile.headroom at the end of each Step
     b2StepObserver* m_stepObserver = nullptr;  ///< step fenceposts (not state)
+    /// Workers (not state: the bits never depend on them). The game's task system wins over
+    /// the built-in pool, which exists only for a worker count above 1.
+    b2TaskSystem* m_userTasks = nullptr;
+    std::unique_ptr<b2ThreadPool> m_pool;
+    b2TaskSystem* Tasks() const noexcept { return m_userTasks != nullptr ? m_userTasks : m_pool.get(); }
 
 private:
     void Solve(const b2TimeStep& step);

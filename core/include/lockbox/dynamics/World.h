@@ -38,6 +38,8 @@ namespace core_detail {
 struct Engine;
 }  // namespace core_detail
 
+class b2TaskSystem;
+
 /// Default world bounds: +-16000 m on both axes. Any two in-world positions differ by at
 /// most 32000 m, which still fits Q16.16 (docs/numerics.md).
 inline constexpr Fixed b2_defaultWorldExtent = 16000;
@@ -145,6 +147,22 @@ public:
     /// Fixed-point saturations counted during this world's Steps (0 in checked builds, which
     /// trap instead). Part of the state hash, so peers see a numeric limit being hit.
     uint64 GetSaturationCount() const noexcept;
+
+    // ---- workers (lockbox; lockbox/dynamics/Tasks.h) ----
+    /// Runs the step's parallel work on `count` threads of a built-in pool, the calling thread
+    /// included (clamped to [1, 64]). 1, the default, creates no thread. Threads are created
+    /// here, only when the count changes, and joined when it drops to 1 or the world dies.
+    /// The results are the same bits for every count. Not state: snapshots and the hash ignore
+    /// it. Refused inside Step.
+    void SetWorkerCount(int32 count);
+    /// Workers of the task system in use: the game's (SetTaskSystem) or the built-in pool's.
+    int32 GetWorkerCount() const noexcept;
+    /// Runs the step's parallel work on a game's job system instead of the built-in pool
+    /// (not owned: it must outlive its use by this world); nullptr goes back to the built-in
+    /// pool. The results are the same bits with any task system. Not state. Refused inside Step.
+    void SetTaskSystem(b2TaskSystem* tasks);
+    /// The game's task system, or nullptr when the built-in pool (or no worker) is in use.
+    b2TaskSystem* GetTaskSystem() const noexcept;
 
     /// Sleeping switch; turning it off wakes every body.
     void SetAllowSleeping(bool flag);

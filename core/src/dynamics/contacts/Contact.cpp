@@ -118,31 +118,47 @@ void b2Contact::Evaluate(b2Manifold* manifold, const b2Transform& xfA, const b2T
     }
 }
 
+bool b2Contact::IsSensorPair() const noexcept { return m_fixtureA->IsSensor() || m_fixtureB->IsSensor(); }
+
 void b2Contact::Update(b2ContactListener* listener, b2Profile* profile) {
     const b2Manifold oldManifold = m_manifold;
 
     // Re-enable this contact (PreSolve may disable it again for this step only).
     m_flags |= e_enabledFlag;
 
-    bool touching = false;
-    const bool wasTouching = (m_flags & e_touchingFlag) != 0;
-    const bool sensor = m_fixtureA->IsSensor() || m_fixtureB->IsSensor();
-
-    b2Body* bodyA = m_fixtureA->GetBody();
-    b2Body* bodyB = m_fixtureB->GetBody();
-    const b2Transform& xfA = bodyA->GetTransform();
-    const b2Transform& xfB = bodyB->GetTransform();
-
+    const bool sensor = IsSensorPair();
     if (profile) ++profile->contactsUpdated;
-    if (sensor) {
-        touching = b2TestOverlap(m_fixtureA->GetShape(), m_indexA, m_fixtureB->GetShape(), m_indexB, xfA, xfB);
-        // Sensors don't generate manifolds.
-        m_manifold.pointCount = 0;
-    } else {
-        Evaluate(&m_manifold, xfA, xfB);
-        if (profile) ++profile->manifoldsEvaluated;
-        touching = m_manifold.pointCount > 0;
+    const bool touching = EvaluateUpdate(sensor, &m_manifold);
+    if (profile && !sensor) ++profile->manifoldsEvaluated;
+    FinishUpdate(listener, profile, oldManifold, sensor, touching);
+}
 
+bool b2Contact::EvaluateUpdate(bool sensor, b2Manifold* manifold) {
+    const b2Transform& xfA = m_fixtureA->GetBody()->GetTransform();
+    const b2Transform& xfB = m_fixtureB->GetBody()->GetTransform();
+    if (sensor) {
+        // Sensors don't generate manifolds.
+        manifold->pointCount = 0;
+        return b2TestOverlap(m_fixtureA->GetShape(), m_indexA, m_fixtureB->GetShape(), m_indexB, xfA, xfB);
+    }
+    Evaluate(manifold, xfA, xfB);
+    return manifold->pointCount > 0;
+}
+
+void b2Contact::UpdateFrom(b2ContactListener* listener, b2Profile* profile, bool sensor, const b2Manifold& manifold,
+                           bool touching) {
+    const b2Manifold oldManifold = m_manifold;
+    m_flags |= e_enabledFlag;
+    if (profile) ++profile->contactsUpdated;
+    m_manifold = manifold;
+    if (profile && !sensor) ++profile->manifoldsEvaluated;
+    FinishUpdate(listener, profile, oldManifold, sensor, touching);
+}
+
+void b2Contact::FinishUpdate(b2ContactListener* listener, b2Profile* profile, const b2Manifold& oldManifold,
+                             bool sensor, bool touching) {
+    const bool wasTouching = (m_flags & e_touchingFlag) != 0;
+    if (!sensor) {
         // Match new points to old ones by feature key and carry their impulses over for warm
         // starting.
         for (int32 i = 0; i < m_manifold.pointCount; ++i) {
@@ -161,8 +177,8 @@ void b2Contact::Update(b2ContactListener* listener, b2Profile* profile) {
         }
 
         if (touching != wasTouching) {
-            bodyA->SetAwake(true);
-            bodyB->SetAwake(true);
+            m_fixtureA->GetBody()->SetAwake(true);
+            m_fixtureB->GetBody()->SetAwake(true);
         }
     }
 

@@ -121,6 +121,20 @@ private:
     /// Updates the manifold and touching state and calls the listener (Begin/End/PreSolve).
     /// Counts narrow-phase work and listener calls into profile (may be nullptr).
     void Update(b2ContactListener* listener, b2Profile* profile);
+    /// The geometry of an update, apart from it: `*manifold` must hold a copy of this contact's
+    /// manifold; it becomes the new one (a sensor pair's: point count 0). Returns whether the
+    /// shapes touch. Reads only the shapes and the bodies' transforms and writes only
+    /// `*manifold`, so different contacts can be evaluated on different threads.
+    bool EvaluateUpdate(bool sensor, b2Manifold* manifold);
+    /// Update with its geometry already evaluated by EvaluateUpdate(sensor, &manifold) for the
+    /// current transforms: the same result and listener calls as Update.
+    void UpdateFrom(b2ContactListener* listener, b2Profile* profile, bool sensor, const b2Manifold& manifold,
+                    bool touching);
+    /// What Update and UpdateFrom share once the new manifold is in place.
+    void FinishUpdate(b2ContactListener* listener, b2Profile* profile, const b2Manifold& oldManifold, bool sensor,
+                      bool touching);
+    /// True when either fixture is a sensor (then the update tests overlap, with no manifold).
+    bool IsSensorPair() const noexcept;
 
     // Layout: what the state walks (hash, save) read comes first and together, so a contact
     // costs them three cache lines; the graph edges, which they do not read, come last.
