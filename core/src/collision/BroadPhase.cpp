@@ -47,9 +47,21 @@ void b2BroadPhase::UnBufferMove(int32 proxyId) {
     }
 }
 
+void b2BroadPhase::MarkMoved(bool moved) {
+    // Sized to the tree's node capacity, which grows only when proxies are created.
+    const size_t capacity = m_tree.GetNodes().size();
+    if (m_moved.size() < capacity) m_moved.resize(capacity, 0);
+    const uint8 flag = moved ? 1 : 0;
+    for (const int32 proxyId : m_moveBuffer) {
+        if (proxyId != e_nullProxy) m_moved[static_cast<size_t>(proxyId)] = flag;
+    }
+}
+
 bool b2BroadPhase::QueryCallback(int32 proxyId) {
     // A proxy cannot form a pair with itself.
     if (proxyId == m_queryProxyId) return true;
+    // A moved proxy with a larger id records this pair in its own query.
+    if (proxyId > m_queryProxyId && m_moved[static_cast<size_t>(proxyId)] != 0) return true;
     const int32 a = proxyId < m_queryProxyId ? proxyId : m_queryProxyId;
     const int32 b = proxyId < m_queryProxyId ? m_queryProxyId : proxyId;
     m_pairBuffer.push_back(b2Pair{a, b});

@@ -37,6 +37,11 @@ void b2ContactManager::AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB) {
     // Fixtures on the same body never collide.
     if (bodyA == bodyB) return;
 
+    // The default filter is a pure test of data already loaded: without a user filter it goes
+    // first, before the walks of the contact and joint lists (a jointed grid reports thousands
+    // of pairs a step that it rejects). The outcome is the same as in 2.2.1's order.
+    if (m_contactFilter == nullptr && !g_defaultFilter.ShouldCollide(fixtureA, fixtureB)) return;
+
     // Does a contact already exist? (Walk B's edges, newest first, as 2.2.1.)
     for (b2ContactEdge* edge = bodyB->GetContactList(); edge; edge = edge->next) {
         if (edge->other != bodyA) continue;
@@ -51,7 +56,7 @@ void b2ContactManager::AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB) {
 
     // Body type rule and joints, then user filtering.
     if (!bodyB->ShouldCollide(bodyA)) return;
-    if (!ShouldCollide(fixtureA, fixtureB)) return;
+    if (m_contactFilter != nullptr && !m_contactFilter->ShouldCollide(fixtureA, fixtureB)) return;
 
     const b2Shape::Type typeA = fixtureA->GetType();
     const b2Shape::Type typeB = fixtureB->GetType();

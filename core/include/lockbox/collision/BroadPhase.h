@@ -138,12 +138,15 @@ private:
 
     void BufferMove(int32 proxyId);
     void UnBufferMove(int32 proxyId);
+    /// Sets (or clears) m_moved for every live proxy of the move buffer.
+    void MarkMoved(bool moved);
     bool QueryCallback(int32 proxyId);
 
     b2DynamicTree m_tree;
     int32 m_proxyCount = 0;
     std::vector<int32> m_moveBuffer;
     std::vector<b2Pair> m_pairBuffer;
+    std::vector<uint8> m_moved;  ///< per tree node, 1 while UpdatePairs runs for a buffered proxy (scratch)
     int32 m_queryProxyId = e_nullProxy;
 };
 
@@ -151,7 +154,10 @@ template <typename T>
 void b2BroadPhase::UpdatePairs(T* callback) {
     m_pairBuffer.clear();
 
-    // Query the tree with every moved proxy's fat AABB, in buffer order.
+    // Query the tree with every moved proxy's fat AABB, in buffer order. Two moved proxies that
+    // overlap find each other; only the query of the larger id records the pair (the overlap
+    // test is symmetric), which halves the pairs to sort without changing the distinct set.
+    MarkMoved(true);
     PairCollector collector{this};
     for (const int32 proxyId : m_moveBuffer) {
         m_queryProxyId = proxyId;
@@ -159,6 +165,7 @@ void b2BroadPhase::UpdatePairs(T* callback) {
         m_tree.Query(&collector, m_tree.GetFatAABB(proxyId));
     }
     m_queryProxyId = e_nullProxy;
+    MarkMoved(false);
     m_moveBuffer.clear();
 
     // Total order on (A, B): equal elements are identical, so any sort gives the same sequence.
