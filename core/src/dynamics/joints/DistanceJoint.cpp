@@ -27,24 +27,7 @@ b2DistanceJoint::b2DistanceJoint(const b2DistanceJointDef* def) : b2Joint(def) {
 }
 
 void b2DistanceJoint::InitVelocityConstraints(const b2SolverData& data) {
-    const BodyData A = Load(m_bodyA), B = Load(m_bodyB);
-    m_indexA = A.index;
-    m_indexB = B.index;
-    m_localCenterA = A.localCenter;
-    m_localCenterB = B.localCenter;
-    m_invMassA = A.invMass;
-    m_invMassB = B.invMass;
-    m_invIA = A.invI;
-    m_invIB = B.invI;
-
-    const b2Vec2 cA = data.positions[m_indexA].c;
-    const Fixed aA = data.positions[m_indexA].a;
-    b2Vec2 vA = data.velocities[m_indexA].v;
-    Fixed wA = data.velocities[m_indexA].w;
-    const b2Vec2 cB = data.positions[m_indexB].c;
-    const Fixed aB = data.positions[m_indexB].a;
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    [[maybe_unused]] auto [A, B, cA, aA, vA, wA, cB, aB, vB, wB] = BeginSolve(*this, data);
 
     const b2Rot qA = data.Rotation(m_indexA, aA), qB = data.Rotation(m_indexB, aB);
     m_rA = b2Mul(qA, m_localAnchorA - m_localCenterA);

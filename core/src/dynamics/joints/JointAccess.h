@@ -3,6 +3,7 @@
 // the joint graph, and what a joint's solver set-up reads of its bodies.
 
 #include "Engine.h"
+#include "dynamics/TimeStep.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/joints/Joint.h"
 
@@ -16,9 +17,26 @@ struct BodyData {
     Wide invMass;  ///< 1/kg
     Wide invI;     ///< 1/(kg*m^2)
 };
+
+/// A two-body joint's bodies as the solver holds them when its set-up starts.
+struct TwoBodyState {
+    BodyData A;  ///< what the joint copied of body A
+    BodyData B;
+    b2Vec2 cA;  ///< centre of mass of A (m)
+    Fixed aA;   ///< angle of A (rad)
+    b2Vec2 vA;  ///< linear velocity of A (m/s)
+    Fixed wA;   ///< angular velocity of A (rad/s)
+    b2Vec2 cB;
+    Fixed aB;
+    b2Vec2 vB;
+    Fixed wB;
+};
 }  // namespace jointmath
 
 struct core_detail::Engine::Joints {
+    /// An island's joints in the velocity iterations, with compact rows (JointSolver.h).
+    class Solver;
+
     /// Allocates the concrete joint for def->type (nullptr for e_unknownJoint, a definition
     /// without two distinct bodies, or a gear whose joints are not revolute or prismatic).
     static b2Joint* Create(const b2JointDef* def);
@@ -48,6 +66,28 @@ struct core_detail::Engine::Joints {
     /// A body's island index, local centre and inverse masses, for a joint's solver set-up.
     static jointmath::BodyData Load(const b2Body* b) noexcept {
         return {b->m_islandIndex, b->m_sweep.localCenter, b->m_invMass, b->m_invI};
+    }
+
+    /// The set-up every two-body joint starts with: copies both bodies' island indices, local
+    /// centres and inverse masses into the joint's solver fields (m_indexA, m_localCenterA,
+    /// m_invMassA, m_invIA and B's) and returns their positions and velocities. Only copies:
+    /// no arithmetic, so every joint's results are those of its own copy of these lines.
+    template <class JointType>
+    static jointmath::TwoBodyState BeginSolve(JointType& joint, const b2SolverData& data) noexcept {
+        const jointmath::BodyData A = Load(joint.m_bodyA), B = Load(joint.m_bodyB);
+        joint.m_indexA = A.index;
+        joint.m_indexB = B.index;
+        joint.m_localCenterA = A.localCenter;
+        joint.m_localCenterB = B.localCenter;
+        joint.m_invMassA = A.invMass;
+        joint.m_invMassB = B.invMass;
+        joint.m_invIA = A.invI;
+        joint.m_invIB = B.invI;
+        const b2Position& pA = data.positions[A.index];
+        const b2Position& pB = data.positions[B.index];
+        const b2Velocity& velA = data.velocities[A.index];
+        const b2Velocity& velB = data.velocities[B.index];
+        return {A, B, pA.c, pA.a, velA.v, velA.w, pB.c, pB.a, velB.v, velB.w};
     }
 };
 

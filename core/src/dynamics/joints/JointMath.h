@@ -14,6 +14,12 @@ namespace lockbox::jointmath {
 // What a joint's solver set-up reads of one body (JointAccess.h).
 inline BodyData Load(const b2Body* b) noexcept { return core_detail::Engine::Joints::Load(b); }
 
+// The shared set-up of a two-body joint's InitVelocityConstraints (JointAccess.h).
+template <class JointType>
+inline TwoBodyState BeginSolve(JointType& joint, const b2SolverData& data) noexcept {
+    return core_detail::Engine::Joints::BeginSolve(joint, data);
+}
+
 // v -= invMass * P, w -= invI * (r x P): each velocity component rounded once.
 inline void ApplyNeg(b2Vec2& v, Fixed& w, const BodyData& b, const b2Vec2& r, const b2WideVec2& p) noexcept {
     v.x -= MulToFixed(b.invMass, p.x);

@@ -91,24 +91,7 @@ void Apply(b2Vec2& vA, Fixed& wA, b2Vec2& vB, Fixed& wB, Wide mA, Wide mB, Wide 
 }  // namespace
 
 void b2PrismaticJoint::InitVelocityConstraints(const b2SolverData& data) {
-    const BodyData A = Load(m_bodyA), B = Load(m_bodyB);
-    m_indexA = A.index;
-    m_indexB = B.index;
-    m_localCenterA = A.localCenter;
-    m_localCenterB = B.localCenter;
-    m_invMassA = A.invMass;
-    m_invMassB = B.invMass;
-    m_invIA = A.invI;
-    m_invIB = B.invI;
-
-    const b2Vec2 cA = data.positions[m_indexA].c;
-    const Fixed aA = data.positions[m_indexA].a;
-    b2Vec2 vA = data.velocities[m_indexA].v;
-    Fixed wA = data.velocities[m_indexA].w;
-    const b2Vec2 cB = data.positions[m_indexB].c;
-    const Fixed aB = data.positions[m_indexB].a;
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    [[maybe_unused]] auto [A, B, cA, aA, vA, wA, cB, aB, vB, wB] = BeginSolve(*this, data);
 
     const Frame f = MakeFrame(cA, aA, cB, aB, m_localAnchorA, m_localCenterA, m_localAnchorB, m_localCenterB,
                               m_localXAxisA, m_localYAxisA);
