@@ -137,18 +137,19 @@ void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     profile->contactConstraints += m_contactCount;
     if (step.warmStarting) contactSolver.WarmStart();
     // Joint loops are entered only when the island has joints.
-    for (int32 i = 0; i < m_jointCount; ++i) m_joints[static_cast<size_t>(i)]->InitVelocityConstraints(solverData);
+    if (m_jointCount > 0) m_jointSolver.InitVelocityConstraints(m_joints.data(), m_jointCount, solverData);
     profile->jointConstraints += m_jointCount;
     profile->solveInitNs += Nanos(timer);
 
     timer = Clock::now();
     for (int32 it = 0; it < step.velocityIterations; ++it) {
-        for (int32 j = 0; j < m_jointCount; ++j) m_joints[static_cast<size_t>(j)]->SolveVelocityConstraints(solverData);
+        if (m_jointCount > 0) m_jointSolver.SolveVelocityConstraints(solverData);
         contactSolver.SolveVelocityConstraints();
     }
     profile->velocityIterations += step.velocityIterations * m_contactCount;
     profile->jointVelocityIterations += step.velocityIterations * m_jointCount;
     contactSolver.StoreImpulses();
+    if (m_jointCount > 0) m_jointSolver.StoreImpulses();
     profile->solveVelocityNs += Nanos(timer);
     Observe(b2IslandPhase::e_velocity);
 

@@ -7,6 +7,7 @@
 #include "Engine.h"
 #include "dynamics/TimeStep.h"
 #include "dynamics/contacts/ContactSolver.h"
+#include "dynamics/joints/JointSolver.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/Profile.h"
 #include "lockbox/fixed/Math.h"
@@ -64,7 +65,8 @@ public:
     // Contact-solver storage, sized to the largest island so far (grown, never shrunk).
     std::vector<b2ContactPositionConstraint> m_positionConstraints;
     std::vector<b2ContactVelocityConstraint> m_velocityConstraints;
-    std::vector<b2CachedRot> m_rotations;  ///< per body, like m_positions
+    std::vector<b2CachedRot> m_rotations;               ///< per body, like m_positions
+    core_detail::Engine::Joints::Solver m_jointSolver;  ///< the joints' rows, sized to the largest island so far
     int32 m_bodyCount = 0;
     int32 m_jointCount = 0;
     int32 m_contactCount = 0;

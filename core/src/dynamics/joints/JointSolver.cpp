@@ -1,0 +1,91 @@
+#include "dynamics/joints/JointSolver.h"
+
+#include "JointMath.h"
+#include "lockbox/dynamics/joints/RevoluteJoint.h"
+
+namespace lockbox {
+
+using namespace jointmath;
+using JointSolver = core_detail::Engine::Joints::Solver;
+
+namespace {
+// One iteration of a revolute joint whose motor and limit are idle: the point-to-point branch
+// of b2RevoluteJoint::SolveVelocityConstraints, the same operations in the same order.
+void SolvePointRow(JointSolver::Row& row, const b2SolverData& data) noexcept {
+    b2Velocity& velA = data.velocities[row.indexA];
+    b2Velocity& velB = data.velocities[row.indexB];
+    b2Vec2 vA = velA.v;
+    Fixed wA = velA.w;
+    b2Vec2 vB = velB.v;
+    Fixed wB = velB.w;
+
+    const b2Vec2 Cdot = PointVelocity(vB, wB, row.rB) - PointVelocity(vA, wA, row.rA);
+    const b2WideVec2 impulse = -math::Mul(row.pointMass, Cdot);
+    row.impulse.x += impulse.x;
+    row.impulse.y += impulse.y;
+    const BodyData A{row.indexA, b2Vec2(), row.mA, row.iA};
+    const BodyData B{row.indexB, b2Vec2(), row.mB, row.iB};
+    ApplyNeg(vA, wA, A, row.rA, impulse);
+    ApplyPos(vB, wB, B, row.rB, impulse);
+
+    velA.v = vA;
+    velA.w = wA;
+    velB.v = vB;
+    velB.w = wB;
+}
+}  // namespace
+
+void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 count, const b2SolverData& data) {
+    if (m_rows.size() < static_cast<size_t>(count)) m_rows.resize(static_cast<size_t>(count));
+    m_count = count;
+    for (int32 i = 0; i < count; ++i) {
+        b2Joint* joint = joints[i];
+        joint->InitVelocityConstraints(data);
+        Row& row = m_rows[static_cast<size_t>(i)];
+        row.joint = joint;
+        row.revolute = nullptr;
+        if (joint->m_type != e_revoluteJoint) continue;
+
+        // The iteration takes the point-only branch exactly when the motor block and the limit
+        // block are both skipped; the switches they test are fixed for the step by the set-up.
+        auto* revolute = static_cast<b2RevoluteJoint*>(joint);
+        const bool fixedRotation = (revolute->m_invIA + revolute->m_invIB == Wide());
+        const bool motor = revolute->m_enableMotor && revolute->m_limitState != e_equalLimits && !fixedRotation;
+        const bool limit = revolute->m_enableLimit && revolute->m_limitState != e_inactiveLimit && !fixedRotation;
+        if (motor || limit) continue;
+        row.indexA = revolute->m_indexA;
+        row.indexB = revolute->m_indexB;
+        row.rA = revolute->m_rA;
+        row.rB = revolute->m_rB;
+        row.mA = revolute->m_invMassA;
+        row.mB = revolute->m_invMassB;
+        row.iA = revolute->m_invIA;
+        row.iB = revolute->m_invIB;
+        row.pointMass = revolute->m_pointMass;
+        row.impulse = b2WideVec2(revolute->m_impulse.x, revolute->m_impulse.y);
+        row.revolute = revolute;
+    }
+}
+
+void JointSolver::SolveVelocityConstraints(const b2SolverData& data) {
+    Row* rows = m_rows.data();
+    for (int32 i = 0; i < m_count; ++i) {
+        Row& row = rows[i];
+        if (row.revolute != nullptr) {
+            SolvePointRow(row, data);
+        } else {
+            row.joint->SolveVelocityConstraints(data);
+        }
+    }
+}
+
+void JointSolver::StoreImpulses() const {
+    for (int32 i = 0; i < m_count; ++i) {
+        const Row& row = m_rows[static_cast<size_t>(i)];
+        if (row.revolute == nullptr) continue;
+        row.revolute->m_impulse.x = row.impulse.x;
+        row.revolute->m_impulse.y = row.impulse.y;
+    }
+}
+
+}  // namespace lockbox

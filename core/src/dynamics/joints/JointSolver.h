@@ -1,0 +1,55 @@
+#pragma once
+// The joints of one island in the velocity iterations. A joint graph's iterations are bound by
+// memory: each joint object is a few hundred bytes somewhere on the heap, reached through a
+// pointer and a virtual call. For the common case, a revolute joint whose motor and limit are
+// idle this step, the solver copies what an iteration reads (island indices, arms, inverse
+// masses, the point block's inverse and the accumulated impulse) into a compact row, kept in
+// one array in island order, and writes the impulse back when the iterations end. Every other
+// joint is solved through its own SolveVelocityConstraints, in the same place of the order.
+// The arithmetic of a row is the joint's own, operation for operation: the bits are the same.
+//
+// The rows are scratch of one island's solve, never state: snapshots and frames do not see them.
+
+#include <vector>
+
+#include "dynamics/TimeStep.h"
+#include "dynamics/joints/JointAccess.h"
+#include "lockbox/fixed/WideMatrix.h"
+
+namespace lockbox {
+
+class b2Joint;
+class b2RevoluteJoint;
+
+class core_detail::Engine::Joints::Solver {
+public:
+    /// Runs every joint's InitVelocityConstraints in island order (warm starting included) and
+    /// builds the rows. The storage grows to the largest island and is then reused.
+    void InitVelocityConstraints(b2Joint* const* joints, int32 count, const b2SolverData& data);
+    /// One velocity iteration over the joints, in island order.
+    void SolveVelocityConstraints(const b2SolverData& data);
+    /// Copies the rows' accumulated impulses back to their joints (for warm starting and the
+    /// reaction forces). Call once after the velocity iterations.
+    void StoreImpulses() const;
+
+    /// One joint in the iterations: a revolute point row, or a joint solved by itself (joint set,
+    /// revolute null). 120 bytes, read front to back by an iteration.
+    struct Row {
+        int32 indexA = 0;  ///< island body indices
+        int32 indexB = 0;
+        b2Vec2 rA;  ///< arms from the centres of mass to the anchor (m)
+        b2Vec2 rB;
+        Wide mA, mB;                          ///< inverse masses (1/kg)
+        Wide iA, iB;                          ///< inverse rotational inertias (1/(kg m^2))
+        b2WideMat22 pointMass;                ///< the point block's inverse (kg)
+        b2WideVec2 impulse;                   ///< accumulated point impulse (N*s)
+        b2Joint* joint = nullptr;             ///< solved by itself when revolute is null
+        b2RevoluteJoint* revolute = nullptr;  ///< the joint this row writes its impulse back to
+    };
+
+private:
+    std::vector<Row> m_rows;
+    int32 m_count = 0;
+};
+
+}  // namespace lockbox
