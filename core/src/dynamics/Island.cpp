@@ -164,11 +164,7 @@ void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     for (int32 it = 0; it < step.positionIterations; ++it) {
         ++profile->positionIterations;
         const bool contactsOkay = contactSolver.SolvePositionConstraints();
-        bool jointsOkay = true;
-        for (int32 j = 0; j < m_jointCount; ++j) {
-            const bool jointOkay = m_joints[static_cast<size_t>(j)]->SolvePositionConstraints(solverData);
-            jointsOkay = jointsOkay && jointOkay;
-        }
+        const bool jointsOkay = m_jointCount == 0 || m_jointSolver.SolvePositionConstraints(solverData);
         if (contactsOkay && jointsOkay) {
             // Exit early if the position errors are small.
             positionSolved = true;

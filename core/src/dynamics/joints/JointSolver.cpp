@@ -33,10 +33,50 @@ void SolvePointRow(JointSolver::Row& row, const b2SolverData& data) noexcept {
     velB.v = vB;
     velB.w = wB;
 }
+
+// One position iteration of a revolute joint whose limit is idle: the point-to-point part of
+// b2RevoluteJoint::SolvePositionConstraints (the angular error is then zero).
+bool SolvePointPositionRow(const JointSolver::PositionRow& row, const b2SolverData& data) noexcept {
+    b2Position& posA = data.positions[row.indexA];
+    b2Position& posB = data.positions[row.indexB];
+    b2Vec2 cA = posA.c;
+    Fixed aA = posA.a;
+    b2Vec2 cB = posB.c;
+    Fixed aB = posB.a;
+
+    const Wide mA = row.mA, mB = row.mB, iA = row.iA, iB = row.iB;
+    const b2Rot qA = data.Rotation(row.indexA, aA), qB = data.Rotation(row.indexB, aB);
+    const b2Vec2 rA = b2Mul(qA, row.localAnchorA - row.localCenterA);
+    const b2Vec2 rB = b2Mul(qB, row.localAnchorB - row.localCenterB);
+    const b2Vec2 C = cB + rB - cA - rA;
+    const Fixed positionError = C.Length();
+
+    b2WideMat22 K;
+    K.ex.x = mA + mB + iA * MulWide(rA.y, rA.y) + iB * MulWide(rB.y, rB.y);
+    K.ex.y = -(iA * MulWide(rA.x, rA.y)) - iB * MulWide(rB.x, rB.y);
+    K.ey.x = K.ex.y;
+    K.ey.y = mA + mB + iA * MulWide(rA.x, rA.x) + iB * MulWide(rB.x, rB.x);
+    const b2WideVec2 impulse = -K.Solve(C);
+
+    const BodyData A{row.indexA, row.localCenterA, mA, iA};
+    const BodyData B{row.indexB, row.localCenterB, mB, iB};
+    ApplyNeg(cA, aA, A, rA, impulse);
+    ApplyPos(cB, aB, B, rB, impulse);
+
+    posA.c = cA;
+    posA.a = aA;
+    posB.c = cB;
+    posB.a = aB;
+
+    return positionError <= b2_linearSlop;
+}
 }  // namespace
 
 void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 count, const b2SolverData& data) {
-    if (m_rows.size() < static_cast<size_t>(count)) m_rows.resize(static_cast<size_t>(count));
+    if (m_rows.size() < static_cast<size_t>(count)) {
+        m_rows.resize(static_cast<size_t>(count));
+        m_positionRows.resize(static_cast<size_t>(count));
+    }
     m_count = count;
     for (int32 i = 0; i < count; ++i) {
         b2Joint* joint = joints[i];
@@ -64,6 +104,18 @@ void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 count, c
         row.pointMass = revolute->m_pointMass;
         row.impulse = b2WideVec2(revolute->m_impulse.x, revolute->m_impulse.y);
         row.revolute = revolute;
+
+        PositionRow& position = m_positionRows[static_cast<size_t>(i)];
+        position.indexA = revolute->m_indexA;
+        position.indexB = revolute->m_indexB;
+        position.localAnchorA = revolute->m_localAnchorA;
+        position.localCenterA = revolute->m_localCenterA;
+        position.localAnchorB = revolute->m_localAnchorB;
+        position.localCenterB = revolute->m_localCenterB;
+        position.mA = revolute->m_invMassA;
+        position.mB = revolute->m_invMassB;
+        position.iA = revolute->m_invIA;
+        position.iB = revolute->m_invIB;
     }
 }
 
@@ -86,6 +138,22 @@ void JointSolver::StoreImpulses() const {
         row.revolute->m_impulse.x = row.impulse.x;
         row.revolute->m_impulse.y = row.impulse.y;
     }
+}
+
+}  // namespace lockbox
+
+namespace lockbox {
+
+bool JointSolver::SolvePositionConstraints(const b2SolverData& data) const {
+    bool okay = true;
+    for (int32 i = 0; i < m_count; ++i) {
+        const Row& row = m_rows[static_cast<size_t>(i)];
+        const bool jointOkay = row.revolute != nullptr
+                                   ? SolvePointPositionRow(m_positionRows[static_cast<size_t>(i)], data)
+                                   : row.joint->SolvePositionConstraints(data);
+        okay = okay && jointOkay;
+    }
+    return okay;
 }
 
 }  // namespace lockbox

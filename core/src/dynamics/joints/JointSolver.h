@@ -31,6 +31,9 @@ public:
     /// Copies the rows' accumulated impulses back to their joints (for warm starting and the
     /// reaction forces). Call once after the velocity iterations.
     void StoreImpulses() const;
+    /// One position iteration over the joints, in island order; true when every joint is
+    /// within tolerance (every joint is solved either way).
+    bool SolvePositionConstraints(const b2SolverData& data) const;
 
     /// One joint in the iterations: a revolute point row, or a joint solved by itself (joint set,
     /// revolute null). 120 bytes, read front to back by an iteration.
@@ -47,8 +50,19 @@ public:
         b2RevoluteJoint* revolute = nullptr;  ///< the joint this row writes its impulse back to
     };
 
+    /// What a position iteration of a row's joint reads (72 bytes). The anchors and centres are
+    /// kept apart and subtracted in each iteration, as the joint does.
+    struct PositionRow {
+        int32 indexA = 0;
+        int32 indexB = 0;
+        b2Vec2 localAnchorA, localCenterA;
+        b2Vec2 localAnchorB, localCenterB;
+        Wide mA, mB, iA, iB;
+    };
+
 private:
     std::vector<Row> m_rows;
+    std::vector<PositionRow> m_positionRows;  ///< parallel to m_rows, set where a row is
     int32 m_count = 0;
 };
 
