@@ -25,27 +25,20 @@ using testing::TestClient;
 
 constexpr int32_t kFrames = 120;
 
-struct Host {
-    JsonLog log{nullptr};
-    std::unique_ptr<MatchHost> host;
-    uint16_t port = 0;
-
-    explicit Host(HostConfig config = {}) {
-        std::string error;
-        auto socket = net::UdpTransport::Open("127.0.0.1", 0, &error, 4096);
-        EXPECT_TRUE(socket) << error;
-        port = socket->LocalPort();
-        config.key = testing::TestKey();
+// Every host of these tests plays 2-player matches at a fast tick, which keeps the wall time
+// short.
+struct Host : testing::TestHost {
+    explicit Host(HostConfig config = {}) : testing::TestHost(FastTwoPlayer(std::move(config))) {}
+    static HostConfig FastTwoPlayer(HostConfig config) {
         config.match.playerCount = 2;
-        config.match.tickRate = 240;  // a fast tick keeps the wall time short
+        config.match.tickRate = 240;
         config.match.hashInterval = 20;
-        config.unixNow = [] { return kNow; };
-        host = std::make_unique<MatchHost>(std::move(socket), std::move(config), log);
+        return config;
     }
 };
 
 uint64_t Refused(const MatchHost& h, admission::Refusal r) { return h.Stats().refusedTokens[static_cast<size_t>(r)]; }
-uint64_t Dropped(const MatchHost& h, Drop d) { return h.Stats().dropped[static_cast<size_t>(d)]; }
+using testing::Dropped;
 
 TEST(MatchHost, TwoMatchesOnOnePortPlayAndAgree) {
     Host h;

@@ -35,23 +35,8 @@ using testing::TestClient;
 
 constexpr int32_t kFrames = 120;
 
-struct Host {
-    JsonLog log{nullptr};
-    std::unique_ptr<MatchHost> host;
-    uint16_t port = 0;
-
-    explicit Host(HostConfig config) {
-        std::string error;
-        auto socket = net::UdpTransport::Open("127.0.0.1", 0, &error, 4096);
-        EXPECT_TRUE(socket) << error;
-        port = socket->LocalPort();
-        config.key = testing::TestKey();
-        config.unixNow = [] { return kNow; };
-        host = std::make_unique<MatchHost>(std::move(socket), std::move(config), log);
-    }
-};
-
-uint64_t Dropped(const MatchHost& h, Drop d) { return h.Stats().dropped[static_cast<size_t>(d)]; }
+using Host = testing::TestHost;
+using testing::Dropped;
 
 fs::path FreshDir(const std::string& name) {
     const fs::path dir = fs::temp_directory_path() / name;

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "JsonLog.h"
+#include "MatchHost.h"
 #include "lockbox/net/LockstepClient.h"
 #include "lockbox/net/UdpTransport.h"
 #include "lockbox/net/admission/AdmissionTransport.h"
@@ -85,5 +87,25 @@ inline void Pump(const std::function<void()>& tick, std::vector<std::unique_ptr<
         std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
 }
+
+/// A MatchHost on a fresh loopback socket, with the tests' key and clock and no log output.
+struct TestHost {
+    JsonLog log{nullptr};
+    std::unique_ptr<MatchHost> host;
+    uint16_t port = 0;
+
+    explicit TestHost(HostConfig config) {
+        std::string error;
+        auto socket = net::UdpTransport::Open("127.0.0.1", 0, &error, 4096);
+        EXPECT_TRUE(socket) << error;
+        port = socket->LocalPort();
+        config.key = TestKey();
+        config.unixNow = [] { return kNow; };
+        host = std::make_unique<MatchHost>(std::move(socket), std::move(config), log);
+    }
+};
+
+/// Datagrams the host dropped for `drop`.
+inline uint64_t Dropped(const MatchHost& h, Drop drop) { return h.Stats().dropped[static_cast<size_t>(drop)]; }
 
 }  // namespace lockbox::server::testing

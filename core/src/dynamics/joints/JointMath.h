@@ -46,6 +46,18 @@ inline Wide CrossW(const b2Vec2& r, const b2Vec2& d) noexcept { return b2CrossWi
 // invMass + invI * a^2 for an arm term a (m): the scalar effective inverse mass of one body.
 inline Wide InvMassTerm(Wide invMass, Wide invI, Wide armSq) noexcept { return invMass + invI * armSq; }
 
+// The point-to-point position correction (2.2.1's revolute K solve): the impulse that closes
+// the gap C between two anchors at arms rA and rB.
+inline b2WideVec2 PointGapImpulse(const b2Vec2& C, const b2Vec2& rA, const b2Vec2& rB, Wide mA, Wide mB, Wide iA,
+                                  Wide iB) noexcept {
+    b2WideMat22 K;
+    K.ex.x = mA + mB + iA * MulWide(rA.y, rA.y) + iB * MulWide(rB.y, rB.y);
+    K.ex.y = -(iA * MulWide(rA.x, rA.y)) - iB * MulWide(rB.x, rB.y);
+    K.ey.x = K.ex.y;
+    K.ey.y = mA + mB + iA * MulWide(rA.x, rA.x) + iB * MulWide(rB.x, rB.x);
+    return -K.Solve(C);
+}
+
 // 1/k, or 0 for k <= 0 (a constraint between bodies that cannot move).
 inline Wide Invert(Wide k) noexcept { return k > Wide() ? Wide(1) / k : Wide(); }
 

@@ -235,12 +235,7 @@ bool b2RevoluteJoint::SolvePositionConstraints(const b2SolverData& data) {
     const b2Vec2 C = cB + rB - cA - rA;
     const Fixed positionError = C.Length();
 
-    b2WideMat22 K;
-    K.ex.x = mA + mB + iA * MulWide(rA.y, rA.y) + iB * MulWide(rB.y, rB.y);
-    K.ex.y = -(iA * MulWide(rA.x, rA.y)) - iB * MulWide(rB.x, rB.y);
-    K.ey.x = K.ex.y;
-    K.ey.y = mA + mB + iA * MulWide(rA.x, rA.x) + iB * MulWide(rB.x, rB.x);
-    const b2WideVec2 impulse = -K.Solve(C);
+    const b2WideVec2 impulse = PointGapImpulse(C, rA, rB, mA, mB, iA, iB);
 
     const BodyData A{m_indexA, m_localCenterA, mA, iA};
     const BodyData B{m_indexB, m_localCenterB, mB, iB};
