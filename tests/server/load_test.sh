@@ -28,59 +28,52 @@ for _ in $(seq 50); do
     if ! (exec 3<>"/dev/tcp/127.0.0.1/$candidate") 2>/dev/null; then http_port=$candidate; break; fi
 done
 [ -n "$http_port" ] || { echo "FAIL: no free TCP port"; exit 1; }
-metric() { # metric NAME -> its value in the server's /metrics (0 when absent)
-    local body
+metrics() { # the server's /metrics page
     exec 3<>"/dev/tcp/127.0.0.1/$http_port"
     printf 'GET /metrics HTTP/1.0\r\n\r\n' >&3
-    body=$(cat <&3)
+    cat <&3
     exec 3>&-
-    printf '%s\n' "$body" | awk -v n="$1" '$1 == n { print $2; found=1 } END { if (!found) print 0 }'
+}
+metric() { # metric NAME -> its value in the server's /metrics (0 when absent)
+    metrics | awk -v n="$1" '$1 == n { print $2; found=1 } END { if (!found) print 0 }'
 }
 sum_metric() { # sum of every sample of a labelled metric
-    local body
-    exec 3<>"/dev/tcp/127.0.0.1/$http_port"
-    printf 'GET /metrics HTTP/1.0\r\n\r\n' >&3
-    body=$(cat <&3)
-    exec 3>&-
-    printf '%s\n' "$body" | awk -v n="$1" 'index($1, n "{") == 1 { s += $2 } END { print s + 0 }'
+    metrics | awk -v n="$1" 'index($1, n "{") == 1 { s += $2 } END { print s + 0 }'
 }
 
 "$token" keygen >"$dir/key"
 mkdir "$dir/replays"
+server_args=(--token-key-file "$dir/key" --port-file "$dir/port" --http-port "$http_port"
+    --rate-limit 1000 --rate-burst 2000 --log "$dir/server.log" --drain-seconds 1)
 if [ "$mode" = soak ]; then
-    "$server" --token-key-file "$dir/key" --port-file "$dir/port" --http-port "$http_port" \
-        --match-kind rollback-relay --players-per-match 8 --spectators-per-match 24 \
-        --peer-bandwidth 1000000 --rate-limit 1000 --rate-burst 2000 \
-        --scene vertical_stack --replay-dir "$dir/replays" --log "$dir/server.log" --drain-seconds 1 &
+    server_args+=(--match-kind rollback-relay --players-per-match 8 --spectators-per-match 24
+        --peer-bandwidth 1000000 --scene vertical_stack --replay-dir "$dir/replays")
 elif [ "$mode" = authoritative ]; then
-    "$server" --token-key-file "$dir/key" --port-file "$dir/port" --http-port "$http_port" \
-        --match-kind lockstep-authoritative --players-per-match 2 --rate-limit 1000 --rate-burst 2000 \
-        --scene vertical_stack --replay-dir "$dir/replays" --log "$dir/server.log" --drain-seconds 1 &
+    server_args+=(--match-kind lockstep-authoritative --players-per-match 2 --scene vertical_stack
+        --replay-dir "$dir/replays")
 else
-    "$server" --token-key-file "$dir/key" --port-file "$dir/port" --http-port "$http_port" \
-        --players-per-match 4 --max-matches 64 --rate-limit 1000 --rate-burst 2000 \
-        --log "$dir/server.log" --drain-seconds 1 &
+    server_args+=(--players-per-match 4 --max-matches 64)
 fi
+"$server" "${server_args[@]}" &
 server_pid=$!
 for _ in $(seq 100); do [ -s "$dir/port" ] && break; sleep 0.1; done
 port=$(cat "$dir/port")
 sleep 0.5
 rss_start=$(metric lockbox_server_resident_bytes)
 
+load_args=(--port "$port" --key-file "$dir/key" --seconds "$seconds")
 if [ "$mode" = soak ]; then
-    result=$("$load" --port "$port" --key-file "$dir/key" --kind rollback --players 8 --spectators 24 \
-        --matches 1 --seconds "$seconds" --loss 20 --jitter 20) || { echo "load: $result"; exit 1; }
+    load_args+=(--kind rollback --players 8 --spectators 24 --matches 1 --loss 20 --jitter 20)
 elif [ "$mode" = authoritative ]; then
-    result=$("$load" --port "$port" --key-file "$dir/key" --players 2 --matches 4 --scene vertical_stack \
-        --seconds "$seconds") || { echo "load: $result"; exit 1; }
+    load_args+=(--players 2 --matches 4 --scene vertical_stack)
 else
-    result=$("$load" --port "$port" --key-file "$dir/key" --players 4 --matches 20 --threads 2 \
-        --seconds "$seconds" --flood 50000 --flood-ports 64) || { echo "load: $result"; exit 1; }
+    load_args+=(--players 4 --matches 20 --threads 2 --flood 50000 --flood-ports 64)
 fi
+result=$("$load" "${load_args[@]}") || { echo "load: $result"; exit 1; }
 echo "load: $result"
 sleep 0.3
 rss_end=$(metric lockbox_server_resident_bytes)
-p99=$(awk '/quantile="0.99"/ { print $2 }' <<<"$(exec 3<>"/dev/tcp/127.0.0.1/$http_port"; printf 'GET /metrics HTTP/1.0\r\n\r\n' >&3; cat <&3)")
+p99=$(metrics | awk '/quantile="0.99"/ { print $2 }')
 desyncs=$(metric lockbox_server_desyncs_total)
 refused=$(sum_metric lockbox_server_refused_tokens_total)
 dropped=$(sum_metric lockbox_server_dropped_datagrams_total)
