@@ -36,16 +36,20 @@ void IntegratePosition(Fixed h, b2Vec2& c, Fixed& a, b2Vec2& v, Fixed& w) {
 }
 }  // namespace
 
-void b2Island::Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapacity, b2ContactListener* listener) {
+void b2Island::Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapacity, b2ContactListener* listener,
+                     int32 slotBase) {
     m_bodyCapacity = bodyCapacity;
     m_contactCapacity = contactCapacity;
     m_jointCapacity = jointCapacity;
     m_listener = listener;
-    if (m_bodies.size() < static_cast<size_t>(bodyCapacity)) {
-        m_bodies.resize(static_cast<size_t>(bodyCapacity));
-        m_positions.resize(static_cast<size_t>(bodyCapacity));
-        m_velocities.resize(static_cast<size_t>(bodyCapacity));
-        m_rotations.resize(static_cast<size_t>(bodyCapacity));
+    m_slotBase = slotBase;
+    m_impulseSink = nullptr;
+    if (m_bodies.size() < static_cast<size_t>(bodyCapacity)) m_bodies.resize(static_cast<size_t>(bodyCapacity));
+    const size_t slots = static_cast<size_t>(slotBase) + static_cast<size_t>(bodyCapacity);
+    if (m_positions.size() < slots) {
+        m_positions.resize(slots);
+        m_velocities.resize(slots);
+        m_rotations.resize(slots);
     }
     if (m_contacts.size() < static_cast<size_t>(contactCapacity))
         m_contacts.resize(static_cast<size_t>(contactCapacity));
@@ -72,7 +76,7 @@ b2ContactSolverDef b2Island::ContactSolverDef(const b2TimeStep& step) {
 }
 
 void b2Island::Add(b2Body* body) {
-    body->m_islandIndex = m_bodyCount;
+    if (m_slotBase == 0 || body->m_type != b2_staticBody) body->m_islandIndex = m_slotBase + m_bodyCount;
     m_bodies[static_cast<size_t>(m_bodyCount++)] = body;
 }
 
@@ -83,21 +87,24 @@ void b2Island::Observe(b2IslandPhase phase) {
                          std::span<b2Position>(m_positions.data(), n), std::span<b2Velocity>(m_velocities.data(), n));
 }
 
-void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep) {
+bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep) {
     Clock::time_point timer = Clock::now();
     const Fixed h = step.dt;
 
     // Integrate velocities and apply damping; copy the state into the solver buffers.
     for (int32 i = 0; i < m_bodyCount; ++i) {
         b2Body* b = m_bodies[static_cast<size_t>(i)];
+        const size_t slot = static_cast<size_t>(b->m_islandIndex);
         const b2Vec2 c = b->m_sweep.c;
         const Fixed a = b->m_sweep.a;
         b2Vec2 v = b->m_linearVelocity;
         Fixed w = b->m_angularVelocity;
 
-        // Store positions for continuous collision.
-        b->m_sweep.c0 = b->m_sweep.c;
-        b->m_sweep.a0 = b->m_sweep.a;
+        // Store positions for continuous collision (a static body's never move).
+        if (b->m_type != b2_staticBody) {
+            b->m_sweep.c0 = b->m_sweep.c;
+            b->m_sweep.a0 = b->m_sweep.a;
+        }
 
         if (b->m_type == b2_dynamicBody) {
             // v += h * (gravityScale * g + invMass * f): the acceleration is formed exactly-ish
@@ -118,10 +125,10 @@ void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
             if (b->m_angularDamping != Fixed()) w = w / (Fixed(1) + h * b->m_angularDamping);
         }
 
-        m_positions[static_cast<size_t>(i)].c = c;
-        m_positions[static_cast<size_t>(i)].a = a;
-        m_velocities[static_cast<size_t>(i)].v = v;
-        m_velocities[static_cast<size_t>(i)].w = w;
+        m_positions[slot].c = c;
+        m_positions[slot].a = a;
+        m_velocities[slot].v = v;
+        m_velocities[slot].w = w;
     }
     profile->bodiesIntegrated += m_bodyCount;
 
@@ -155,8 +162,9 @@ void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
 
     timer = Clock::now();
     for (int32 i = 0; i < m_bodyCount; ++i) {
-        b2Position& pos = m_positions[static_cast<size_t>(i)];
-        b2Velocity& vel = m_velocities[static_cast<size_t>(i)];
+        const size_t slot = static_cast<size_t>(m_bodies[static_cast<size_t>(i)]->m_islandIndex);
+        b2Position& pos = m_positions[slot];
+        b2Velocity& vel = m_velocities[slot];
         IntegratePosition(h, pos.c, pos.a, vel.v, vel.w);
     }
 
@@ -174,13 +182,16 @@ void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
 
     Observe(b2IslandPhase::e_position);
 
-    // Copy state buffers back to the bodies.
+    // Copy state buffers back to the bodies. A static body's are unchanged (no mass: no
+    // impulse or correction moves it), so it is left alone.
     for (int32 i = 0; i < m_bodyCount; ++i) {
         b2Body* body = m_bodies[static_cast<size_t>(i)];
-        body->m_sweep.c = m_positions[static_cast<size_t>(i)].c;
-        body->m_sweep.a = m_positions[static_cast<size_t>(i)].a;
-        body->m_linearVelocity = m_velocities[static_cast<size_t>(i)].v;
-        body->m_angularVelocity = m_velocities[static_cast<size_t>(i)].w;
+        if (body->m_type == b2_staticBody) continue;
+        const size_t slot = static_cast<size_t>(body->m_islandIndex);
+        body->m_sweep.c = m_positions[slot].c;
+        body->m_sweep.a = m_positions[slot].a;
+        body->m_linearVelocity = m_velocities[slot].v;
+        body->m_angularVelocity = m_velocities[slot].w;
         body->SynchronizeTransform();
     }
     profile->solvePositionNs += Nanos(timer);
@@ -209,9 +220,14 @@ void b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
             }
         }
         if (minSleepSteps >= step.stepsToSleep && positionSolved) {
-            for (int32 i = 0; i < m_bodyCount; ++i) m_bodies[static_cast<size_t>(i)]->SetAwake(false);
+            for (int32 i = 0; i < m_bodyCount; ++i) {
+                b2Body* b = m_bodies[static_cast<size_t>(i)];
+                if (b->m_type != b2_staticBody) b->SetAwake(false);
+            }
+            return true;
         }
     }
+    return false;
 }
 
 void b2Island::SolveTOI(b2Profile* profile, const b2TimeStep& subStep, int32 toiIndexA, int32 toiIndexB) {
@@ -271,6 +287,10 @@ void b2Island::Report(b2Profile* profile, const b2ContactVelocityConstraint* con
         for (int32 j = 0; j < vc->pointCount; ++j) {
             impulse.normalImpulses[j] = vc->points[j].normalImpulse;
             impulse.tangentImpulses[j] = vc->points[j].tangentImpulse;
+        }
+        if (m_impulseSink != nullptr) {
+            m_impulseSink[i] = impulse;
+            continue;
         }
         m_listener->PostSolve(c, &impulse);
         ++profile->listenerCallbacks;

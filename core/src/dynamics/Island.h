@@ -10,6 +10,7 @@
 #include "dynamics/joints/JointSolver.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/Profile.h"
+#include "lockbox/dynamics/WorldCallbacks.h"
 #include "lockbox/fixed/Math.h"
 
 namespace lockbox {
@@ -26,8 +27,9 @@ class core_detail::Engine::Island {
 public:
     Island() = default;
 
-    /// Sets the capacities and the listener for the next islands.
-    void Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapacity, b2ContactListener* listener);
+    /// Sets the capacities, the listener and the slot base (m_slotBase) for the next islands.
+    void Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapacity, b2ContactListener* listener,
+               int32 slotBase = 0);
     /// Empties the island (keeps the buffers).
     void Clear() noexcept {
         m_bodyCount = 0;
@@ -37,7 +39,9 @@ public:
 
     /// Discrete solve: integrate velocities (gravity, forces, damping), warm start, velocity
     /// iterations, integrate positions, position iterations, then the sleep test.
-    void Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep);
+    /// Returns whether the island fell asleep. Static bodies are shared between islands, so
+    /// the solve never writes them: the caller sets an island's static bodies asleep with it.
+    bool Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep);
     /// Time-of-impact sub-step: position solve that moves only the two TOI bodies, then a
     /// velocity solve and integration of the remaining time.
     void SolveTOI(b2Profile* profile, const b2TimeStep& subStep, int32 toiIndexA, int32 toiIndexB);
@@ -49,13 +53,22 @@ public:
     /// Reports one phase of the discrete solve to m_observer, if any.
     void Observe(b2IslandPhase phase);
 
-    /// Calls PostSolve for every contact with the impulses of its constraint.
+    /// Calls PostSolve for every contact with the impulses of its constraint, or, with
+    /// m_impulseSink set, writes those impulses there instead.
     void Report(b2Profile* profile, const b2ContactVelocityConstraint* constraints);
 
     /// A contact-solver definition over this island, its constraint storage grown to fit.
     b2ContactSolverDef ContactSolverDef(const b2TimeStep& step);
 
     b2ContactListener* m_listener = nullptr;
+    /// Solver slot of the island's first own body. 0 for one island at a time; for islands
+    /// solved at the same time it is the world's static body count, and every static body keeps
+    /// one world-wide slot below it (set by the world before the solves), so that no solve writes
+    /// a static body's m_islandIndex.
+    int32 m_slotBase = 0;
+    /// When set, Solve records each contact's impulses here (in island contact order) instead
+    /// of calling PostSolve, which the world then calls in island order.
+    b2ContactImpulse* m_impulseSink = nullptr;
     b2StepObserver* m_observer = nullptr;  ///< island fenceposts of the discrete solve (not state)
     std::vector<b2Body*> m_bodies;
     std::vector<b2Contact*> m_contacts;

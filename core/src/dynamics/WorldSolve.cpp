@@ -30,6 +30,10 @@ void World::Solve(const b2TimeStep& step) {
     // Size the island for the worst case and clear the graph flags.
     m_island.Reset(m_bodyCount, m_contactManager.m_contactCount, m_jointCount, m_contactManager.m_contactListener);
     m_island.m_observer = m_stepObserver;
+    // With workers the islands are found first and solved together; the island fenceposts of a
+    // step observer (replay bisection) need them one at a time, so an observer keeps one worker.
+    b2TaskSystem* tasks = Tasks();
+    const bool parallel = tasks != nullptr && tasks->GetWorkerCount() > 1 && m_stepObserver == nullptr;
     for (b2Body* b = m_bodyList; b; b = b->m_next) b->m_flags &= ~(b2Body::e_islandFlag | b2Body::e_fastFlag);
     for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) c->m_flags &= ~b2Contact::e_islandFlag;
     for (b2Joint* j = m_jointList; j; j = j->m_next) j->m_islandFlag = false;
@@ -86,8 +90,13 @@ void World::Solve(const b2TimeStep& step) {
             }
         }
 
-        m_island.Solve(&m_profile, step, m_gravity, m_allowSleep);
-        ++m_profile.islandsSolved;
+        if (parallel) {
+            RecordIsland();
+        } else {
+            if (m_island.Solve(&m_profile, step, m_gravity, m_allowSleep))
+                SleepStaticBodies(m_island.m_bodies.data(), m_island.m_bodyCount);
+            ++m_profile.islandsSolved;
+        }
 
         // Static bodies may take part in other islands.
         for (int32 i = 0; i < m_island.m_bodyCount; ++i) {
@@ -96,6 +105,7 @@ void World::Solve(const b2TimeStep& step) {
         }
     }
 
+    if (parallel) SolveRecordedIslands(step, *tasks);
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solve, *m_owner);
 
     const Clock::time_point timer = Clock::now();

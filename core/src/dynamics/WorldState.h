@@ -119,8 +119,23 @@ public:
     std::unique_ptr<b2ThreadPool> m_pool;
     b2TaskSystem* Tasks() const noexcept { return m_userTasks != nullptr ? m_userTasks : m_pool.get(); }
 
+    /// A step's islands solved at the same time (IslandTasks.cpp): found serially, in the
+    /// one-worker order, then solved on the task system, then finished (PostSolve, static
+    /// bodies' sleep, saturation counts) in island order. Buffers kept between steps.
+    struct ParallelIslands;
+    struct ParallelIslandsDeleter {
+        void operator()(ParallelIslands* p) const noexcept;
+    };
+
 private:
     void Solve(const b2TimeStep& step);
+    /// Keeps the island just found in m_island for SolveRecordedIslands.
+    void RecordIsland();
+    /// Solves the recorded islands on `tasks` and finishes them in island order.
+    void SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks);
+    /// After an island fell asleep: its static bodies sleep too, as 2.2.1 sets every island
+    /// body asleep (b2Island::Solve leaves static bodies, which islands share, alone).
+    static void SleepStaticBodies(b2Body* const* bodies, int32 count);
     void SolveTOI(const b2TimeStep& step);
     /// Takes bodies whose centre left the bounds out of the simulation and reports them.
     void EnforceBounds();
@@ -128,6 +143,7 @@ private:
     void DrawShape(b2Fixture* fixture, const b2Transform& xf, const b2Color& color);
 
     b2Island m_island;
+    std::unique_ptr<ParallelIslands, ParallelIslandsDeleter> m_parallelIslands;
     std::vector<b2Body*> m_stack;
     std::vector<b2Body*> m_outOfBounds;
 };

@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// Worker threads for a world's step. A world runs its independent work (the narrow-phase
-/// update of every contact) as parallel loops handed to a b2TaskSystem: either the built-in
-/// b2ThreadPool (b2World::SetWorkerCount) or a game's own job system (b2World::SetTaskSystem).
+/// update of every contact, the solve of every island) as parallel loops handed to a
+/// b2TaskSystem: either the built-in b2ThreadPool (b2World::SetWorkerCount) or a game's own
+/// job system (b2World::SetTaskSystem).
 ///
 /// The result never depends on the workers: every piece of work writes only its own outputs,
 /// and the world applies them, with every listener call, in the one-worker order. So any

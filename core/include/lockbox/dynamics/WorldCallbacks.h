@@ -73,7 +73,8 @@ public:
         (void)oldManifold;
     }
     /// After solving, with the impulses applied (touching, enabled, non-sensor contacts in
-    /// islands).
+    /// islands), in island order. With one worker each island's calls come right after it is
+    /// solved; with more, after every island of the step is solved (same calls, same order).
     virtual void PostSolve(b2Contact* contact, const b2ContactImpulse* impulse) {
         (void)contact;
         (void)impulse;

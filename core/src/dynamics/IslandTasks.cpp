@@ -1,0 +1,203 @@
+// A step's islands solved at the same time on the world's task system.
+//
+// Islands share nothing they write: a dynamic or kinematic body, a contact and a joint belong to
+// one island. Static bodies are shared, so no island solve writes one: each keeps one solver
+// slot for the whole step (below every island's own bodies, b2Island::m_slotBase), its state
+// is only read, and what 2.2.1 writes into it (sleep with its island) is done afterwards, in
+// island order. Everything an island solve reports (PostSolve impulses, saturations, work
+// counters) is kept per island and applied in island order too, so the result is that of the
+// one-worker loop in World::Solve, whatever the workers and their scheduling.
+#include <atomic>
+#include <memory>
+#include <vector>
+
+#include "dynamics/WorldState.h"
+#include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/Tasks.h"
+#include "lockbox/dynamics/WorldCallbacks.h"
+#include "lockbox/fixed/Overflow.h"
+
+namespace lockbox {
+
+using World = core_detail::Engine::World;
+
+struct World::ParallelIslands {
+    /// Where one island's lists start in the flat arrays; the next island's starts end them
+    /// (a last entry closes the final island).
+    struct Start {
+        int32 body = 0;
+        int32 contact = 0;
+        int32 joint = 0;
+    };
+    /// A solver's buffers, taken by one block of islands at a time.
+    struct Scratch {
+        b2Island island;
+        b2Profile profile;  ///< the island counters of the blocks it solved
+        std::atomic<bool> busy{false};
+    };
+
+    std::vector<Start> starts;
+    std::vector<b2Body*> bodies;
+    std::vector<b2Contact*> contacts;
+    std::vector<b2Joint*> joints;
+    std::vector<uint8> slept;                ///< per island
+    std::vector<uint64_t> saturations;       ///< per island, counted while it was solved
+    std::vector<b2ContactImpulse> impulses;  ///< per contact, for PostSolve
+    std::vector<std::unique_ptr<Scratch>> scratch;
+
+    // The step being solved.
+    const b2TimeStep* step = nullptr;
+    b2Vec2 gravity;
+    bool allowSleep = true;
+    bool reportImpulses = false;
+
+    int32 IslandCount() const noexcept { return static_cast<int32>(starts.size()) - 1; }
+
+    // Takes a free scratch. A task system runs at most GetWorkerCount() blocks at once and
+    // there are that many, so one is free; a job system that runs more waits here.
+    Scratch& Acquire() noexcept {
+        for (;;) {
+            for (const std::unique_ptr<Scratch>& s : scratch) {
+                bool expected = false;
+                if (s->busy.compare_exchange_strong(expected, true, std::memory_order_acquire)) return *s;
+            }
+        }
+    }
+
+    void SolveIsland(b2Island& island, b2Profile& profile, int32 i) {
+        const Start& from = starts[static_cast<size_t>(i)];
+        const Start& to = starts[static_cast<size_t>(i) + 1];
+        island.Clear();
+        for (int32 k = from.body; k < to.body; ++k) island.Add(bodies[static_cast<size_t>(k)]);
+        for (int32 k = from.contact; k < to.contact; ++k) island.Add(contacts[static_cast<size_t>(k)]);
+        for (int32 k = from.joint; k < to.joint; ++k) island.Add(joints[static_cast<size_t>(k)]);
+        island.m_impulseSink = reportImpulses ? impulses.data() + from.contact : nullptr;
+        uint64_t count = 0;
+        {
+            const SaturationCapture capture(&count);
+            slept[static_cast<size_t>(i)] = island.Solve(&profile, *step, gravity, allowSleep) ? 1 : 0;
+        }
+        saturations[static_cast<size_t>(i)] = count;
+    }
+
+    static void SolveRange(int32 begin, int32 end, void* context) {
+        auto* self = static_cast<ParallelIslands*>(context);
+        Scratch& s = self->Acquire();
+        for (int32 i = begin; i < end; ++i) self->SolveIsland(s.island, s.profile, i);
+        s.busy.store(false, std::memory_order_release);
+    }
+};
+
+void World::ParallelIslandsDeleter::operator()(ParallelIslands* p) const noexcept { delete p; }
+
+namespace {
+// The counters b2Island::Solve adds to a profile (its PostSolve calls are counted when the
+// world makes them).
+void AddIslandCounters(b2Profile& to, b2Profile& from) {
+    to.solveInitNs += from.solveInitNs;
+    to.solveVelocityNs += from.solveVelocityNs;
+    to.solvePositionNs += from.solvePositionNs;
+    to.bodiesIntegrated += from.bodiesIntegrated;
+    to.contactConstraints += from.contactConstraints;
+    to.jointConstraints += from.jointConstraints;
+    to.velocityIterations += from.velocityIterations;
+    to.jointVelocityIterations += from.jointVelocityIterations;
+    to.positionIterations += from.positionIterations;
+    to.sleepChecks += from.sleepChecks;
+    from = b2Profile();
+}
+}  // namespace
+
+void World::SleepStaticBodies(b2Body* const* bodies, int32 count) {
+    for (int32 i = 0; i < count; ++i) {
+        if (bodies[i]->m_type == b2_staticBody) bodies[i]->SetAwake(false);
+    }
+}
+
+void World::RecordIsland() {
+    if (!m_parallelIslands) m_parallelIslands.reset(new ParallelIslands);
+    ParallelIslands& p = *m_parallelIslands;
+    if (p.starts.empty()) p.starts.push_back({});
+    const auto n = [](int32 count) { return static_cast<size_t>(count); };
+    p.bodies.insert(p.bodies.end(), m_island.m_bodies.begin(), m_island.m_bodies.begin() + n(m_island.m_bodyCount));
+    p.contacts.insert(p.contacts.end(), m_island.m_contacts.begin(),
+                      m_island.m_contacts.begin() + n(m_island.m_contactCount));
+    p.joints.insert(p.joints.end(), m_island.m_joints.begin(), m_island.m_joints.begin() + n(m_island.m_jointCount));
+    p.starts.push_back({static_cast<int32>(p.bodies.size()), static_cast<int32>(p.contacts.size()),
+                        static_cast<int32>(p.joints.size())});
+}
+
+void World::SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks) {
+    if (!m_parallelIslands) return;  // no island this step
+    ParallelIslands& p = *m_parallelIslands;
+    const int32 islandCount = p.IslandCount();
+    if (islandCount <= 0) {
+        p.starts.clear();
+        return;
+    }
+
+    // Every static body gets its step-long slot; the islands' own bodies go above them.
+    int32 statics = 0;
+    for (b2Body* b = m_bodyList; b; b = b->m_next) {
+        if (b->m_type == b2_staticBody) b->m_islandIndex = statics++;
+    }
+    int32 maxBodies = 0, maxContacts = 0, maxJoints = 0;
+    for (int32 i = 0; i < islandCount; ++i) {
+        const ParallelIslands::Start& from = p.starts[static_cast<size_t>(i)];
+        const ParallelIslands::Start& to = p.starts[static_cast<size_t>(i) + 1];
+        maxBodies = b2Max(maxBodies, to.body - from.body);
+        maxContacts = b2Max(maxContacts, to.contact - from.contact);
+        maxJoints = b2Max(maxJoints, to.joint - from.joint);
+    }
+    const int32 workers = tasks.GetWorkerCount();
+    while (p.scratch.size() < static_cast<size_t>(workers))
+        p.scratch.push_back(std::make_unique<ParallelIslands::Scratch>());
+    b2ContactListener* listener = m_contactManager.m_contactListener;
+    for (const auto& s : p.scratch) s->island.Reset(maxBodies, maxContacts, maxJoints, listener, statics);
+
+    p.step = &step;
+    p.gravity = m_gravity;
+    p.allowSleep = m_allowSleep;
+    p.reportImpulses = listener != nullptr;
+    p.slept.assign(static_cast<size_t>(islandCount), 0);
+    p.saturations.assign(static_cast<size_t>(islandCount), 0);
+    if (p.reportImpulses) p.impulses.assign(p.contacts.size(), b2ContactImpulse());
+
+    if (islandCount == 1) {
+        ParallelIslands::SolveRange(0, 1, &p);
+    } else {
+        // A few blocks per worker: islands differ in size, and blocks taken as workers free up
+        // even the load out.
+        const int32 blockSize = b2Max(1, islandCount / (4 * workers));
+        tasks.ParallelFor(islandCount, blockSize, &ParallelIslands::SolveRange, &p);
+    }
+
+    // Finish in island order, as the one-worker loop does after each island.
+    for (int32 i = 0; i < islandCount; ++i) {
+        const ParallelIslands::Start& from = p.starts[static_cast<size_t>(i)];
+        const ParallelIslands::Start& to = p.starts[static_cast<size_t>(i) + 1];
+        AddSaturations(p.saturations[static_cast<size_t>(i)]);
+        // The search woke the island's static bodies (in the one-worker loop, after the
+        // previous islands had been solved): wake them again before this island's sleep.
+        for (int32 k = from.body; k < to.body; ++k) {
+            b2Body* b = p.bodies[static_cast<size_t>(k)];
+            if (b->m_type == b2_staticBody) b->SetAwake(true);
+        }
+        if (p.slept[static_cast<size_t>(i)] != 0) SleepStaticBodies(p.bodies.data() + from.body, to.body - from.body);
+        if (p.reportImpulses) {
+            for (int32 k = from.contact; k < to.contact; ++k) {
+                listener->PostSolve(p.contacts[static_cast<size_t>(k)], &p.impulses[static_cast<size_t>(k)]);
+                ++m_profile.listenerCallbacks;
+            }
+        }
+        ++m_profile.islandsSolved;
+    }
+    for (const auto& s : p.scratch) AddIslandCounters(m_profile, s->profile);
+
+    p.starts.clear();
+    p.bodies.clear();
+    p.contacts.clear();
+    p.joints.clear();
+}
+
+}  // namespace lockbox
