@@ -53,13 +53,7 @@ SceneRun Simulate(int workers, b2TaskSystem* tasks) {
     // A pendulum hinged on the ground: an island with a joint to the shared static body that
     // never sleeps. Made first, it is the last island of every step (bodies are listed newest
     // first): the ground, put to sleep with the stacks before it, must wake with it.
-    b2BodyDef bd;
-    bd.type = b2_dynamicBody;
-    bd.position.Set(30, 5);
-    b2Body* bob = world.CreateBody(&bd);
-    b2CircleShape circle;
-    circle.m_radius = Fixed(0.25);
-    bob->CreateFixture(&circle, 1);
+    b2Body* bob = lockbox::test::MakeDynamicCircle(world, 30, 5, Fixed(0.25));
     b2RevoluteJointDef rj;
     rj.Initialize(ground, bob, b2Vec2(27, 5));
     world.CreateJoint(&rj);
