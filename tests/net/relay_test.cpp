@@ -133,6 +133,27 @@ TEST(RelayServer, JoinsAndForwardsWithTheSourceSlot) {
     EXPECT_EQ(rig.relay->Stats().refused, 0u);
 }
 
+TEST(RelayServer, ServesItsLargestSlotCount) {
+    // 8 players and 32 spectators need 40 slots; the relay serves up to kRelayMaxSlots.
+    RelayRig rig(kRelayMaxSlots);
+    rig.Run(5000);
+    for (auto& m : rig.members) EXPECT_TRUE(m->Joined());
+    const uint32_t last = kRelayMaxSlots - 1;
+    ASSERT_TRUE(rig.members[0]->Send(last, Bytes({7})));
+    ASSERT_TRUE(rig.members[last]->Send(0, Bytes({9})));
+    const auto got = rig.Run(5000);
+    ASSERT_EQ(got[last].size(), 1u);
+    EXPECT_EQ(got[last][0].peer, 0u);
+    ASSERT_EQ(got[0].size(), 1u);
+    EXPECT_EQ(got[0][0].peer, last);
+    EXPECT_EQ(rig.relay->Stats().refused, 0u);
+    // One slot more is refused by both ends.
+    RelayServerConfig tooMany;
+    tooMany.tokens.assign(kRelayMaxSlots + 1, 1);
+    EXPECT_THROW(RelayServer(rig.relayEnd, tooMany), std::invalid_argument);
+    EXPECT_THROW(rig.Join(*rig.ends[0], 0, 1, kRelayMaxSlots + 1), std::invalid_argument);
+}
+
 TEST(RelayedTransport, RefusesBadSendsLocally) {
     RelayRig rig(2);
     rig.Run(3000);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The match server under load, as real processes on loopback UDP (docs/deploy.md "Load, soak
 # and flood"):
-#   soak:  8 rollback peers through the relay, spectators taking 24 spectator slots in turn,
+#   soak:  8 rollback peers through the relay, spectators taking 32 spectator slots in turn
+#          (peer 0, their host, with the server's default budget for that role),
 #          2% loss and 0..20 ms jitter on every client's receive side; every final hash agrees
 #          (peers and spectators), no desync, the server's memory stays bounded, the drain
 #          writes the replay and it verifies.
@@ -46,8 +47,8 @@ mkdir "$dir/replays"
 server_args=(--token-key-file "$dir/key" --port-file "$dir/port" --http-port "$http_port"
     --rate-limit 1000 --rate-burst 2000 --log "$dir/server.log" --drain-seconds 1)
 if [ "$mode" = soak ]; then
-    server_args+=(--match-kind rollback-relay --players-per-match 8 --spectators-per-match 24
-        --peer-bandwidth 1000000 --scene vertical_stack --replay-dir "$dir/replays")
+    server_args+=(--match-kind rollback-relay --players-per-match 8 --spectators-per-match 32
+        --scene vertical_stack --replay-dir "$dir/replays")
 elif [ "$mode" = authoritative ]; then
     server_args+=(--match-kind lockstep-authoritative --players-per-match 2 --scene vertical_stack
         --replay-dir "$dir/replays")
@@ -63,7 +64,7 @@ rss_start=$(metric lockbox_server_resident_bytes)
 
 load_args=(--port "$port" --key-file "$dir/key" --seconds "$seconds")
 if [ "$mode" = soak ]; then
-    load_args+=(--kind rollback --players 8 --spectators 24 --matches 1 --loss 20 --jitter 20)
+    load_args+=(--kind rollback --players 8 --spectators 32 --matches 1 --loss 20 --jitter 20)
 elif [ "$mode" = authoritative ]; then
     load_args+=(--players 2 --matches 4 --scene vertical_stack)
 else

@@ -2,7 +2,8 @@
 // authoritative lockstep match (the server simulates the scene and its hash agrees with the
 // clients'), rollback peers through the server's relay (the server records their inputs and the
 // replay equals the peers' confirmed state), the relay slot the token names, and the per-peer
-// bandwidth limit, and spectators taking a relay slot in turn.
+// bandwidth limit (a player's, and the larger one of the player that hosts the spectators), and
+// spectators taking a relay slot in turn.
 
 #include <chrono>
 #include <cstdint>
@@ -21,6 +22,8 @@
 #include "lockbox/net/RollbackSession.h"
 #include "lockbox/net/RollbackSpectator.h"
 #include "lockbox/net/RollbackWorldAdapter.h"
+#include "lockbox/net/UdpTransport.h"
+#include "lockbox/net/admission/AdmissionTransport.h"
 #include "lockbox/replay/Player.h"
 #include "lockbox/replay/ReplayFile.h"
 #include "server_harness.h"
@@ -340,6 +343,88 @@ TEST(MatchKinds, AnAdmittedClientOverItsBandwidthIsCutAndCounted) {
     }
     EXPECT_GE(Dropped(*h.host, Drop::e_peerBandwidth), 80u);
     EXPECT_LE(Dropped(*h.host, Drop::e_peerBandwidth), 95u);
+}
+
+// A relay member that only joins its slot: enough to be admitted and to send from its address.
+struct RelayMember {
+    std::unique_ptr<net::UdpTransport> udp;
+    net::PeerId server = net::kNoPeer;
+    std::unique_ptr<net::admission::AdmissionTransport> admission;
+    std::unique_ptr<net::RelayedTransport> relayed;
+
+    RelayMember(uint16_t port, uint32_t match, uint8_t slot, uint32_t slots, uint64_t nonce) {
+        std::string error;
+        udp = net::UdpTransport::Open("127.0.0.1", 0, &error);
+        EXPECT_TRUE(udp) << error;
+        server = udp->AddPeer("127.0.0.1", port, &error);
+        admission = std::make_unique<net::admission::AdmissionTransport>(*udp, server, Mint(match, slot, nonce));
+        relayed = std::make_unique<net::RelayedTransport>(
+            *admission, net::RelayedTransportConfig{server, match, slot, slots, 0, 20000});
+    }
+    void Poll() {
+        std::vector<net::Datagram> sink;
+        relayed->Poll(sink);
+    }
+};
+
+TEST(MatchKinds, TheSpectatorsHostHasABudgetPerSpectatorSlot) {
+    HostConfig config;
+    config.kind = MatchKind::e_rollbackRelay;
+    config.match.playerCount = 2;
+    config.spectatorsPerMatch = 3;
+    config.peerBytesPerSecond = 2000;  // a player: 2,000 B/s; slot 0, the host: 4 x 2,000 B/s
+    Host h(std::move(config));
+    RelayMember host(h.port, 5, 0, 5, 50), player(h.port, 5, 1, 5, 51);
+    const auto start = std::chrono::steady_clock::now();
+    while (h.host->PlayerCount() < 2 && std::chrono::steady_clock::now() - start < std::chrono::seconds(5)) {
+        host.Poll();
+        player.Poll();
+        h.host->Update();
+        std::this_thread::sleep_for(std::chrono::microseconds(500));
+    }
+    ASSERT_EQ(h.host->PlayerCount(), 2u);
+    // 30 datagrams of 200 bytes at once from each: 6,000 bytes fit in the host's budget (8,000
+    // a second, one second's worth at once) but not in the other player's (2,000).
+    const std::vector<uint8_t> burst(200, 0x5A);
+    const auto blast = [&](RelayMember& m) {
+        for (int i = 0; i < 30; ++i) m.udp->Send(m.server, burst);
+        const auto begin = std::chrono::steady_clock::now();
+        while (std::chrono::steady_clock::now() - begin < std::chrono::milliseconds(300)) {
+            h.host->Update();
+            std::this_thread::sleep_for(std::chrono::microseconds(200));
+        }
+    };
+    const uint64_t before = Dropped(*h.host, Drop::e_peerBandwidth);
+    blast(host);
+    EXPECT_EQ(Dropped(*h.host, Drop::e_peerBandwidth), before);
+    blast(player);
+    EXPECT_GE(Dropped(*h.host, Drop::e_peerBandwidth), before + 20);
+}
+
+TEST(MatchKinds, TheSpectatorsHostBudgetCanBeSetApart) {
+    HostConfig config;
+    config.kind = MatchKind::e_rollbackRelay;
+    config.match.playerCount = 2;
+    config.spectatorsPerMatch = 3;
+    config.peerBytesPerSecond = 2000;
+    config.spectatorHostBytesPerSecond = 2000;  // the host no richer than a player
+    Host h(std::move(config));
+    RelayMember host(h.port, 6, 0, 5, 60);
+    const auto start = std::chrono::steady_clock::now();
+    while (h.host->PlayerCount() < 1 && std::chrono::steady_clock::now() - start < std::chrono::seconds(5)) {
+        host.Poll();
+        h.host->Update();
+        std::this_thread::sleep_for(std::chrono::microseconds(500));
+    }
+    ASSERT_EQ(h.host->PlayerCount(), 1u);
+    const std::vector<uint8_t> burst(200, 0x5A);
+    for (int i = 0; i < 30; ++i) host.udp->Send(host.server, burst);
+    const auto begin = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - begin < std::chrono::milliseconds(300)) {
+        h.host->Update();
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    EXPECT_GE(Dropped(*h.host, Drop::e_peerBandwidth), 20u);
 }
 
 }  // namespace

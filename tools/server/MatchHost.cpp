@@ -260,8 +260,17 @@ void MatchHost::Deliver(Match& m, PeerId peer, const Peer& p, std::span<const ui
     m.transport->Deliver(peer, payload);
 }
 
+uint64_t MatchHost::BytesPerSecondOf(const Peer& p) const {
+    const uint64_t player = m_config.peerBytesPerSecond;
+    const bool hostsSpectators =
+        m_config.kind == MatchKind::e_rollbackRelay && m_config.spectatorsPerMatch > 0 && p.slot == 0;
+    if (!hostsSpectators) return player;
+    if (m_config.spectatorHostBytesPerSecond) return *m_config.spectatorHostBytesPerSecond;
+    return player * (1 + uint64_t{m_config.spectatorsPerMatch});
+}
+
 bool MatchHost::WithinBandwidth(Peer& p, size_t bytes, uint64_t nowMicros) const {
-    const uint64_t rate = m_config.peerBytesPerSecond;
+    const uint64_t rate = BytesPerSecondOf(p);
     if (rate == 0) return true;
     // Credit in byte-microseconds: one second's worth at most, refilled at `rate`.
     const uint64_t capacity = rate * 1'000'000;

@@ -16,6 +16,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,11 +61,17 @@ struct HostConfig {
     MatchKind kind = MatchKind::e_lockstepRelay;
     net::ServerConfig match;  ///< settings of every match (playerCount, inputBytes, ...)
     /// Rollback relay: relay slots after the players' for spectators (tokens for slots
-    /// playerCount .. playerCount + spectatorsPerMatch - 1); players + spectators <= 32.
+    /// playerCount .. playerCount + spectatorsPerMatch - 1); players + spectators <=
+    /// net::kRelayMaxSlots.
     uint32_t spectatorsPerMatch = 0;
     /// Bytes a second an admitted client may send (one second's worth at once); more is dropped
     /// unread (Drop::e_peerBandwidth). 0: no limit.
     uint32_t peerBytesPerSecond = 65536;
+    /// Rollback relay with spectator slots: the budget of slot 0, the player whose peer hosts the
+    /// spectators (it sends each the confirmed inputs, and a joining one a snapshot), in bytes a
+    /// second (0: no limit). Unset: a player's budget for itself and one more per spectator
+    /// slot, peerBytesPerSecond x (1 + spectatorsPerMatch) (no limit when peerBytesPerSecond is 0).
+    std::optional<uint32_t> spectatorHostBytesPerSecond;
     uint64_t startTimeoutMicros = 60'000'000;
     uint64_t tokenMaxLifetimeSeconds = 3600;
     size_t replayCacheSize = 65536;
@@ -129,6 +136,7 @@ private:
     void Route(net::Datagram& d);
     void Deliver(Match& m, net::PeerId peer, const Peer& p, std::span<const uint8_t> payload);
     bool WithinBandwidth(Peer& p, size_t bytes, uint64_t nowMicros) const;
+    uint64_t BytesPerSecondOf(const Peer& p) const;
     void Record(Match& m);
     void RecordRollbackInputs(Match& m, int32_t slot, std::span<const uint8_t> payload);
     void Admit(net::Datagram& d, uint64_t nowMicros);

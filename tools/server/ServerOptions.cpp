@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string_view>
 
+#include "lockbox/net/RelayWire.h"
 #include "lockbox_cli/OptionReader.h"
 
 namespace lockbox::server {
@@ -35,14 +36,19 @@ constexpr const char* kUsage =
     "                          checks the clients' hashes against its own;\n"
     "                          rollback-relay: rollback peers exchange inputs through the server\n"
     "                          (RelayedTransport), which records them for the replay\n"
-    "  --players-per-match N   slots of every match, 1 .. 64 (rollback-relay: 2 .. 32; default 2)\n"
+    "  --players-per-match N   slots of every match, 1 .. 64 (rollback-relay: 2 .. 64; default 2)\n"
     "  --spectators-per-match N  rollback-relay: relay slots for spectators after the players'\n"
     "                          (tokens for slots players .. players + N - 1), taken in turn: a\n"
     "                          new spectator is seated once the last one was silent 2 s;\n"
-    "                          players + N <= 32 (default 0)\n"
+    "                          players + N <= 64 (default 0)\n"
     "  --peer-bandwidth N      bytes a second one admitted client may send, one second's worth\n"
     "                          at once; more is dropped and counted, 0 .. 1000000000 (default\n"
     "                          65536; 0: no limit)\n"
+    "  --spectator-host-bandwidth N  rollback-relay with spectator slots: the budget of slot 0,\n"
+    "                          the player that hosts the spectators (it sends each of them the\n"
+    "                          confirmed inputs and a joining one a snapshot), 0 .. 1000000000\n"
+    "                          (default --peer-bandwidth x (1 + --spectators-per-match); 0: no\n"
+    "                          limit)\n"
     "  --input-bytes N         input bytes per player per frame, 1 .. 256 (default 8)\n"
     "  --tick-rate N           frames per second, 1 .. 1000 (default 60)\n"
     "  --hash-interval N       clients report a state hash every N frames, 1 .. 100000 (default 30)\n"
@@ -113,10 +119,13 @@ void ApplyOption(lockbox::cli::OptionReader& args, ServerOptions& o) {
     else if (args.Is("--match-kind"))
         args.Choice({"lockstep-relay", "lockstep-authoritative", "rollback-relay"}, o.matchKind);
     else if (args.Is("--spectators-per-match"))
-        args.Int(0, 30, o.spectatorsPerMatch);
+        args.Int(0, lockbox::net::kRelayMaxSlots - 2, o.spectatorsPerMatch);
     else if (args.Is("--peer-bandwidth"))
         args.Int(0, 1000000000, o.peerBytesPerSecond);
-    else if (args.Is("--players-per-match"))
+    else if (args.Is("--spectator-host-bandwidth")) {
+        uint32_t v = 0;
+        if (args.Int(0, 1000000000, v)) o.spectatorHostBytesPerSecond = v;
+    } else if (args.Is("--players-per-match"))
         args.Int(1, 64, o.playersPerMatch);
     else if (args.Is("--input-bytes"))
         args.Int(1, 256, o.inputBytes);
@@ -223,9 +232,9 @@ int ReadOptions(int argc, char** argv, ServerOptions& out) {
     if (!args.Failed() && o.matchKind == "lockstep-authoritative" && o.scene.empty())
         args.Refuse("--match-kind lockstep-authoritative needs --scene");
     if (!args.Failed() && o.matchKind == "rollback-relay" &&
-        (o.playersPerMatch < 2 || o.playersPerMatch + o.spectatorsPerMatch > 32))
+        (o.playersPerMatch < 2 || o.playersPerMatch + o.spectatorsPerMatch > lockbox::net::kRelayMaxSlots))
         args.Refuse(
-            "--match-kind rollback-relay needs --players-per-match of at least 2 and at most 32 slots with "
+            "--match-kind rollback-relay needs --players-per-match of at least 2 and at most 64 slots with "
             "--spectators-per-match");
     if (!args.Failed() && o.matchKind != "rollback-relay" && o.spectatorsPerMatch != 0)
         args.Refuse("--spectators-per-match needs --match-kind rollback-relay");

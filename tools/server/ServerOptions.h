@@ -3,6 +3,7 @@
 // options (key=value lines), with the program's usage text documenting every one.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,7 @@ struct ServerOptions {
     uint32_t maxMatches = 64;                  ///< matches at once
     uint32_t maxPlayers = 256;                 ///< admitted clients at once, all matches together
     std::string matchKind = "lockstep-relay";  ///< lockstep-relay, lockstep-authoritative or rollback-relay
-    uint32_t playersPerMatch = 2;              ///< slots of each match, 1 .. 64 (rollback relay: 2 .. 32)
+    uint32_t playersPerMatch = 2;              ///< slots of each match, 1 .. 64 (rollback relay: 2 .. 64)
     uint32_t spectatorsPerMatch = 0;           ///< rollback-relay: spectator slots after the players'
     uint32_t peerBytesPerSecond = 65536;       ///< bytes a second one admitted client may send (0: no limit)
     uint32_t inputBytes = 8;                   ///< per player per frame, 1 .. 256
@@ -35,6 +36,9 @@ struct ServerOptions {
     std::string scene;                         ///< library scene the clients play (for replays)
     std::string portFile;                      ///< when set, the bound UDP port is written there
     uint32_t agonesHealthSeconds = 2;          ///< Agones health ping interval (AGONES_SDK_HTTP_PORT set)
+    /// Rollback relay with spectator slots: bytes a second slot 0 (the spectators' host) may
+    /// send (0: no limit); unset: peerBytesPerSecond x (1 + spectatorsPerMatch).
+    std::optional<uint32_t> spectatorHostBytesPerSecond;
 };
 
 /// Reads the command line (argv[1..]) into `out`, `--config FILE` lines included where it

@@ -28,6 +28,7 @@
 #include "lockbox/lockbox.h"
 #include "lockbox/net/LatencyTransport.h"
 #include "lockbox/net/LockstepClient.h"
+#include "lockbox/net/RelayWire.h"
 #include "lockbox/net/RelayedTransport.h"
 #include "lockbox/net/RollbackPeer.h"
 #include "lockbox/net/RollbackSession.h"
@@ -560,7 +561,7 @@ int main(int argc, char** argv) {
         else if (args.Is("--threads"))
             args.Int(1, 64, o.threads);
         else if (args.Is("--spectators"))
-            args.Int(0, 30, o.spectators);
+            args.Int(0, net::kRelayMaxSlots - 2, o.spectators);
         else if (args.Is("--loss"))
             args.Int(0, 500, o.lossPermille);
         else if (args.Is("--jitter"))
@@ -573,8 +574,8 @@ int main(int argc, char** argv) {
             args.Unknown();
     }
     if (!args.Failed() && (o.port == 0 || o.keyFile.empty())) args.Refuse("--port and --key-file are required");
-    if (!args.Failed() && o.kind == "rollback" && (o.players < 2 || o.players + o.spectators > 32))
-        args.Refuse("--kind rollback needs --players of at least 2 and at most 32 slots with --spectators");
+    if (!args.Failed() && o.kind == "rollback" && (o.players < 2 || o.players + o.spectators > net::kRelayMaxSlots))
+        args.Refuse("--kind rollback needs --players of at least 2 and at most 64 slots with --spectators");
     if (!args.Failed() && !o.scene.empty() && !replay::SceneGame(o.scene).ok())
         args.Refuse("--scene " + o.scene + " is not a library scene");
     if (args.Failed()) return args.Fail(kUsage);

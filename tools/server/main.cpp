@@ -80,6 +80,7 @@ int main(int argc, char** argv) {
                                                                 : server::MatchKind::e_lockstepRelay;
     config.peerBytesPerSecond = options.peerBytesPerSecond;
     config.spectatorsPerMatch = options.spectatorsPerMatch;
+    config.spectatorHostBytesPerSecond = options.spectatorHostBytesPerSecond;
     config.match.playerCount = options.playersPerMatch;
     config.match.inputBytes = options.inputBytes;
     config.match.tickRate = options.tickRate;

@@ -8,7 +8,7 @@ namespace lockbox::net {
 RelayServer::RelayServer(Transport& transport, RelayServerConfig config)
     : m_transport(transport), m_config(std::move(config)) {
     if (m_config.tokens.size() < 2 || m_config.tokens.size() > kRelayMaxSlots)
-        throw std::invalid_argument("RelayServer: the slot count (tokens) must be in 2 .. 32");
+        throw std::invalid_argument("RelayServer: the slot count (tokens) must be in 2 .. 64 (kRelayMaxSlots)");
     m_slotPeer.assign(m_config.tokens.size(), kNoPeer);
 }
 

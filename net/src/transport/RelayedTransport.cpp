@@ -7,7 +7,7 @@ namespace lockbox::net {
 
 RelayedTransport::RelayedTransport(Transport& inner, RelayedTransportConfig config) : m_inner(inner), m_config(config) {
     if (m_config.slots < 2 || m_config.slots > kRelayMaxSlots)
-        throw std::invalid_argument("RelayedTransport: slots must be in 2 .. 32");
+        throw std::invalid_argument("RelayedTransport: slots must be in 2 .. 64 (kRelayMaxSlots)");
     if (m_config.slot >= m_config.slots) throw std::invalid_argument("RelayedTransport: slot must be < slots");
     if (m_config.relay == kNoPeer) throw std::invalid_argument("RelayedTransport: no relay peer");
     if (m_config.joinRetryMicros == 0) throw std::invalid_argument("RelayedTransport: joinRetryMicros must be >= 1");

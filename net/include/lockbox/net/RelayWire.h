@@ -30,8 +30,11 @@ namespace lockbox::net {
 inline constexpr uint8_t kRelayVersion = 1;
 /// Bytes of the relay header (magic 2, version 1, kind 1, match id 4, slot 1).
 inline constexpr size_t kRelayHeaderBytes = 9;
-/// Largest slot count a relay serves (8 players plus spectators).
-inline constexpr uint32_t kRelayMaxSlots = 32;
+/// Largest slot count a relay serves: players and spectators together (a rollback match has at
+/// most 8 players). The header's slot byte could name 256 slots; 64 matches the slots an
+/// admission token can name (kMaxPlayers), so a token-admitted relay is never bounded by the
+/// relay first. Changing it changes no datagram's bytes, only which slots are accepted.
+inline constexpr uint32_t kRelayMaxSlots = 64;
 
 /// What a relay datagram is (byte 3 of the header).
 enum class RelayKind : uint8_t {
