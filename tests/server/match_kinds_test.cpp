@@ -367,38 +367,45 @@ struct RelayMember {
     }
 };
 
-TEST(MatchKinds, TheSpectatorsHostHasABudgetPerSpectatorSlot) {
+TEST(MatchKinds, ARollbackRelayBudgetIsPerStreamTheClientSends) {
     HostConfig config;
     config.kind = MatchKind::e_rollbackRelay;
-    config.match.playerCount = 2;
+    config.match.playerCount = 3;
     config.spectatorsPerMatch = 3;
-    config.peerBytesPerSecond = 2000;  // a player: 2,000 B/s; slot 0, the host: 4 x 2,000 B/s
+    config.peerBytesPerSecond = 2000;  // per stream
     Host h(std::move(config));
-    RelayMember host(h.port, 5, 0, 5, 50), player(h.port, 5, 1, 5, 51);
+    // Slot 0 sends to 2 players and hosts 3 spectator slots: 5 x 2,000 B/s. Slot 1 sends to 2
+    // players: 4,000 B/s. Slot 3, a spectator, answers its host only: 2,000 B/s.
+    RelayMember host(h.port, 5, 0, 6, 50), player(h.port, 5, 1, 6, 51), spectator(h.port, 5, 3, 6, 53);
     const auto start = std::chrono::steady_clock::now();
-    while (h.host->PlayerCount() < 2 && std::chrono::steady_clock::now() - start < std::chrono::seconds(5)) {
+    while (h.host->PlayerCount() < 3 && std::chrono::steady_clock::now() - start < std::chrono::seconds(5)) {
         host.Poll();
         player.Poll();
+        spectator.Poll();
         h.host->Update();
         std::this_thread::sleep_for(std::chrono::microseconds(500));
     }
-    ASSERT_EQ(h.host->PlayerCount(), 2u);
-    // 30 datagrams of 200 bytes at once from each: 6,000 bytes fit in the host's budget (8,000
-    // a second, one second's worth at once) but not in the other player's (2,000).
+    ASSERT_EQ(h.host->PlayerCount(), 3u);
+    // 30 datagrams of 200 bytes at once from one member (its budget allows one second's worth
+    // at once); returns how many the server dropped.
     const std::vector<uint8_t> burst(200, 0x5A);
     const auto blast = [&](RelayMember& m) {
+        const uint64_t before = Dropped(*h.host, Drop::e_peerBandwidth);
         for (int i = 0; i < 30; ++i) m.udp->Send(m.server, burst);
         const auto begin = std::chrono::steady_clock::now();
         while (std::chrono::steady_clock::now() - begin < std::chrono::milliseconds(300)) {
             h.host->Update();
             std::this_thread::sleep_for(std::chrono::microseconds(200));
         }
+        return Dropped(*h.host, Drop::e_peerBandwidth) - before;
     };
-    const uint64_t before = Dropped(*h.host, Drop::e_peerBandwidth);
-    blast(host);
-    EXPECT_EQ(Dropped(*h.host, Drop::e_peerBandwidth), before);
-    blast(player);
-    EXPECT_GE(Dropped(*h.host, Drop::e_peerBandwidth), before + 20);
+    EXPECT_EQ(blast(host), 0u);                  // 6,000 bytes of 10,000
+    const uint64_t playerDrops = blast(player);  // 6,000 of 4,000: about 10 of 30 dropped
+    EXPECT_GE(playerDrops, 5u);                  // the budget refills while a slow machine reads the burst
+    EXPECT_LE(playerDrops, 12u);
+    const uint64_t spectatorDrops = blast(spectator);  // 6,000 of 2,000: about 20 dropped
+    EXPECT_GE(spectatorDrops, 14u);
+    EXPECT_GT(spectatorDrops, playerDrops);
 }
 
 TEST(MatchKinds, TheSpectatorsHostBudgetCanBeSetApart) {

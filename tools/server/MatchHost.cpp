@@ -261,12 +261,19 @@ void MatchHost::Deliver(Match& m, PeerId peer, const Peer& p, std::span<const ui
 }
 
 uint64_t MatchHost::BytesPerSecondOf(const Peer& p) const {
-    const uint64_t player = m_config.peerBytesPerSecond;
-    const bool hostsSpectators =
-        m_config.kind == MatchKind::e_rollbackRelay && m_config.spectatorsPerMatch > 0 && p.slot == 0;
-    if (!hostsSpectators) return player;
-    if (m_config.spectatorHostBytesPerSecond) return *m_config.spectatorHostBytesPerSecond;
-    return player * (1 + uint64_t{m_config.spectatorsPerMatch});
+    // A budget per stream the client sends: a lockstep client sends to the server only; a
+    // rollback peer sends to every other player through the relay, and slot 0 also to every
+    // spectator slot (it hosts the spectators); a spectator answers its host only.
+    const uint64_t perStream = m_config.peerBytesPerSecond;
+    if (m_config.kind != MatchKind::e_rollbackRelay) return perStream;
+    const uint32_t players = m_config.match.playerCount;
+    if (p.slot < 0 || static_cast<uint32_t>(p.slot) >= players) return perStream;
+    uint64_t streams = std::max<uint32_t>(players, 2) - 1;
+    if (p.slot == 0 && m_config.spectatorsPerMatch > 0) {
+        if (m_config.spectatorHostBytesPerSecond) return *m_config.spectatorHostBytesPerSecond;
+        streams += m_config.spectatorsPerMatch;
+    }
+    return perStream * streams;
 }
 
 bool MatchHost::WithinBandwidth(Peer& p, size_t bytes, uint64_t nowMicros) const {

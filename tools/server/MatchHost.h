@@ -64,13 +64,15 @@ struct HostConfig {
     /// playerCount .. playerCount + spectatorsPerMatch - 1); players + spectators <=
     /// net::kRelayMaxSlots.
     uint32_t spectatorsPerMatch = 0;
-    /// Bytes a second an admitted client may send (one second's worth at once); more is dropped
-    /// unread (Drop::e_peerBandwidth). 0: no limit.
+    /// Bytes a second an admitted client may send per stream it sends (one second's worth at
+    /// once); more is dropped unread (Drop::e_peerBandwidth). 0: no limit. A lockstep client and
+    /// a spectator have one stream (to the server, to their host); a rollback-relay player one
+    /// per other player (playerCount - 1), and slot 0, the spectators' host, one more per
+    /// spectator slot.
     uint32_t peerBytesPerSecond = 65536;
     /// Rollback relay with spectator slots: the budget of slot 0, the player whose peer hosts the
     /// spectators (it sends each the confirmed inputs, and a joining one a snapshot), in bytes a
-    /// second (0: no limit). Unset: a player's budget for itself and one more per spectator
-    /// slot, peerBytesPerSecond x (1 + spectatorsPerMatch) (no limit when peerBytesPerSecond is 0).
+    /// second (0: no limit), instead of its streams' count times peerBytesPerSecond.
     std::optional<uint32_t> spectatorHostBytesPerSecond;
     uint64_t startTimeoutMicros = 60'000'000;
     uint64_t tokenMaxLifetimeSeconds = 3600;

@@ -21,7 +21,7 @@ struct ServerOptions {
     std::string matchKind = "lockstep-relay";  ///< lockstep-relay, lockstep-authoritative or rollback-relay
     uint32_t playersPerMatch = 2;              ///< slots of each match, 1 .. 64 (rollback relay: 2 .. 64)
     uint32_t spectatorsPerMatch = 0;           ///< rollback-relay: spectator slots after the players'
-    uint32_t peerBytesPerSecond = 65536;       ///< bytes a second one admitted client may send (0: no limit)
+    uint32_t peerBytesPerSecond = 65536;       ///< bytes a second per stream a client sends (0: no limit)
     uint32_t inputBytes = 8;                   ///< per player per frame, 1 .. 256
     uint32_t tickRate = 60;                    ///< frames per second
     uint32_t hashInterval = 30;                ///< clients report a state hash every this many frames
@@ -37,7 +37,7 @@ struct ServerOptions {
     std::string portFile;                      ///< when set, the bound UDP port is written there
     uint32_t agonesHealthSeconds = 2;          ///< Agones health ping interval (AGONES_SDK_HTTP_PORT set)
     /// Rollback relay with spectator slots: bytes a second slot 0 (the spectators' host) may
-    /// send (0: no limit); unset: peerBytesPerSecond x (1 + spectatorsPerMatch).
+    /// send (0: no limit); unset: peerBytesPerSecond x (players - 1 + spectatorsPerMatch).
     std::optional<uint32_t> spectatorHostBytesPerSecond;
 };
 
