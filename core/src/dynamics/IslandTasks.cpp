@@ -8,6 +8,7 @@
 // counters) is kept per island and applied in island order too, so the result is that of the
 // one-worker loop in World::Solve, whatever the workers and their scheduling.
 #include <atomic>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -33,7 +34,9 @@ struct World::ParallelIslands {
     struct Scratch {
         b2Island island;
         b2Profile profile;  ///< the island counters of the blocks it solved
-        std::atomic<bool> busy{false};
+        // A word, not a bool: byte-sized compare-exchange needs libatomic on some targets
+        // (riscv64 at -O0).
+        std::atomic<uint32_t> busy{0};
     };
 
     std::vector<Start> starts;
@@ -58,8 +61,8 @@ struct World::ParallelIslands {
     Scratch& Acquire() noexcept {
         for (;;) {
             for (const std::unique_ptr<Scratch>& s : scratch) {
-                bool expected = false;
-                if (s->busy.compare_exchange_strong(expected, true, std::memory_order_acquire)) return *s;
+                uint32_t expected = 0;
+                if (s->busy.compare_exchange_strong(expected, 1, std::memory_order_acquire)) return *s;
             }
         }
     }
@@ -84,7 +87,7 @@ struct World::ParallelIslands {
         auto* self = static_cast<ParallelIslands*>(context);
         Scratch& s = self->Acquire();
         for (int32 i = begin; i < end; ++i) self->SolveIsland(s.island, s.profile, i);
-        s.busy.store(false, std::memory_order_release);
+        s.busy.store(0, std::memory_order_release);
     }
 };
 
