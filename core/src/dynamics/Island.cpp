@@ -162,7 +162,9 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
 
     timer = Clock::now();
     for (int32 i = 0; i < m_bodyCount; ++i) {
-        const size_t slot = static_cast<size_t>(m_bodies[static_cast<size_t>(i)]->m_islandIndex);
+        // One island at a time, body i is in slot i: the loop stays on the solver arrays.
+        const size_t slot = m_slotBase == 0 ? static_cast<size_t>(i)
+                                            : static_cast<size_t>(m_bodies[static_cast<size_t>(i)]->m_islandIndex);
         b2Position& pos = m_positions[slot];
         b2Velocity& vel = m_velocities[slot];
         IntegratePosition(h, pos.c, pos.a, vel.v, vel.w);

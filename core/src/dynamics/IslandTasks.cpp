@@ -181,12 +181,14 @@ void World::SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks) {
         const ParallelIslands::Start& to = p.starts[static_cast<size_t>(i) + 1];
         AddSaturations(p.saturations[static_cast<size_t>(i)]);
         // The search woke the island's static bodies (in the one-worker loop, after the
-        // previous islands had been solved): wake them again before this island's sleep.
+        // previous islands had been solved): wake them again, then let them sleep with it.
+        const bool slept = p.slept[static_cast<size_t>(i)] != 0;
         for (int32 k = from.body; k < to.body; ++k) {
             b2Body* b = p.bodies[static_cast<size_t>(k)];
-            if (b->m_type == b2_staticBody) b->SetAwake(true);
+            if (b->m_type != b2_staticBody) continue;
+            b->SetAwake(true);
+            if (slept) b->SetAwake(false);
         }
-        if (p.slept[static_cast<size_t>(i)] != 0) SleepStaticBodies(p.bodies.data() + from.body, to.body - from.body);
         if (p.reportImpulses) {
             for (int32 k = from.contact; k < to.contact; ++k) {
                 listener->PostSolve(p.contacts[static_cast<size_t>(k)], &p.impulses[static_cast<size_t>(k)]);
