@@ -65,12 +65,15 @@ void b2Body::UpdateExtents() {
     if (m_fixtureList == nullptr) m_minExtent = Fixed();
 }
 
-bool b2Body::IsFastThisStep() const noexcept {
-    // The bound on how far any point of the body moved this step: |dc| + |da| * maxExtent.
+Wide b2Body::SweptDistanceBound() const noexcept {
     // Formed in Q32.32 so that a huge body (a long chain) cannot overflow the bound.
     const Wide linear = Wide((m_sweep.c - m_sweep.c0).Length());
     const Wide angular = MulWide(b2Abs(m_sweep.a - m_sweep.a0), m_maxExtent);
-    const Wide motion = linear + angular;
+    return linear + angular;
+}
+
+bool b2Body::IsFastThisStep() const noexcept {
+    const Wide motion = SweptDistanceBound();
     // Two thresholds, the smaller wins:
     // - half the thinnest extent (Box2D v3): below it the centre cannot cross a surface in
     //   one step, so skipping continuous collision can never tunnel;

@@ -24,6 +24,28 @@ constexpr Fixed kTOIAlphaComplete = Fixed::FromRaw(Fixed::kOneRaw - 1);
 constexpr int32 kTOIPositionIterations = 20;
 
 bool IsSensorContact(const b2Contact* c) { return c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor(); }
+
+// Whether a time-of-impact query of the contact's sweeps could report an event: the cores'
+// distance at the start of the sweeps, less how far any point of either body moved along them,
+// comes within the query's target separation plus its tolerance (TimeOfImpact.cpp), with a
+// quarter slop to spare for rounding. When it does not, the query returns "separated" and the
+// contact can be skipped. `motion` is both bodies' SweptDistanceBound.
+bool MayReachToiTarget(const b2Contact& c, const b2Sweep& sweepA, const b2Sweep& sweepB, Wide motion) {
+    b2DistanceInput input;
+    input.proxyA.Set(c.GetFixtureA()->GetShape(), c.GetChildIndexA());
+    input.proxyB.Set(c.GetFixtureB()->GetShape(), c.GetChildIndexB());
+    sweepA.GetTransform(&input.transformA, Fixed());
+    sweepB.GetTransform(&input.transformB, Fixed());
+    input.useRadii = false;
+    b2SimplexCache cache;
+    cache.count = 0;
+    b2DistanceOutput output;
+    b2Distance(&output, &cache, &input);
+    const Fixed totalRadius = input.proxyA.m_radius + input.proxyB.m_radius;
+    const Fixed target = b2Max(b2_linearSlop, totalRadius - Fixed(3) * b2_linearSlop);
+    const Fixed reach = target + b2_linearSlop / 2;  // tolerance (a quarter slop) plus the spare quarter
+    return Wide(output.distance) - motion < Wide(reach);
+}
 }  // namespace
 
 void World::Solve(const b2TimeStep& step) {
@@ -127,8 +149,37 @@ void World::Solve(const b2TimeStep& step) {
 }
 
 void World::SolveTOI(const b2TimeStep& step) {
+    // A body too slow to tunnel (not flagged fast) can still start the step pressed into a
+    // static or kinematic body closer than the query's target (squeezed under a heavy load):
+    // 2.2.1 then reports an event at the start of its sweep. Flag such a body, so that its
+    // contacts are examined as 2.2.1 examines them; every other contact of slow bodies is
+    // provably without an event (MayReachToiTarget).
+    for (b2Body* b = m_bodyList; b; b = b->m_next) {
+        if (b->m_type == b2_staticBody || (b->m_flags & b2Body::e_fastFlag) != 0) continue;
+        for (b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) {
+            const b2Body* other = ce->other;
+            if ((other->m_flags & b2Body::e_fastFlag) != 0) continue;  // examined already
+            const b2Contact* c = ce->contact;
+            if (!c->IsEnabled() || IsSensorContact(c)) continue;
+            // The query loop's filters: one body active, one a bullet or not dynamic.
+            const bool active = (b->IsAwake()) || (other->IsAwake() && other->m_type != b2_staticBody);
+            const bool collides =
+                b->IsBullet() || b->m_type != b2_dynamicBody || other->IsBullet() || other->m_type != b2_dynamicBody;
+            if (!active || !collides) continue;
+            const Wide motion =
+                b->SweptDistanceBound() + (other->m_type == b2_staticBody ? Wide() : other->SweptDistanceBound());
+            const bool aFirst = c->GetFixtureA()->GetBody() == b;
+            const b2Sweep& sweepA = aFirst ? b->m_sweep : other->m_sweep;
+            const b2Sweep& sweepB = aFirst ? other->m_sweep : b->m_sweep;
+            if (MayReachToiTarget(*c, sweepA, sweepB, motion)) {
+                b->m_flags |= b2Body::e_fastFlag;
+                break;
+            }
+        }
+    }
+
     // The cheap check: without a fast or bullet body no contact can need a TOI event (see
-    // b2Body::IsFastThisStep), so nothing else runs.
+    // b2Body::IsFastThisStep and the loop above), so nothing else runs.
     bool anyFast = false;
     for (const b2Body* b = m_bodyList; b; b = b->m_next) {
         if (b->m_flags & b2Body::e_fastFlag) {

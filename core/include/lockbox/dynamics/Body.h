@@ -231,6 +231,9 @@ private:
     /// True when this step's motion could tunnel: the centre moved, or a point on the body
     /// swept by the rotation moved, more than half the thinnest fixture extent.
     bool IsFastThisStep() const noexcept;
+    /// A bound (m) on how far any point of the body moved along this step's sweep:
+    /// |c - c0| + |a - a0| * maxExtent.
+    Wide SweptDistanceBound() const noexcept;
 
     b2BodyType m_type;
     uint16 m_flags = 0;
