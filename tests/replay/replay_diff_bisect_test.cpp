@@ -124,7 +124,7 @@ public:
                   std::span<b2Velocity> velocities) override {
         if (frame != m_frame || phase != m_phase || m_done || bodies.size() <= 2) return;
         if (phase == b2IslandPhase::e_velocity) {
-            velocities[0].v.x = Fixed::FromRaw(velocities[0].v.x.Raw() + 1024);
+            velocities[0].v.x = Wide::FromRaw(velocities[0].v.x.Raw() + (int64_t{1024} << 16));
         } else {
             positions[0].c.x = Fixed::FromRaw(positions[0].c.x.Raw() + 1024);
         }

@@ -22,7 +22,7 @@ using testing_state::Future;
 using testing_state::SavedFrame;
 using testing_state::SceneRun;
 
-static_assert(sizeof(frame_detail::BodyMotion) == 64, "a body's motion in a frame is 64 bytes");
+static_assert(sizeof(frame_detail::BodyMotion) == 88, "a body's motion in a frame is 88 bytes");
 
 TEST(WorldFrame, EveryStructuralCallMovesTheEpoch) {
     SceneRun run{"ragdolls"};

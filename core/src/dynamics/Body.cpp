@@ -76,6 +76,7 @@ void b2Body::ResetMassData() {
     if (m_type == b2_staticBody || m_type == b2_kinematicBody) {
         m_sweep.c0 = m_xf.p;
         m_sweep.c = m_xf.p;
+        m_positionRemainder = {};
         m_sweep.a0 = m_sweep.a;
         UpdateExtents();
         return;
@@ -121,6 +122,7 @@ void b2Body::ResetMassData() {
     m_sweep.localCenter = localCenter;
     m_sweep.c = b2Mul(m_xf, m_sweep.localCenter);
     m_sweep.c0 = m_sweep.c;
+    m_positionRemainder = {};
     // Keep the velocity of the origin: the centre of mass moved.
     m_linearVelocity += b2Cross(m_angularVelocity, m_sweep.c - oldCenter);
     UpdateExtents();
@@ -152,6 +154,7 @@ void b2Body::SetMassData(const b2MassData* massData) {
     m_sweep.localCenter = massData->center;
     m_sweep.c = b2Mul(m_xf, m_sweep.localCenter);
     m_sweep.c0 = m_sweep.c;
+    m_positionRemainder = {};
     m_linearVelocity += b2Cross(m_angularVelocity, m_sweep.c - oldCenter);
     UpdateExtents();
 }
@@ -172,6 +175,7 @@ void b2Body::SetTransform(const b2Vec2& position, Fixed angle) {
     m_sweep.c = b2Mul(m_xf, m_sweep.localCenter);
     m_sweep.a = angle;
     m_sweep.c0 = m_sweep.c;
+    m_positionRemainder = {};
     m_sweep.a0 = angle;
     Engine::World& world = Engine::Of(*m_world);
     world.SynchronizeFixtures(*this, m_xf, m_xf);
@@ -188,6 +192,7 @@ void b2Body::Advance(Fixed alpha) {
     m_sweep.Advance(alpha);
     m_sweep.c = m_sweep.c0;
     m_sweep.a = m_sweep.a0;
+    m_positionRemainder = {};
     SynchronizeTransform();
 }
 
@@ -216,6 +221,7 @@ void b2Body::SetType(b2BodyType type) {
     if (m_type == b2_staticBody) {
         m_linearVelocity.SetZero();
         m_angularVelocity = Fixed();
+        m_velocityRemainder = {};
         m_sweep.a0 = m_sweep.a;
         m_sweep.c0 = m_sweep.c;
         Engine::Of(*m_world).SynchronizeFixtures(*this);
@@ -276,6 +282,7 @@ void b2Body::SetAwake(bool flag) {
         m_sleepSteps = 0;
         m_linearVelocity.SetZero();
         m_angularVelocity = Fixed();
+        m_velocityRemainder = {};
         m_force.SetZero();
         m_torque = Fixed();
     }
@@ -318,12 +325,15 @@ void b2Body::SetLinearVelocity(const b2Vec2& v) {
     if (m_type == b2_staticBody) return;
     if (v.LengthSquaredWide() > Wide()) SetAwake(true);
     m_linearVelocity = v;
+    m_velocityRemainder.x = 0;
+    m_velocityRemainder.y = 0;
 }
 
 void b2Body::SetAngularVelocity(Fixed w) {
     if (m_type == b2_staticBody) return;
     if (w != Fixed()) SetAwake(true);
     m_angularVelocity = w;
+    m_velocityRemainder.w = 0;
 }
 
 void b2Body::ApplyForce(const b2Vec2& force, const b2Vec2& point) {
@@ -348,16 +358,51 @@ void b2Body::ApplyTorque(Fixed torque) {
 void b2Body::ApplyLinearImpulse(const b2Vec2& impulse, const b2Vec2& point) {
     if (m_type != b2_dynamicBody) return;
     if (!IsAwake()) SetAwake(true);
-    // Velocity changes are rounded once from the exact products.
-    m_linearVelocity.x += MulToFixed(m_invMass, impulse.x);
-    m_linearVelocity.y += MulToFixed(m_invMass, impulse.y);
-    m_angularVelocity += MulToFixed(m_invI, b2CrossWide(point - m_sweep.c, impulse));
+    // The velocity changes are added in Q32.32, so an impulse below the Q16.16 quantum counts.
+    b2Velocity v = SolverVelocity();
+    v.v.x += m_invMass * impulse.x;
+    v.v.y += m_invMass * impulse.y;
+    v.w += m_invI * b2CrossWide(point - m_sweep.c, impulse);
+    SetSolverVelocity(v);
 }
 
 void b2Body::ApplyAngularImpulse(Fixed impulse) {
     if (m_type != b2_dynamicBody) return;
     if (!IsAwake()) SetAwake(true);
-    m_angularVelocity += MulToFixed(m_invI, impulse);
+    b2Velocity v = SolverVelocity();
+    v.w += m_invI * impulse;
+    SetSolverVelocity(v);
+}
+
+namespace {
+// Splits a Q32.32 value into its Q16.16 rounding and the remainder below it. A value beyond
+// Q16.16 saturates (reported by ToFixed) and keeps no remainder.
+Fixed Split(Wide value, int32& remainder) noexcept {
+    const Fixed rounded = value.ToFixed();
+    const int64_t rest = value.Raw() - int64_t{rounded.Raw()} * (int64_t{1} << 16);
+    constexpr int64_t kHalf = int64_t{1} << 15;
+    remainder = rest >= -kHalf && rest <= kHalf ? static_cast<int32>(rest) : 0;
+    return rounded;
+}
+
+Wide Join(Fixed rounded, int32 remainder) noexcept { return Wide::FromRaw(Wide(rounded).Raw() + remainder); }
+}  // namespace
+
+b2Velocity b2Body::SolverVelocity() const noexcept {
+    return {{Join(m_linearVelocity.x, m_velocityRemainder.x), Join(m_linearVelocity.y, m_velocityRemainder.y)},
+            Join(m_angularVelocity, m_velocityRemainder.w)};
+}
+
+void b2Body::Displace(Wide dx, Wide dy, Wide da, b2Vec2& c, Fixed& a) noexcept {
+    c.x += Split(dx + Wide::FromRaw(m_positionRemainder.x), m_positionRemainder.x);
+    c.y += Split(dy + Wide::FromRaw(m_positionRemainder.y), m_positionRemainder.y);
+    a += Split(da + Wide::FromRaw(m_positionRemainder.w), m_positionRemainder.w);
+}
+
+void b2Body::SetSolverVelocity(const b2Velocity& v) noexcept {
+    m_linearVelocity.x = Split(v.v.x, m_velocityRemainder.x);
+    m_linearVelocity.y = Split(v.v.y, m_velocityRemainder.y);
+    m_angularVelocity = Split(v.w, m_velocityRemainder.w);
 }
 
 b2Vec2 b2Body::GetLinearVelocityFromWorldPoint(const b2Vec2& worldPoint) const {

@@ -18,21 +18,20 @@ int64_t Nanos(Clock::time_point from) {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
 }
 
-// Clamps the motion of one step (Box2D's maxTranslation and maxRotation) and integrates.
-void IntegratePosition(Fixed h, b2Vec2& c, Fixed& a, b2Vec2& v, Fixed& w) {
-    const b2Vec2 translation = h * v;
+// Clamps the motion of one step (Box2D's maxTranslation and maxRotation) by scaling the
+// velocity; the body then moves by h v (b2Body::Displace).
+void ClampMotion(Fixed h, b2Velocity& vel) {
+    const b2Vec2 translation{(vel.v.x * h).ToFixed(), (vel.v.y * h).ToFixed()};
     // Compare squares exactly in Q32.32 (the Q16.16 square saturates beyond 181 m).
     if (translation.LengthSquaredWide() > Wide(b2_maxTranslationSquared)) {
         const Fixed ratio = b2_maxTranslation / translation.Length();
-        v *= ratio;
+        vel.v = ratio * vel.v;
     }
-    const Fixed rotation = h * w;
+    const Fixed rotation = (vel.w * h).ToFixed();
     if (MulWide(rotation, rotation) > Wide(b2_maxRotationSquared)) {
         const Fixed ratio = b2_maxRotation / b2Abs(rotation);
-        w *= ratio;
+        vel.w = vel.w * ratio;
     }
-    c += h * v;
-    a += h * w;
 }
 }  // namespace
 
@@ -97,8 +96,7 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         const size_t slot = static_cast<size_t>(b->m_islandIndex);
         const b2Vec2 c = b->m_sweep.c;
         const Fixed a = b->m_sweep.a;
-        b2Vec2 v = b->m_linearVelocity;
-        Fixed w = b->m_angularVelocity;
+        b2Velocity vel = b->SolverVelocity();
 
         // Store positions for continuous collision (a static body's never move).
         if (b->m_type != b2_staticBody) {
@@ -107,28 +105,27 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         }
 
         if (b->m_type == b2_dynamicBody) {
-            // v += h * (gravityScale * g + invMass * f): the acceleration is formed exactly-ish
-            // in Q32.32 and the velocity change is rounded once.
+            // v += h * (gravityScale * g + invMass * f): the acceleration is formed in Q32.32 and
+            // the velocity change is added in Q32.32, so a gentle force is not rounded away.
             const Wide ax = MulWide(b->m_gravityScale, gravity.x) + b->m_invMass * b->m_force.x;
             const Wide ay = MulWide(b->m_gravityScale, gravity.y) + b->m_invMass * b->m_force.y;
-            v.x += MulToFixed(ax, h);
-            v.y += MulToFixed(ay, h);
-            w += MulToFixed(b->m_invI * b->m_torque, h);
+            vel.v.x += ax * h;
+            vel.v.y += ay * h;
+            vel.w += (b->m_invI * b->m_torque) * h;
 
             // Damping, the Box2D 2.3+ form v *= 1 / (1 + h c): unconditionally stable and never
             // reverses the velocity (2.2.1 clamps 1 - h c instead). One division each.
             if (b->m_linearDamping != Fixed()) {
-                const Fixed d = Fixed(1) + h * b->m_linearDamping;
-                v.x = v.x / d;
-                v.y = v.y / d;
+                const Wide d = Wide(Fixed(1) + h * b->m_linearDamping);
+                vel.v.x = vel.v.x / d;
+                vel.v.y = vel.v.y / d;
             }
-            if (b->m_angularDamping != Fixed()) w = w / (Fixed(1) + h * b->m_angularDamping);
+            if (b->m_angularDamping != Fixed()) vel.w = vel.w / Wide(Fixed(1) + h * b->m_angularDamping);
         }
 
         m_positions[slot].c = c;
         m_positions[slot].a = a;
-        m_velocities[slot].v = v;
-        m_velocities[slot].w = w;
+        m_velocities[slot] = vel;
     }
     profile->bodiesIntegrated += m_bodyCount;
 
@@ -162,12 +159,14 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
 
     timer = Clock::now();
     for (int32 i = 0; i < m_bodyCount; ++i) {
+        b2Body* b = m_bodies[static_cast<size_t>(i)];
+        if (b->m_type == b2_staticBody) continue;  // no velocity; and islands share it
         // One island at a time, body i is in slot i: the loop stays on the solver arrays.
-        const size_t slot = m_slotBase == 0 ? static_cast<size_t>(i)
-                                            : static_cast<size_t>(m_bodies[static_cast<size_t>(i)]->m_islandIndex);
+        const size_t slot = m_slotBase == 0 ? static_cast<size_t>(i) : static_cast<size_t>(b->m_islandIndex);
         b2Position& pos = m_positions[slot];
         b2Velocity& vel = m_velocities[slot];
-        IntegratePosition(h, pos.c, pos.a, vel.v, vel.w);
+        ClampMotion(h, vel);
+        b->Displace(vel.v.x * h, vel.v.y * h, vel.w * h, pos.c, pos.a);
     }
 
     bool positionSolved = false;
@@ -192,8 +191,7 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         const size_t slot = static_cast<size_t>(body->m_islandIndex);
         body->m_sweep.c = m_positions[slot].c;
         body->m_sweep.a = m_positions[slot].a;
-        body->m_linearVelocity = m_velocities[slot].v;
-        body->m_angularVelocity = m_velocities[slot].w;
+        body->SetSolverVelocity(m_velocities[slot]);
         body->SynchronizeTransform();
     }
     profile->solvePositionNs += Nanos(timer);
@@ -237,8 +235,7 @@ void b2Island::SolveTOI(b2Profile* profile, const b2TimeStep& subStep, int32 toi
         const b2Body* b = m_bodies[static_cast<size_t>(i)];
         m_positions[static_cast<size_t>(i)].c = b->m_sweep.c;
         m_positions[static_cast<size_t>(i)].a = b->m_sweep.a;
-        m_velocities[static_cast<size_t>(i)].v = b->m_linearVelocity;
-        m_velocities[static_cast<size_t>(i)].w = b->m_angularVelocity;
+        m_velocities[static_cast<size_t>(i)] = b->SolverVelocity();
     }
 
     b2ContactSolverDef contactSolverDef = ContactSolverDef(subStep);
@@ -267,13 +264,13 @@ void b2Island::SolveTOI(b2Profile* profile, const b2TimeStep& subStep, int32 toi
     for (int32 i = 0; i < m_bodyCount; ++i) {
         b2Position& pos = m_positions[static_cast<size_t>(i)];
         b2Velocity& vel = m_velocities[static_cast<size_t>(i)];
-        IntegratePosition(h, pos.c, pos.a, vel.v, vel.w);
-
         b2Body* body = m_bodies[static_cast<size_t>(i)];
+        ClampMotion(h, vel);
+        body->Displace(vel.v.x * h, vel.v.y * h, vel.w * h, pos.c, pos.a);
+
         body->m_sweep.c = pos.c;
         body->m_sweep.a = pos.a;
-        body->m_linearVelocity = vel.v;
-        body->m_angularVelocity = vel.w;
+        body->SetSolverVelocity(vel);
         body->SynchronizeTransform();
     }
 

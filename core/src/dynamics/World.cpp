@@ -303,8 +303,7 @@ void World::EnforceBounds() {
         b->SetActive(false);
         m_flags |= e_locked;
         b->m_flags |= b2Body::e_outOfBoundsFlag;
-        b->m_linearVelocity.SetZero();
-        b->m_angularVelocity = Fixed();
+        b->SetSolverVelocity({});
         b->m_force.SetZero();
         b->m_torque = Fixed();
         b->m_sweep.c0 = b->m_sweep.c;

@@ -21,6 +21,8 @@ struct BodyMotion {
     Fixed a0, a, alpha0;
     b2Vec2 v;
     Fixed w;
+    int32 velocityRemainder[3] = {};  ///< below Q16.16 (b2Body::SubRaw)
+    int32 positionRemainder[3] = {};
     int32 sleepSteps = 0;
     uint32 flags = 0;
 };

@@ -46,6 +46,12 @@ struct core_detail::Engine::SnapshotApply {
         sw.alpha0 = r.F();
         b.m_linearVelocity = r.V();
         b.m_angularVelocity = r.F();
+        b.m_velocityRemainder.x = r.I32();
+        b.m_velocityRemainder.y = r.I32();
+        b.m_velocityRemainder.w = r.I32();
+        b.m_positionRemainder.x = r.I32();
+        b.m_positionRemainder.y = r.I32();
+        b.m_positionRemainder.w = r.I32();
         b.m_force = r.V();
         b.m_torque = r.F();
         b.m_sleepSteps = r.I32();

@@ -74,7 +74,7 @@ struct JointFieldWriter {
 
 /// Record sizes in bytes, for the writers' one room check per record (Begin) and the
 /// reader's (SnapshotParse.cpp). Each is the sum of the field widths written below.
-inline constexpr size_t kBodyRecordBytes = 151;
+inline constexpr size_t kBodyRecordBytes = 175;
 /// Fixture fields (35), shape type and radius (5), at most a polygon of 8 (140), proxy count
 /// (4) and one proxy (20): every non-chain fixture in one record.
 inline constexpr size_t kFixtureHeadBytes = 35;
@@ -237,6 +237,12 @@ struct core_detail::Engine::StateWalk {
         c.F(sw.alpha0);
         c.V(b.m_linearVelocity);
         c.F(b.m_angularVelocity);
+        c.I32(b.m_velocityRemainder.x);
+        c.I32(b.m_velocityRemainder.y);
+        c.I32(b.m_velocityRemainder.w);
+        c.I32(b.m_positionRemainder.x);
+        c.I32(b.m_positionRemainder.y);
+        c.I32(b.m_positionRemainder.w);
         c.V(b.m_force);
         c.F(b.m_torque);
         c.I32(b.m_sleepSteps);

@@ -190,6 +190,12 @@ struct core_detail::Engine::Frames {
             m.alpha0 = b->m_sweep.alpha0;
             m.v = b->m_linearVelocity;
             m.w = b->m_angularVelocity;
+            m.velocityRemainder[0] = b->m_velocityRemainder.x;
+            m.velocityRemainder[1] = b->m_velocityRemainder.y;
+            m.velocityRemainder[2] = b->m_velocityRemainder.w;
+            m.positionRemainder[0] = b->m_positionRemainder.x;
+            m.positionRemainder[1] = b->m_positionRemainder.y;
+            m.positionRemainder[2] = b->m_positionRemainder.w;
             m.sleepSteps = b->m_sleepSteps;
             m.flags = b->m_flags;
             if (b->m_force.x != Fixed() || b->m_force.y != Fixed() || b->m_torque != Fixed()) {
@@ -278,6 +284,8 @@ struct core_detail::Engine::Frames {
             b->m_sweep.alpha0 = m.alpha0;
             b->m_linearVelocity = m.v;
             b->m_angularVelocity = m.w;
+            b->m_velocityRemainder = {m.velocityRemainder[0], m.velocityRemainder[1], m.velocityRemainder[2]};
+            b->m_positionRemainder = {m.positionRemainder[0], m.positionRemainder[1], m.positionRemainder[2]};
             b->m_sleepSteps = m.sleepSteps;
             b->m_flags = static_cast<uint16>(m.flags);
             b->m_islandIndex = 0;

@@ -9,6 +9,7 @@
 #include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/Fixture.h"
+#include "lockbox/dynamics/StepObserver.h"
 #include "lockbox/fixed/Math.h"
 
 namespace lockbox {
@@ -71,7 +72,8 @@ public:
 
     /// Sets the linear velocity of the centre of mass (m/s); wakes the body if non-zero.
     void SetLinearVelocity(const b2Vec2& v);
-    /// Linear velocity of the centre of mass, m/s.
+    /// Linear velocity of the centre of mass, m/s (rounded to Q16.16; the body also keeps the
+    /// part below that quantum, which the next step continues from).
     const b2Vec2& GetLinearVelocity() const noexcept { return m_linearVelocity; }
     /// Sets the angular velocity (rad/s); wakes the body if non-zero.
     void SetAngularVelocity(Fixed omega);
@@ -240,8 +242,29 @@ private:
     int32 m_islandIndex = 0;
     b2Transform m_xf;  ///< body origin transform
     b2Sweep m_sweep;   ///< swept motion for CCD
+    /// The Q32.32 velocity the solver works on, made of the Q16.16 value and its remainder.
+    b2Velocity SolverVelocity() const noexcept;
+    /// Stores a Q32.32 velocity: its Q16.16 rounding and the remainder.
+    void SetSolverVelocity(const b2Velocity& v) noexcept;
+
+    /// Moves the centre and angle by a Q32.32 displacement, rounded with the position
+    /// remainder carried from the previous steps (Q32.32 integration of positions).
+    void Displace(Wide dx, Wide dy, Wide da, b2Vec2& c, Fixed& a) noexcept;
+
+    /// The part of a Q32.32 quantity below its Q16.16 rounding, in raw units of 2^-32,
+    /// |r| <= 2^15: a force too gentle to change the Q16.16 velocity in one step still
+    /// accumulates over many, and a slow body moves at its velocity's rate, not at the rate of
+    /// h v rounded to a whole Q16.16 unit per step. x and y are linear, w angular.
+    struct SubRaw {
+        int32 x = 0;
+        int32 y = 0;
+        int32 w = 0;
+    };
+
     b2Vec2 m_linearVelocity;
     Fixed m_angularVelocity;
+    SubRaw m_velocityRemainder;  ///< m/s and rad/s
+    SubRaw m_positionRemainder;  ///< of m_sweep.c (m) and m_sweep.a (rad)
     b2Vec2 m_force;  ///< N
     Fixed m_torque;  ///< N*m
     b2World* m_world;

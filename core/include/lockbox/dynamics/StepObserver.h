@@ -12,6 +12,7 @@
 #include "lockbox/Export.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Math.h"
+#include "lockbox/fixed/WideVec.h"
 
 namespace lockbox {
 
@@ -26,12 +27,14 @@ struct b2Position {
     Fixed a;
 };
 
-/// Solver copy of a body's velocity: linear (m/s) and angular (rad/s).
+/// Solver copy of a body's velocity: linear (m/s) and angular (rad/s), in Q32.32 so that the
+/// step adds forces and impulses below the Q16.16 quantum (1/65536 m/s) without rounding them
+/// away. The body keeps the part below Q16.16 between steps (docs/numerics.md, "Velocities").
 struct b2Velocity {
     /// Linear velocity of the centre of mass, m/s.
-    b2Vec2 v;
+    b2WideVec2 v;
     /// Angular velocity, rad/s.
-    Fixed w;
+    Wide w;
 };
 
 /// The fenceposts of one b2World::Step, in the order they are reached.

@@ -34,11 +34,12 @@ inline constexpr uint16 b2_snapshotEnginePatch = 0;
 
 /// Version of the snapshot layout; bump on any change to docs/determinism.md's format table.
 /// History: 1 the six state sections; 2 adds a seventh, the joints' reaction directions (so a
-/// restored joint answers GetReactionForce as the saved one did).
-inline constexpr uint16 b2_snapshotFormatVersion = 2;
-/// The oldest format Restore still reads: a format-1 image restores as it always did, its
-/// joints keeping the reaction directions they had (none in a fresh world) until the next step.
-inline constexpr uint16 b2_snapshotOldestReadable = 1;
+/// restored joint answers GetReactionForce as the saved one did); 3 adds each body's velocity
+/// and position remainders below Q16.16 to the body record.
+inline constexpr uint16 b2_snapshotFormatVersion = 3;
+/// The oldest format Restore still reads. Format 3 changed the body record, and images of the
+/// older formats were written under an older determinism version, which Restore refuses anyway.
+inline constexpr uint16 b2_snapshotOldestReadable = 3;
 
 /// The four magic bytes that open every snapshot payload header ("LBSN").
 inline constexpr uint32 b2_snapshotMagic = 0x4E53424Cu;  // 'L' 'B' 'S' 'N', low byte first

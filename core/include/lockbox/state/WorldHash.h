@@ -27,8 +27,9 @@ class b2Body;
 /// Version of the hash definition; folded into every hash. Bump it whenever the field list,
 /// order or widths in docs/determinism.md change.
 /// History: 1 first definition; 2 one walk shared with the snapshot (exact joint state through
-/// VisitState, joint edges with their side, the world's saturation count, compact widths).
-inline constexpr uint32 b2_hashVersion = 2;
+/// VisitState, joint edges with their side, the world's saturation count, compact widths); 3 each
+/// body's velocity and position remainders below Q16.16.
+inline constexpr uint32 b2_hashVersion = 3;
 
 /// Identifies everything that decides the bits of a step for peers and files: the hash
 /// definition (high 16 bits) and the step's arithmetic (low 16: the number formats, Q16.16 and
@@ -39,8 +40,12 @@ inline constexpr uint32 b2_hashVersion = 2;
 /// exactly in Q32.32 from per-step lever arms and applies angular impulses through per-step
 /// angular responses (fewer roundings, about 1.2x faster steps on stacks), and the revolute,
 /// prismatic and weld joints' point iterations multiply by their point block's inverse,
-/// computed once per step, instead of solving the block each iteration.
-inline constexpr uint32 b2_determinismVersion = (b2_hashVersion << 16) | 2u;
+/// computed once per step, instead of solving the block each iteration; 3 velocities are Q32.32
+/// through the whole step and positions integrate in Q32.32 (the body keeps both parts below
+/// Q16.16), so forces and impulses below 1/65536 m/s per step accumulate instead of rounding
+/// away and a slow body moves at its velocity's rate, and a slow body pressed into a
+/// static or kinematic contact gets 2.2.1's immediate time of impact.
+inline constexpr uint32 b2_determinismVersion = (b2_hashVersion << 16) | 3u;
 
 /// Hash categories, in the order they are folded into the world hash.
 enum class b2HashCategory : uint32 {

@@ -116,12 +116,12 @@ void b2ContactSolver::InitializeVelocityConstraints() {
         const Wide iA = vc->invIA, iB = vc->invIB;
         const b2Vec2 cA = m_positions[vc->indexA].c;
         const Fixed aA = m_positions[vc->indexA].a;
-        const b2Vec2 vA = m_velocities[vc->indexA].v;
-        const Fixed wA = m_velocities[vc->indexA].w;
+        const b2WideVec2 vA = m_velocities[vc->indexA].v;
+        const Wide wA = m_velocities[vc->indexA].w;
         const b2Vec2 cB = m_positions[vc->indexB].c;
         const Fixed aB = m_positions[vc->indexB].a;
-        const b2Vec2 vB = m_velocities[vc->indexB].v;
-        const Fixed wB = m_velocities[vc->indexB].w;
+        const b2WideVec2 vB = m_velocities[vc->indexB].v;
+        const Wide wB = m_velocities[vc->indexB].w;
 
         b2Transform xfA, xfB;
         xfA.q = m_rotations[vc->indexA].For(aA);
@@ -196,28 +196,28 @@ void b2ContactSolver::InitializeVelocityConstraints() {
 void b2ContactSolver::WarmStart() {
     for (int32 i = 0; i < m_count; ++i) {
         const b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
-        b2Vec2 vA = m_velocities[vc->indexA].v;
-        Fixed wA = m_velocities[vc->indexA].w;
-        b2Vec2 vB = m_velocities[vc->indexB].v;
-        Fixed wB = m_velocities[vc->indexB].w;
+        b2WideVec2 vA = m_velocities[vc->indexA].v;
+        Wide wA = m_velocities[vc->indexA].w;
+        b2WideVec2 vB = m_velocities[vc->indexB].v;
+        Wide wB = m_velocities[vc->indexB].w;
         // The tangent (n.y, -n.x) moves a body by (push.y, -push.x) per N*s.
         const b2WideVec2 pA = vc->pushA, pB = vc->pushB;
         for (int32 j = 0; j < vc->pointCount; ++j) {
             const b2VelocityConstraintPoint* vcp = vc->points + j;
             const Wide n = vcp->normalImpulse, t = vcp->tangentImpulse;
-            const Fixed dxA = (n * pA.x + t * pA.y).ToFixed();
-            const Fixed dyA = (n * pA.y - t * pA.x).ToFixed();
+            const Wide dxA = n * pA.x + t * pA.y;
+            const Wide dyA = n * pA.y - t * pA.x;
             vA.x -= dxA;
             vA.y -= dyA;
             if (vc->samePush) {
                 vB.x += dxA;
                 vB.y += dyA;
             } else {
-                vB.x += (n * pB.x + t * pB.y).ToFixed();
-                vB.y += (n * pB.y - t * pB.x).ToFixed();
+                vB.x += n * pB.x + t * pB.y;
+                vB.y += n * pB.y - t * pB.x;
             }
-            wA -= (n * vcp->turnNA + t * vcp->turnTA).ToFixed();
-            wB += (n * vcp->turnNB + t * vcp->turnTB).ToFixed();
+            wA -= n * vcp->turnNA + t * vcp->turnTA;
+            wB += n * vcp->turnNB + t * vcp->turnTB;
         }
         m_velocities[vc->indexA].v = vA;
         m_velocities[vc->indexA].w = wA;
@@ -229,10 +229,10 @@ void b2ContactSolver::WarmStart() {
 void b2ContactSolver::SolveVelocityConstraints() {
     for (int32 i = 0; i < m_count; ++i) {
         b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
-        b2Vec2 vA = m_velocities[vc->indexA].v;
-        Fixed wA = m_velocities[vc->indexA].w;
-        b2Vec2 vB = m_velocities[vc->indexB].v;
-        Fixed wB = m_velocities[vc->indexB].w;
+        b2WideVec2 vA = m_velocities[vc->indexA].v;
+        Wide wA = m_velocities[vc->indexA].w;
+        b2WideVec2 vB = m_velocities[vc->indexB].v;
+        Wide wB = m_velocities[vc->indexB].w;
         const b2Vec2 normal = vc->normal;
         const b2Vec2 tangent = vc->tangent;
         const b2WideVec2 pushNA = vc->pushA, pushNB = vc->pushB;
@@ -302,8 +302,8 @@ void b2ContactSolver::SolveVelocityConstraints() {
                 // Both impulses act along the normal: one linear impulse, two lever arms.
                 const Wide d1 = x1 - a1, d2 = x2 - a2;
                 solver::PushPair(vA, vB, d1 + d2, pushNA, pushNB, same);
-                wA -= (d1 * cp1->turnNA + d2 * cp2->turnNA).ToFixed();
-                wB += (d1 * cp1->turnNB + d2 * cp2->turnNB).ToFixed();
+                wA -= d1 * cp1->turnNA + d2 * cp2->turnNA;
+                wB += d1 * cp1->turnNB + d2 * cp2->turnNB;
                 cp1->normalImpulse = x1;
                 cp2->normalImpulse = x2;
             }

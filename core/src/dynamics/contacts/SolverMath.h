@@ -1,6 +1,6 @@
 #pragma once
 // Internal helpers of the contact solver: impulse vectors in Q32.32 and their application to
-// Q16.16 velocities with a single rounding per component.
+// the Q32.32 solver velocities.
 
 #include <cstdint>
 #include <limits>
@@ -11,43 +11,41 @@
 namespace lockbox::solver {
 
 // The impulse lambda d on the pair's linear velocities: vA -= lambda pushA, vB += lambda pushB,
-// with pushA = mA d and pushB = mB d; each component rounded once. With equal pushes B's change
-// is A's (computed, and reported on saturation, once).
-[[gnu::always_inline]] inline void PushPair(b2Vec2& vA, b2Vec2& vB, Wide lambda, const b2WideVec2& pushA,
+// with pushA = mA d and pushB = mB d, added in Q32.32. With equal pushes B's change is A's
+// (computed, and reported on saturation, once).
+[[gnu::always_inline]] inline void PushPair(b2WideVec2& vA, b2WideVec2& vB, Wide lambda, const b2WideVec2& pushA,
                                             const b2WideVec2& pushB, bool samePush) noexcept {
-    const Fixed dxA = MulToFixed(lambda, pushA.x);
-    const Fixed dyA = MulToFixed(lambda, pushA.y);
+    const Wide dxA = lambda * pushA.x;
+    const Wide dyA = lambda * pushA.y;
     vA.x -= dxA;
     vA.y -= dyA;
     if (samePush) {
         vB.x += dxA;
         vB.y += dyA;
     } else {
-        vB.x += MulToFixed(lambda, pushB.x);
-        vB.y += MulToFixed(lambda, pushB.y);
+        vB.x += lambda * pushB.x;
+        vB.y += lambda * pushB.y;
     }
 }
 
-// The speed of B's contact point relative to A's along the unit direction d, in Q32.32 with
-// no rounding: d . (vB - vA) + wB (rB x d) - wA (rA x d), where armA = rA x d and
-// armB = rB x d. The velocity differences are exact in 33 bits and |d| < 2^31 raw, so each
-// linear product stays below 2^63; the sums are checked (saturate and report, never wrap).
-[[gnu::always_inline]] inline Wide SpeedAlong(const b2Vec2& vA, Fixed wA, Fixed armA, const b2Vec2& vB, Fixed wB,
-                                              Fixed armB, const b2Vec2& d) noexcept {
-    const int64_t dvx = int64_t{vB.x.Raw()} - vA.x.Raw();
-    const int64_t dvy = int64_t{vB.y.Raw()} - vA.y.Raw();
-    const Wide linear = Wide::FromRaw(dvx * d.x.Raw()) + Wide::FromRaw(dvy * d.y.Raw());
-    return linear + MulWide(wB, armB) - MulWide(wA, armA);
+// The speed of B's contact point relative to A's along the unit direction d, in Q32.32:
+// d . (vB - vA) + wB (rB x d) - wA (rA x d), where armA = rA x d and armB = rB x d. Each
+// product is rounded once at 2^-32; the sums are checked (saturate and report, never wrap).
+[[gnu::always_inline]] inline Wide SpeedAlong(const b2WideVec2& vA, Wide wA, Fixed armA, const b2WideVec2& vB,
+                                              Wide wB, Fixed armB, const b2Vec2& d) noexcept {
+    const b2WideVec2 dv = vB - vA;
+    const Wide linear = dv.x * d.x + dv.y * d.y;
+    return linear + wB * armB - wA * armA;
 }
 
 // The impulse lambda d on the pair: PushPair, then wA -= lambda turnA and wB += lambda turnB,
 // where turnA = iA (rA x d) and turnB = iB (rB x d).
-[[gnu::always_inline]] inline void ApplyAlong(b2Vec2& vA, Fixed& wA, b2Vec2& vB, Fixed& wB, Wide lambda,
+[[gnu::always_inline]] inline void ApplyAlong(b2WideVec2& vA, Wide& wA, b2WideVec2& vB, Wide& wB, Wide lambda,
                                               const b2WideVec2& pushA, const b2WideVec2& pushB, bool samePush,
                                               Wide turnA, Wide turnB) noexcept {
     PushPair(vA, vB, lambda, pushA, pushB, samePush);
-    wA -= MulToFixed(lambda, turnA);
-    wB += MulToFixed(lambda, turnB);
+    wA -= lambda * turnA;
+    wB += lambda * turnB;
 }
 
 // Effective mass denominator mA + mB + iA rnA^2 + iB rnB^2 (1/kg), with the squares exact.

@@ -73,15 +73,13 @@ void b2DistanceJoint::InitVelocityConstraints(const b2SolverData& data) {
 }
 
 void b2DistanceJoint::SolveVelocityConstraints(const b2SolverData& data) {
-    b2Vec2 vA = data.velocities[m_indexA].v;
-    Fixed wA = data.velocities[m_indexA].w;
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    b2WideVec2 vA = data.velocities[m_indexA].v;
+    Wide wA = data.velocities[m_indexA].w;
+    b2WideVec2 vB = data.velocities[m_indexB].v;
+    Wide wB = data.velocities[m_indexB].w;
 
     // Cdot = dot(u, v_pB - v_pA)
-    const b2Vec2 vpA = PointVelocity(vA, wA, m_rA);
-    const b2Vec2 vpB = PointVelocity(vB, wB, m_rB);
-    const Wide Cdot = b2DotWide(m_u, vpB - vpA);
+    const Wide Cdot = DotW(m_u, PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA));
 
     const Wide impulse = -(m_mass * (Cdot + m_bias + m_gamma * m_impulse));
     m_impulse += impulse;

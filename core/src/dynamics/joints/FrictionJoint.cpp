@@ -45,12 +45,12 @@ void b2FrictionJoint::InitVelocityConstraints(const b2SolverData& data) {
         m_linearImpulse = r * m_linearImpulse;
         m_angularImpulse = m_angularImpulse * r;
         const b2WideVec2 P = m_linearImpulse;
-        vA.x -= MulToFixed(mA, P.x);
-        vA.y -= MulToFixed(mA, P.y);
-        wA -= MulToFixed(iA, b2Cross(m_rA, P) + m_angularImpulse);
-        vB.x += MulToFixed(mB, P.x);
-        vB.y += MulToFixed(mB, P.y);
-        wB += MulToFixed(iB, b2Cross(m_rB, P) + m_angularImpulse);
+        vA.x -= mA * P.x;
+        vA.y -= mA * P.y;
+        wA -= iA * (b2Cross(m_rA, P) + m_angularImpulse);
+        vB.x += mB * P.x;
+        vB.y += mB * P.y;
+        wB += iB * (b2Cross(m_rB, P) + m_angularImpulse);
     } else {
         m_linearImpulse.SetZero();
         m_angularImpulse = Wide();
@@ -63,28 +63,28 @@ void b2FrictionJoint::InitVelocityConstraints(const b2SolverData& data) {
 }
 
 void b2FrictionJoint::SolveVelocityConstraints(const b2SolverData& data) {
-    b2Vec2 vA = data.velocities[m_indexA].v;
-    Fixed wA = data.velocities[m_indexA].w;
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    b2WideVec2 vA = data.velocities[m_indexA].v;
+    Wide wA = data.velocities[m_indexA].w;
+    b2WideVec2 vB = data.velocities[m_indexB].v;
+    Wide wB = data.velocities[m_indexB].w;
     const Wide iA = m_invIA, iB = m_invIB;
     const Fixed h = data.step.dt;
 
     // Solve angular friction.
     {
-        const Fixed Cdot = wB - wA;
+        const Wide Cdot = wB - wA;
         Wide impulse = -(m_angularMass * Cdot);
         const Wide oldImpulse = m_angularImpulse;
         const Wide maxImpulse = MulWide(h, m_maxTorque);
         m_angularImpulse = b2Clamp(m_angularImpulse + impulse, -maxImpulse, maxImpulse);
         impulse = m_angularImpulse - oldImpulse;
-        wA -= MulToFixed(iA, impulse);
-        wB += MulToFixed(iB, impulse);
+        wA -= iA * impulse;
+        wB += iB * impulse;
     }
 
     // Solve linear friction.
     {
-        const b2Vec2 Cdot = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
+        const b2WideVec2 Cdot = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
         const b2WideVec2 oldImpulse = m_linearImpulse;
         m_linearImpulse += -m_linearK.Solve(Cdot);
         m_linearImpulse = b2ClampLength(m_linearImpulse, MulWide(h, m_maxForce));

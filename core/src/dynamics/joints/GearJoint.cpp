@@ -94,10 +94,10 @@ void b2GearJoint::InitVelocityConstraints(const b2SolverData& data) {
     const b2Position& pB = data.positions[m_indexB];
     const b2Position& pC = data.positions[m_indexC];
     const b2Position& pD = data.positions[m_indexD];
-    b2Vec2 vA = data.velocities[m_indexA].v, vB = data.velocities[m_indexB].v;
-    b2Vec2 vC = data.velocities[m_indexC].v, vD = data.velocities[m_indexD].v;
-    Fixed wA = data.velocities[m_indexA].w, wB = data.velocities[m_indexB].w;
-    Fixed wC = data.velocities[m_indexC].w, wD = data.velocities[m_indexD].w;
+    b2WideVec2 vA = data.velocities[m_indexA].v, vB = data.velocities[m_indexB].v;
+    b2WideVec2 vC = data.velocities[m_indexC].v, vD = data.velocities[m_indexD].v;
+    Wide wA = data.velocities[m_indexA].w, wB = data.velocities[m_indexB].w;
+    Wide wC = data.velocities[m_indexC].w, wD = data.velocities[m_indexD].w;
 
     // Move the revolute angle bases to this step's branch. A base past kMaxContinuousAngle
     // drops its whole turns, and the constant drops the same amount (times the ratio on the
@@ -154,18 +154,18 @@ void b2GearJoint::InitVelocityConstraints(const b2SolverData& data) {
         m_impulse = Wide();
     }
     const Wide L = m_impulse;
-    vA.x += MulToFixed(m_mA * L, m_JvAC.x);
-    vA.y += MulToFixed(m_mA * L, m_JvAC.y);
-    wA += MulToFixed(m_iA * L, m_JwA);
-    vB.x += MulToFixed(m_mB * L, m_JvBD.x);
-    vB.y += MulToFixed(m_mB * L, m_JvBD.y);
-    wB += MulToFixed(m_iB * L, m_JwB);
-    vC.x -= MulToFixed(m_mC * L, m_JvAC.x);
-    vC.y -= MulToFixed(m_mC * L, m_JvAC.y);
-    wC -= MulToFixed(m_iC * L, m_JwC);
-    vD.x -= MulToFixed(m_mD * L, m_JvBD.x);
-    vD.y -= MulToFixed(m_mD * L, m_JvBD.y);
-    wD -= MulToFixed(m_iD * L, m_JwD);
+    vA.x += (m_mA * L) * m_JvAC.x;
+    vA.y += (m_mA * L) * m_JvAC.y;
+    wA += (m_iA * L) * m_JwA;
+    vB.x += (m_mB * L) * m_JvBD.x;
+    vB.y += (m_mB * L) * m_JvBD.y;
+    wB += (m_iB * L) * m_JwB;
+    vC.x -= (m_mC * L) * m_JvAC.x;
+    vC.y -= (m_mC * L) * m_JvAC.y;
+    wC -= (m_iC * L) * m_JwC;
+    vD.x -= (m_mD * L) * m_JvBD.x;
+    vD.y -= (m_mD * L) * m_JvBD.y;
+    wD -= (m_iD * L) * m_JwD;
 
     data.velocities[m_indexA] = {vA, wA};
     data.velocities[m_indexB] = {vB, wB};
@@ -174,28 +174,28 @@ void b2GearJoint::InitVelocityConstraints(const b2SolverData& data) {
 }
 
 void b2GearJoint::SolveVelocityConstraints(const b2SolverData& data) {
-    b2Vec2 vA = data.velocities[m_indexA].v, vB = data.velocities[m_indexB].v;
-    b2Vec2 vC = data.velocities[m_indexC].v, vD = data.velocities[m_indexD].v;
-    Fixed wA = data.velocities[m_indexA].w, wB = data.velocities[m_indexB].w;
-    Fixed wC = data.velocities[m_indexC].w, wD = data.velocities[m_indexD].w;
+    b2WideVec2 vA = data.velocities[m_indexA].v, vB = data.velocities[m_indexB].v;
+    b2WideVec2 vC = data.velocities[m_indexC].v, vD = data.velocities[m_indexD].v;
+    Wide wA = data.velocities[m_indexA].w, wB = data.velocities[m_indexB].w;
+    Wide wC = data.velocities[m_indexC].w, wD = data.velocities[m_indexD].w;
 
-    const Wide Cdot = b2DotWide(m_JvAC, vA - vC) + b2DotWide(m_JvBD, vB - vD) + MulWide(m_JwA, wA) -
-                      MulWide(m_JwC, wC) + MulWide(m_JwB, wB) - MulWide(m_JwD, wD);
+    const Wide Cdot = DotW(m_JvAC, vA - vC) + DotW(m_JvBD, vB - vD) + wA * m_JwA - wC * m_JwC + wB * m_JwB -
+                      wD * m_JwD;
     const Wide impulse = -(m_mass * Cdot);
     m_impulse += impulse;
 
-    vA.x += MulToFixed(m_mA * impulse, m_JvAC.x);
-    vA.y += MulToFixed(m_mA * impulse, m_JvAC.y);
-    wA += MulToFixed(m_iA * impulse, m_JwA);
-    vB.x += MulToFixed(m_mB * impulse, m_JvBD.x);
-    vB.y += MulToFixed(m_mB * impulse, m_JvBD.y);
-    wB += MulToFixed(m_iB * impulse, m_JwB);
-    vC.x -= MulToFixed(m_mC * impulse, m_JvAC.x);
-    vC.y -= MulToFixed(m_mC * impulse, m_JvAC.y);
-    wC -= MulToFixed(m_iC * impulse, m_JwC);
-    vD.x -= MulToFixed(m_mD * impulse, m_JvBD.x);
-    vD.y -= MulToFixed(m_mD * impulse, m_JvBD.y);
-    wD -= MulToFixed(m_iD * impulse, m_JwD);
+    vA.x += (m_mA * impulse) * m_JvAC.x;
+    vA.y += (m_mA * impulse) * m_JvAC.y;
+    wA += (m_iA * impulse) * m_JwA;
+    vB.x += (m_mB * impulse) * m_JvBD.x;
+    vB.y += (m_mB * impulse) * m_JvBD.y;
+    wB += (m_iB * impulse) * m_JwB;
+    vC.x -= (m_mC * impulse) * m_JvAC.x;
+    vC.y -= (m_mC * impulse) * m_JvAC.y;
+    wC -= (m_iC * impulse) * m_JwC;
+    vD.x -= (m_mD * impulse) * m_JvBD.x;
+    vD.y -= (m_mD * impulse) * m_JvBD.y;
+    wD -= (m_iD * impulse) * m_JwD;
 
     data.velocities[m_indexA] = {vA, wA};
     data.velocities[m_indexB] = {vB, wB};

@@ -24,12 +24,12 @@ struct TwoBodyState {
     BodyData B;
     b2Vec2 cA;  ///< centre of mass of A (m)
     Fixed aA;   ///< angle of A (rad)
-    b2Vec2 vA;  ///< linear velocity of A (m/s)
-    Fixed wA;   ///< angular velocity of A (rad/s)
+    b2WideVec2 vA;  ///< linear velocity of A (m/s)
+    Wide wA;        ///< angular velocity of A (rad/s)
     b2Vec2 cB;
     Fixed aB;
-    b2Vec2 vB;
-    Fixed wB;
+    b2WideVec2 vB;
+    Wide wB;
 };
 }  // namespace jointmath
 

@@ -1,6 +1,6 @@
 #pragma once
-// Internal helpers shared by the joint solvers: applying Q32.32 impulses to Q16.16 velocities
-// and positions with one rounding per component, and the soft-constraint coefficients.
+// Internal helpers shared by the joint solvers: applying Q32.32 impulses to the Q32.32 solver
+// velocities and to Q16.16 positions, and the soft-constraint coefficients.
 
 #include "dynamics/TimeStep.h"
 #include "dynamics/joints/JointAccess.h"
@@ -20,25 +20,56 @@ inline TwoBodyState BeginSolve(JointType& joint, const b2SolverData& data) noexc
     return core_detail::Engine::Joints::BeginSolve(joint, data);
 }
 
-// v -= invMass * P, w -= invI * (r x P): each velocity component rounded once.
-inline void ApplyNeg(b2Vec2& v, Fixed& w, const BodyData& b, const b2Vec2& r, const b2WideVec2& p) noexcept {
-    v.x -= MulToFixed(b.invMass, p.x);
-    v.y -= MulToFixed(b.invMass, p.y);
-    w -= MulToFixed(b.invI, b2Cross(r, p));
+// v -= invMass * P, w -= invI * (r x P), added to the Q32.32 velocities (no Q16.16 rounding).
+inline void ApplyNeg(b2WideVec2& v, Wide& w, const BodyData& b, const b2Vec2& r, const b2WideVec2& p) noexcept {
+    v.x -= b.invMass * p.x;
+    v.y -= b.invMass * p.y;
+    w -= b.invI * b2Cross(r, p);
 }
 
 // v += invMass * P, w += invI * (r x P).
-inline void ApplyPos(b2Vec2& v, Fixed& w, const BodyData& b, const b2Vec2& r, const b2WideVec2& p) noexcept {
-    v.x += MulToFixed(b.invMass, p.x);
-    v.y += MulToFixed(b.invMass, p.y);
-    w += MulToFixed(b.invI, b2Cross(r, p));
+inline void ApplyPos(b2WideVec2& v, Wide& w, const BodyData& b, const b2Vec2& r, const b2WideVec2& p) noexcept {
+    v.x += b.invMass * p.x;
+    v.y += b.invMass * p.y;
+    w += b.invI * b2Cross(r, p);
 }
 
-// Angular-only update: w += invI * L.
-inline void ApplyAngular(Fixed& w, Wide invI, Wide l) noexcept { w += MulToFixed(invI, l); }
+// The same two for a position correction (Q16.16 centre and angle), each component rounded once.
+inline void ApplyNeg(b2Vec2& c, Fixed& a, const BodyData& b, const b2Vec2& r, const b2WideVec2& p) noexcept {
+    c.x -= MulToFixed(b.invMass, p.x);
+    c.y -= MulToFixed(b.invMass, p.y);
+    a -= MulToFixed(b.invI, b2Cross(r, p));
+}
+inline void ApplyPos(b2Vec2& c, Fixed& a, const BodyData& b, const b2Vec2& r, const b2WideVec2& p) noexcept {
+    c.x += MulToFixed(b.invMass, p.x);
+    c.y += MulToFixed(b.invMass, p.y);
+    a += MulToFixed(b.invI, b2Cross(r, p));
+}
 
-// Velocity of the point at arm r: v + w x r (m/s).
-inline b2Vec2 PointVelocity(const b2Vec2& v, Fixed w, const b2Vec2& r) noexcept { return v + b2Cross(w, r); }
+// x += a b and x -= a b: exact to 2^-32 on a Q32.32 velocity, rounded once on a Q16.16
+// position; so one joint function can apply an impulse to either.
+inline void AddProduct(Wide& x, Wide a, Wide b) noexcept { x += a * b; }
+inline void AddProduct(Fixed& x, Wide a, Wide b) noexcept { x += MulToFixed(a, b); }
+inline void SubProduct(Wide& x, Wide a, Wide b) noexcept { x -= a * b; }
+inline void SubProduct(Fixed& x, Wide a, Wide b) noexcept { x -= MulToFixed(a, b); }
+
+// Angular-only update: w += invI * L.
+inline void ApplyAngular(Wide& w, Wide invI, Wide l) noexcept { w += invI * l; }
+
+// Velocity of the point at arm r: v + w x r (m/s), in Q32.32.
+inline b2WideVec2 PointVelocity(const b2WideVec2& v, Wide w, const b2Vec2& r) noexcept {
+    return {v.x - w * r.y, v.y + w * r.x};
+}
+
+// Relative velocity of B's anchor point to A's, rounded once to Q16.16: the Cdot that a joint's
+// Q16.16 constraint algebra works on.
+inline b2Vec2 RelativeVelocity(const b2WideVec2& vA, Wide wA, const b2Vec2& rA, const b2WideVec2& vB, Wide wB,
+                               const b2Vec2& rB) noexcept {
+    return (PointVelocity(vB, wB, rB) - PointVelocity(vA, wA, rA)).ToFixed();
+}
+
+// d . v for a Q16.16 direction and a Q32.32 velocity (m/s), one rounding per product.
+inline Wide DotW(const b2Vec2& d, const b2WideVec2& v) noexcept { return v.x * d.x + v.y * d.y; }
 
 // Exact r x d of two Q16.16 vectors, kept in Q32.32 (arm times direction, m).
 inline Wide CrossW(const b2Vec2& r, const b2Vec2& d) noexcept { return b2CrossWide(r, d); }

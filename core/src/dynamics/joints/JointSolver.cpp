@@ -14,12 +14,12 @@ namespace {
 void SolvePointRow(JointSolver::Row& row, const b2SolverData& data) noexcept {
     b2Velocity& velA = data.velocities[row.indexA];
     b2Velocity& velB = data.velocities[row.indexB];
-    b2Vec2 vA = velA.v;
-    Fixed wA = velA.w;
-    b2Vec2 vB = velB.v;
-    Fixed wB = velB.w;
+    b2WideVec2 vA = velA.v;
+    Wide wA = velA.w;
+    b2WideVec2 vB = velB.v;
+    Wide wB = velB.w;
 
-    const b2Vec2 Cdot = PointVelocity(vB, wB, row.rB) - PointVelocity(vA, wA, row.rA);
+    const b2WideVec2 Cdot = PointVelocity(vB, wB, row.rB) - PointVelocity(vA, wA, row.rA);
     const b2WideVec2 impulse = -math::Mul(row.pointMass, Cdot);
     row.impulse.x += impulse.x;
     row.impulse.y += impulse.y;

@@ -33,8 +33,8 @@ void b2MouseJoint::InitVelocityConstraints(const b2SolverData& data) {
 
     const b2Vec2 cB = data.positions[m_indexB].c;
     const Fixed aB = data.positions[m_indexB].a;
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    b2WideVec2 vB = data.velocities[m_indexB].v;
+    Wide wB = data.velocities[m_indexB].w;
 
     const b2Rot qB = data.Rotation(m_indexB, aB);
     const Wide mass = m_bodyB->GetMass();
@@ -62,9 +62,9 @@ void b2MouseJoint::InitVelocityConstraints(const b2SolverData& data) {
 
     if (data.step.warmStarting) {
         m_impulse = data.step.dtRatio * m_impulse;
-        vB.x += MulToFixed(mB, m_impulse.x);
-        vB.y += MulToFixed(mB, m_impulse.y);
-        wB += MulToFixed(iB, b2Cross(m_rB, m_impulse));
+        vB.x += mB * m_impulse.x;
+        vB.y += mB * m_impulse.y;
+        wB += iB * b2Cross(m_rB, m_impulse);
     } else {
         m_impulse.SetZero();
     }
@@ -74,12 +74,12 @@ void b2MouseJoint::InitVelocityConstraints(const b2SolverData& data) {
 }
 
 void b2MouseJoint::SolveVelocityConstraints(const b2SolverData& data) {
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    b2WideVec2 vB = data.velocities[m_indexB].v;
+    Wide wB = data.velocities[m_indexB].w;
 
     // Cdot = v + cross(w, r)
-    const b2Vec2 Cdot = PointVelocity(vB, wB, m_rB);
-    const b2WideVec2 rhs = -(b2WideVec2(Cdot) + m_C + b2WideVec2(m_gamma * m_impulse.x, m_gamma * m_impulse.y));
+    const b2WideVec2 Cdot = PointVelocity(vB, wB, m_rB);
+    const b2WideVec2 rhs = -(Cdot + m_C + b2WideVec2(m_gamma * m_impulse.x, m_gamma * m_impulse.y));
     b2WideVec2 impulse = m_K.Solve(rhs);
 
     const b2WideVec2 oldImpulse = m_impulse;
@@ -87,9 +87,9 @@ void b2MouseJoint::SolveVelocityConstraints(const b2SolverData& data) {
     m_impulse = b2ClampLength(m_impulse, m_maxForce * data.step.dt);
     impulse = m_impulse - oldImpulse;
 
-    vB.x += MulToFixed(m_invMassB, impulse.x);
-    vB.y += MulToFixed(m_invMassB, impulse.y);
-    wB += MulToFixed(m_invIB, b2Cross(m_rB, impulse));
+    vB.x += m_invMassB * impulse.x;
+    vB.y += m_invMassB * impulse.y;
+    wB += m_invIB * b2Cross(m_rB, impulse);
 
     data.velocities[m_indexB].v = vB;
     data.velocities[m_indexB].w = wB;

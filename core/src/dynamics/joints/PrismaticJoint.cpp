@@ -76,17 +76,18 @@ b2WideMat33 MakeK(Wide mA, Wide mB, Wide iA, Wide iB, Fixed s1, Fixed s2, Fixed 
 
 // P = px * perp + pz * axis, LA = px s1 + py + pz a1, LB = px s2 + py + pz a2; applied with
 // sign -1 to A and +1 to B.
-void Apply(b2Vec2& vA, Fixed& wA, b2Vec2& vB, Fixed& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& perp,
+template <class Vec, class Scalar>
+void Apply(Vec& vA, Scalar& wA, Vec& vB, Scalar& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& perp,
            const b2Vec2& axis, Fixed s1, Fixed s2, Fixed a1, Fixed a2, Wide px, Wide py, Wide pz) {
     const b2WideVec2 P = px * perp + pz * axis;
     const Wide LA = px * s1 + py + pz * a1;
     const Wide LB = px * s2 + py + pz * a2;
-    vA.x -= MulToFixed(mA, P.x);
-    vA.y -= MulToFixed(mA, P.y);
-    wA -= MulToFixed(iA, LA);
-    vB.x += MulToFixed(mB, P.x);
-    vB.y += MulToFixed(mB, P.y);
-    wB += MulToFixed(iB, LB);
+    SubProduct(vA.x, mA, P.x);
+    SubProduct(vA.y, mA, P.y);
+    SubProduct(wA, iA, LA);
+    AddProduct(vB.x, mB, P.x);
+    AddProduct(vB.y, mB, P.y);
+    AddProduct(wB, iB, LB);
 }
 }  // namespace
 
@@ -154,14 +155,14 @@ void b2PrismaticJoint::InitVelocityConstraints(const b2SolverData& data) {
 }
 
 void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
-    b2Vec2 vA = data.velocities[m_indexA].v;
-    Fixed wA = data.velocities[m_indexA].w;
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    b2WideVec2 vA = data.velocities[m_indexA].v;
+    Wide wA = data.velocities[m_indexA].w;
+    b2WideVec2 vB = data.velocities[m_indexB].v;
+    Wide wB = data.velocities[m_indexB].w;
     const Wide mA = m_invMassA, mB = m_invMassB, iA = m_invIA, iB = m_invIB;
 
-    // Axial velocity: dot(axis, vB - vA) + a2 wB - a1 wA, formed exactly and rounded once.
-    auto axial = [&]() { return b2DotWide(m_axis, vB - vA) + MulWide(m_a2, wB) - MulWide(m_a1, wA); };
+    // Axial velocity: dot(axis, vB - vA) + a2 wB - a1 wA, in Q32.32.
+    auto axial = [&]() { return DotW(m_axis, vB - vA) + wB * m_a2 - wA * m_a1; };
 
     // Solve the linear motor constraint.
     if (m_enableMotor && m_limitState != e_equalLimits) {
@@ -174,7 +175,7 @@ void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, Wide(), Wide(), impulse);
     }
 
-    const b2WideVec2 Cdot1(b2DotWide(m_perp, vB - vA) + MulWide(m_s2, wB) - MulWide(m_s1, wA), Wide(wB - wA));
+    const b2WideVec2 Cdot1(DotW(m_perp, vB - vA) + wB * m_s2 - wA * m_s1, wB - wA);
 
     if (m_enableLimit && m_limitState != e_inactiveLimit) {
         // Solve the prismatic and limit constraints together.

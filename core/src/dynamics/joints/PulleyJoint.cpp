@@ -86,15 +86,15 @@ void b2PulleyJoint::InitVelocityConstraints(const b2SolverData& data) {
 }
 
 void b2PulleyJoint::SolveVelocityConstraints(const b2SolverData& data) {
-    b2Vec2 vA = data.velocities[m_indexA].v;
-    Fixed wA = data.velocities[m_indexA].w;
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    b2WideVec2 vA = data.velocities[m_indexA].v;
+    Wide wA = data.velocities[m_indexA].w;
+    b2WideVec2 vB = data.velocities[m_indexB].v;
+    Wide wB = data.velocities[m_indexB].w;
 
-    const b2Vec2 vpA = PointVelocity(vA, wA, m_rA);
-    const b2Vec2 vpB = PointVelocity(vB, wB, m_rB);
+    const b2WideVec2 vpA = PointVelocity(vA, wA, m_rA);
+    const b2WideVec2 vpB = PointVelocity(vB, wB, m_rB);
 
-    const Wide Cdot = -b2DotWide(m_uA, vpA) - b2DotWide(m_uB, vpB) * m_ratio;
+    const Wide Cdot = -DotW(m_uA, vpA) - DotW(m_uB, vpB) * m_ratio;
     const Wide impulse = -(m_mass * Cdot);
     m_impulse += impulse;
 

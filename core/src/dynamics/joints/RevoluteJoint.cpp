@@ -105,12 +105,12 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
         m_motorImpulse = m_motorImpulse * r;
 
         const b2WideVec2 P(m_impulse.x, m_impulse.y);
-        vA.x -= MulToFixed(m_invMassA, P.x);
-        vA.y -= MulToFixed(m_invMassA, P.y);
-        wA -= MulToFixed(iA, b2Cross(m_rA, P) + m_motorImpulse + m_impulse.z);
-        vB.x += MulToFixed(m_invMassB, P.x);
-        vB.y += MulToFixed(m_invMassB, P.y);
-        wB += MulToFixed(iB, b2Cross(m_rB, P) + m_motorImpulse + m_impulse.z);
+        vA.x -= m_invMassA * P.x;
+        vA.y -= m_invMassA * P.y;
+        wA -= iA * (b2Cross(m_rA, P) + m_motorImpulse + m_impulse.z);
+        vB.x += m_invMassB * P.x;
+        vB.y += m_invMassB * P.y;
+        wB += iB * (b2Cross(m_rB, P) + m_motorImpulse + m_impulse.z);
     } else {
         m_impulse.SetZero();
         m_motorImpulse = Wide();
@@ -123,32 +123,32 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
 }
 
 void b2RevoluteJoint::SolveVelocityConstraints(const b2SolverData& data) {
-    b2Vec2 vA = data.velocities[m_indexA].v;
-    Fixed wA = data.velocities[m_indexA].w;
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    b2WideVec2 vA = data.velocities[m_indexA].v;
+    Wide wA = data.velocities[m_indexA].w;
+    b2WideVec2 vB = data.velocities[m_indexB].v;
+    Wide wB = data.velocities[m_indexB].w;
 
     const Wide mA = m_invMassA, mB = m_invMassB, iA = m_invIA, iB = m_invIB;
     const bool fixedRotation = (iA + iB == Wide());
 
     // Solve the motor constraint.
     if (m_enableMotor && m_limitState != e_equalLimits && !fixedRotation) {
-        const Fixed Cdot = wB - wA - m_motorSpeed;
+        const Wide Cdot = wB - wA - Wide(m_motorSpeed);
         Wide impulse = -(m_motorMass * Cdot);
         const Wide oldImpulse = m_motorImpulse;
         const Wide maxImpulse = MulWide(data.step.dt, m_maxMotorTorque);
         m_motorImpulse = b2Clamp(m_motorImpulse + impulse, -maxImpulse, maxImpulse);
         impulse = m_motorImpulse - oldImpulse;
-        wA -= MulToFixed(iA, impulse);
-        wB += MulToFixed(iB, impulse);
+        wA -= iA * impulse;
+        wB += iB * impulse;
     }
 
-    const b2Vec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
+    const b2WideVec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
 
     // Solve the limit constraint.
     if (m_enableLimit && m_limitState != e_inactiveLimit && !fixedRotation) {
-        const Fixed Cdot2 = wB - wA;
-        b2WideVec3 impulse = -m_limitSolver.Solve33(b2Vec3(Cdot1.x, Cdot1.y, Cdot2));
+        const Wide Cdot2 = wB - wA;
+        b2WideVec3 impulse = -m_limitSolver.Solve33(b2WideVec3(Cdot1.x, Cdot1.y, Cdot2));
 
         if (m_limitState == e_equalLimits) {
             m_impulse += impulse;
@@ -172,12 +172,12 @@ void b2RevoluteJoint::SolveVelocityConstraints(const b2SolverData& data) {
         }
 
         const b2WideVec2 P(impulse.x, impulse.y);
-        vA.x -= MulToFixed(mA, P.x);
-        vA.y -= MulToFixed(mA, P.y);
-        wA -= MulToFixed(iA, b2Cross(m_rA, P) + impulse.z);
-        vB.x += MulToFixed(mB, P.x);
-        vB.y += MulToFixed(mB, P.y);
-        wB += MulToFixed(iB, b2Cross(m_rB, P) + impulse.z);
+        vA.x -= mA * P.x;
+        vA.y -= mA * P.y;
+        wA -= iA * (b2Cross(m_rA, P) + impulse.z);
+        vB.x += mB * P.x;
+        vB.y += mB * P.y;
+        wB += iB * (b2Cross(m_rB, P) + impulse.z);
     } else {
         // Solve the point-to-point constraint.
         const b2WideVec2 impulse = -math::Mul(m_pointMass, Cdot1);

@@ -56,15 +56,13 @@ void b2RopeJoint::InitVelocityConstraints(const b2SolverData& data) {
 }
 
 void b2RopeJoint::SolveVelocityConstraints(const b2SolverData& data) {
-    b2Vec2 vA = data.velocities[m_indexA].v;
-    Fixed wA = data.velocities[m_indexA].w;
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    b2WideVec2 vA = data.velocities[m_indexA].v;
+    Wide wA = data.velocities[m_indexA].w;
+    b2WideVec2 vB = data.velocities[m_indexB].v;
+    Wide wB = data.velocities[m_indexB].w;
 
-    const b2Vec2 vpA = PointVelocity(vA, wA, m_rA);
-    const b2Vec2 vpB = PointVelocity(vB, wB, m_rB);
     const Fixed C = m_length - m_maxLength;
-    Wide Cdot = b2DotWide(m_u, vpB - vpA);
+    Wide Cdot = DotW(m_u, PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA));
 
     // Predictive constraint.
     if (C < Fixed()) Cdot += MulWide(data.step.inv_dt, C);

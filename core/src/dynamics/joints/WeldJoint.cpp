@@ -42,14 +42,15 @@ b2WideMat33 WeldK(Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA, const b2
     return K;
 }
 
-void Apply(b2Vec2& vA, Fixed& wA, b2Vec2& vB, Fixed& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA,
+template <class Vec, class Scalar>
+void Apply(Vec& vA, Scalar& wA, Vec& vB, Scalar& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA,
            const b2Vec2& rB, const b2WideVec2& P, Wide L) {
-    vA.x -= MulToFixed(mA, P.x);
-    vA.y -= MulToFixed(mA, P.y);
-    wA -= MulToFixed(iA, b2Cross(rA, P) + L);
-    vB.x += MulToFixed(mB, P.x);
-    vB.y += MulToFixed(mB, P.y);
-    wB += MulToFixed(iB, b2Cross(rB, P) + L);
+    SubProduct(vA.x, mA, P.x);
+    SubProduct(vA.y, mA, P.y);
+    SubProduct(wA, iA, b2Cross(rA, P) + L);
+    AddProduct(vB.x, mB, P.x);
+    AddProduct(vB.y, mB, P.y);
+    AddProduct(wB, iB, b2Cross(rB, P) + L);
 }
 }  // namespace
 
@@ -97,27 +98,27 @@ void b2WeldJoint::InitVelocityConstraints(const b2SolverData& data) {
 
 void b2WeldJoint::SolveVelocityConstraints(const b2SolverData& data) {
     const Wide mA = m_invMassA, mB = m_invMassB, iA = m_invIA, iB = m_invIB;
-    b2Vec2 vA = data.velocities[m_indexA].v;
-    Fixed wA = data.velocities[m_indexA].w;
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    b2WideVec2 vA = data.velocities[m_indexA].v;
+    Wide wA = data.velocities[m_indexA].w;
+    b2WideVec2 vB = data.velocities[m_indexB].v;
+    Wide wB = data.velocities[m_indexB].w;
 
     if (m_frequencyHz > Fixed()) {
-        const Fixed Cdot2 = wB - wA;
-        const Wide impulse2 = -(m_angularMass * (Wide(Cdot2) + m_bias + m_gamma * m_impulse.z));
+        const Wide Cdot2 = wB - wA;
+        const Wide impulse2 = -(m_angularMass * (Cdot2 + m_bias + m_gamma * m_impulse.z));
         m_impulse.z += impulse2;
-        wA -= MulToFixed(iA, impulse2);
-        wB += MulToFixed(iB, impulse2);
+        wA -= iA * impulse2;
+        wB += iB * impulse2;
 
-        const b2Vec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
+        const b2WideVec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
         const b2WideVec2 impulse1 = -math::Mul(m_pointMass, Cdot1);
         m_impulse.x += impulse1.x;
         m_impulse.y += impulse1.y;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, impulse1, Wide());
     } else {
-        const b2Vec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
-        const Fixed Cdot2 = wB - wA;
-        const b2WideVec3 impulse = -m_rigidSolver.Solve33(b2Vec3(Cdot1.x, Cdot1.y, Cdot2));
+        const b2WideVec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
+        const Wide Cdot2 = wB - wA;
+        const b2WideVec3 impulse = -m_rigidSolver.Solve33(b2WideVec3(Cdot1.x, Cdot1.y, Cdot2));
         m_impulse += impulse;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, b2WideVec2(impulse.x, impulse.y), impulse.z);
     }

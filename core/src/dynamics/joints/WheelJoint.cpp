@@ -33,14 +33,15 @@ b2WheelJoint::b2WheelJoint(const b2WheelJointDef* def) : b2Joint(def) {
 
 namespace {
 // Applies a line impulse P along a direction with angular parts LA, LB.
-void Apply(b2Vec2& vA, Fixed& wA, b2Vec2& vB, Fixed& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2WideVec2& P,
+template <class Vec, class Scalar>
+void Apply(Vec& vA, Scalar& wA, Vec& vB, Scalar& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2WideVec2& P,
            Wide LA, Wide LB) {
-    vA.x -= MulToFixed(mA, P.x);
-    vA.y -= MulToFixed(mA, P.y);
-    wA -= MulToFixed(iA, LA);
-    vB.x += MulToFixed(mB, P.x);
-    vB.y += MulToFixed(mB, P.y);
-    wB += MulToFixed(iB, LB);
+    SubProduct(vA.x, mA, P.x);
+    SubProduct(vA.y, mA, P.y);
+    SubProduct(wA, iA, LA);
+    AddProduct(vB.x, mB, P.x);
+    AddProduct(vB.y, mB, P.y);
+    AddProduct(wB, iB, LB);
 }
 }  // namespace
 
@@ -110,14 +111,14 @@ void b2WheelJoint::InitVelocityConstraints(const b2SolverData& data) {
 
 void b2WheelJoint::SolveVelocityConstraints(const b2SolverData& data) {
     const Wide mA = m_invMassA, mB = m_invMassB, iA = m_invIA, iB = m_invIB;
-    b2Vec2 vA = data.velocities[m_indexA].v;
-    Fixed wA = data.velocities[m_indexA].w;
-    b2Vec2 vB = data.velocities[m_indexB].v;
-    Fixed wB = data.velocities[m_indexB].w;
+    b2WideVec2 vA = data.velocities[m_indexA].v;
+    Wide wA = data.velocities[m_indexA].w;
+    b2WideVec2 vB = data.velocities[m_indexB].v;
+    Wide wB = data.velocities[m_indexB].w;
 
     // Solve the spring constraint.
     {
-        const Wide Cdot = b2DotWide(m_ax, vB - vA) + MulWide(m_sBx, wB) - MulWide(m_sAx, wA);
+        const Wide Cdot = DotW(m_ax, vB - vA) + wB * m_sBx - wA * m_sAx;
         const Wide impulse = -(m_springMass * (Cdot + m_bias + m_gamma * m_springImpulse));
         m_springImpulse += impulse;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, impulse * m_ax, impulse * m_sAx, impulse * m_sBx);
@@ -125,19 +126,19 @@ void b2WheelJoint::SolveVelocityConstraints(const b2SolverData& data) {
 
     // Solve the rotational motor constraint.
     {
-        const Fixed Cdot = wB - wA - m_motorSpeed;
+        const Wide Cdot = wB - wA - Wide(m_motorSpeed);
         Wide impulse = -(m_motorMass * Cdot);
         const Wide oldImpulse = m_motorImpulse;
         const Wide maxImpulse = MulWide(data.step.dt, m_maxMotorTorque);
         m_motorImpulse = b2Clamp(m_motorImpulse + impulse, -maxImpulse, maxImpulse);
         impulse = m_motorImpulse - oldImpulse;
-        wA -= MulToFixed(iA, impulse);
-        wB += MulToFixed(iB, impulse);
+        wA -= iA * impulse;
+        wB += iB * impulse;
     }
 
     // Solve the point to line constraint.
     {
-        const Wide Cdot = b2DotWide(m_ay, vB - vA) + MulWide(m_sBy, wB) - MulWide(m_sAy, wA);
+        const Wide Cdot = DotW(m_ay, vB - vA) + wB * m_sBy - wA * m_sAy;
         const Wide impulse = -(m_mass * Cdot);
         m_impulse += impulse;
         Apply(vA, wA, vB, wB, mA, mB, iA, iB, impulse * m_ay, impulse * m_sAy, impulse * m_sBy);
