@@ -102,9 +102,11 @@ TEST(Headroom, StepCountsSaturations) {
     if (kOverflowTraps) GTEST_SKIP() << "checked builds trap instead of saturating";
     b2World world(b2Vec2(0, 0));
     world.SetHeadroomTelemetry(true);
-    // A 0.1 m box at density 0.1 (1e-3 kg) pushed by 30000 N: dv = F/m dt = 5e5 m/s per step,
-    // far beyond Q16.16, so integrating the velocity saturates.
-    b2Body* b = AddBox(world, b2Vec2(0, 0), Fixed(0.05), Fixed(0.1));
+    // A 0.1 m box at density 0.1 (1e-3 kg) pushed by 30000 N, 1 m from the edge of the Q16.16
+    // range: dv = F/m dt = 5e5 m/s per step fits the Q32.32 velocity, the step's motion is then
+    // clamped to b2_maxTranslation (2 m), and that carries the centre past 32767 m: integrating
+    // the position saturates.
+    b2Body* b = AddBox(world, b2Vec2(32766, 0), Fixed(0.05), Fixed(0.1));
     b->ApplyForceToCenter(b2Vec2(30000, 0));
     world.Step(Fixed::FromRaw(1092), 8, 3);
     EXPECT_GT(world.GetProfile().headroom.saturations, 0);

@@ -115,7 +115,7 @@ TEST(WorldFrame, RestoreGivesTheSavedStateAndItsFuture) {
         ASSERT_TRUE(run.world().RestoreFrame(saved.frame).ok()) << name;
         saved.ExpectBack(run, name);
         const b2FrameStats stats = saved.frame.Stats();
-        EXPECT_EQ(stats.bodyBytes, 64u * bodies) << name;
+        EXPECT_EQ(stats.bodyBytes, 88u * bodies) << name;
         EXPECT_GT(stats.structureBytes, 0u) << name;
     }
 }
