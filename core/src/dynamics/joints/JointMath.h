@@ -53,6 +53,19 @@ inline void AddProduct(Fixed& x, Wide a, Wide b) noexcept { x += MulToFixed(a, b
 inline void SubProduct(Wide& x, Wide a, Wide b) noexcept { x -= a * b; }
 inline void SubProduct(Fixed& x, Wide a, Wide b) noexcept { x -= MulToFixed(a, b); }
 
+// A line impulse P with angular parts LA and LB (prismatic and wheel joints): A takes
+// -mA P and -iA LA, B takes mB P and iB LB; on velocities or positions (AddProduct).
+template <class Vec, class Scalar>
+inline void ApplyLineImpulse(Vec& vA, Scalar& wA, Vec& vB, Scalar& wB, Wide mA, Wide mB, Wide iA, Wide iB,
+                             const b2WideVec2& P, Wide LA, Wide LB) noexcept {
+    SubProduct(vA.x, mA, P.x);
+    SubProduct(vA.y, mA, P.y);
+    SubProduct(wA, iA, LA);
+    AddProduct(vB.x, mB, P.x);
+    AddProduct(vB.y, mB, P.y);
+    AddProduct(wB, iB, LB);
+}
+
 // Angular-only update: w += invI * L.
 inline void ApplyAngular(Wide& w, Wide invI, Wide l) noexcept { w += invI * l; }
 

@@ -82,12 +82,7 @@ void Apply(Vec& vA, Scalar& wA, Vec& vB, Scalar& wB, Wide mA, Wide mB, Wide iA, 
     const b2WideVec2 P = px * perp + pz * axis;
     const Wide LA = px * s1 + py + pz * a1;
     const Wide LB = px * s2 + py + pz * a2;
-    SubProduct(vA.x, mA, P.x);
-    SubProduct(vA.y, mA, P.y);
-    SubProduct(wA, iA, LA);
-    AddProduct(vB.x, mB, P.x);
-    AddProduct(vB.y, mB, P.y);
-    AddProduct(wB, iB, LB);
+    ApplyLineImpulse(vA, wA, vB, wB, mA, mB, iA, iB, P, LA, LB);
 }
 }  // namespace
 

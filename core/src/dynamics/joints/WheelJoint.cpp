@@ -31,20 +31,6 @@ b2WheelJoint::b2WheelJoint(const b2WheelJointDef* def) : b2Joint(def) {
     m_dampingRatio = def->dampingRatio;
 }
 
-namespace {
-// Applies a line impulse P along a direction with angular parts LA, LB.
-template <class Vec, class Scalar>
-void Apply(Vec& vA, Scalar& wA, Vec& vB, Scalar& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2WideVec2& P,
-           Wide LA, Wide LB) {
-    SubProduct(vA.x, mA, P.x);
-    SubProduct(vA.y, mA, P.y);
-    SubProduct(wA, iA, LA);
-    AddProduct(vB.x, mB, P.x);
-    AddProduct(vB.y, mB, P.y);
-    AddProduct(wB, iB, LB);
-}
-}  // namespace
-
 void b2WheelJoint::InitVelocityConstraints(const b2SolverData& data) {
     [[maybe_unused]] auto [A, B, cA, aA, vA, wA, cB, aB, vB, wB] = BeginSolve(*this, data);
     const Wide mA = m_invMassA, mB = m_invMassB, iA = m_invIA, iB = m_invIB;
@@ -96,7 +82,7 @@ void b2WheelJoint::InitVelocityConstraints(const b2SolverData& data) {
         const b2WideVec2 P = m_impulse * m_ay + m_springImpulse * m_ax;
         const Wide LA = m_impulse * m_sAy + m_springImpulse * m_sAx + m_motorImpulse;
         const Wide LB = m_impulse * m_sBy + m_springImpulse * m_sBx + m_motorImpulse;
-        Apply(vA, wA, vB, wB, mA, mB, iA, iB, P, LA, LB);
+        ApplyLineImpulse(vA, wA, vB, wB, mA, mB, iA, iB, P, LA, LB);
     } else {
         m_impulse = Wide();
         m_springImpulse = Wide();
@@ -121,7 +107,7 @@ void b2WheelJoint::SolveVelocityConstraints(const b2SolverData& data) {
         const Wide Cdot = DotW(m_ax, vB - vA) + wB * m_sBx - wA * m_sAx;
         const Wide impulse = -(m_springMass * (Cdot + m_bias + m_gamma * m_springImpulse));
         m_springImpulse += impulse;
-        Apply(vA, wA, vB, wB, mA, mB, iA, iB, impulse * m_ax, impulse * m_sAx, impulse * m_sBx);
+        ApplyLineImpulse(vA, wA, vB, wB, mA, mB, iA, iB, impulse * m_ax, impulse * m_sAx, impulse * m_sBx);
     }
 
     // Solve the rotational motor constraint.
@@ -141,7 +127,7 @@ void b2WheelJoint::SolveVelocityConstraints(const b2SolverData& data) {
         const Wide Cdot = DotW(m_ay, vB - vA) + wB * m_sBy - wA * m_sAy;
         const Wide impulse = -(m_mass * Cdot);
         m_impulse += impulse;
-        Apply(vA, wA, vB, wB, mA, mB, iA, iB, impulse * m_ay, impulse * m_sAy, impulse * m_sBy);
+        ApplyLineImpulse(vA, wA, vB, wB, mA, mB, iA, iB, impulse * m_ay, impulse * m_sAy, impulse * m_sBy);
     }
 
     data.velocities[m_indexA].v = vA;
@@ -169,7 +155,7 @@ bool b2WheelJoint::SolvePositionConstraints(const b2SolverData& data) {
     const Wide k = mA + mB + iA * MulWide(sAy, sAy) + iB * MulWide(sBy, sBy);
     const Wide impulse = k != Wide() ? -(Wide(C) / k) : Wide();
 
-    Apply(cA, aA, cB, aB, mA, mB, iA, iB, impulse * ay, impulse * sAy, impulse * sBy);
+    ApplyLineImpulse(cA, aA, cB, aB, mA, mB, iA, iB, impulse * ay, impulse * sAy, impulse * sBy);
 
     data.positions[m_indexA].c = cA;
     data.positions[m_indexA].a = aA;
