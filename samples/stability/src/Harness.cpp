@@ -124,6 +124,22 @@ void Check(CaseReport& r, std::string_view metric, double value, double limit, b
     r.results.push_back(std::move(c));
 }
 
+std::vector<double> EnsembleMedians(int starts, const std::function<std::vector<double>(Fixed shift)>& run) {
+    std::vector<std::vector<double>> byFigure;
+    for (int k = 0; k < starts; ++k) {
+        const std::vector<double> figures = run(Fixed::FromRaw(k * kEnsembleShift.Raw()));
+        if (byFigure.empty()) byFigure.resize(figures.size());
+        for (size_t i = 0; i < figures.size(); ++i) byFigure[i].push_back(figures[i]);
+    }
+    std::vector<double> medians;
+    for (std::vector<double>& v : byFigure) {
+        std::sort(v.begin(), v.end());
+        const size_t n = v.size();
+        medians.push_back(n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2);
+    }
+    return medians;
+}
+
 }  // namespace detail
 
 namespace {

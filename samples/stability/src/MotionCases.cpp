@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "Harness.h"
 
@@ -220,30 +221,36 @@ void OverlapRecovery(CaseReport& r, Budget) {
 // 11. One hundred circles (r 0.25, density 1, friction 0, restitution 1) dropped in a closed
 // 10 m box. Energy (kinetic + potential above the floor) is sampled after every step.
 void RestitutionPile(CaseReport& r, Budget) {
-    // Limit: the total never exceeds its initial value by more than 25 % over the 15 s.
-    // 2.2.1's model gains energy here: restitution 1 re-uses the approach speed with no loss,
-    // and position correction lifts overlapping circles in the pile (potential energy from
-    // nothing, about one slop per contact per step). Measured: lockbox +24.7 % (+15.4 % before
-    // determinism version 0x00020002: the pile is chaotic), float Box2D 2.4.1 on the same scene
-    // +22.0 %, both still growing slowly at the end.
+    // Limit: the total never exceeds its initial value by more than 25 % over the 15 s, judged
+    // on the median of 16 starts (the last circle moved sideways by 0 to 2.5 mm), because the
+    // pile is chaotic: over 60 such starts one run's gain ranged from 15 % to 39 % (float Box2D
+    // 2.4.1: 12 % to 28 %). 2.2.1's model gains energy here: restitution 1 re-uses the approach
+    // speed with no loss, and position correction lifts overlapping circles in the pile
+    // (potential energy from nothing, about one slop per contact per step). Medians of the 16
+    // starts: lockbox +20.5 % (+21.8 % before Q32.32 velocities), float Box2D +18.8 %.
     constexpr double kGravity = 10;
-    Sim sim(r);
-    sim.GroundBox(6, Fixed(0.5), b2Vec2(0, Fixed(-0.5)));
-    sim.GroundBox(6, Fixed(0.5), b2Vec2(0, Fixed(10.5)));
-    sim.GroundBox(Fixed(0.5), 6, b2Vec2(Fixed(-5.5), 5));
-    sim.GroundBox(Fixed(0.5), 6, b2Vec2(Fixed(5.5), 5));
-    for (int row = 0; row < 10; ++row)
-        for (int c = 0; c < 10; ++c)
-            sim.Ball(
-                b2Vec2(Fixed::FromRatio(-405 + 90 * c + 5 * (row % 2), 100), Fixed::FromRatio(100 + 85 * row, 100)),
-                Fixed(0.25), 1, Fixed(), 1);
-    const double e0 = Energy(sim.world(), kGravity);
-    double worst = 0;
-    for (int i = 0; i < 900; ++i) {
-        sim.Step();
-        worst = std::max(worst, (Energy(sim.world(), kGravity) - e0) / e0);
-    }
-    Check(r, "max_energy_gain_rel", worst, 0.25);
+    constexpr int kStarts = 16;
+    auto run = [&](Fixed shift) {
+        Sim sim(r);
+        sim.GroundBox(6, Fixed(0.5), b2Vec2(0, Fixed(-0.5)));
+        sim.GroundBox(6, Fixed(0.5), b2Vec2(0, Fixed(10.5)));
+        sim.GroundBox(Fixed(0.5), 6, b2Vec2(Fixed(-5.5), 5));
+        sim.GroundBox(Fixed(0.5), 6, b2Vec2(Fixed(5.5), 5));
+        for (int row = 0; row < 10; ++row)
+            for (int c = 0; c < 10; ++c) {
+                const Fixed x = Fixed::FromRatio(-405 + 90 * c + 5 * (row % 2), 100);
+                sim.Ball(b2Vec2(row == 9 && c == 9 ? x + shift : x, Fixed::FromRatio(100 + 85 * row, 100)), Fixed(0.25),
+                         1, Fixed(), 1);
+            }
+        const double e0 = Energy(sim.world(), kGravity);
+        double worst = 0;
+        for (int i = 0; i < 900; ++i) {
+            sim.Step();
+            worst = std::max(worst, (Energy(sim.world(), kGravity) - e0) / e0);
+        }
+        return std::vector<double>{worst};
+    };
+    Check(r, "median_max_energy_gain_rel", EnsembleMedians(kStarts, run)[0], 0.25);
 }
 
 }  // namespace lockbox::stability::detail

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "Harness.h"
 
@@ -52,7 +53,9 @@ constexpr double kTwoSlop = 2 * 328.0 / 65536.0;
 // 1. Twenty 0.5 m boxes, each dropped from 0.02 m above the one below (the skin is 0.01 m).
 void TallStack(CaseReport& r, Budget) {
     // Limits: sleeping within 10 s (600 steps; measured 209); the top box must not walk
-    // sideways (measured 0 m: the column is symmetric and every rounding is symmetric) and must
+    // sideways (measured 0.43 mm: every rounding is symmetric, but the two contact points of a
+    // face are solved in order, and the asymmetry this leaves is below the Q16.16 quantum,
+    // which the Q32.32 solver velocities now keep; before them it rounded away to 0) and must
     // not sink below the ideal top height of 20 stacked boxes, 9.75 m (sag = 9.75 - final y;
     // measured -0.308 m: each contact keeps the two 0.01 m polygon skins less about one slop).
     constexpr int kMaxSteps = 1200;
@@ -189,16 +192,22 @@ void MassRatios(CaseReport& r, Budget) {
     // 10:1 is the manual's stated limit: it must settle within 2 slop, sleep within 10 s, and
     // nothing may move faster than the initial drops give (bound 2 m/s). 100:1 and 1000:1 are
     // beyond it: their figures are documented limitations (docs/stability.md), bounded at the
-    // measured value with about 50 % margin so that a regression shows:
-    // - 100:1 pair: settles with 0.016 m penetration, sleeps at step 148;
-    // - 100:1 stack: the light boxes are crushed to 0.114 m and kicked at 7.3 m/s before the
-    //   column sleeps at step 818;
+    // measured value with a margin so that a regression shows:
+    // - 100:1 pair: settles with 0.016-0.024 m penetration, sleeps at step 139-149;
     // - 1000:1 pair: the light box is squeezed out sideways at the speed cap (120 m/s,
     //   b2_maxTranslation per step) after sinking 0.74 m into it, and falls off the ground: it
-    //   never sleeps (figure 1801 = "not within 1800 steps");
-    // - 1000:1 stack: holds (0.005 m, sleeps at step 179; the middle heavy box spreads the
-    //   load), with a 4.8 m/s kick while settling.
+    //   never sleeps (figure 1801 = "not within 1800 steps").
+    // The stacks are judged as ensembles (the median over 64 starts, the top box moved sideways
+    // by 0 to 11 mm), because the light boxes are crushed and the column topples or holds by
+    // sub-millimetre detail: moving the top box by 0.17 mm took one run's 100:1 sleep step from
+    // 737 to 1801 and its 1000:1 kick from 4.8 to 120 m/s, on float Box2D as on lockbox. Medians
+    // measured over the same 64 starts (lockbox / float Box2D 2.4.1):
+    // - 100:1 stack: crushed to about 0.14 m, kicked at 7.2 m/s (7.2), sleeps at step 1,330
+    //   (1,072; before Q32.32 velocities 1,258);
+    // - 1000:1 stack: holds at 0.009 m, sleeps at step 209 (151), kicked at 8.0 m/s while
+    //   settling (4.7; before Q32.32 velocities 7.3).
     constexpr int kMaxSteps = 1800;
+    constexpr int kStarts = 64;
     struct Limits {
         int ratio;
         bool stack;
@@ -207,25 +216,32 @@ void MassRatios(CaseReport& r, Budget) {
     };
     const Limits limits[6] = {
         {10, false, kTwoSlop, 600, 2, false},  {10, true, kTwoSlop, 600, 2, false},
-        {100, false, 0.025, 300, 1.5, true},   {100, true, 0.17, 1200, 11, true},
-        {1000, false, 1.1, 1801, 120.1, true}, {1000, true, 0.01, 300, 7, true},
+        {100, false, 0.025, 300, 1.5, true},   {100, true, 0.2, 1650, 11, true},
+        {1000, false, 1.1, 1801, 120.1, true}, {1000, true, 0.015, 300, 11, true},
     };
     for (const Limits& l : limits) {
-        Sim sim(r);
-        sim.GroundBox(10, Fixed(0.5), b2Vec2(0, Fixed(-0.5)));
         const int n = l.stack ? 4 : 2;
-        b2Body* top = nullptr;
-        for (int i = 0; i < n; ++i)
-            top = sim.Box(b2Vec2(0, Fixed::FromRatio(52 + 104 * i, 100)), Fixed(0.5), Fixed(0.5),
-                          (i % 2) ? Fixed(l.ratio) : Fixed(1));
-        const Settle s = RunSettle(sim, top, 0.5 + (n - 1), kMaxSteps, 120);
+        // One start: the top box moved sideways by `shift`.
+        auto run = [&](Fixed shift) {
+            Sim sim(r);
+            sim.GroundBox(10, Fixed(0.5), b2Vec2(0, Fixed(-0.5)));
+            b2Body* top = nullptr;
+            for (int i = 0; i < n; ++i)
+                top = sim.Box(b2Vec2(i == n - 1 ? shift : Fixed(), Fixed::FromRatio(52 + 104 * i, 100)), Fixed(0.5),
+                              Fixed(0.5), (i % 2) ? Fixed(l.ratio) : Fixed(1));
+            const Settle s = RunSettle(sim, top, 0.5 + (n - 1), kMaxSteps, 120);
+            return std::vector<double>{s.maxPen, SleepFigure(s, kMaxSteps), s.maxSpeed};
+        };
+        const bool ensemble = l.stack && l.ratio > 10;
+        const std::vector<double> f = ensemble ? EnsembleMedians(kStarts, run) : run(Fixed());
         // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "r" + std::string.
         std::string q = "r";
         q += std::to_string(l.ratio);
         q += l.stack ? "_stack_" : "_pair_";
-        Check(r, q + "max_pen_m", s.maxPen, l.pen, l.limitation);
-        Check(r, q + "sleep_step", SleepFigure(s, kMaxSteps), l.sleep, l.limitation);
-        Check(r, q + "max_speed_mps", s.maxSpeed, l.speed, l.limitation);
+        if (ensemble) q += "median_";
+        Check(r, q + "max_pen_m", f[0], l.pen, l.limitation);
+        Check(r, q + "sleep_step", f[1], l.sleep, l.limitation);
+        Check(r, q + "max_speed_mps", f[2], l.speed, l.limitation);
     }
 }
 
