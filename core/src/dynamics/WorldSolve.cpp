@@ -25,6 +25,17 @@ constexpr int32 kTOIPositionIterations = 20;
 
 bool IsSensorContact(const b2Contact* c) { return c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor(); }
 
+// The smallest and largest of n . (xf v) over the proxy's vertices, exact but for the
+// rounding of each world vertex (at most one raw per component).
+void ProjectCore(const b2DistanceProxy& proxy, const b2Transform& xf, const b2Vec2& n, Wide& lo, Wide& hi) {
+    lo = hi = b2DotWide(n, b2Mul(xf, proxy.m_vertices[0]));
+    for (int32 i = 1; i < proxy.m_count; ++i) {
+        const Wide d = b2DotWide(n, b2Mul(xf, proxy.m_vertices[i]));
+        lo = d < lo ? d : lo;
+        hi = d > hi ? d : hi;
+    }
+}
+
 // Whether a time-of-impact query of the contact's sweeps could report an event: the cores'
 // distance at the start of the sweeps, less how far any point of either body moved along them,
 // comes within the query's target separation plus its tolerance (TimeOfImpact.cpp), with a
@@ -36,15 +47,31 @@ bool MayReachToiTarget(const b2Contact& c, const b2Sweep& sweepA, const b2Sweep&
     input.proxyB.Set(c.GetFixtureB()->GetShape(), c.GetChildIndexB());
     sweepA.GetTransform(&input.transformA, Fixed());
     sweepB.GetTransform(&input.transformB, Fixed());
+    const Fixed totalRadius = input.proxyA.m_radius + input.proxyB.m_radius;
+    const Fixed target = b2Max(b2_linearSlop, totalRadius - Fixed(3) * b2_linearSlop);
+    const Wide reach = Wide(target + b2_linearSlop / 2);  // tolerance (a quarter slop) plus the spare quarter
+
+    // The cheap test first. The cores' gap along any unit axis is at most their distance (both
+    // are convex), so a gap along the manifold's normal that clears the reach by a further
+    // quarter slop (far more than the roundings of this gap and of the distance below) decides
+    // "no event" without the distance query. A resting contact clears it by about one slop.
+    const b2Manifold* m = c.GetManifold();
+    if (m->pointCount > 0 && m->type != b2Manifold::e_circles) {
+        const bool faceA = m->type == b2Manifold::e_faceA;
+        b2Vec2 n = b2Mul(faceA ? input.transformA.q : input.transformB.q, m->localNormal);
+        if (!faceA) n = -n;  // from A to B
+        Wide loA, hiA, loB, hiB;
+        ProjectCore(input.proxyA, input.transformA, n, loA, hiA);
+        ProjectCore(input.proxyB, input.transformB, n, loB, hiB);
+        if (loB - hiA - motion >= reach + Wide(b2_linearSlop / 4)) return false;
+    }
+
     input.useRadii = false;
     b2SimplexCache cache;
     cache.count = 0;
     b2DistanceOutput output;
     b2Distance(&output, &cache, &input);
-    const Fixed totalRadius = input.proxyA.m_radius + input.proxyB.m_radius;
-    const Fixed target = b2Max(b2_linearSlop, totalRadius - Fixed(3) * b2_linearSlop);
-    const Fixed reach = target + b2_linearSlop / 2;  // tolerance (a quarter slop) plus the spare quarter
-    return Wide(output.distance) - motion < Wide(reach);
+    return Wide(output.distance) - motion < reach;
 }
 }  // namespace
 
@@ -156,16 +183,17 @@ void World::SolveTOI(const b2TimeStep& step) {
     // provably without an event (MayReachToiTarget).
     for (b2Body* b = m_bodyList; b; b = b->m_next) {
         if (b->m_type == b2_staticBody || (b->m_flags & b2Body::e_fastFlag) != 0) continue;
+        const bool bCollidesWithAny = b->IsBullet() || b->m_type != b2_dynamicBody;
         for (b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) {
             const b2Body* other = ce->other;
-            if ((other->m_flags & b2Body::e_fastFlag) != 0) continue;  // examined already
+            // The query loop's filters, cheapest first: one body a bullet or not dynamic, neither
+            // examined already, one active.
+            if (!bCollidesWithAny && !other->IsBullet() && other->m_type == b2_dynamicBody) continue;
+            if ((other->m_flags & b2Body::e_fastFlag) != 0) continue;
+            const bool active = (b->IsAwake()) || (other->IsAwake() && other->m_type != b2_staticBody);
+            if (!active) continue;
             const b2Contact* c = ce->contact;
             if (!c->IsEnabled() || IsSensorContact(c)) continue;
-            // The query loop's filters: one body active, one a bullet or not dynamic.
-            const bool active = (b->IsAwake()) || (other->IsAwake() && other->m_type != b2_staticBody);
-            const bool collides =
-                b->IsBullet() || b->m_type != b2_dynamicBody || other->IsBullet() || other->m_type != b2_dynamicBody;
-            if (!active || !collides) continue;
             const Wide motion =
                 b->SweptDistanceBound() + (other->m_type == b2_staticBody ? Wide() : other->SweptDistanceBound());
             const bool aFirst = c->GetFixtureA()->GetBody() == b;
