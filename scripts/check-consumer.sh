@@ -3,7 +3,7 @@
 # and checks that every build prints the final hash of the in-tree hello world (built in the same
 # project against the same lockbox, and equal in every build):
 #
-#   static  static libraries installed into a prefix: find_package(lockbox 0.8 COMPONENTS core
+#   static  static libraries installed into a prefix: find_package(lockbox 0.9 COMPONENTS core
 #           net replay scenefile), every installed header compiled and lockbox::lockbox linked,
 #           a b2dJson save and load through lockbox::scenefile, and a build through pkg-config
 #           (lockbox-core)
