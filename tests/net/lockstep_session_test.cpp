@@ -1,7 +1,7 @@
 // Lockstep sessions under faults: a forced divergence gives exactly one
-// desync event naming the frame, spoofed slots are refused, a fuzzed packet stream leaves the
-// server running, a silent client is reported within the timeouts, and late joiners and
-// reconnecting players reach hash agreement.
+// desync event naming the frame (and none when the clients report no hashes), spoofed slots
+// are refused, a fuzzed packet stream leaves the server running, a silent client is reported within the timeouts, and
+// late joiners and reconnecting players reach hash agreement.
 
 #include <random>
 
@@ -72,6 +72,22 @@ TEST(LockstepSession, DivergenceBetweenReportsNamesTheNextReportedFrame) {
             EXPECT_EQ(e.frame, 50);
         }
     }
+}
+
+TEST(LockstepSession, ClientsThatReportNoHashesAreNeverCompared) {
+    MatchSpec s = Spec(109, 2);
+    s.hashInterval = 10;
+    s.frames = 150;
+    SCOPED_TRACE(s.Describe());
+    ClientConfig quiet;
+    quiet.reportHashes = false;
+    Match m(s, ServerConfig{}, quiet);
+    m.player(1).nudge.nudgeFrame = 43;
+    ASSERT_TRUE(m.RunToFrame(s.frames, 60'000));
+    m.RunUntil([] { return false; }, 500);
+    EXPECT_NE(m.player(0).client->LastHash(), m.player(1).client->LastHash()) << "the states diverged";
+    EXPECT_EQ(m.CountServerEvents(ServerEvent::Kind::e_desync), 0u);
+    EXPECT_EQ(m.server().Stats().desyncFrames, 0u);
 }
 
 TEST(LockstepSession, SpoofedSlotIsRejectedAndCounted) {

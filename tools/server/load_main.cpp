@@ -8,7 +8,11 @@
 // rollback): each client is a RollbackPeer through the server's relay playing --scene (default
 // vertical_stack) at its tick rate, optionally with spectators taking the spectator slots in
 // turn (--spectators), and with loss and jitter on every client's receive side (--loss,
-// --jitter, LatencyTransport). Clients are split over --threads threads by match. --flood adds
+// --jitter, LatencyTransport). With --light no client simulates a scene: each plays an empty
+// world whose state is a checksum of the inputs it applied, so the load generator's own cost
+// stays small while the server's work is unchanged (an authoritative server still steps its
+// scene; lockstep clients then report no hashes, as theirs would never match the server's).
+// Clients are split over --threads threads by match. --flood adds
 // a thread sending junk, copied, forged, expired and reused-token datagrams from many source
 // ports. At the end it reports whether every match's clients (and every spectator) agree.
 
@@ -34,6 +38,7 @@
 #include "lockbox/net/RollbackSession.h"
 #include "lockbox/net/RollbackSpectator.h"
 #include "lockbox/net/RollbackWorldAdapter.h"
+#include "lockbox/net/StateHash.h"
 #include "lockbox/net/UdpTransport.h"
 #include "lockbox/net/admission/AdmissionTransport.h"
 #include "lockbox/replay/Game.h"
@@ -68,13 +73,20 @@ constexpr const char* kUsage =
     "  --flood N           datagrams a second of junk, copied, forged, expired and reused tokens\n"
     "                      sent to the server while the matches play (from 2 s on; against\n"
     "                      127.0.0.1 from 127.0.0.2 .. 127.0.0.9), 0 .. 1000000 (default 0)\n"
-    "  --flood-ports N     source ports of the flood, 1 .. 1024 (default 64)\n";
+    "  --flood-ports N     source ports of the flood, 1 .. 1024 (default 64)\n"
+    "  --light             clients simulate no scene: an empty world whose state is a checksum\n"
+    "                      of the inputs applied (a match's clients still compare it); lockstep\n"
+    "                      clients send no hash reports, rollback peers compare theirs as usual.\n"
+    "                      For capacity runs: the server's work is the same, the clients' is not\n"
+    "  --stagger           start each match at its own phase within a 60 Hz frame, as matches\n"
+    "                      that began independently would, rather than all in step\n";
 
 struct Options {
     std::string host = "127.0.0.1", keyFile, kind = "lockstep", scene;
     uint16_t port = 0;
     uint32_t matches = 10, players = 4, firstMatch = 1, seconds = 10, threads = 1, spectators = 0;
     uint32_t lossPermille = 0, jitterMs = 0, flood = 0, floodPorts = 64;
+    bool light = false, stagger = false;
 };
 
 uint64_t UnixNow() {
@@ -92,6 +104,53 @@ public:
         int32 push = 0;
         for (uint8 b : inputs) push += b & 3;
         body->ApplyLinearImpulse(b2Vec2(Fixed(push - 3), Fixed(0)), body->GetWorldCenter());
+    }
+};
+
+// A light client's game (--light): no bodies; its state is a running checksum of every input
+// it applied with its frame, saved and loaded with the world, so the clients of a match that
+// applied the same inputs to the same states hash alike, and a rollback restores it.
+class InputChecksum : public replay::Game {
+public:
+    void Apply(b2World& world, int32 frame, std::span<const uint8> inputs) override {
+        (void)world;
+        m_sum = (m_sum ^ static_cast<uint32_t>(frame)) * 0x100000001b3ull;
+        for (uint8 b : inputs) m_sum = (m_sum ^ b) * 0x100000001b3ull;
+    }
+    void SaveUserState(std::vector<uint8>& out) const override {
+        out.resize(8);
+        for (size_t i = 0; i < 8; ++i) out[i] = static_cast<uint8>(m_sum >> (8 * i));
+    }
+    void LoadUserState(std::span<const uint8> in) override {
+        if (in.size() != 8) return;
+        m_sum = 0;
+        for (size_t i = 0; i < 8; ++i) m_sum |= uint64_t{in[i]} << (8 * i);
+    }
+
+private:
+    uint64_t m_sum = 0xcbf29ce484222325ull;
+};
+
+// What a rollback peer or spectator simulates: the library scene, or with --light an empty
+// world and an InputChecksum stepped at 60 Hz.
+struct ClientWorld {
+    std::unique_ptr<replay::SceneGame> scene;
+    std::unique_ptr<b2World> empty;
+    InputChecksum checksum;
+
+    ClientWorld(const Options& o, const std::string& defaultScene) {
+        if (o.light)
+            empty = std::make_unique<b2World>(b2Vec2(Fixed(0), Fixed(0)));
+        else
+            scene = std::make_unique<replay::SceneGame>(o.scene.empty() ? defaultScene : o.scene);
+    }
+    b2World& world() { return scene ? scene->world() : *empty; }
+    replay::Game& game() { return scene ? static_cast<replay::Game&>(*scene) : checksum; }
+    WorldStepSettings step() const {
+        if (!scene) return {};
+        const auto& info = scene->info();
+        return {static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
+                static_cast<uint32_t>(info.positionIterations)};
     }
 };
 
@@ -134,16 +193,18 @@ struct LockstepClient {
     Link link;
     std::unique_ptr<b2World> ownWorld;
     PushGame push;
+    InputChecksum checksum;
     std::unique_ptr<replay::SceneGame> scene;
     std::unique_ptr<replay::ScriptedInputs> scripted;
     std::unique_ptr<net::LockstepClient> session;
     uint32_t counter = 0;
+    Clock::duration startAfter{};  // --stagger: the match's phase
 };
 
 struct RollbackClient {
     Link link;
     std::unique_ptr<net::RelayedTransport> relayed;
-    std::unique_ptr<replay::SceneGame> game;
+    std::unique_ptr<ClientWorld> game;
     std::unique_ptr<net::WorldGameAdapter> adapter;
     std::unique_ptr<net::RollbackSession> session;
     std::unique_ptr<net::RollbackPeer> peer;
@@ -151,12 +212,13 @@ struct RollbackClient {
     std::vector<uint8_t> pending, snapshot;
     uint32_t slot = 0;
     int64_t ticks = 0;
+    Clock::duration startAfter{};  // --stagger: the match's phase
 };
 
 struct Spectator {
     Link link;
     std::unique_ptr<net::RelayedTransport> relayed;
-    std::unique_ptr<replay::SceneGame> game;
+    std::unique_ptr<ClientWorld> game;
     std::unique_ptr<net::RollbackSpectator> session;
     std::map<int32_t, uint64_t> hashes;
     int32_t frames = 0;
@@ -205,6 +267,7 @@ public:
         while (Clock::now() < end) {
             const auto elapsed = Clock::now() - start;
             for (auto& c : m_lockstep) {
+                if (elapsed < c->startAfter) continue;
                 c->session->Update();
                 while (c->session->WantsInput()) {
                     if (c->scripted) {
@@ -217,7 +280,8 @@ public:
                     if (!c->session->SubmitLocalInput(input)) break;
                 }
             }
-            for (auto& c : m_rollback) StepRollback(*c, elapsed, true);
+            for (auto& c : m_rollback)
+                if (elapsed >= c->startAfter) StepRollback(*c, elapsed - c->startAfter, true);
             for (auto& [match, slot] : m_slots) StepSpectatorSlot(match, slot);
             std::this_thread::sleep_for(std::chrono::milliseconds(1));
         }
@@ -225,7 +289,7 @@ public:
         const auto settle = Clock::now();
         while (Clock::now() - settle < std::chrono::seconds(3)) {
             for (auto& c : m_lockstep) c->session->Update();
-            for (auto& c : m_rollback) StepRollback(*c, Clock::now() - start, false);
+            for (auto& c : m_rollback) StepRollback(*c, Clock::now() - start - c->startAfter, false);
             for (auto& [match, slot] : m_slots)
                 if (slot.now) StepSpectator(*slot.now);
             std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -288,12 +352,29 @@ public:
     }
 
 private:
+    // With --stagger a match starts at its own phase within one 60 Hz frame, as matches that
+    // began independently would: the server then gets their frames spread over the frame
+    // rather than all in the same few turns of its loop. Spread by a multiplicative hash.
+    Clock::duration PhaseOf(uint32_t match) const {
+        if (!m_o.stagger) return {};
+        return std::chrono::microseconds(uint64_t{match} * 10'007 % 16'667);
+    }
+
     bool OpenLockstep(uint32_t match, uint32_t slot) {
         auto c = std::make_unique<LockstepClient>();
         if (!c->link.Open(m_o, m_signer, match, slot, match * 131 + slot, false)) return false;
         b2World* world = nullptr;
         replay::Game* game = nullptr;
-        if (m_o.scene.empty()) {
+        net::ClientConfig config;
+        if (m_o.light) {
+            // No scene and no hash reports: an authoritative server's hash is of its scene.
+            c->ownWorld = std::make_unique<b2World>(b2Vec2(Fixed(0), Fixed(0)));
+            world = c->ownWorld.get();
+            game = &c->checksum;
+            config.reportHashes = false;
+            if (!m_o.scene.empty())
+                c->scripted = std::make_unique<replay::ScriptedInputs>(uint64_t{match} * 7919 + slot, 1);
+        } else if (m_o.scene.empty()) {
             c->ownWorld = std::make_unique<b2World>(b2Vec2(Fixed(0), Fixed(0)));
             b2BodyDef bd;
             bd.type = b2_dynamicBody;
@@ -308,9 +389,9 @@ private:
             world = &c->scene->world();
             game = c->scene.get();
         }
-        c->session = std::make_unique<net::LockstepClient>(*c->link.admission, c->link.server, net::ClientConfig{},
-                                                           *world, *game);
+        c->session = std::make_unique<net::LockstepClient>(*c->link.admission, c->link.server, config, *world, *game);
         c->counter = match * 7919 + slot * 104729;
+        c->startAfter = PhaseOf(match);
         m_lockstep.push_back(std::move(c));
         return true;
     }
@@ -321,12 +402,8 @@ private:
         const uint32_t slots = m_o.players + m_o.spectators;
         c->relayed = std::make_unique<net::RelayedTransport>(
             *c->link.admission, net::RelayedTransportConfig{c->link.server, match, slot, slots, 0, 100000});
-        c->game = std::make_unique<replay::SceneGame>(m_o.scene.empty() ? "vertical_stack" : m_o.scene);
-        const auto& info = c->game->info();
-        c->adapter = std::make_unique<net::WorldGameAdapter>(
-            c->game->world(), *c->game,
-            WorldStepSettings{static_cast<uint32_t>(info.hz), static_cast<uint32_t>(info.velocityIterations),
-                              static_cast<uint32_t>(info.positionIterations)});
+        c->game = std::make_unique<ClientWorld>(m_o, "vertical_stack");
+        c->adapter = std::make_unique<net::WorldGameAdapter>(c->game->world(), c->game->game(), c->game->step());
         c->session = net::RollbackSessionBuilder()
                          .Players(m_o.players)
                          .InputBytes(replay::SceneInput::kBytes)
@@ -345,6 +422,7 @@ private:
         c->peer = std::make_unique<net::RollbackPeer>(*c->session, *c->relayed, cfg);
         c->inputs = std::make_unique<replay::ScriptedInputs>(uint64_t{match} * 1000 + slot, 1);
         c->slot = slot;
+        c->startAfter = PhaseOf(match);
         m_rollback.push_back(std::move(c));
         return true;
     }
@@ -376,14 +454,12 @@ private:
         int32_t f = 0;
         std::vector<uint8_t> bytes;
         if (s.session->TakeSnapshot(f, bytes) &&
-            net::WorldGameAdapter::RestoreSnapshot(s.game->world(), *s.game, bytes))
+            net::WorldGameAdapter::RestoreSnapshot(s.game->world(), s.game->game(), bytes))
             s.frames = f;
-        const auto& info = s.game->info();
         while (s.session->Next(f, bytes)) {
-            s.game->Apply(s.game->world(), f, bytes);
-            s.game->world().Step(Fixed::FromRatio(1, info.hz), info.velocityIterations, info.positionIterations);
+            AdvanceWorldFrame(s.game->world(), s.game->game(), f, bytes, s.game->step());
             s.frames = f + 1;
-            if (s.frames % 30 == 0) s.hashes[s.frames] = s.game->world().Hash();
+            if (s.frames % 30 == 0) s.hashes[s.frames] = net::FoldedStateHash(s.game->world(), s.game->game());
         }
         // Acknowledgements at the game's tick rate, not at the loop's.
         if (Clock::now() < s.nextFlush) return;
@@ -407,7 +483,7 @@ private:
         const uint32_t slots = m_o.players + m_o.spectators;
         s->relayed = std::make_unique<net::RelayedTransport>(
             *s->link.admission, net::RelayedTransportConfig{s->link.server, match, slot.slot, slots, 0, 100000});
-        s->game = std::make_unique<replay::SceneGame>(m_o.scene.empty() ? "vertical_stack" : m_o.scene);
+        s->game = std::make_unique<ClientWorld>(m_o, "vertical_stack");
         net::RollbackSpectatorConfig sc;
         sc.matchId = match;
         sc.players = m_o.players;
@@ -570,6 +646,10 @@ int main(int argc, char** argv) {
             args.Int(0, 1000000, o.flood);
         else if (args.Is("--flood-ports"))
             args.Int(1, 1024, o.floodPorts);
+        else if (args.Is("--light"))
+            o.light = true;
+        else if (args.Is("--stagger"))
+            o.stagger = true;
         else
             args.Unknown();
     }

@@ -95,7 +95,7 @@ void LockstepClient::Impl::StepFrames() {
         AdvanceWorldFrame(world, game, frame, row, {tickRate, config.velocityIterations, config.positionIterations});
         const uint64_t worldHash = world.Hash();
         lastHash = FoldUserState(worldHash, game);
-        if (frame % static_cast<int64_t>(hashInterval) == 0) {
+        if (config.reportHashes && frame % static_cast<int64_t>(hashInterval) == 0) {
             hashes.push_back(Impl::PendingHash{HashReport{frame, lastHash}, 0, 0});
             // A server that never acks must not make us grow without bound.
             if (hashes.size() > 64) hashes.pop_front();

@@ -57,6 +57,11 @@ struct ClientConfig {
     uint32_t velocityIterations = 8;        ///< step settings (match the scene's)
     /// Step settings: position iterations per step (match the scene's).
     uint32_t positionIterations = 3;
+    /// Send a HashReport every hashInterval-th frame (the default). False: the client reports
+    /// no hashes, so the server never compares its state (no desync is ever seen for it) and a
+    /// late join or reconnect, which is admitted on a matching hash, never completes. For a
+    /// client whose world is not the match's, such as a load generator's.
+    bool reportHashes = true;
 };
 
 /// Something the caller may want to know about.
