@@ -232,6 +232,23 @@ TEST(RelayServer, SameTokenFromANewAddressTakesTheSlotBack) {
     EXPECT_TRUE(after[0].empty());
 }
 
+TEST(RelayServer, AReleasedMemberGetsNothingAndMayJoinAnotherSlot) {
+    RelayRig rig(3);
+    rig.Run(3000);
+    EXPECT_EQ(rig.relay->Release(rig.ends[1]->Index()), 1);
+    EXPECT_EQ(rig.relay->SlotPeer(1), kNoPeer);
+    EXPECT_EQ(rig.relay->Release(rig.ends[1]->Index()), -1);  // holds nothing now
+    ASSERT_TRUE(rig.members[0]->Send(1, Bytes({4, 2})));
+    auto got = rig.Run(3000);
+    EXPECT_TRUE(got[1].empty());
+    // Its next join may claim any free slot (one address still holds one slot at a time).
+    EXPECT_EQ(rig.relay->Release(rig.ends[2]->Index()), 2);
+    rig.members[1] = rig.Join(*rig.ends[1], 2, 1002, 3);
+    rig.Run(3000);
+    EXPECT_TRUE(rig.members[1]->Joined());
+    EXPECT_EQ(rig.relay->SlotPeer(2), rig.ends[1]->Index());
+}
+
 TEST(RelayedTransport, KeepsJoiningUntilWelcomedOverALossyLink) {
     RelayRig rig(2);
     LinkProfile lossy;

@@ -322,6 +322,53 @@ TEST(MatchKinds, SpectatorsTakeASlotInTurnAndSeeThePlayersState) {
     EXPECT_GT(compared, 0u);
 }
 
+// A spectator's socket closes and its port goes to the next spectator, of another slot (a
+// client host hands freed ports out again): the newcomer's fresh token takes the address over
+// and its join is seated in its own slot; the departed spectator's token does not take it back.
+TEST(MatchKinds, ANewClientOnADepartedSpectatorsAddressJoinsItsOwnSlot) {
+    HostConfig config;
+    config.kind = MatchKind::e_rollbackRelay;
+    config.match.playerCount = 2;
+    config.spectatorsPerMatch = 2;
+    Host h(std::move(config));
+    std::string error;
+    auto udp = net::UdpTransport::Open("127.0.0.1", 0, &error);
+    ASSERT_TRUE(udp) << error;
+    const net::PeerId server = udp->AddPeer("127.0.0.1", h.port, &error);
+    const auto join = [&](const admission::TokenBytes& token, uint8_t slot) {
+        std::vector<uint8_t> frame, out;
+        net::WriteRelayFrame(frame, net::RelayKind::e_join, 14, slot);
+        net::admission::WriteEnvelope(out, token, frame);
+        EXPECT_TRUE(udp->Send(server, out));
+    };
+    const auto welcomed = [&] {  // the slots the relay welcomes us to over the next 50 ms
+        std::vector<int> slots;
+        for (int i = 0; i < 50; ++i) {
+            h.host->Update();
+            std::vector<net::Datagram> got;
+            udp->Poll(got);
+            for (const net::Datagram& d : got) {
+                const auto f = net::ParseRelayFrame(d.bytes);
+                if (f && f->kind == net::RelayKind::e_welcome) slots.push_back(f->slot);
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+        return slots;
+    };
+    join(Mint(14, 2, 140), 2);
+    EXPECT_EQ(welcomed(), std::vector<int>{2});
+    join(Mint(14, 3, 141), 3);  // the next spectator, on the same address
+    EXPECT_EQ(welcomed(), std::vector<int>{3});
+    EXPECT_EQ(h.host->Stats().rebound, 1u);
+    EXPECT_EQ(Dropped(*h.host, Drop::e_wrongSlot), 0u);
+    EXPECT_EQ(Dropped(*h.host, Drop::e_strayEnvelope), 0u);
+    join(Mint(14, 2, 140), 2);  // a late datagram of the departed one
+    EXPECT_TRUE(welcomed().empty());
+    EXPECT_EQ(Dropped(*h.host, Drop::e_strayEnvelope), 1u);
+    EXPECT_EQ(h.host->Stats().rebound, 1u);
+    EXPECT_EQ(h.host->PlayerCount(), 1u);
+}
+
 TEST(MatchKinds, AnAdmittedClientOverItsBandwidthIsCutAndCounted) {
     HostConfig config;
     config.match.playerCount = 2;

@@ -160,6 +160,28 @@ TEST(TokenHex, KeyAndBytesRoundTrip) {
     EXPECT_EQ(out, (std::vector<uint8_t>{0, 255, 16}));
 }
 
+TEST(AdmissionEnvelope, WhatArrivedBeforeTheFirstSendIsNoAnswer) {
+    // A socket that got a departed client's port may receive what was on its way to it.
+    net::SimNet simnet(1);
+    auto& client = simnet.AddEndpoint();
+    auto& server = simnet.AddEndpoint();
+    const TokenBytes token = TokenSigner(Key(1)).Sign(Sample());
+    net::admission::AdmissionTransport wrapped(client, server.Index(), token);
+    const std::vector<uint8_t> stray{9, 9};
+    ASSERT_TRUE(server.Send(client.Index(), stray));
+    simnet.Advance(100'000);
+    std::vector<net::Datagram> got;
+    wrapped.Poll(got);
+    ASSERT_EQ(got.size(), 1u);
+    EXPECT_FALSE(wrapped.Answered());
+    ASSERT_TRUE(wrapped.Send(server.Index(), std::vector<uint8_t>{1, 2, 3}));
+    simnet.Advance(100'000);
+    got.clear();
+    server.Poll(got);
+    ASSERT_EQ(got.size(), 1u);
+    EXPECT_TRUE(net::admission::LooksLikeEnvelope(got[0].bytes)) << "the token still goes first";
+}
+
 TEST(AdmissionEnvelope, WrapsUntilTheServerAnswers) {
     net::SimNet simnet(1);
     auto& client = simnet.AddEndpoint();

@@ -210,9 +210,12 @@ void MatchHost::Route(Datagram& d) {
         // The client's first datagrams are resent until the server answers: the same token
         // again is fine, any other is not.
         net::admission::Envelope env;
-        if (!net::admission::ParseEnvelope(payload, env) ||
-            !std::equal(env.token.begin(), env.token.end(), p.token.begin(), p.token.end())) {
+        if (!net::admission::ParseEnvelope(payload, env)) {
             ++m_stats.dropped[static_cast<size_t>(Drop::e_strayEnvelope)];
+            return;
+        }
+        if (!std::equal(env.token.begin(), env.token.end(), p.token.begin(), p.token.end())) {
+            if (!Rebind(d, env.token)) ++m_stats.dropped[static_cast<size_t>(Drop::e_strayEnvelope)];
             return;
         }
         payload = env.payload;
@@ -329,6 +332,46 @@ void MatchHost::RecordRollbackInputs(Match& m, int32_t slot, std::span<const uin
         ++m.sharedFrames;
         m.recorded = m.sharedFrames;
     }
+}
+
+bool MatchHost::Rebind(Datagram& d, std::span<const uint8_t> tokenBytes) {
+    // One UDP address is one socket at a time, so another token from an admitted address means
+    // the admitted client's socket closed and its port went to a new one: on a client host
+    // that opens and closes sockets (spectators come and go), the next socket may get the same
+    // port while the relay still binds it to the departed client's slot. The newcomer takes the
+    // address over. Only with a token that is valid and was never presented before (an old
+    // datagram of the departed client cannot take the address back), and only in rollback
+    // relays, whose members come and go by slot; a lockstep session keeps its own seats.
+    if (m_config.kind != MatchKind::e_rollbackRelay) return false;
+    net::admission::AdmissionToken token;
+    if (m_verifier.Check(tokenBytes, UnixNow(), token) != Refusal::e_none || m_verifier.Used(token)) return false;
+    const Peer& old = m_peers.at(d.peer);
+    m_log.Event("rebound")
+        .Num("match", old.matchId)
+        .Int("slot", old.slot)
+        .Num("new_match", token.matchId)
+        .Num("new_slot", token.slot)
+        .Str("peer", old.address);
+    ++m_stats.rebound;
+    Forget(d.peer);
+    Admit(d, m_socket->NowMicros());
+    return true;
+}
+
+void MatchHost::Forget(PeerId peer) {
+    const auto it = m_peers.find(peer);
+    if (it == m_peers.end()) return;
+    const auto match = m_matches.find(it->second.matchId);
+    if (match != m_matches.end()) {
+        Match& m = *match->second;
+        m.admitted.erase(peer);
+        if (m.relay) {
+            (void)m.relay->Release(peer);
+            for (PeerId& holder : m.holder)
+                if (holder == peer) holder = net::kNoPeer;
+        }
+    }
+    m_peers.erase(it);
 }
 
 void MatchHost::Refuse(PeerId peer, const std::string& address, const char* reason, bool isToken, size_t index) {

@@ -93,6 +93,9 @@ struct HostStats {
     uint64_t heldBeforeHandshake = 0;  ///< sends refused so a sender is never sent more than it sent
     uint64_t admitted = 0, matchesCreated = 0, matchesEnded = 0;
     uint64_t desyncs = 0, lateJoins = 0, replaysWritten = 0, replayFailures = 0;
+    /// Rollback relay: admitted addresses taken over by a new client's fresh token (the
+    /// previous client's port went to another socket; see MatchHost::Rebind).
+    uint64_t rebound = 0;
 };
 
 class MatchHost {
@@ -142,6 +145,8 @@ private:
     void Record(Match& m);
     void RecordRollbackInputs(Match& m, int32_t slot, std::span<const uint8_t> payload);
     void Admit(net::Datagram& d, uint64_t nowMicros);
+    bool Rebind(net::Datagram& d, std::span<const uint8_t> token);
+    void Forget(net::PeerId peer);
     bool SendFor(uint32_t matchId, net::PeerId peer, std::span<const uint8_t> bytes);
     Match* CreateMatch(uint32_t id, uint64_t nowMicros);
     void UpdateMatch(Match& m, uint64_t nowMicros);

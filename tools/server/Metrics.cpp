@@ -62,6 +62,8 @@ std::string RenderMetrics(const MatchHost& host) {
     Metric(out, "lockbox_server_replays_written_total", "counter", "Replays written.", s.replaysWritten);
     Metric(out, "lockbox_server_replay_failures_total", "counter", "Replays that could not be written.",
            s.replayFailures);
+    Metric(out, "lockbox_server_rebound_total", "counter",
+           "Admitted addresses taken over by a new client's fresh token (a departed client's port reused).", s.rebound);
     Metric(out, "lockbox_server_held_before_handshake_total", "counter",
            "Sends held back so that a client is never sent more than it sent before its handshake.",
            s.heldBeforeHandshake);

@@ -3,20 +3,23 @@
 # the load generators to CPU 1, MATCHES matches of PLAYERS players for SECONDS; prints the
 # server's tick p50/p99, CPU share and RSS read while the matches play, the payload bytes per
 # player-second, the machine's load average, and each load generator's verdict.
-# usage: capacity.sh [-g GENERATORS] [-l] BUILD_DIR lockstep|authoritative|rollback MATCHES PLAYERS SECONDS [SCENE]
+# usage: capacity.sh [-g GENERATORS] [-l] [-d DELAY] BUILD_DIR lockstep|authoritative|rollback MATCHES PLAYERS SECONDS [SCENE]
 # (lockstep with SCENE: the relay also records every match's replay of that scene)
 # -g N: N load generator processes (default 1), each with its own match ids and tokens, the
 # matches split between them as evenly as they go.
+# -d N: lockstep clients' input delay, N frames (lockbox_server_load --input-delay).
 # -l: light clients (lockbox_server_load --light): they simulate no scene, so one core of load
 # generators drives many more of them; the server's work is the same (an authoritative server
 # still steps SCENE for every match), except that lockstep clients send no hash reports.
 set -euo pipefail
 generators=1
 light=
-while getopts g:l opt; do
+delay=()
+while getopts g:ld: opt; do
     case $opt in
         g) generators=$OPTARG ;;
         l) light=--light ;;
+        d) delay=(--input-delay "$OPTARG") ;;
         *) exit 2 ;;
     esac
 done
@@ -47,7 +50,7 @@ server_args=(--token-key-file "$dir/key" --port-file "$dir/port" --http-port "$h
     --players-per-match "$players" --max-matches 10000 --max-players 100000 --rate-limit 100000
     --rate-burst 100000 --peer-bandwidth 0 --start-timeout 600 --drain-seconds 1)
 # --stagger: every match at its own phase of the 60 Hz frame, as independent matches would be.
-load_args=(--key-file "$dir/key" --players "$players" --seconds "$seconds" --stagger $light)
+load_args=(--key-file "$dir/key" --players "$players" --seconds "$seconds" --stagger $light "${delay[@]}")
 case $kind in
     lockstep)
         # With a scene: the clients play it and the server records every match's replay.

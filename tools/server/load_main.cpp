@@ -79,7 +79,9 @@ constexpr const char* kUsage =
     "                      clients send no hash reports, rollback peers compare theirs as usual.\n"
     "                      For capacity runs: the server's work is the same, the clients' is not\n"
     "  --stagger           start each match at its own phase within a 60 Hz frame, as matches\n"
-    "                      that began independently would, rather than all in step\n";
+    "                      that began independently would, rather than all in step\n"
+    "  --input-delay N     lockstep: the clients' input delay in frames, 1 .. 255; 0: from the\n"
+    "                      RTT; -1: the server's (default -1)\n";
 
 struct Options {
     std::string host = "127.0.0.1", keyFile, kind = "lockstep", scene;
@@ -87,6 +89,7 @@ struct Options {
     uint32_t matches = 10, players = 4, firstMatch = 1, seconds = 10, threads = 1, spectators = 0;
     uint32_t lossPermille = 0, jitterMs = 0, flood = 0, floodPorts = 64;
     bool light = false, stagger = false;
+    int32_t inputDelay = -1;
 };
 
 uint64_t UnixNow() {
@@ -366,6 +369,7 @@ private:
         b2World* world = nullptr;
         replay::Game* game = nullptr;
         net::ClientConfig config;
+        config.inputDelay = m_o.inputDelay;
         if (m_o.light) {
             // No scene and no hash reports: an authoritative server's hash is of its scene.
             c->ownWorld = std::make_unique<b2World>(b2Vec2(Fixed(0), Fixed(0)));
@@ -650,6 +654,8 @@ int main(int argc, char** argv) {
             o.light = true;
         else if (args.Is("--stagger"))
             o.stagger = true;
+        else if (args.Is("--input-delay"))
+            args.Int(-1, 255, o.inputDelay);
         else
             args.Unknown();
     }

@@ -36,13 +36,15 @@ bool AdmissionTransport::Send(PeerId peer, std::span<const uint8_t> bytes, Deliv
     if (m_answered || peer != m_server) return m_inner.Send(peer, bytes, delivery);
     if (bytes.empty() || bytes.size() > MaxDatagram()) return m_inner.Send(peer, {}, delivery);  // counted there
     WriteEnvelope(m_buffer, m_token, bytes);
+    m_sent = true;
     return m_inner.Send(peer, m_buffer, delivery);
 }
 
 size_t AdmissionTransport::Poll(std::vector<Datagram>& out) {
     const size_t first = out.size();
     const size_t n = m_inner.Poll(out);
-    for (size_t i = first; i < out.size(); ++i) m_answered = m_answered || out[i].peer == m_server;
+    // Before our first datagram nothing from the server is an answer (see the file comment).
+    for (size_t i = first; i < out.size(); ++i) m_answered = m_answered || (m_sent && out[i].peer == m_server);
     return n;
 }
 

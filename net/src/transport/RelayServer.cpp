@@ -29,6 +29,12 @@ void RelayServer::Poll() {
     for (const Datagram& d : m_inbox) Handle(d);
 }
 
+int RelayServer::Release(PeerId peer) noexcept {
+    const int slot = SlotOf(peer);
+    if (slot >= 0) m_slotPeer[static_cast<size_t>(slot)] = kNoPeer;
+    return slot;
+}
+
 void RelayServer::Handle(const Datagram& d) {
     const std::optional<RelayFrame> f = ParseRelayFrame(d.bytes);
     if (!f || f->matchId != m_config.matchId || f->slot >= m_slotPeer.size()) {

@@ -54,6 +54,10 @@ public:
 
     /// The PeerId holding slot `slot`, or kNoPeer.
     PeerId SlotPeer(uint32_t slot) const noexcept;
+    /// Frees the slot `peer` holds, if any: nothing more is forwarded to it, and its next valid
+    /// join may claim any slot. For a host that learned the member is gone (its address now
+    /// belongs to another client). Returns the slot freed, or -1.
+    int Release(PeerId peer) noexcept;
     /// Counters since construction.
     const RelayServerStats& Stats() const noexcept { return m_stats; }
 

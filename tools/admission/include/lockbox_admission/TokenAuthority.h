@@ -98,6 +98,9 @@ public:
     /// remembered already.
     Refusal Consume(const AdmissionToken& token, uint64_t presenter, uint64_t nowSeconds);
 
+    /// True when `token`'s nonce was consumed and is still remembered (by any presenter).
+    bool Used(const AdmissionToken& token) const noexcept { return m_used.count(token.nonce) != 0; }
+
     /// Nonces remembered now.
     size_t Remembered() const noexcept { return m_used.size(); }
 

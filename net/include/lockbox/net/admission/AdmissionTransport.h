@@ -2,7 +2,10 @@
 /// @file
 /// How a client presents its admission token (AdmissionToken.h) to a match server: every
 /// datagram it sends before the server first answers is wrapped in an admission envelope that
-/// carries the token in front of the session's own bytes. The session (a LockstepClient, say)
+/// carries the token in front of the session's own bytes. Only what arrives from the server
+/// after the first wrapped datagram went out counts as an answer: a socket whose port a
+/// departed client of the same server held may receive what was still on its way to that
+/// client, and must present its token all the same. The session (a LockstepClient, say)
 /// is unchanged: AdmissionTransport wraps the transport it runs on.
 ///
 /// The envelope, little-endian:
@@ -60,7 +63,8 @@ public:
     const TransportStats& Stats() const noexcept override { return m_inner.Stats(); }
     void Disconnect(PeerId peer) override { m_inner.Disconnect(peer); }
 
-    /// True once the server has answered (the token is no longer sent).
+    /// True once the server has answered, i.e. sent anything after our first datagram to it
+    /// (the token is no longer sent).
     bool Answered() const noexcept { return m_answered; }
 
 private:
@@ -68,6 +72,7 @@ private:
     PeerId m_server;
     std::vector<uint8_t> m_token;
     std::vector<uint8_t> m_buffer;
+    bool m_sent = false;  // a wrapped datagram went to the server
     bool m_answered = false;
 };
 
