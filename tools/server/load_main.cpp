@@ -81,14 +81,16 @@ constexpr const char* kUsage =
     "  --stagger           start each match at its own phase within a 60 Hz frame, as matches\n"
     "                      that began independently would, rather than all in step\n"
     "  --input-delay N     lockstep: the clients' input delay in frames, 1 .. 255; 0: from the\n"
-    "                      RTT; -1: the server's (default -1)\n";
+    "                      RTT; -1: the server's (default -1)\n"
+    "  --steady-world      rollback: half of the scripted spawns become destroys, so the world\n"
+    "                      keeps a handful of spawned bodies instead of gaining about 4 a second\n";
 
 struct Options {
     std::string host = "127.0.0.1", keyFile, kind = "lockstep", scene;
     uint16_t port = 0;
     uint32_t matches = 10, players = 4, firstMatch = 1, seconds = 10, threads = 1, spectators = 0;
     uint32_t lossPermille = 0, jitterMs = 0, flood = 0, floodPorts = 64;
-    bool light = false, stagger = false;
+    bool light = false, stagger = false, steadyWorld = false;
     int32_t inputDelay = -1;
 };
 
@@ -431,6 +433,21 @@ private:
         return true;
     }
 
+    // --steady-world: half of the script's spawns (those with an odd x) become destroys, so
+    // the spawned bodies come and go instead of piling up. The script spawns on 1.2 % of a
+    // player's frames and destroys on 0.4 %, so an 8-player match's world gains about 4
+    // bodies a second, thousands over a 10-minute soak, which every peer, spectator and the
+    // server's replay simulate; with 0.6 % spawns and 1.0 % destroys a handful stay.
+    static void SteadyWorld(std::vector<uint8_t>& input) {
+        replay::SceneInput in = replay::SceneInput::Decode(input.data());
+        const bool spawn = in.action == replay::e_actSpawnBox || in.action == replay::e_actSpawnCircle;
+        if (!spawn || (in.a & 1) == 0) return;
+        in = replay::SceneInput{};
+        in.action = replay::e_actDestroy;
+        in.pick = static_cast<uint8_t>(input[2]);
+        in.Encode(input.data());
+    }
+
     // One tick of a rollback peer when its 60 Hz clock says so; otherwise only its socket.
     void StepRollback(RollbackClient& c, Clock::duration elapsed, bool play) {
         const int64_t due = std::chrono::duration_cast<std::chrono::microseconds>(elapsed).count() * 60 / 1'000'000;
@@ -440,7 +457,10 @@ private:
             ++c.ticks;
             if (!c.peer->WaitThisTick() || !play) {
                 if (play) {
-                    if (c.pending.empty()) c.inputs->Next(c.pending);
+                    if (c.pending.empty()) {
+                        c.inputs->Next(c.pending);
+                        if (m_o.steadyWorld) SteadyWorld(c.pending);
+                    }
                     if (c.session->AddLocalInput(c.slot, c.pending) != net::InputResult::e_alreadyAdded)
                         c.pending.clear();
                 }
@@ -654,6 +674,8 @@ int main(int argc, char** argv) {
             o.light = true;
         else if (args.Is("--stagger"))
             o.stagger = true;
+        else if (args.Is("--steady-world"))
+            o.steadyWorld = true;
         else if (args.Is("--input-delay"))
             args.Int(-1, 255, o.inputDelay);
         else
