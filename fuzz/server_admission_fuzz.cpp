@@ -4,7 +4,8 @@
 // reaches admission, match creation and the match's Hello handling; the rest arrive as they are.
 // Another bit of the first byte picks the host: lockstep relay matches, or rollback-relay
 // matches with spectator slots whose inputs are recorded (relay joins, slot checks, the input
-// runs read for the replay). Nothing may crash or leak. (The no-amplification rule is a test: tests/server.)
+// runs read for the replay, and an admitted address taken over: every token comes from the
+// one sender). Nothing may crash or leak. (The no-amplification rule is a test: tests/server.)
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
