@@ -74,6 +74,15 @@ void b2World::SetWarmStarting(bool flag) noexcept { m_state->m_warmStarting = fl
 bool b2World::GetWarmStarting() const noexcept { return m_state->m_warmStarting; }
 void b2World::SetContinuousPhysics(bool flag) noexcept { m_state->m_continuousPhysics = flag; }
 bool b2World::GetContinuousPhysics() const noexcept { return m_state->m_continuousPhysics; }
+void b2World::SetPressedContactToi(bool flag) noexcept {
+    if (flag)
+        m_state->m_flags &= ~core_detail::Engine::World::e_skipPressedToi;
+    else
+        m_state->m_flags |= core_detail::Engine::World::e_skipPressedToi;
+}
+bool b2World::GetPressedContactToi() const noexcept {
+    return (m_state->m_flags & core_detail::Engine::World::e_skipPressedToi) == 0;
+}
 void b2World::SetSubStepping(bool flag) noexcept { m_state->m_subStepping = flag; }
 bool b2World::GetSubStepping() const noexcept { return m_state->m_subStepping; }
 void b2World::SetAutoClearForces(bool flag) noexcept { m_state->m_autoClearForces = flag; }

@@ -181,7 +181,8 @@ void World::SolveTOI(const b2TimeStep& step) {
     // 2.2.1 then reports an event at the start of its sweep. Flag such a body, so that its
     // contacts are examined as 2.2.1 examines them; every other contact of slow bodies is
     // provably without an event (MayReachToiTarget).
-    for (b2Body* b = m_bodyList; b; b = b->m_next) {
+    const bool pressedToi = (m_flags & e_skipPressedToi) == 0;
+    for (b2Body* b = pressedToi ? m_bodyList : nullptr; b; b = b->m_next) {
         if (b->m_type == b2_staticBody || (b->m_flags & b2Body::e_fastFlag) != 0) continue;
         const bool bCollidesWithAny = b->IsBullet() || b->m_type != b2_dynamicBody;
         for (b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) {

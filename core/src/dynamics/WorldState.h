@@ -50,7 +50,9 @@ public:
     bool IsLocked() const noexcept { return (m_flags & e_locked) != 0; }
 
     // ---- what bodies, fixtures and joints call back into ----
-    enum : uint32 { e_newFixture = 0x0001, e_locked = 0x0002, e_clearForces = 0x0004 };
+    // e_skipPressedToi is set when SetPressedContactToi(false): clear by default, so the flags
+    // word, hashed and saved, is unchanged for a world that keeps 2.2.1's behaviour.
+    enum : uint32 { e_newFixture = 0x0001, e_locked = 0x0002, e_clearForces = 0x0004, e_skipPressedToi = 0x0008 };
     /// Reports a refused call on a locked world; returns true when the world is locked.
     bool CheckLocked(const char* what) const;
     b2Fixture* CreateFixture(b2Body* body, const b2FixtureDef* def);

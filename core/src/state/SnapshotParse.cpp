@@ -77,8 +77,9 @@ void ReadSettings(ImageReader& r, SettingsImage& s) {
     Check(s.bounds.lowerBound.x <= s.bounds.upperBound.x && s.bounds.lowerBound.y <= s.bounds.upperBound.y,
           "settings.bounds", "lower bound above upper bound", s.bounds.lowerBound.x.Raw());
     s.flags = r.U32();
-    Check((s.flags & ~static_cast<uint32>(core_detail::Engine::World::e_newFixture |
-                                          core_detail::Engine::World::e_clearForces)) == 0,
+    Check((s.flags &
+           ~static_cast<uint32>(core_detail::Engine::World::e_newFixture | core_detail::Engine::World::e_clearForces |
+                                core_detail::Engine::World::e_skipPressedToi)) == 0,
           "settings.flags", "has unknown or transient bits", s.flags);
     s.invDt0 = r.F();
     s.stepComplete = ReadBool(r, "settings.stepComplete");

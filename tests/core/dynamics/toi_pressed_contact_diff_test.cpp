@@ -53,8 +53,16 @@ std::vector<double> CircleHeightsFloat() {
 namespace lockbox::test {
 namespace {
 
-std::vector<double> CircleHeightsLockbox() {
+// The pressed-circle scene, stepped kSteps times; `toiSteps` counts the steps with a TOI call.
+struct LockboxRun {
+    std::vector<double> y;
+    int toiSteps = 0;
+    uint64 hash = 0;
+};
+
+LockboxRun RunLockbox(bool pressedContactToi) {
     b2World world(b2Vec2(0, -10));
+    world.SetPressedContactToi(pressedContactToi);
     b2BodyDef gd;
     b2Body* ground = world.CreateBody(&gd);
     b2PolygonShape groundBox;
@@ -77,29 +85,34 @@ std::vector<double> CircleHeightsLockbox() {
     boxShape.SetAsBox(Fixed(1) / 2, Fixed(1) / 2);
     box->CreateFixture(&boxShape, 10);
 
-    std::vector<double> y;
+    LockboxRun run;
     for (int n = 0; n < kSteps; ++n) {
         world.Step(kDt, 8, 3);
-        y.push_back(circle->GetPosition().y.ToDouble());
+        run.y.push_back(circle->GetPosition().y.ToDouble());
+        if (world.GetProfile().toiCalls > 0) ++run.toiSteps;
     }
-    return y;
+    run.hash = world.Hash();
+    return run;
+}
+
+std::vector<double> CircleHeightsLockbox() { return RunLockbox(true).y; }
+
+// The lift: the first step after the box lands (step 34) at which the circle rises by more
+// than 5 mm, the immediate event's sub-step pushing it out of the ground (-1: none).
+int LiftStep(const std::vector<double>& y) {
+    for (size_t i = 34; i < y.size(); ++i)
+        if (y[i] - y[i - 1] > 0.005) return static_cast<int>(i) + 1;
+    return -1;
 }
 
 TEST(DifferentialToi, PressedCircleGetsTheImmediateEvent) {
     const std::vector<double> ref = CircleHeightsFloat();
     const std::vector<double> got = CircleHeightsLockbox();
-    // The lift: the first step after the box lands (step 34) at which the circle rises by more
-    // than 5 mm, the immediate event's sub-step pushing it out of the ground. Both engines
-    // apply the same rule (an event once the circle is pressed closer than the query's target
+    // Both engines apply the same rule (an event once the circle is pressed closer than the query's target
     // plus its tolerance); which step crosses that line depends on a tenth of a millimetre of
     // sinking, so the lift may come one step apart.
-    auto liftStep = [](const std::vector<double>& y) {
-        for (size_t i = 34; i < y.size(); ++i)
-            if (y[i] - y[i - 1] > 0.005) return static_cast<int>(i) + 1;
-        return -1;
-    };
-    const int floatLift = liftStep(ref);
-    const int lockboxLift = liftStep(got);
+    const int floatLift = LiftStep(ref);
+    const int lockboxLift = LiftStep(got);
     ASSERT_GT(floatLift, 0);
     EXPECT_GT(lockboxLift, 0);
     EXPECT_LE(std::abs(lockboxLift - floatLift), 1) << "lift at step " << lockboxLift << ", float's at " << floatLift;
@@ -108,6 +121,43 @@ TEST(DifferentialToi, PressedCircleGetsTheImmediateEvent) {
         const auto i = static_cast<size_t>(n - 1);
         EXPECT_NEAR(got[i], ref[i], 0.0005) << "step " << n;
     }
+}
+
+// Switched off, the pressed circle gets no event: it stays pressed (no lift), fewer steps
+// query a time of impact, and the world's state says so (the switch is hashed).
+TEST(PressedContactToi, SwitchedOffTheCircleStaysPressed) {
+    const LockboxRun on = RunLockbox(true);
+    const LockboxRun off = RunLockbox(false);
+    EXPECT_GT(LiftStep(on.y), 0);
+    EXPECT_EQ(LiftStep(off.y), -1);
+    EXPECT_LT(off.toiSteps, on.toiSteps);
+    EXPECT_NE(off.hash, on.hash);
+}
+
+TEST(PressedContactToi, IsWorldStateInSnapshotsAndFrames) {
+    b2World world(b2Vec2(0, -10));
+    EXPECT_TRUE(world.GetPressedContactToi());  // 2.2.1's behaviour by default
+    const uint64 hashOn = world.Hash();
+    world.SetPressedContactToi(false);
+    EXPECT_FALSE(world.GetPressedContactToi());
+    EXPECT_NE(world.Hash(), hashOn);
+
+    // A snapshot carries the switch.
+    const std::vector<uint8> image = world.Save();
+    b2World restored(b2Vec2(0, -10));
+    ASSERT_TRUE(restored.Restore(image).ok());
+    EXPECT_FALSE(restored.GetPressedContactToi());
+    EXPECT_EQ(restored.Hash(), world.Hash());
+
+    // So does a rollback frame.
+    b2WorldFrame frame;
+    world.SaveFrame(frame);
+    world.SetPressedContactToi(true);
+    ASSERT_TRUE(world.RestoreFrame(frame).ok());
+    EXPECT_FALSE(world.GetPressedContactToi());
+
+    world.SetPressedContactToi(true);
+    EXPECT_EQ(world.Hash(), hashOn);
 }
 
 }  // namespace

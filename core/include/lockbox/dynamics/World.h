@@ -180,6 +180,15 @@ public:
     void SetSubStepping(bool flag) noexcept;
     /// Whether time-of-impact sub-stepping is on.
     bool GetSubStepping() const noexcept;
+    /// Time of impact for slow bodies pressed into a static or kinematic body (on by default,
+    /// as 2.2.1). A body squeezed closer to such a body than the time-of-impact query's target
+    /// (the bottom of a loaded pile) then gets 2.2.1's immediate event and sub-step every step.
+    /// Off, only bodies that moved far enough to tunnel, and bullets, are examined: piles step
+    /// much faster (docs/dynamics.md), and the results are no longer 2.2.1's. Part of the
+    /// world's state (hash and snapshot).
+    void SetPressedContactToi(bool flag) noexcept;
+    /// Whether slow bodies pressed into a static or kinematic body get time-of-impact events.
+    bool GetPressedContactToi() const noexcept;
     /// Whether each Step ends by clearing forces (on by default).
     void SetAutoClearForces(bool flag) noexcept;
     /// Whether each Step ends by clearing the forces applied to bodies.
