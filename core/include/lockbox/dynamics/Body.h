@@ -265,8 +265,8 @@ private:
     Fixed m_angularVelocity;
     SubRaw m_velocityRemainder;  ///< m/s and rad/s
     SubRaw m_positionRemainder;  ///< of m_sweep.c (m) and m_sweep.a (rad)
-    b2Vec2 m_force;  ///< N
-    Fixed m_torque;  ///< N*m
+    b2Vec2 m_force;              ///< N
+    Fixed m_torque;              ///< N*m
     b2World* m_world;
     b2Body* m_prev = nullptr;
     b2Body* m_next = nullptr;

@@ -3,10 +3,10 @@
 /// the two-point block solver, restitution above b2_velocityThreshold, Coulomb friction,
 /// non-linear position correction and the time-of-impact position solve.
 ///
-/// Formats: positions are Fixed; velocities (the solver's Q32.32 copies), masses, inverse masses and inertias, effective
-/// masses (normalMass, tangentMass, K and its inverse) and impulses are Wide (Q32.32). The
-/// block solver's condition test k11^2 < 1000 (k11 k22 - k12^2) is evaluated exactly in
-/// 128 bits (NUMERICS Table 1: it overflows Q32.32).
+/// Formats: positions are Fixed; velocities (the solver's Q32.32 copies), masses, inverse masses and inertias,
+/// effective masses (normalMass, tangentMass, K and its inverse) and impulses are Wide (Q32.32). The block solver's
+/// condition test k11^2 < 1000 (k11 k22 - k12^2) is evaluated exactly in 128 bits (NUMERICS Table 1: it overflows
+/// Q32.32).
 
 #include "Engine.h"
 #include "dynamics/TimeStep.h"

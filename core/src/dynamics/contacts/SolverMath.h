@@ -31,8 +31,8 @@ namespace lockbox::solver {
 // The speed of B's contact point relative to A's along the unit direction d, in Q32.32:
 // d . (vB - vA) + wB (rB x d) - wA (rA x d), where armA = rA x d and armB = rB x d. Each
 // product is rounded once at 2^-32; the sums are checked (saturate and report, never wrap).
-[[gnu::always_inline]] inline Wide SpeedAlong(const b2WideVec2& vA, Wide wA, Fixed armA, const b2WideVec2& vB,
-                                              Wide wB, Fixed armB, const b2Vec2& d) noexcept {
+[[gnu::always_inline]] inline Wide SpeedAlong(const b2WideVec2& vA, Wide wA, Fixed armA, const b2WideVec2& vB, Wide wB,
+                                              Fixed armB, const b2Vec2& d) noexcept {
     const b2WideVec2 dv = vB - vA;
     const Wide linear = dv.x * d.x + dv.y * d.y;
     return linear + wB * armB - wA * armA;

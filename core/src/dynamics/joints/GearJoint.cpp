@@ -179,8 +179,7 @@ void b2GearJoint::SolveVelocityConstraints(const b2SolverData& data) {
     Wide wA = data.velocities[m_indexA].w, wB = data.velocities[m_indexB].w;
     Wide wC = data.velocities[m_indexC].w, wD = data.velocities[m_indexD].w;
 
-    const Wide Cdot = DotW(m_JvAC, vA - vC) + DotW(m_JvBD, vB - vD) + wA * m_JwA - wC * m_JwC + wB * m_JwB -
-                      wD * m_JwD;
+    const Wide Cdot = DotW(m_JvAC, vA - vC) + DotW(m_JvBD, vB - vD) + wA * m_JwA - wC * m_JwC + wB * m_JwB - wD * m_JwD;
     const Wide impulse = -(m_mass * Cdot);
     m_impulse += impulse;
 

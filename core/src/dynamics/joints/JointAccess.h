@@ -22,8 +22,8 @@ struct BodyData {
 struct TwoBodyState {
     BodyData A;  ///< what the joint copied of body A
     BodyData B;
-    b2Vec2 cA;  ///< centre of mass of A (m)
-    Fixed aA;   ///< angle of A (rad)
+    b2Vec2 cA;      ///< centre of mass of A (m)
+    Fixed aA;       ///< angle of A (rad)
     b2WideVec2 vA;  ///< linear velocity of A (m/s)
     Wide wA;        ///< angular velocity of A (rad/s)
     b2Vec2 cB;
