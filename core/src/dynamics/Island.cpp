@@ -18,19 +18,26 @@ int64_t Nanos(Clock::time_point from) {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
 }
 
-// Clamps the motion of one step (Box2D's maxTranslation and maxRotation) by scaling the
-// velocity; the body then moves by h v (b2Body::Displace).
-void ClampMotion(Fixed h, b2Velocity& vel) {
-    const b2Vec2 translation{(vel.v.x * h).ToFixed(), (vel.v.y * h).ToFixed()};
+// One step's displacement h v, in Q32.32 for b2Body::Displace: clamps the motion (Box2D's
+// maxTranslation and maxRotation) by scaling the velocity. h v is formed once, and again only
+// for a clamped velocity.
+void StepDisplacement(Fixed h, b2Velocity& vel, Wide& dx, Wide& dy, Wide& da) {
+    dx = vel.v.x * h;
+    dy = vel.v.y * h;
+    const b2Vec2 translation{dx.ToFixed(), dy.ToFixed()};
     // Compare squares exactly in Q32.32 (the Q16.16 square saturates beyond 181 m).
     if (translation.LengthSquaredWide() > Wide(b2_maxTranslationSquared)) {
         const Fixed ratio = b2_maxTranslation / translation.Length();
         vel.v = ratio * vel.v;
+        dx = vel.v.x * h;
+        dy = vel.v.y * h;
     }
-    const Fixed rotation = (vel.w * h).ToFixed();
+    da = vel.w * h;
+    const Fixed rotation = da.ToFixed();
     if (MulWide(rotation, rotation) > Wide(b2_maxRotationSquared)) {
         const Fixed ratio = b2_maxRotation / b2Abs(rotation);
         vel.w = vel.w * ratio;
+        da = vel.w * h;
     }
 }
 }  // namespace
@@ -165,8 +172,9 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         const size_t slot = m_slotBase == 0 ? static_cast<size_t>(i) : static_cast<size_t>(b->m_islandIndex);
         b2Position& pos = m_positions[slot];
         b2Velocity& vel = m_velocities[slot];
-        ClampMotion(h, vel);
-        b->Displace(vel.v.x * h, vel.v.y * h, vel.w * h, pos.c, pos.a);
+        Wide dx, dy, da;
+        StepDisplacement(h, vel, dx, dy, da);
+        b->Displace(dx, dy, da, pos.c, pos.a);
     }
 
     bool positionSolved = false;
@@ -265,8 +273,9 @@ void b2Island::SolveTOI(b2Profile* profile, const b2TimeStep& subStep, int32 toi
         b2Position& pos = m_positions[static_cast<size_t>(i)];
         b2Velocity& vel = m_velocities[static_cast<size_t>(i)];
         b2Body* body = m_bodies[static_cast<size_t>(i)];
-        ClampMotion(h, vel);
-        body->Displace(vel.v.x * h, vel.v.y * h, vel.w * h, pos.c, pos.a);
+        Wide dx, dy, da;
+        StepDisplacement(h, vel, dx, dy, da);
+        body->Displace(dx, dy, da, pos.c, pos.a);
 
         body->m_sweep.c = pos.c;
         body->m_sweep.a = pos.a;
