@@ -75,6 +75,14 @@ bool MayReachToiTarget(const b2Contact& c, const b2Sweep& sweepA, const b2Sweep&
 }
 }  // namespace
 
+uint32 World::NextJointMark() {
+    if (++m_jointMark == 0) {
+        for (b2Joint* j = m_jointList; j; j = j->m_next) j->m_islandMark = 0;
+        m_jointMark = 1;
+    }
+    return m_jointMark;
+}
+
 void World::Solve(const b2TimeStep& step) {
     // Size the island for the worst case and clear the graph flags.
     m_island.Reset(m_bodyCount, m_contactManager.m_contactCount, m_jointCount, m_contactManager.m_contactListener);
@@ -85,7 +93,7 @@ void World::Solve(const b2TimeStep& step) {
     const bool parallel = tasks != nullptr && tasks->GetWorkerCount() > 1 && m_stepObserver == nullptr;
     for (b2Body* b = m_bodyList; b; b = b->m_next) b->m_flags &= ~(b2Body::e_islandFlag | b2Body::e_fastFlag);
     for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) c->m_flags &= ~b2Contact::e_islandFlag;
-    for (b2Joint* j = m_jointList; j; j = j->m_next) j->m_islandFlag = false;
+    const uint32 jointMark = NextJointMark();
 
     m_stack.resize(static_cast<size_t>(m_bodyCount));
     b2Body** stack = m_stack.data();
@@ -124,7 +132,7 @@ void World::Solve(const b2TimeStep& step) {
             }
 
             for (b2JointEdge* je = b->m_jointList; je; je = je->next) {
-                if (je->joint->m_islandFlag) continue;
+                if (je->joint->m_islandMark == jointMark) continue;
                 b2Body* other = je->other;
                 // Don't simulate joints connected to inactive bodies.
                 if (!other->IsActive()) continue;
@@ -132,7 +140,7 @@ void World::Solve(const b2TimeStep& step) {
                 // can change nothing: it costs nothing either.
                 if (b->GetType() != b2_dynamicBody && other->GetType() != b2_dynamicBody) continue;
                 m_island.Add(je->joint);
-                je->joint->m_islandFlag = true;
+                je->joint->m_islandMark = jointMark;
                 if (other->m_flags & b2Body::e_islandFlag) continue;
                 stack[stackCount++] = other;
                 other->m_flags |= b2Body::e_islandFlag;
