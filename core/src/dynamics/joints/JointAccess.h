@@ -74,15 +74,21 @@ struct core_detail::Engine::Joints {
     /// no arithmetic, so every joint's results are those of its own copy of these lines.
     template <class JointType>
     static jointmath::TwoBodyState BeginSolve(JointType& joint, const b2SolverData& data) noexcept {
+        const jointmath::TwoBodyState s = LoadSolve(joint, data);
+        joint.m_indexA = s.A.index;
+        joint.m_indexB = s.B.index;
+        joint.m_localCenterA = s.A.localCenter;
+        joint.m_localCenterB = s.B.localCenter;
+        joint.m_invMassA = s.A.invMass;
+        joint.m_invMassB = s.B.invMass;
+        joint.m_invIA = s.A.invI;
+        joint.m_invIB = s.B.invI;
+        return s;
+    }
+    /// BeginSolve without the copies into the joint: for a joint the solver's compact rows
+    /// iterate, which never reads them.
+    static jointmath::TwoBodyState LoadSolve(const b2Joint& joint, const b2SolverData& data) noexcept {
         const jointmath::BodyData A = Load(joint.m_bodyA), B = Load(joint.m_bodyB);
-        joint.m_indexA = A.index;
-        joint.m_indexB = B.index;
-        joint.m_localCenterA = A.localCenter;
-        joint.m_localCenterB = B.localCenter;
-        joint.m_invMassA = A.invMass;
-        joint.m_invMassB = B.invMass;
-        joint.m_invIA = A.invI;
-        joint.m_invIB = B.invI;
         const b2Position& pA = data.positions[A.index];
         const b2Position& pB = data.positions[B.index];
         const b2Velocity& velA = data.velocities[A.index];

@@ -55,19 +55,39 @@ b2WideMat33 PointAngleK(Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA, co
 }
 }  // namespace
 
-void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
-    [[maybe_unused]] auto [A, B, cA, aA, vA, wA, cB, aB, vB, wB] = BeginSolve(*this, data);
+void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) { SetUpVelocity(data, true); }
 
-    const b2Rot qA = data.Rotation(m_indexA, aA), qB = data.Rotation(m_indexB, aB);
-    m_rA = b2Mul(qA, m_localAnchorA - m_localCenterA);
-    m_rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
+b2RevoluteJoint::PointSetUp b2RevoluteJoint::SetUpVelocity(const b2SolverData& data, bool keepSolverFields) {
+    [[maybe_unused]] auto [A, B, cA, aA, vA, wA, cB, aB, vB, wB] =
+        keepSolverFields ? BeginSolve(*this, data) : core_detail::Engine::Joints::LoadSolve(*this, data);
 
-    const Wide iA = m_invIA, iB = m_invIB;
+    PointSetUp out;
+    out.indexA = A.index;
+    out.indexB = B.index;
+    out.localCenterA = A.localCenter;
+    out.localCenterB = B.localCenter;
+    out.mA = A.invMass;
+    out.mB = B.invMass;
+    out.iA = A.invI;
+    out.iB = B.invI;
+
+    const b2Rot qA = data.Rotation(A.index, aA), qB = data.Rotation(B.index, aB);
+    out.rA = b2Mul(qA, m_localAnchorA - A.localCenter);
+    out.rB = b2Mul(qB, m_localAnchorB - B.localCenter);
+
+    const Wide iA = A.invI, iB = B.invI;
     const bool fixedRotation = (iA + iB == Wide());
-    m_mass = PointAngleK(m_invMassA, m_invMassB, iA, iB, m_rA, m_rB);
-    m_pointSolver = m_mass.Upper22();
-    m_pointMass = math::Inverse(m_pointSolver);
+    const b2WideMat33 K = PointAngleK(A.invMass, B.invMass, iA, iB, out.rA, out.rB);
+    const b2WideSolver22 pointSolver = K.Upper22();
+    out.pointMass = math::Inverse(pointSolver);
     m_motorMass = Invert(iA + iB);
+    if (keepSolverFields) {
+        m_rA = out.rA;
+        m_rB = out.rB;
+        m_mass = K;
+        m_pointSolver = pointSolver;
+        m_pointMass = out.pointMass;
+    }
 
     if (!m_enableMotor || fixedRotation) m_motorImpulse = Wide();
 
@@ -95,8 +115,8 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
         m_limitState = e_inactiveLimit;
     }
     // An active limit state is only set with the limit enabled and rotation free: exactly when
-    // the velocity iterations solve the whole K.
-    if (m_limitState != e_inactiveLimit) m_limitSolver = m_mass.Prepared();
+    // the velocity iterations solve the whole K (and the solver fields are kept).
+    if (m_limitState != e_inactiveLimit) m_limitSolver = K.Prepared();
 
     if (data.step.warmStarting) {
         // Scale impulses to support a variable time step.
@@ -105,21 +125,22 @@ void b2RevoluteJoint::InitVelocityConstraints(const b2SolverData& data) {
         m_motorImpulse = m_motorImpulse * r;
 
         const b2WideVec2 P(m_impulse.x, m_impulse.y);
-        vA.x -= m_invMassA * P.x;
-        vA.y -= m_invMassA * P.y;
-        wA -= iA * (b2Cross(m_rA, P) + m_motorImpulse + m_impulse.z);
-        vB.x += m_invMassB * P.x;
-        vB.y += m_invMassB * P.y;
-        wB += iB * (b2Cross(m_rB, P) + m_motorImpulse + m_impulse.z);
+        vA.x -= A.invMass * P.x;
+        vA.y -= A.invMass * P.y;
+        wA -= iA * (b2Cross(out.rA, P) + m_motorImpulse + m_impulse.z);
+        vB.x += B.invMass * P.x;
+        vB.y += B.invMass * P.y;
+        wB += iB * (b2Cross(out.rB, P) + m_motorImpulse + m_impulse.z);
     } else {
         m_impulse.SetZero();
         m_motorImpulse = Wide();
     }
 
-    data.velocities[m_indexA].v = vA;
-    data.velocities[m_indexA].w = wA;
-    data.velocities[m_indexB].v = vB;
-    data.velocities[m_indexB].w = wB;
+    data.velocities[A.index].v = vA;
+    data.velocities[A.index].w = wA;
+    data.velocities[B.index].v = vB;
+    data.velocities[B.index].w = wB;
+    return out;
 }
 
 void b2RevoluteJoint::SolveVelocityConstraints(const b2SolverData& data) {

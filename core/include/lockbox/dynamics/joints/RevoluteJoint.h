@@ -103,6 +103,21 @@ private:
 
     /// Solver hook (called by b2Island).
     void InitVelocityConstraints(const b2SolverData& data) override;
+    /// What the velocity set-up gives the point-to-point iterations (the joint solver's rows).
+    struct PointSetUp {
+        int32 indexA = 0;  ///< island body indices
+        int32 indexB = 0;
+        b2Vec2 localCenterA;  ///< the bodies' local centres of mass (m)
+        b2Vec2 localCenterB;
+        Wide mA, mB, iA, iB;  ///< inverse masses and rotational inertias
+        b2Vec2 rA;            ///< arms from the centres of mass to the anchor (m)
+        b2Vec2 rB;
+        b2WideMat22 pointMass;  ///< the point block's inverse (kg)
+    };
+    /// InitVelocityConstraints, returning what the point iterations read. With `keepSolverFields`
+    /// false (motor and limit disabled: the joint solver iterates the joint as a row), the
+    /// joint's own solver fields are not written; the state and the velocities are, the same.
+    PointSetUp SetUpVelocity(const b2SolverData& data, bool keepSolverFields);
     /// Solver hook (called by b2Island).
     void SolveVelocityConstraints(const b2SolverData& data) override;
     /// Solver hook (called by b2Island); true when within tolerance.
@@ -121,33 +136,36 @@ private:
     /// The continuous angle for body angles aA, aB: the branch nearest to m_angleBase.
     Fixed ContinuousAngle(Fixed aA, Fixed aB) const noexcept;
 
-    // Declared in the order the velocity iterations read them, so that one iteration touches
-    // as few cache lines as it can (a large joint graph's iterations are memory-bound): the
-    // island indices and switches, the arms, the masses, the point block's inverse and the
-    // accumulated impulses first; what only the set-up and position passes read after.
-    int32 m_indexA = 0;
-    int32 m_indexB = 0;
+    // Declared in the order of use, so that a step touches as few cache lines of a joint as it
+    // can (a large joint graph's set-up and iterations are memory-bound). First what the
+    // velocity set-up reads and writes of every joint: the switches and the state it carries
+    // (anchors, angles, impulses). A joint whose motor and limit are disabled is iterated in the
+    // joint solver's compact rows and is touched nowhere else in the step.
     b2LimitState m_limitState = e_inactiveLimit;
     bool m_enableMotor;
     bool m_enableLimit;
+    b2Vec2 m_localAnchorA;
+    b2Vec2 m_localAnchorB;
+    Fixed m_referenceAngle;
+    Fixed m_angleBase;     ///< continuous joint angle at the last velocity init, rad
+    b2WideVec3 m_impulse;  ///< point (N*s) and limit (N*m*s)
+    Wide m_motorImpulse;   ///< N*m*s
+    Wide m_motorMass;      ///< 1/(iA + iB), kg*m^2
+    Fixed m_motorSpeed;
+    Fixed m_maxMotorTorque;
+    Fixed m_lowerAngle;
+    Fixed m_upperAngle;
+
+    // The solver fields of a joint that is iterated by itself (motor or limit enabled), in the
+    // order its velocity iterations read them; then what only its set-up and position pass read.
+    int32 m_indexA = 0;
+    int32 m_indexB = 0;
     b2Vec2 m_rA;
     b2Vec2 m_rB;
     Wide m_invMassA, m_invMassB, m_invIA, m_invIB;
     b2WideMat22 m_pointMass;  ///< the point block's inverse (kg), once per step: the point iterations' product
-    b2WideVec3 m_impulse;     ///< point (N*s) and limit (N*m*s)
-    Wide m_motorImpulse;      ///< N*m*s
-    Wide m_motorMass;         ///< 1/(iA + iB), kg*m^2
-    Fixed m_motorSpeed;
-    Fixed m_maxMotorTorque;
-
-    b2Vec2 m_localAnchorA;
-    b2Vec2 m_localAnchorB;
     b2Vec2 m_localCenterA;
     b2Vec2 m_localCenterB;
-    Fixed m_referenceAngle;
-    Fixed m_lowerAngle;
-    Fixed m_upperAngle;
-    Fixed m_angleBase;             ///< continuous joint angle at the last velocity init, rad
     b2WideMat33 m_mass;            ///< the K matrix (1/kg, 1/(kg m), 1/(kg m^2)); its point block is also inverted
     b2WideSolver22 m_pointSolver;  ///< m_mass's point block, prepared once per step
     b2WideSolver33 m_limitSolver;  ///< m_mass, prepared once per step while the limit is solved
