@@ -10,6 +10,16 @@ namespace {
 
 using testing_state::RunSceneSyncTest;
 
+// Rolls back 4 frames after every frame; wrong inputs first when `mispredict` is set.
+SyncTestConfig EveryFrame(bool mispredict, uint64 seed) {
+    SyncTestConfig config;
+    config.checkDistance = 4;
+    config.stride = 1;
+    config.mispredict = mispredict;
+    config.seed = seed;
+    return config;
+}
+
 class SceneSync : public ::testing::TestWithParam<std::string_view> {};
 
 #ifdef NDEBUG
@@ -53,7 +63,7 @@ TEST(SyncTestTool, EdgeListsFollowWorldListsAfterChurn) {
     for (const char* name : {"ragdolls", "pulley_gear", "bullet_stack_dynamic", "car"}) {
         testing_state::SceneRun run(name);
         testing_state::SceneSyncGame game(run);
-        SyncTestConfig config{4, 1, true, 99};
+        SyncTestConfig config = EveryFrame(true, 99);
         config.step = game.Step();
         SyncTest test(run.world(), game, {}, config);
         const SyncTestResult r = test.Run(40);
@@ -129,7 +139,7 @@ TEST(SyncTestTool, PassesWhenTheGameSavesItsState) {
     b2World world(b2Vec2(0, -10));
     LeakyGame game(MakeBox(world));
     game.saves_ = true;
-    SyncTest test(world, game, {}, SyncTestConfig{4, 1, true, 7});
+    SyncTest test(world, game, {}, EveryFrame(true, 7));
     const SyncTestResult r = test.Run(30);
     EXPECT_TRUE(r.ok) << r.message;
     EXPECT_EQ(r.rollbacks, 27);
@@ -153,7 +163,7 @@ TEST(SyncTestTool, AsksTheInputSourceOncePerFrame) {
     // Not a pure function of the frame: a re-simulation must get the first run's bytes back.
     int32 calls = 0;
     std::vector<int32> frames;
-    SyncTestConfig config{4, 1, true, 7};
+    SyncTestConfig config = EveryFrame(true, 7);
     config.inputBytes = 2;
     config.step = {30, 6, 2};
     SyncTest test(
@@ -180,7 +190,7 @@ TEST(SyncTestTool, StepsWithTheConfiguredSettings) {
             out[0] = static_cast<uint8>(frame * 13);
             out[1] = static_cast<uint8>(frame * 7);
         };
-        SyncTestConfig config{4, 1, false, 7};
+        SyncTestConfig config = EveryFrame(false, 7);
         config.inputBytes = 2;
         config.step = {30, 6, 2};
         if (byHand) {
