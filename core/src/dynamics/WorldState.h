@@ -129,6 +129,13 @@ public:
         void operator()(ParallelIslands* p) const noexcept;
     };
 
+    /// The island search's joint mark (b2Joint::m_islandMark): a new value each step, never 0,
+    /// so no joint carries it before the search takes it. Not state: nothing but the search
+    /// reads it.
+    uint32 m_jointMark = 0;
+    /// The next step's mark; on wrapping around, every joint's mark is cleared first.
+    uint32 NextJointMark();
+
 private:
     void Solve(const b2TimeStep& step);
     /// Keeps the island just found in m_island for SolveRecordedIslands.
@@ -148,12 +155,6 @@ private:
     std::unique_ptr<ParallelIslands, ParallelIslandsDeleter> m_parallelIslands;
     std::vector<b2Body*> m_stack;
     std::vector<b2Body*> m_outOfBounds;
-    /// The island search's joint mark (b2Joint::m_islandMark): a new value each step, never 0,
-    /// so no joint carries it before the search takes it. Not state: nothing but the search
-    /// reads it.
-    uint32 m_jointMark = 0;
-    /// The next step's mark; on wrapping around, every joint's mark is cleared first.
-    uint32 NextJointMark();
 };
 
 /// The block a b2World holds (World.h declares it without the engine's definition).

@@ -29,6 +29,9 @@ inline state_detail::FrameRestoreCounts FrameRestores(const b2World& world) {
     return Internals(world).m_frames.m_restores;
 }
 
+/// Sets the island search's joint mark, as if that many searches had run (its wrap-around).
+inline void SetIslandJointMark(b2World& world, uint32 mark) { Internals(world).m_jointMark = mark; }
+
 /// Entries in the log of confined structural changes.
 inline size_t StructureLogSize(const b2World& world) { return Internals(world).m_frames.m_structureLog.size(); }
 
