@@ -4,8 +4,10 @@
 // pointer and a virtual call. For the common case, a revolute joint whose motor and limit are
 // idle this step, the solver copies what an iteration reads (island indices, arms, inverse
 // masses, the point block's inverse and the accumulated impulse) into a compact row, kept in
-// one array in island order, and writes the impulse back when the iterations end. Every other
-// joint is solved through its own SolveVelocityConstraints, in the same place of the order.
+// one array in island order, and writes the impulse back when the iterations end. When the
+// motor and the limit are both disabled, the set-up computes straight into the rows and writes
+// to the joint only its state. Every other joint is solved through its own
+// SolveVelocityConstraints, in the same place of the order.
 // The arithmetic of a row is the joint's own, operation for operation: the bits are the same.
 //
 // The rows are scratch of one island's solve, never state: snapshots and frames do not see them.
