@@ -1,5 +1,7 @@
 // b2World::Solve (islands) and b2World::SolveTOI (continuous collision).
+#include <algorithm>
 #include <chrono>
+#include <cstddef>
 
 #include "dynamics/WorldState.h"
 #include "lockbox/collision/TimeOfImpact.h"
@@ -183,6 +185,56 @@ void World::Solve(const b2TimeStep& step) {
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_broadPhase, *m_owner);
 }
 
+// The event search of SolveTOI visits every contact of the world list in list order, and the
+// contact with the smallest time of impact wins (the earlier one in the list on a tie). A
+// contact can pass its filters only with a cached time of impact or a fast body (the last
+// filter), so the search visits only those: the candidates, in the same order, which gives
+// the same events. A contact becomes one while events are solved only when a sub-step makes
+// one of its bodies fast, or when it is created; both are added as they happen.
+void World::CollectToiCandidates() {
+    m_toiCandidates.clear();
+    m_toiSorted = 0;
+    m_toiHeadOrder = 0;
+    int64_t order = 0;
+    for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) {
+        if (m_stepComplete) {
+            // Invalidate TOI.
+            c->m_flags &= ~(b2Contact::e_toiFlag | b2Contact::e_islandFlag);
+            c->m_toiCount = 0;
+            c->m_toi = Fixed(1);
+        }
+        if (m_toiSearchEveryContact) continue;
+        c->m_toiOrder = order++;
+        const uint32 bodyFlags = c->GetFixtureA()->GetBody()->m_flags | c->GetFixtureB()->GetBody()->m_flags;
+        if ((c->m_flags & b2Contact::e_toiFlag) != 0 || (bodyFlags & b2Body::e_fastFlag) != 0) AddToiCandidate(c);
+    }
+    m_toiSorted = m_toiCandidates.size();
+}
+
+void World::AddNewToiCandidates(const b2Contact* oldHead) {
+    int64_t created = 0;
+    for (b2Contact* c = m_contactManager.m_contactList; c != oldHead; c = c->m_next) ++created;
+    // The newest is the head: the orders rise from it towards the old head.
+    int64_t order = m_toiHeadOrder - created;
+    m_toiHeadOrder = order;
+    for (b2Contact* c = m_contactManager.m_contactList; c != oldHead; c = c->m_next) {
+        c->m_toiOrder = order++;
+        AddToiCandidate(c);
+    }
+}
+
+void World::SortToiCandidates() {
+    if (m_toiSorted == m_toiCandidates.size()) return;
+    // Orders are distinct (one per list place), so the order has no ties; a contact added twice
+    // sits next to itself and is kept once.
+    const auto before = [](const b2Contact* a, const b2Contact* b) { return a->m_toiOrder < b->m_toiOrder; };
+    const auto middle = m_toiCandidates.begin() + static_cast<std::ptrdiff_t>(m_toiSorted);
+    std::sort(middle, m_toiCandidates.end(), before);
+    std::inplace_merge(m_toiCandidates.begin(), middle, m_toiCandidates.end(), before);
+    m_toiCandidates.erase(std::unique(m_toiCandidates.begin(), m_toiCandidates.end()), m_toiCandidates.end());
+    m_toiSorted = m_toiCandidates.size();
+}
+
 void World::SolveTOI(const b2TimeStep& step) {
     // A body too slow to tunnel (not flagged fast) can still start the step pressed into a
     // static or kinematic body closer than the query's target (squeezed under a heavy load):
@@ -237,13 +289,8 @@ void World::SolveTOI(const b2TimeStep& step) {
             b->m_flags &= ~b2Body::e_islandFlag;
             b->m_sweep.alpha0 = Fixed();
         }
-        for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) {
-            // Invalidate TOI.
-            c->m_flags &= ~(b2Contact::e_toiFlag | b2Contact::e_islandFlag);
-            c->m_toiCount = 0;
-            c->m_toi = Fixed(1);
-        }
     }
+    CollectToiCandidates();
 
     // Find TOI events and solve them.
     for (;;) {
@@ -251,10 +298,10 @@ void World::SolveTOI(const b2TimeStep& step) {
         b2Contact* minContact = nullptr;
         Fixed minAlpha = 1;
 
-        for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) {
-            if (!c->IsEnabled()) continue;
+        auto consider = [&](b2Contact* c) {
+            if (!c->IsEnabled()) return;
             // Prevent excessive sub-stepping.
-            if (c->m_toiCount > b2_maxSubSteps) continue;
+            if (c->m_toiCount > b2_maxSubSteps) return;
 
             Fixed alpha = 1;
             if (c->m_flags & b2Contact::e_toiFlag) {
@@ -263,7 +310,7 @@ void World::SolveTOI(const b2TimeStep& step) {
             } else {
                 b2Fixture* fA = c->GetFixtureA();
                 b2Fixture* fB = c->GetFixtureB();
-                if (fA->IsSensor() || fB->IsSensor()) continue;
+                if (fA->IsSensor() || fB->IsSensor()) return;
 
                 b2Body* bA = fA->GetBody();
                 b2Body* bB = fB->GetBody();
@@ -273,15 +320,15 @@ void World::SolveTOI(const b2TimeStep& step) {
                 const bool activeA = bA->IsAwake() && typeA != b2_staticBody;
                 const bool activeB = bB->IsAwake() && typeB != b2_staticBody;
                 // Is at least one body active (awake and dynamic or kinematic)?
-                if (!activeA && !activeB) continue;
+                if (!activeA && !activeB) return;
 
                 const bool collideA = bA->IsBullet() || typeA != b2_dynamicBody;
                 const bool collideB = bB->IsBullet() || typeB != b2_dynamicBody;
                 // Are these two non-bullet dynamic bodies?
-                if (!collideA && !collideB) continue;
+                if (!collideA && !collideB) return;
 
                 // Neither body moved enough to tunnel: the discrete step handled it.
-                if (((bA->m_flags | bB->m_flags) & b2Body::e_fastFlag) == 0) continue;
+                if (((bA->m_flags | bB->m_flags) & b2Body::e_fastFlag) == 0) return;
                 ++m_profile.toiCandidates;
 
                 // Put the sweeps onto the same time interval.
@@ -321,6 +368,12 @@ void World::SolveTOI(const b2TimeStep& step) {
                 minContact = c;
                 minAlpha = alpha;
             }
+        };
+        if (m_toiSearchEveryContact) {
+            for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) consider(c);
+        } else {
+            SortToiCandidates();
+            for (b2Contact* c : m_toiCandidates) consider(c);
         }
 
         if (minContact == nullptr || minAlpha >= kTOIAlphaComplete) {
@@ -437,15 +490,19 @@ void World::SolveTOI(const b2TimeStep& step) {
             body->m_flags |= b2Body::e_fastFlag;
             if (IsOutside(body)) m_outOfBounds.push_back(body);
 
-            // Invalidate all contact TOIs on this displaced body.
+            // Invalidate all contact TOIs on this displaced body; being fast now, it makes them
+            // candidates of the search.
             for (b2ContactEdge* ce = body->m_contactList; ce; ce = ce->next) {
                 ce->contact->m_flags &= ~(b2Contact::e_toiFlag | b2Contact::e_islandFlag);
+                AddToiCandidate(ce->contact);
             }
         }
 
-        // Commit fixture proxy movements to the broad phase so that new contacts are created.
-        // Also, some contacts can be destroyed.
+        // Commit fixture proxy movements to the broad phase so that new contacts are created
+        // (at the head of the contact list; none is destroyed here).
+        const b2Contact* oldHead = m_contactManager.m_contactList;
         m_contactManager.FindNewContacts();
+        AddNewToiCandidates(oldHead);
 
         if (m_subStepping) {
             m_stepComplete = false;

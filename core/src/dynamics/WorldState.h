@@ -129,6 +129,24 @@ public:
         void operator()(ParallelIslands* p) const noexcept;
     };
 
+    /// The time-of-impact event search visits every contact of the world list, in list order,
+    /// as 2.2.1 does, when this is set; otherwise only the contacts that can pass its filters
+    /// (WorldSolve.cpp), in the same order, with the same result. The full search is kept as
+    /// the reference the tests compare the short one with.
+    bool m_toiSearchEveryContact = false;
+
+    // The time-of-impact event search's candidates (WorldSolve.cpp): every contact the search
+    // could take, in contact-list order up to `m_toiSorted`, unsorted additions after it.
+    std::vector<b2Contact*> m_toiCandidates;
+    size_t m_toiSorted = 0;
+    int64_t m_toiHeadOrder = 0;  ///< the m_toiOrder of the list's head
+    void CollectToiCandidates();
+    void AddToiCandidate(b2Contact* c) { m_toiCandidates.push_back(c); }
+    /// Candidates for the contacts FindNewContacts put before `oldHead`, the list's head before.
+    void AddNewToiCandidates(const b2Contact* oldHead);
+    /// Puts the additions in list order among the others, once each.
+    void SortToiCandidates();
+
     /// The island search's joint mark (b2Joint::m_islandMark): a new value each step, never 0,
     /// so no joint carries it before the search takes it. Not state: nothing but the search
     /// reads it.

@@ -5,6 +5,7 @@
 // Nothing here is public API: the engine may change it at any time.
 
 #include <cstddef>
+#include <vector>
 
 #include "dynamics/WorldState.h"
 #include "lockbox/dynamics/World.h"
@@ -31,6 +32,13 @@ inline state_detail::FrameRestoreCounts FrameRestores(const b2World& world) {
 
 /// Sets the island search's joint mark, as if that many searches had run (its wrap-around).
 inline void SetIslandJointMark(b2World& world, uint32 mark) { Internals(world).m_jointMark = mark; }
+
+/// Makes the time-of-impact event search visit every contact (2.2.1's search, the reference)
+/// instead of its candidates only.
+inline void SetToiSearchEveryContact(b2World& world, bool every) { Internals(world).m_toiSearchEveryContact = every; }
+
+/// The time-of-impact search's candidates as the last search left them.
+inline const std::vector<b2Contact*>& ToiCandidates(b2World& world) { return Internals(world).m_toiCandidates; }
 
 /// Entries in the log of confined structural changes.
 inline size_t StructureLogSize(const b2World& world) { return Internals(world).m_frames.m_structureLog.size(); }

@@ -155,6 +155,10 @@ private:
     int32 m_id;
     b2ContactEdge m_nodeA;
     b2ContactEdge m_nodeB;
+    /// Where the contact stands in the world's contact list while time of impact is solved
+    /// (smaller is nearer the head): the order of the event search's candidates. Scratch of
+    /// b2World::Step, never state.
+    int64_t m_toiOrder = 0;
 };
 
 }  // namespace lockbox

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "StateTestUtil.h"
+#include "../../state/StateTestUtil.h"
 #include "lockbox_internal/WorldInternals.h"
 
 namespace lockbox {

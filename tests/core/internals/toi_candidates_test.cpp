@@ -1,0 +1,173 @@
+// The time-of-impact event search visits only its candidates (contacts with a cached time of
+// impact or a fast body, in contact-list order) instead of every contact as 2.2.1 does. The
+// events, and so every bit of every step, must be those of the full search: each scene runs
+// twice, once with each search, and the worlds are compared after every frame.
+
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../../state/StateTestUtil.h"
+#include "lockbox_internal/WorldInternals.h"
+
+namespace lockbox {
+namespace {
+
+using testing_state::DescribeDifference;
+using testing_state::SceneRun;
+
+#ifdef NDEBUG
+constexpr int kFrameScale = 1;
+#else
+constexpr int kFrameScale = 4;  // sanitizer and debug builds are about ten times slower
+#endif
+
+struct Case {
+    const char* scene;
+    int frames;
+    bool subStepping;
+};
+
+void ExpectSameAsFullSearch(const Case& c) {
+    SceneRun reference(c.scene);
+    SceneRun candidates(c.scene);
+    ASSERT_TRUE(reference.scene && candidates.scene) << c.scene;
+    test::SetToiSearchEveryContact(reference.world(), true);
+    reference.world().SetSubStepping(c.subStepping);
+    candidates.world().SetSubStepping(c.subStepping);
+    for (int frame = 0; frame < c.frames / kFrameScale; ++frame) {
+        reference.Advance();
+        candidates.Advance();
+        ASSERT_EQ(DescribeDifference(reference.world(), candidates.world()), "")
+            << c.scene << (c.subStepping ? " (sub-stepping)" : "") << ", frame " << frame;
+    }
+    EXPECT_EQ(b2WorldHash(reference.world()), b2WorldHash(candidates.world()));
+}
+
+TEST(ToiCandidates, EventsAreThoseOfTheFullSearch) {
+    for (const Case& c : {Case{"rain", 240, false}, Case{"bullet_wall_dynamic", 60, false},
+                          Case{"bullet_wall_bullet", 60, false}, Case{"bullet_stack_dynamic", 60, false},
+                          Case{"bullet_stack_bullet", 60, false}, Case{"pyramid20", 120, false},
+                          Case{"one_sided_platform", 120, false}, Case{"ragdolls", 120, false}}) {
+        ExpectSameAsFullSearch(c);
+    }
+}
+
+// The candidates are searched in contact-list order: on a tie the earlier contact in the list
+// takes the event, as in the full search.
+TEST(ToiCandidates, CandidatesAreInContactListOrder) {
+    SceneRun run("rain");
+    ASSERT_TRUE(run.scene);
+    int checked = 0;
+    for (int frame = 0; frame < 200 / kFrameScale; ++frame) {
+        run.Advance();
+        const std::vector<b2Contact*>& candidates = test::ToiCandidates(run.world());
+        if (candidates.size() < 2) continue;
+        // The candidates must appear in the list, each once, in the same order.
+        size_t next = 0;
+        for (b2Contact* c = run.world().GetContactList(); c && next < candidates.size(); c = c->GetNext()) {
+            if (c == candidates[next]) ++next;
+        }
+        ASSERT_EQ(next, candidates.size()) << "frame " << frame;
+        ++checked;
+    }
+    EXPECT_GT(checked, 10);
+}
+
+// With sub-stepping a step solves one event and leaves the cached times of impact for the next:
+// candidates then also come from a previous step.
+TEST(ToiCandidates, SubSteppingKeepsTheFullSearchsEvents) {
+    for (const Case& c : {Case{"bullet_wall_bullet", 60, true}, Case{"bullet_stack_bullet", 60, true},
+                          Case{"rain", 120, true}}) {
+        ExpectSameAsFullSearch(c);
+    }
+}
+
+// Two cases the scenes rarely make, built to happen at the first step (zero gravity, 60 Hz). A
+// bullet at 200 m/s moves 3.3 m a step.
+struct Built {
+    std::unique_ptr<b2World> world = std::make_unique<b2World>(b2Vec2(0, 0));
+    b2Body* Static(b2Vec2 at, Fixed halfWidth, Fixed halfHeight) {
+        b2BodyDef def;
+        def.position = at;
+        b2Body* body = world->CreateBody(&def);
+        b2PolygonShape box;
+        box.SetAsBox(halfWidth, halfHeight);
+        body->CreateFixture(&box, 0);
+        return body;
+    }
+    b2Body* Bullet(b2Vec2 at, b2Vec2 velocity) {
+        b2BodyDef def;
+        def.type = b2_dynamicBody;
+        def.bullet = true;
+        def.position = at;
+        def.linearVelocity = velocity;
+        b2Body* body = world->CreateBody(&def);
+        b2CircleShape circle;
+        circle.m_radius = Fixed(0.1);
+        b2FixtureDef fixture;
+        fixture.shape = &circle;
+        fixture.density = 1;
+        fixture.restitution = 1;
+        body->CreateFixture(&fixture);
+        return body;
+    }
+};
+
+// Steps two copies, one with each search, and compares them after every step.
+void ExpectSameAsFullSearch(Built& reference, Built& candidates, int steps, const char* name) {
+    test::SetToiSearchEveryContact(*reference.world, true);
+    for (int i = 0; i < steps; ++i) {
+        reference.world->Step(Fixed::FromRaw(1092), 8, 3);
+        candidates.world->Step(Fixed::FromRaw(1092), 8, 3);
+        ASSERT_EQ(DescribeDifference(*reference.world, *candidates.world), "") << name << ", step " << i;
+    }
+}
+
+// The bullet bounces off the wall ahead and, later in the same step, reaches a wall behind its
+// start: that contact is created by the sub-step's broad-phase update, and must be searched.
+TEST(ToiCandidates, ContactCreatedBySubStepIsSearched) {
+    auto build = [] {
+        Built b;
+        b.Static(b2Vec2(1, 0), Fixed(0.05), 1);
+        b.Static(b2Vec2(-0.5, 0), Fixed(0.05), 1);
+        b.Bullet(b2Vec2(0, 0), b2Vec2(200, 0));
+        return b;
+    };
+    Built reference = build(), candidates = build();
+    ExpectSameAsFullSearch(reference, candidates, 4, "bounce");
+    // The bullet is still between the walls: the second wall's event was found.
+    const Fixed x = candidates.world->GetBodyList()->GetPosition().x;
+    EXPECT_GT(x, Fixed(-0.5));
+    EXPECT_LT(x, Fixed(1));
+}
+
+// The bullet hits a light box resting near a wall; the sub-step makes the box fast, and its
+// contact with the wall (whose bodies were both slow when the search began) must be searched.
+TEST(ToiCandidates, ContactOfBodyMadeFastBySubStepIsSearched) {
+    auto build = [] {
+        Built b;
+        b.Static(b2Vec2(Fixed(1.73), 0), Fixed(0.05), 1);
+        b2BodyDef def;
+        def.type = b2_dynamicBody;
+        def.position = b2Vec2(Fixed(1.5), 0);
+        b2Body* box = b.world->CreateBody(&def);
+        b2PolygonShape shape;
+        shape.SetAsBox(Fixed(0.1), Fixed(0.1));
+        box->CreateFixture(&shape, Fixed(0.05));
+        b.Bullet(b2Vec2(0, 0), b2Vec2(200, 0));
+        return b;
+    };
+    Built reference = build(), candidates = build();
+    ExpectSameAsFullSearch(reference, candidates, 4, "push");
+    // The box stopped at the wall instead of passing through it.
+    for (b2Body* b = candidates.world->GetBodyList(); b; b = b->GetNext()) {
+        if (b->GetType() == b2_dynamicBody && !b->IsBullet()) {
+            EXPECT_LT(b->GetPosition().x, Fixed(1.73));
+        }
+    }
+}
+
+}  // namespace
+}  // namespace lockbox
