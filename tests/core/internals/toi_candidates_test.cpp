@@ -46,10 +46,10 @@ void ExpectSameAsFullSearch(const Case& c) {
 }
 
 TEST(ToiCandidates, EventsAreThoseOfTheFullSearch) {
-    for (const Case& c : {Case{"rain", 240, false}, Case{"bullet_wall_dynamic", 60, false},
-                          Case{"bullet_wall_bullet", 60, false}, Case{"bullet_stack_dynamic", 60, false},
-                          Case{"bullet_stack_bullet", 60, false}, Case{"pyramid20", 120, false},
-                          Case{"one_sided_platform", 120, false}, Case{"ragdolls", 120, false}}) {
+    for (const Case& c :
+         {Case{"rain", 240, false}, Case{"bullet_wall_dynamic", 60, false}, Case{"bullet_wall_bullet", 60, false},
+          Case{"bullet_stack_dynamic", 60, false}, Case{"bullet_stack_bullet", 60, false},
+          Case{"pyramid20", 120, false}, Case{"one_sided_platform", 120, false}, Case{"ragdolls", 120, false}}) {
         ExpectSameAsFullSearch(c);
     }
 }
@@ -78,8 +78,8 @@ TEST(ToiCandidates, CandidatesAreInContactListOrder) {
 // With sub-stepping a step solves one event and leaves the cached times of impact for the next:
 // candidates then also come from a previous step.
 TEST(ToiCandidates, SubSteppingKeepsTheFullSearchsEvents) {
-    for (const Case& c : {Case{"bullet_wall_bullet", 60, true}, Case{"bullet_stack_bullet", 60, true},
-                          Case{"rain", 120, true}}) {
+    for (const Case& c :
+         {Case{"bullet_wall_bullet", 60, true}, Case{"bullet_stack_bullet", 60, true}, Case{"rain", 120, true}}) {
         ExpectSameAsFullSearch(c);
     }
 }
