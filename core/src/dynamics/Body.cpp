@@ -256,6 +256,7 @@ void b2Body::SetUserData(uint64 data) noexcept {
 }
 
 void b2Body::SetBullet(bool flag) noexcept {
+    if (flag != IsBullet()) Engine::Of(*m_world).NoteToiFilterEdit();
     if (flag)
         m_flags |= e_bulletFlag;
     else

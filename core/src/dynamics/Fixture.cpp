@@ -79,6 +79,8 @@ b2Shape* b2Fixture::EditShape() noexcept {
 
 void b2Fixture::SetSensor(bool sensor) noexcept {
     MarkChanged(m_body);
+    if (sensor != m_isSensor && m_body != nullptr && m_body->GetWorld() != nullptr)
+        core_detail::Engine::Of(*m_body->GetWorld()).NoteToiFilterEdit();
     m_isSensor = sensor;
 }
 

@@ -190,14 +190,16 @@ void World::Solve(const b2TimeStep& step) {
 // contact can pass its filters only with a cached time of impact or a fast body (the last
 // filter), so the search visits only those: the candidates, in the same order, which gives
 // the same events. A contact becomes one while events are solved only when a sub-step makes
-// one of its bodies fast, or when it is created; both are added as they happen.
-void World::CollectToiCandidates() {
+// one of its bodies fast, or when it is created; both are added as they happen. A candidate
+// that a filter rejects for the rest of the step is dropped after its visit, so each event's
+// search reads only contacts that can still take an event.
+void World::CollectToiCandidates(bool invalidate) {
     m_toiCandidates.clear();
     m_toiSorted = 0;
     m_toiHeadOrder = 0;
     int64_t order = 0;
     for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) {
-        if (m_stepComplete) {
+        if (invalidate) {
             // Invalidate TOI.
             c->m_flags &= ~(b2Contact::e_toiFlag | b2Contact::e_islandFlag);
             c->m_toiCount = 0;
@@ -290,7 +292,8 @@ void World::SolveTOI(const b2TimeStep& step) {
             b->m_sweep.alpha0 = Fixed();
         }
     }
-    CollectToiCandidates();
+    CollectToiCandidates(m_stepComplete);
+    uint32 filterEdits = m_toiFilterEdits;
 
     // Find TOI events and solve them.
     for (;;) {
@@ -298,10 +301,14 @@ void World::SolveTOI(const b2TimeStep& step) {
         b2Contact* minContact = nullptr;
         Fixed minAlpha = 1;
 
-        auto consider = [&](b2Contact* c) {
-            if (!c->IsEnabled()) return;
+        // Returns false when a filter rejects the contact for the rest of the step: its
+        // sub-step count only grows, a sensor flag or a bullet flag changes only through an
+        // edit the search watches for (m_toiFilterEdits), body types not at all while the world
+        // is locked, and a body made fast brings its contacts back as candidates.
+        auto consider = [&](b2Contact* c) -> bool {
+            if (!c->IsEnabled()) return true;
             // Prevent excessive sub-stepping.
-            if (c->m_toiCount > b2_maxSubSteps) return;
+            if (c->m_toiCount > b2_maxSubSteps) return false;
 
             Fixed alpha = 1;
             if (c->m_flags & b2Contact::e_toiFlag) {
@@ -310,7 +317,7 @@ void World::SolveTOI(const b2TimeStep& step) {
             } else {
                 b2Fixture* fA = c->GetFixtureA();
                 b2Fixture* fB = c->GetFixtureB();
-                if (fA->IsSensor() || fB->IsSensor()) return;
+                if (fA->IsSensor() || fB->IsSensor()) return false;
 
                 b2Body* bA = fA->GetBody();
                 b2Body* bB = fB->GetBody();
@@ -320,15 +327,15 @@ void World::SolveTOI(const b2TimeStep& step) {
                 const bool activeA = bA->IsAwake() && typeA != b2_staticBody;
                 const bool activeB = bB->IsAwake() && typeB != b2_staticBody;
                 // Is at least one body active (awake and dynamic or kinematic)?
-                if (!activeA && !activeB) return;
+                if (!activeA && !activeB) return true;
 
                 const bool collideA = bA->IsBullet() || typeA != b2_dynamicBody;
                 const bool collideB = bB->IsBullet() || typeB != b2_dynamicBody;
                 // Are these two non-bullet dynamic bodies?
-                if (!collideA && !collideB) return;
+                if (!collideA && !collideB) return false;
 
                 // Neither body moved enough to tunnel: the discrete step handled it.
-                if (((bA->m_flags | bB->m_flags) & b2Body::e_fastFlag) == 0) return;
+                if (((bA->m_flags | bB->m_flags) & b2Body::e_fastFlag) == 0) return false;
                 ++m_profile.toiCandidates;
 
                 // Put the sweeps onto the same time interval.
@@ -368,12 +375,25 @@ void World::SolveTOI(const b2TimeStep& step) {
                 minContact = c;
                 minAlpha = alpha;
             }
+            return true;
         };
         if (m_toiSearchEveryContact) {
             for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) consider(c);
         } else {
+            // A listener's edit may have made a dropped candidate acceptable again: take every
+            // contact that can pass the last filter, as at the start.
+            if (m_toiFilterEdits != filterEdits) {
+                CollectToiCandidates(false);
+                filterEdits = m_toiFilterEdits;
+            }
             SortToiCandidates();
-            for (b2Contact* c : m_toiCandidates) consider(c);
+            // Visit in list order and keep, in that order, the candidates not dropped.
+            size_t kept = 0;
+            for (b2Contact* c : m_toiCandidates) {
+                if (consider(c)) m_toiCandidates[kept++] = c;
+            }
+            m_toiCandidates.resize(kept);
+            m_toiSorted = kept;
         }
 
         if (minContact == nullptr || minAlpha >= kTOIAlphaComplete) {

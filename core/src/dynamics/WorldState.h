@@ -140,7 +140,14 @@ public:
     std::vector<b2Contact*> m_toiCandidates;
     size_t m_toiSorted = 0;
     int64_t m_toiHeadOrder = 0;  ///< the m_toiOrder of the list's head
-    void CollectToiCandidates();
+    /// Counts the edits that can turn a filter of the search from reject to accept while the
+    /// events are solved (a listener's SetBullet or SetSensor); the search drops a candidate
+    /// that a filter rejects only while this count stays put (not state).
+    uint32 m_toiFilterEdits = 0;
+    void NoteToiFilterEdit() noexcept { ++m_toiFilterEdits; }
+    /// Every contact with a cached time of impact or a fast body, numbered in list order; with
+    /// `invalidate` (a new step) the cached times of impact are dropped first.
+    void CollectToiCandidates(bool invalidate);
     void AddToiCandidate(b2Contact* c) { m_toiCandidates.push_back(c); }
     /// Candidates for the contacts FindNewContacts put before `oldHead`, the list's head before.
     void AddNewToiCandidates(const b2Contact* oldHead);

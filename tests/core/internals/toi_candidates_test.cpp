@@ -169,5 +169,71 @@ TEST(ToiCandidates, ContactOfBodyMadeFastBySubStepIsSearched) {
     }
 }
 
+// The search drops a candidate that a filter rejects for the rest of the step (two non-bullet
+// dynamic bodies, a sensor). A listener may still make such a contact acceptable while the
+// events are solved, by SetBullet or SetSensor; the full search then takes it, so the short one
+// must too. Here the first event (a bullet reaching a wall) runs the listener, which edits the
+// contact of a fast body with a light box ahead of it.
+enum class Edit { bullet, sensor };
+
+struct EditOnFirstStaticTouch final : b2ContactListener {
+    Edit edit;
+    b2Body* fastBody = nullptr;
+    b2Fixture* boxFixture = nullptr;
+    bool done = false;
+    explicit EditOnFirstStaticTouch(Edit e) : edit(e) {}
+    void BeginContact(b2Contact* contact) override {
+        const bool withStatic = contact->GetFixtureA()->GetBody()->GetType() == b2_staticBody ||
+                                contact->GetFixtureB()->GetBody()->GetType() == b2_staticBody;
+        if (done || !withStatic) return;
+        done = true;
+        if (edit == Edit::bullet) fastBody->SetBullet(true);
+        if (edit == Edit::sensor) boxFixture->SetSensor(false);
+    }
+};
+
+struct EditedCase {
+    Built built;
+    std::unique_ptr<EditOnFirstStaticTouch> listener;
+    b2Body* fastBody = nullptr;
+    b2Body* box = nullptr;
+};
+
+EditedCase BuildEdited(Edit edit) {
+    EditedCase e;
+    e.listener = std::make_unique<EditOnFirstStaticTouch>(edit);
+    e.built.world->SetContactListener(e.listener.get());
+    // The bullet reaches its wall at about a quarter of the step.
+    e.built.Static(b2Vec2(1, 5), Fixed(0.05), 1);
+    e.built.Bullet(b2Vec2(0, 5), b2Vec2(200, 0));
+    // A body at 100 m/s (a bullet only for the sensor case) meets the box at about half of it.
+    e.fastBody = e.built.Bullet(b2Vec2(0, -5), b2Vec2(100, 0));
+    e.fastBody->SetBullet(edit == Edit::sensor);
+    b2BodyDef def;
+    def.type = b2_dynamicBody;
+    def.position = b2Vec2(1, -5);
+    e.box = e.built.world->CreateBody(&def);
+    b2PolygonShape shape;
+    shape.SetAsBox(Fixed(0.05), 1);
+    b2FixtureDef fixture;
+    fixture.shape = &shape;
+    fixture.density = Fixed(0.05);
+    fixture.isSensor = edit == Edit::sensor;
+    e.listener->fastBody = e.fastBody;
+    e.listener->boxFixture = e.box->CreateFixture(&fixture);
+    return e;
+}
+
+TEST(ToiCandidates, ListenerEditBringsBackADroppedCandidate) {
+    for (const Edit edit : {Edit::bullet, Edit::sensor}) {
+        const char* name = edit == Edit::bullet ? "SetBullet" : "SetSensor";
+        EditedCase reference = BuildEdited(edit), candidates = BuildEdited(edit);
+        ExpectSameAsFullSearch(reference.built, candidates.built, 2, name);
+        EXPECT_TRUE(candidates.listener->done) << name;
+        // The edited contact took its event: the fast body did not pass through the box.
+        EXPECT_LT(candidates.fastBody->GetPosition().x, candidates.box->GetPosition().x) << name;
+    }
+}
+
 }  // namespace
 }  // namespace lockbox
