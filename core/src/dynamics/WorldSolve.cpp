@@ -77,14 +77,6 @@ bool MayReachToiTarget(const b2Contact& c, const b2Sweep& sweepA, const b2Sweep&
 }
 }  // namespace
 
-uint32 World::NextJointMark() {
-    if (++m_jointMark == 0) {
-        for (b2Joint* j = m_jointList; j; j = j->m_next) j->m_islandMark = 0;
-        m_jointMark = 1;
-    }
-    return m_jointMark;
-}
-
 void World::Solve(const b2TimeStep& step) {
     // Size the island for the worst case and clear the graph flags.
     m_island.Reset(m_bodyCount, m_contactManager.m_contactCount, m_jointCount, m_contactManager.m_contactListener);
@@ -95,7 +87,6 @@ void World::Solve(const b2TimeStep& step) {
     const bool parallel = tasks != nullptr && tasks->GetWorkerCount() > 1 && m_stepObserver == nullptr;
     for (b2Body* b = m_bodyList; b; b = b->m_next) b->m_flags &= ~(b2Body::e_islandFlag | b2Body::e_fastFlag);
     for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) c->m_flags &= ~b2Contact::e_islandFlag;
-    const uint32 jointMark = NextJointMark();
 
     m_stack.resize(static_cast<size_t>(m_bodyCount));
     b2Body** stack = m_stack.data();
@@ -119,6 +110,7 @@ void World::Solve(const b2TimeStep& step) {
 
             // Islands do not propagate across static bodies.
             if (b->GetType() == b2_staticBody) continue;
+            b->m_flags |= b2Body::e_scannedFlag;
 
             for (b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) {
                 b2Contact* contact = ce->contact;
@@ -134,20 +126,27 @@ void World::Solve(const b2TimeStep& step) {
             }
 
             for (b2JointEdge* je = b->m_jointList; je; je = je->next) {
-                if (je->joint->m_islandMark == jointMark) continue;
                 b2Body* other = je->other;
+                // A joint is taken from the first of its bodies to be scanned (a static body
+                // never is), so one whose other body was scanned is in the island already.
+                // This reads only the other body, which the search reads anyway, not the joint.
+                if (other->m_flags & b2Body::e_scannedFlag) continue;
                 // Don't simulate joints connected to inactive bodies.
                 if (!other->IsActive()) continue;
                 // A joint between two bodies without mass (kinematic-static, kinematic-kinematic)
                 // can change nothing: it costs nothing either.
                 if (b->GetType() != b2_dynamicBody && other->GetType() != b2_dynamicBody) continue;
                 m_island.Add(je->joint);
-                je->joint->m_islandMark = jointMark;
                 if (other->m_flags & b2Body::e_islandFlag) continue;
                 stack[stackCount++] = other;
                 other->m_flags |= b2Body::e_islandFlag;
             }
         }
+
+        // No other island reaches these bodies: the scan marks have served, and the solve (and
+        // any observer's view of it) sees the flags as they were.
+        for (int32 i = 0; i < m_island.m_bodyCount; ++i)
+            m_island.m_bodies[static_cast<size_t>(i)]->m_flags &= ~b2Body::e_scannedFlag;
 
         if (parallel) {
             RecordIsland();

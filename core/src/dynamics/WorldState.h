@@ -154,13 +154,6 @@ public:
     /// Puts the additions in list order among the others, once each.
     void SortToiCandidates();
 
-    /// The island search's joint mark (b2Joint::m_islandMark): a new value each step, never 0,
-    /// so no joint carries it before the search takes it. Not state: nothing but the search
-    /// reads it.
-    uint32 m_jointMark = 0;
-    /// The next step's mark; on wrapping around, every joint's mark is cleared first.
-    uint32 NextJointMark();
-
 private:
     void Solve(const b2TimeStep& step);
     /// Keeps the island just found in m_island for SolveRecordedIslands.

@@ -312,7 +312,6 @@ struct core_detail::Engine::SnapshotApply {
             j->m_collideConnected = ji.collideConnected;
             j->m_userData = ji.userData;
             j->m_index = 0;
-            j->m_islandMark = 0;
             j->m_edgeA = b2JointEdge{j->m_bodyB, j, nullptr, nullptr};
             j->m_edgeB = b2JointEdge{j->m_bodyA, j, nullptr, nullptr};
             state_detail::AppendToWorldList(j, world.m_jointList, previous);

@@ -30,9 +30,6 @@ inline state_detail::FrameRestoreCounts FrameRestores(const b2World& world) {
     return Internals(world).m_frames.m_restores;
 }
 
-/// Sets the island search's joint mark, as if that many searches had run (its wrap-around).
-inline void SetIslandJointMark(b2World& world, uint32 mark) { Internals(world).m_jointMark = mark; }
-
 /// Makes the time-of-impact event search visit every contact (2.2.1's search, the reference)
 /// instead of its candidates only.
 inline void SetToiSearchEveryContact(b2World& world, bool every) { Internals(world).m_toiSearchEveryContact = every; }

@@ -216,6 +216,9 @@ private:
         e_activeFlag = 0x0020,
         e_fastFlag = 0x0040,  ///< moved far enough this step to need continuous collision
         e_outOfBoundsFlag = 0x0080,
+        /// Set while the island search has scanned the body's edges; cleared when its island is
+        /// done, so never seen outside the search.
+        e_scannedFlag = 0x0100,
     };
 
     b2Body(const b2BodyDef* def, b2World* world, int32 id);

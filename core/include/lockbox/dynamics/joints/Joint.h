@@ -132,10 +132,6 @@ protected:
 private:
     int32 m_id = -1;
     int32 m_index = 0;  ///< position in the island being solved
-    /// The island search that last took this joint: equal to the world's current search mark
-    /// when the joint is in an island this step (a mark instead of a flag spares the search a
-    /// walk over every joint to clear it).
-    uint32 m_islandMark = 0;
     bool m_collideConnected = false;
     uint64 m_userData = 0;
 };
