@@ -131,11 +131,11 @@ public:
 
     /// The time-of-impact event search visits every contact of the world list, in list order,
     /// as 2.2.1 does, when this is set; otherwise only the contacts that can pass its filters
-    /// (WorldSolve.cpp), in the same order, with the same result. The full search is kept as
+    /// (WorldToi.cpp), in the same order, with the same result. The full search is kept as
     /// the reference the tests compare the short one with.
     bool m_toiSearchEveryContact = false;
 
-    // The time-of-impact event search's candidates (WorldSolve.cpp): every contact the search
+    // The time-of-impact event search's candidates (WorldToi.cpp): every contact the search
     // could take, in contact-list order up to `m_toiSorted`, unsorted additions after it.
     std::vector<b2Contact*> m_toiCandidates;
     size_t m_toiSorted = 0;
