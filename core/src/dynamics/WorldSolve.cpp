@@ -3,20 +3,20 @@
 #include <cstddef>
 
 #include "dynamics/WorldState.h"
+#include "dynamics/contacts/ContactRules.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 
 namespace lockbox {
 
 using World = core_detail::Engine::World;
+using core_detail::IsSensorContact;
 
 namespace {
 using Clock = std::chrono::steady_clock;
 int64_t Nanos(Clock::time_point from) {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
 }
-
-bool IsSensorContact(const b2Contact* c) { return c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor(); }
 
 }  // namespace
 

@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "dynamics/WorldState.h"
+#include "dynamics/contacts/ContactRules.h"
 #include "lockbox/collision/TimeOfImpact.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
@@ -11,6 +12,7 @@
 namespace lockbox {
 
 using World = core_detail::Engine::World;
+using core_detail::IsSensorContact;
 
 namespace {
 // A TOI at or beyond 1 - 1 raw leaves a sub-step of (1 raw) * dt, which rounds to zero time:
@@ -19,8 +21,6 @@ constexpr Fixed kTOIAlphaComplete = Fixed::FromRaw(Fixed::kOneRaw - 1);
 
 // Position iterations of a TOI sub-step (2.2.1's literal 20).
 constexpr int32 kTOIPositionIterations = 20;
-
-bool IsSensorContact(const b2Contact* c) { return c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor(); }
 
 // The smallest and largest of n . (xf v) over the proxy's vertices, exact but for the
 // rounding of each world vertex (at most one raw per component).

@@ -3,6 +3,8 @@
 // manager applies these to new pairs; the snapshot checks hold a restored contact to them.
 
 #include "lockbox/collision/Shape.h"
+#include "lockbox/dynamics/Fixture.h"
+#include "lockbox/dynamics/contacts/Contact.h"
 
 namespace lockbox::core_detail {
 
@@ -12,5 +14,10 @@ bool ShapesCanCollide(b2Shape::Type typeA, b2Shape::Type typeB) noexcept;
 /// True when the pair must be swapped so that A has the "primary" type of the collider
 /// (polygon before circle, edge/chain before circle or polygon).
 bool ShapesNeedSwap(b2Shape::Type typeA, b2Shape::Type typeB) noexcept;
+
+/// b2Contact::IsSensorPair inline, for the step's loops over every contact edge.
+inline bool IsSensorContact(const b2Contact* c) noexcept {
+    return c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor();
+}
 
 }  // namespace lockbox::core_detail
