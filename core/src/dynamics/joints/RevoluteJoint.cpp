@@ -80,8 +80,9 @@ b2RevoluteJoint::PointSetUp b2RevoluteJoint::SetUpVelocity(const b2SolverData& d
     const b2WideMat33 K = PointAngleK(A.invMass, B.invMass, iA, iB, out.rA, out.rB);
     const b2WideSolver22 pointSolver = K.Upper22();
     out.pointMass = math::Inverse(pointSolver);
-    m_motorMass = Invert(iA + iB);
     if (keepSolverFields) {
+        // Only the motor and the limit read the motor mass (a division); a row joint has neither.
+        m_motorMass = Invert(iA + iB);
         m_rA = out.rA;
         m_rB = out.rB;
         m_mass = K;
