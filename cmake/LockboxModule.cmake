@@ -42,6 +42,7 @@ function(lockbox_add_module)
     target_link_libraries(${target}
         PUBLIC ${arg_PUBLIC_DEPS}
         PRIVATE ${arg_PRIVATE_DEPS} "$<BUILD_INTERFACE:lockbox_compile_options>")
+    target_compile_options(${target} PRIVATE ${LOCKBOX_LIBRARY_COMPILE_OPTIONS})
     set_property(GLOBAL APPEND PROPERTY LOCKBOX_MODULES ${arg_NAME})
     if(LOCKBOX_INSTALL)
         # One export set per module, so that the package config loads only the components asked
