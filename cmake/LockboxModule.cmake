@@ -59,9 +59,13 @@ endfunction()
 
 # lockbox_add_test_suite(NAME <exe> DIR <folder> LIBS <targets>... [LABELS <labels>...])
 # One GoogleTest executable from every *.cpp directly in DIR, registered with
-# gtest_discover_tests and the given ctest labels.
+# gtest_discover_tests and the given ctest labels. A suite labelled heavy is left out when
+# LOCKBOX_BUILD_HEAVY_TESTS is OFF.
 function(lockbox_add_test_suite)
     cmake_parse_arguments(ARG "" "NAME;DIR" "LIBS;LABELS" ${ARGN})
+    if("heavy" IN_LIST ARG_LABELS AND NOT LOCKBOX_BUILD_HEAVY_TESTS)
+        return()
+    endif()
     file(GLOB _sources CONFIGURE_DEPENDS "${ARG_DIR}/*.cpp")
     if(NOT _sources)
         return()
