@@ -1,6 +1,7 @@
 // Worker counts never change the bits. Every light scene of the golden plan (library scenes and
-// scene files), stepped to step 60 with the built-in pool at 2, 3 and 8 workers and with a
-// task system that runs blocks in a scrambled order, gives the hashes of tests/golden/
+// scene files), stepped to step 60 with the built-in pool at 2, 3 and 8 workers (the world's
+// own, and handed over as a task system) and with a task system that runs blocks in a
+// scrambled order, gives the hashes of tests/golden/
 // hashes.txt. The heavy suite (heavy/workers_heavy_test.cpp) does the same for the four heavy
 // scenes.
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "../cross/GoldenScenes.h"
 #include "../cross/ScrambledTasks.h"
+#include "lockbox/dynamics/Tasks.h"
 
 namespace lockbox::golden {
 namespace {
@@ -50,6 +52,21 @@ INSTANTIATE_TEST_SUITE_P(Workers, BuiltInPool, ::testing::Values(2, 3, 8));
 // Sanitizer and debug builds (about 10x slower) check the pool at one count, and skip the
 // scrambled order (single-threaded: the optimised builds' check suffices).
 INSTANTIATE_TEST_SUITE_P(Workers, BuiltInPool, ::testing::Values(3));
+#endif
+
+// The world's own pool keeps most light scenes on the stepping thread (too little work to pay
+// for waking threads); the same pool handed over as a game's task system gets every loop.
+class PoolHandedOver : public ::testing::TestWithParam<int> {};
+
+TEST_P(PoolHandedOver, LightScenesMatchTheGoldenFile) {
+    b2ThreadPool pool(GetParam());
+    ExpectGoldenLightScenes([&pool](b2World& world) { world.SetTaskSystem(&pool); });
+}
+
+#ifdef NDEBUG
+INSTANTIATE_TEST_SUITE_P(Workers, PoolHandedOver, ::testing::Values(2, 8));
+#else
+INSTANTIATE_TEST_SUITE_P(Workers, PoolHandedOver, ::testing::Values(2));
 #endif
 
 #ifdef NDEBUG

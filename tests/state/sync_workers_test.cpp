@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "SceneSyncGame.h"
+#include "lockbox/dynamics/Tasks.h"
 
 namespace lockbox {
 namespace {
@@ -20,11 +21,17 @@ constexpr int32 kFrames = 16;  // sanitizer and debug builds are ~10x slower
 #endif
 
 // Runs the mispredicting sync test on `name` with `workers` threads; returns the final hash.
-uint64 SyncTestOn(std::string_view name, int32 workers, bool useFrames) {
+// The world's own pool keeps small scenes on the stepping thread, so a pool handed over as the
+// game's task system (every loop on real threads) is the default here.
+uint64 SyncTestOn(std::string_view name, int32 workers, bool useFrames, bool ownPool = false) {
+    b2ThreadPool pool(workers);
     SceneRun run(name);
     EXPECT_TRUE(run.scene) << name;
     if (!run.scene) return 0;
-    run.world().SetWorkerCount(workers);
+    if (ownPool)
+        run.world().SetWorkerCount(workers);
+    else
+        run.world().SetTaskSystem(&pool);
     SceneSyncGame game(run);
     SyncTestConfig config;
     config.mispredict = true;
@@ -43,6 +50,7 @@ TEST_P(SyncWorkers, MispredictingRollbacksMatchOneWorker) {
     const uint64 one = SyncTestOn(GetParam(), 1, /*useFrames=*/false);
     EXPECT_EQ(SyncTestOn(GetParam(), 3, /*useFrames=*/false), one);
     EXPECT_EQ(SyncTestOn(GetParam(), 2, /*useFrames=*/true), one);
+    EXPECT_EQ(SyncTestOn(GetParam(), 2, /*useFrames=*/true, /*ownPool=*/true), one);
 }
 
 // Scenes with enough contacts for the parallel narrow phase, a sensor-free stack and a

@@ -141,8 +141,6 @@ void b2ContactManager::Destroy(b2Contact* c) {
 }
 
 namespace {
-// Below this many contacts a parallel loop costs more than it saves.
-constexpr size_t kMinParallelContacts = 64;
 // Contacts per block: enough work to amortise taking a block, few enough to balance the load.
 constexpr int32 kContactsPerBlock = 32;
 
@@ -188,10 +186,9 @@ void b2ContactManager::EvaluateAhead(b2TaskSystem& tasks) {
     tasks.ParallelFor(static_cast<int32>(m_evaluatedContacts.size()), kContactsPerBlock, &EvaluateRange, this);
 }
 
-void b2ContactManager::Collide(b2TaskSystem* tasks) {
+void b2ContactManager::Collide(b2TaskSystem* tasks, int32 minParallelContacts) {
     m_evaluatedContacts.clear();
-    if (tasks != nullptr && tasks->GetWorkerCount() > 1 && static_cast<size_t>(m_contactCount) >= kMinParallelContacts)
-        EvaluateAhead(*tasks);
+    if (tasks != nullptr && tasks->GetWorkerCount() > 1 && m_contactCount >= minParallelContacts) EvaluateAhead(*tasks);
     size_t nextEvaluated = 0;
 
     b2Contact* c = m_contactList;

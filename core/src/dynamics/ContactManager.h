@@ -36,9 +36,10 @@ public:
     void Destroy(b2Contact* c);
     /// Re-filters flagged contacts, drops contacts whose fat AABBs separated, and updates the
     /// manifolds of contacts with an awake, non-static body. With a task system of more than
-    /// one worker, the manifolds are evaluated in parallel first; everything else (and every
-    /// listener call) then happens in list order, exactly as with one worker.
-    void Collide(b2TaskSystem* tasks);
+    /// one worker and at least minParallelContacts contacts, the manifolds are evaluated in
+    /// parallel first; everything else (and every listener call) then happens in list order,
+    /// exactly as with one worker.
+    void Collide(b2TaskSystem* tasks, int32 minParallelContacts);
 
     /// The contact with a given id (nullptr when free).
     b2Contact* GetContact(int32 id) noexcept { return m_contacts.Get(id); }

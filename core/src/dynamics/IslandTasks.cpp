@@ -48,6 +48,7 @@ struct World::ParallelIslands {
     std::vector<uint64_t> saturations;       ///< per island, counted while it was solved
     std::vector<b2ContactImpulse> impulses;  ///< per contact, for PostSolve
     std::vector<int32> order;                ///< islands in the order the blocks take them
+    std::vector<int32> sizes;                ///< per island: bodies + contacts + joints
     std::vector<std::unique_ptr<Scratch>> scratch;
 
     // The step being solved.
@@ -85,21 +86,34 @@ struct World::ParallelIslands {
         saturations[static_cast<size_t>(i)] = count;
     }
 
-    // Fills `order` with the islands by size (bodies, contacts and joints), largest first;
-    // equal sizes in island order, so the key has no ties.
-    void OrderLargestFirst() {
+    // Fills `order` with the islands that hold more than an eighth of a worker's share of the
+    // work (bodies, contacts and joints), largest first, equal sizes in island order (a key
+    // without ties); then every other island, in island order. The big ones decide how even
+    // the workers' loads end up; the small ones fill the gaps in any order, and sorting them
+    // too cost tumbler's two thousand one-body islands more than they took to solve.
+    void OrderLargestFirst(int32 workers) {
         const int32 count = IslandCount();
-        const auto size = [this](int32 i) {
+        sizes.resize(static_cast<size_t>(count));
+        int64_t work = 0;
+        for (int32 i = 0; i < count; ++i) {
             const Start& from = starts[static_cast<size_t>(i)];
             const Start& to = starts[static_cast<size_t>(i) + 1];
-            return (to.body - from.body) + (to.contact - from.contact) + (to.joint - from.joint);
-        };
-        order.resize(static_cast<size_t>(count));
-        for (int32 i = 0; i < count; ++i) order[static_cast<size_t>(i)] = i;
-        std::sort(order.begin(), order.end(), [&](int32 a, int32 b) {
-            const int32 sa = size(a), sb = size(b);
+            sizes[static_cast<size_t>(i)] =
+                (to.body - from.body) + (to.contact - from.contact) + (to.joint - from.joint);
+            work += sizes[static_cast<size_t>(i)];
+        }
+        const int64_t big = work / (8 * static_cast<int64_t>(workers));
+        order.clear();
+        for (int32 i = 0; i < count; ++i) {
+            if (sizes[static_cast<size_t>(i)] > big) order.push_back(i);
+        }
+        std::sort(order.begin(), order.end(), [this](int32 a, int32 b) {
+            const int32 sa = sizes[static_cast<size_t>(a)], sb = sizes[static_cast<size_t>(b)];
             return sa != sb ? sa > sb : a < b;
         });
+        for (int32 i = 0; i < count; ++i) {
+            if (sizes[static_cast<size_t>(i)] <= big) order.push_back(i);
+        }
     }
 
     // Solves the islands order[begin..end).
@@ -186,7 +200,7 @@ void World::SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks) {
     p.saturations.assign(static_cast<size_t>(islandCount), 0);
     if (p.reportImpulses) p.impulses.assign(p.contacts.size(), b2ContactImpulse());
 
-    p.OrderLargestFirst();
+    p.OrderLargestFirst(workers);
     if (islandCount == 1) {
         ParallelIslands::SolveRange(0, 1, &p);
     } else {

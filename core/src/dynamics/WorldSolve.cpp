@@ -18,6 +18,17 @@ int64_t Nanos(Clock::time_point from) {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
 }
 
+// Whether the built-in pool should take a step's islands, judged on the islands of the step
+// before (islands change little from one step to the next). Waking the pool's sleeping threads
+// costs tens of microseconds, recording the islands for them costs instructions, and the serial
+// stages after a shared solve read bodies last written on another core: so the pool takes only
+// large work, and only when no island holds more than half of it, since a pile that holds most
+// of it (rain, a tumbler's drum) leaves the other workers idle for the rest.
+bool WorthSharing(int32 islands, int64_t work, int64_t largest) {
+    constexpr int64_t kMinSharedWork = 1024;  // bodies + contacts + joints of the step's islands
+    return islands >= 2 && work >= kMinSharedWork && 2 * largest <= work;
+}
+
 }  // namespace
 
 void World::Solve(const b2TimeStep& step) {
@@ -26,8 +37,15 @@ void World::Solve(const b2TimeStep& step) {
     m_island.m_observer = m_stepObserver;
     // With workers the islands are found first and solved together; the island fenceposts of a
     // step observer (replay bisection) need them one at a time, so an observer keeps one worker.
+    // The built-in pool gets them only when the last step's islands were worth sharing; which
+    // path runs changes no result.
     b2TaskSystem* tasks = Tasks();
-    const bool parallel = tasks != nullptr && tasks->GetWorkerCount() > 1 && m_stepObserver == nullptr;
+    const bool workers = tasks != nullptr && tasks->GetWorkerCount() > 1 && m_stepObserver == nullptr;
+    const bool parallel = workers && (!OnOwnPool() || m_shareIslands);
+    // The islands' sizes, for the pool's choice in the next step (not counted with one worker).
+    const bool measure = workers && OnOwnPool();
+    int32 islands = 0;
+    int64_t work = 0, largest = 0;
     for (b2Body* b = m_bodyList; b; b = b->m_next) b->m_flags &= ~(b2Body::e_islandFlag | b2Body::e_fastFlag);
     for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) c->m_flags &= ~b2Contact::e_islandFlag;
 
@@ -91,6 +109,12 @@ void World::Solve(const b2TimeStep& step) {
         for (int32 i = 0; i < m_island.m_bodyCount; ++i)
             m_island.m_bodies[static_cast<size_t>(i)]->m_flags &= ~b2Body::e_scannedFlag;
 
+        if (measure) {
+            const int64_t size = m_island.m_bodyCount + m_island.m_contactCount + m_island.m_jointCount;
+            ++islands;
+            work += size;
+            largest = b2Max(largest, size);
+        }
         if (parallel) {
             RecordIsland();
         } else {
@@ -107,6 +131,7 @@ void World::Solve(const b2TimeStep& step) {
     }
 
     if (parallel) SolveRecordedIslands(step, *tasks);
+    if (measure) m_shareIslands = WorthSharing(islands, work, largest);
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solve, *m_owner);
 
     const Clock::time_point timer = Clock::now();

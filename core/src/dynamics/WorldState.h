@@ -120,6 +120,13 @@ public:
     b2TaskSystem* m_userTasks = nullptr;
     std::unique_ptr<b2ThreadPool> m_pool;
     b2TaskSystem* Tasks() const noexcept { return m_userTasks != nullptr ? m_userTasks : m_pool.get(); }
+    /// Whether the step's loops go to the built-in pool, which keeps work that cannot pay for
+    /// its wake-ups on the stepping thread (a game's own task system gets every loop: what a
+    /// loop costs on it is the game's to judge).
+    bool OnOwnPool() const noexcept { return m_userTasks == nullptr; }
+    /// The last step's islands were worth the built-in pool (WorldSolve.cpp). Not state: only
+    /// the speed of a step depends on it.
+    bool m_shareIslands = false;
 
     /// A step's islands solved at the same time (IslandTasks.cpp): found serially, in the
     /// one-worker order, then solved on the task system, then finished (PostSolve, static

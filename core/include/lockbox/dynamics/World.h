@@ -153,13 +153,18 @@ public:
     /// included (clamped to [1, 64]). 1, the default, creates no thread. Threads are created
     /// here, only when the count changes, and joined when it drops to 1 or the world dies.
     /// The results are the same bits for every count. Not state: snapshots and the hash ignore
-    /// it. Refused inside Step.
+    /// it. Refused inside Step. The pool is handed only work that pays for waking its threads:
+    /// a step's islands when the step before had at least 1,024 bodies, contacts and joints in
+    /// islands and none of them held more than half, and the narrow phase from 32,768 contacts.
+    /// Smaller steps run on the calling thread alone, as with one worker.
     void SetWorkerCount(int32 count);
     /// Workers of the task system in use: the game's (SetTaskSystem) or the built-in pool's.
     int32 GetWorkerCount() const noexcept;
     /// Runs the step's parallel work on a game's job system instead of the built-in pool
     /// (not owned: it must outlive its use by this world); nullptr goes back to the built-in
     /// pool. The results are the same bits with any task system. Not state. Refused inside Step.
+    /// A game's task system is handed every loop of the step that has two islands, or 64
+    /// contacts, or more: what a loop costs on it is the game's to judge.
     void SetTaskSystem(b2TaskSystem* tasks);
     /// The game's task system, or nullptr when the built-in pool (or no worker) is in use.
     b2TaskSystem* GetTaskSystem() const noexcept;
