@@ -23,8 +23,7 @@ void Columns(b2World& world, int columns, int height) {
     MakeStaticBox(world, 0, Fixed(-0.5), 200, Fixed(0.5));
     for (int c = 0; c < columns; ++c) {
         for (int k = 0; k < height; ++k)
-            MakeDynamicBox(world, Fixed(-190 + 3 * c), Fixed::FromRatio(50 + 100 * k, 100), Fixed(0.5),
-                   Fixed(0.5));
+            MakeDynamicBox(world, Fixed(-190 + 3 * c), Fixed::FromRatio(50 + 100 * k, 100), Fixed(0.5), Fixed(0.5));
     }
 }
 
@@ -36,7 +35,7 @@ void PileAndStrays(b2World& world) {
     for (int row = 0; row < kRows; ++row) {
         for (int k = 0; k < kRows - row; ++k)
             MakeDynamicBox(world, Fixed(-kRows / 2 + k) + Fixed::FromRatio(row, 2),
-                   Fixed::FromRatio(50 + 100 * row, 100), Fixed(0.5), Fixed(0.5));
+                           Fixed::FromRatio(50 + 100 * row, 100), Fixed(0.5), Fixed(0.5));
     }
     for (int s = 0; s < 8; ++s) MakeDynamicBox(world, Fixed(40 + 4 * s), Fixed(0.5), Fixed(0.5), Fixed(0.5));
 }
