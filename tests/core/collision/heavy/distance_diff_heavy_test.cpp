@@ -4,4 +4,6 @@
 // both suites always check the same thing.
 
 #define LOCKBOX_DISTANCE_DIFF_PAIRS 10000
+#define LOCKBOX_DISTANCE_DIFF_SUITE DistanceDiffHeavy
+#define LOCKBOX_TOI_DIFF_SUITE ToiDiffHeavy
 #include "../distance_diff_test.cpp"
