@@ -24,7 +24,7 @@ constexpr int32 kFrames = 16;  // sanitizer and debug builds are ~10x slower
 // The world's own pool keeps small scenes on the stepping thread, so a pool handed over as the
 // game's task system (every loop on real threads) is the default here.
 uint64 SyncTestOn(std::string_view name, int32 workers, bool useFrames, bool ownPool = false) {
-    b2ThreadPool pool(workers);
+    b2ThreadPool pool(ownPool ? 1 : workers);  // a pool of one creates no thread
     SceneRun run(name);
     EXPECT_TRUE(run.scene) << name;
     if (!run.scene) return 0;

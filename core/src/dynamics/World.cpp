@@ -15,13 +15,6 @@ using Clock = std::chrono::steady_clock;
 int64_t Nanos(Clock::time_point from) {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
 }
-// Below these counts the narrow phase's parallel loop costs more than it saves. A game's task
-// system is trusted from a few blocks on. The built-in pool wakes sleeping threads, and its
-// worker reads manifolds and transforms last written on the stepping thread's core: on two
-// cores the stage took longer on the pool than on one thread up to tumbler's 22,000 contacts
-// and broke even at many_pyramids' 58,000 (docs/benchmarks.md, "Workers").
-constexpr int32 kMinParallelContacts = 64;
-constexpr int32 kPoolMinContacts = 32768;
 }  // namespace
 
 using World = core_detail::Engine::World;
@@ -240,7 +233,7 @@ void World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
     // Update contacts: this is where some contacts are destroyed.
     {
         const Clock::time_point timer = Clock::now();
-        m_contactManager.Collide(Tasks(), OnOwnPool() ? kPoolMinContacts : kMinParallelContacts);
+        m_contactManager.Collide(Tasks(), MinParallelContacts());
         m_profile.collideNs = Nanos(timer);
     }
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_collide, *m_owner);

@@ -40,10 +40,10 @@ void World::Solve(const b2TimeStep& step) {
     // The built-in pool gets them only when the last step's islands were worth sharing; which
     // path runs changes no result.
     b2TaskSystem* tasks = Tasks();
-    const bool workers = tasks != nullptr && tasks->GetWorkerCount() > 1 && m_stepObserver == nullptr;
-    const bool parallel = workers && (!OnOwnPool() || m_shareIslands);
+    const bool hasWorkers = tasks != nullptr && tasks->GetWorkerCount() > 1 && m_stepObserver == nullptr;
+    const bool parallel = hasWorkers && (!OnOwnPool() || m_shareIslands);
     // The islands' sizes, for the pool's choice in the next step (not counted with one worker).
-    const bool measure = workers && OnOwnPool();
+    const bool measure = hasWorkers && OnOwnPool();
     int32 islands = 0;
     int64_t work = 0, largest = 0;
     for (b2Body* b = m_bodyList; b; b = b->m_next) b->m_flags &= ~(b2Body::e_islandFlag | b2Body::e_fastFlag);

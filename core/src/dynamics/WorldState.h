@@ -124,6 +124,13 @@ public:
     /// its wake-ups on the stepping thread (a game's own task system gets every loop: what a
     /// loop costs on it is the game's to judge).
     bool OnOwnPool() const noexcept { return m_userTasks == nullptr; }
+    /// Contacts from which the narrow phase is evaluated in parallel. A game's task system is
+    /// trusted from a few blocks on. The built-in pool wakes sleeping threads, and its worker
+    /// reads manifolds and transforms last written on the stepping thread's core: on two cores
+    /// the stage took longer on the pool than on one thread up to tumbler's 22,000 contacts and
+    /// broke even at many_pyramids' 58,000 (docs/benchmarks.md, "Workers"). The islands' rule
+    /// is in WorldSolve.cpp, since it needs the last step's islands.
+    int32 MinParallelContacts() const noexcept { return OnOwnPool() ? 32768 : 64; }
     /// The last step's islands were worth the built-in pool (WorldSolve.cpp). Not state: only
     /// the speed of a step depends on it.
     bool m_shareIslands = false;
