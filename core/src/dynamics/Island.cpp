@@ -3,6 +3,7 @@
 
 #include <chrono>
 
+#include "dynamics/IslandShared.h"
 #include "dynamics/contacts/ContactSolver.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/StepObserver.h"
@@ -41,6 +42,9 @@ void StepDisplacement(Fixed h, b2Velocity& vel, Wide& dx, Wide& dy, Wide& da) {
     }
 }
 }  // namespace
+
+b2Island::Island() = default;
+b2Island::~Island() = default;
 
 void b2Island::Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapacity, b2ContactListener* listener,
                      int32 slotBase) {
@@ -142,20 +146,29 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     solverData.velocities = m_velocities.data();
     solverData.rotations = m_rotations.data();
 
+    const bool coloured = m_contactCount >= b2ContactColours::kMinContacts;
+    if (coloured) m_colours.Order(m_contacts.data(), m_contactCount, m_slotBase + m_bodyCount);
+    const bool shared = coloured && m_tasks != nullptr;
     b2ContactSolverDef contactSolverDef = ContactSolverDef(step);
     b2ContactSolver contactSolver(&contactSolverDef);
-    contactSolver.InitializeVelocityConstraints();
     profile->contactConstraints += m_contactCount;
-    if (step.warmStarting) contactSolver.WarmStart();
-    // Joint loops are entered only when the island has joints.
-    if (m_jointCount > 0) m_jointSolver.InitVelocityConstraints(m_joints.data(), m_jointCount, solverData);
     profile->jointConstraints += m_jointCount;
-    profile->solveInitNs += Nanos(timer);
+    if (shared) {
+        profile->solveInitNs += Nanos(timer);
+        timer = Clock::now();
+        SolveVelocitiesShared(contactSolver, solverData, step.velocityIterations, step.warmStarting);
+    } else {
+        contactSolver.InitializeVelocityConstraints();
+        if (step.warmStarting) contactSolver.WarmStart();
+        // Joint loops are entered only when the island has joints.
+        if (m_jointCount > 0) m_jointSolver.InitVelocityConstraints(m_joints.data(), m_jointCount, solverData);
+        profile->solveInitNs += Nanos(timer);
 
-    timer = Clock::now();
-    for (int32 it = 0; it < step.velocityIterations; ++it) {
-        if (m_jointCount > 0) m_jointSolver.SolveVelocityConstraints(solverData);
-        contactSolver.SolveVelocityConstraints();
+        timer = Clock::now();
+        for (int32 it = 0; it < step.velocityIterations; ++it) {
+            if (m_jointCount > 0) m_jointSolver.SolveVelocityConstraints(solverData);
+            contactSolver.SolveVelocityConstraints();
+        }
     }
     profile->velocityIterations += step.velocityIterations * m_contactCount;
     profile->jointVelocityIterations += step.velocityIterations * m_jointCount;
@@ -178,14 +191,20 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     }
 
     bool positionSolved = false;
-    for (int32 it = 0; it < step.positionIterations; ++it) {
-        ++profile->positionIterations;
-        const bool contactsOkay = contactSolver.SolvePositionConstraints();
-        const bool jointsOkay = m_jointCount == 0 || m_jointSolver.SolvePositionConstraints(solverData);
-        if (contactsOkay && jointsOkay) {
-            // Exit early if the position errors are small.
-            positionSolved = true;
-            break;
+    if (shared) {
+        int32 iterations = 0;
+        positionSolved = SolvePositionsShared(contactSolver, solverData, step.positionIterations, &iterations);
+        profile->positionIterations += iterations;
+    } else {
+        for (int32 it = 0; it < step.positionIterations; ++it) {
+            ++profile->positionIterations;
+            const bool contactsOkay = contactSolver.SolvePositionConstraints();
+            const bool jointsOkay = m_jointCount == 0 || m_jointSolver.SolvePositionConstraints(solverData);
+            if (contactsOkay && jointsOkay) {
+                // Exit early if the position errors are small.
+                positionSolved = true;
+                break;
+            }
         }
     }
 

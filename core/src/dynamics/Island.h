@@ -2,10 +2,12 @@
 // b2Island (Box2D 2.2.1 b2Island.h): a connected group of awake bodies, contacts and joints,
 // solved together; also the small island of a time-of-impact event.
 
+#include <memory>
 #include <vector>
 
 #include "Engine.h"
 #include "dynamics/TimeStep.h"
+#include "dynamics/contacts/ContactColours.h"
 #include "dynamics/contacts/ContactSolver.h"
 #include "dynamics/joints/JointSolver.h"
 #include "lockbox/common/Settings.h"
@@ -20,12 +22,16 @@ class b2Contact;
 class b2Joint;
 class b2ContactListener;
 class b2StepObserver;
+class b2TaskSystem;
 enum class b2IslandPhase : uint32;
 
 /// An island: buffers reused between islands and steps (capacity grows, never shrinks).
 class core_detail::Engine::Island {
 public:
-    Island() = default;
+    Island();
+    ~Island();
+    Island(const Island&) = delete;
+    Island& operator=(const Island&) = delete;
 
     /// Sets the capacities, the listener and the slot base (m_slotBase) for the next islands.
     void Reset(int32 bodyCapacity, int32 contactCapacity, int32 jointCapacity, b2ContactListener* listener,
@@ -57,6 +63,14 @@ public:
     /// m_impulseSink set, writes those impulses there instead.
     void Report(b2Profile* profile, const b2ContactVelocityConstraint* constraints);
 
+    /// A coloured island's contact set-up, warm start and velocity iterations (with its joints'),
+    /// as stages on m_tasks; the bits of the one-thread loops in colour order.
+    void SolveVelocitiesShared(b2ContactSolver& contacts, const b2SolverData& data, int32 velocityIterations,
+                               bool warmStarting);
+    /// Its position iterations likewise; returns whether the last was accepted and sets how many ran.
+    bool SolvePositionsShared(b2ContactSolver& contacts, const b2SolverData& data, int32 positionIterations,
+                              int32* iterationsRun);
+
     /// A contact-solver definition over this island, its constraint storage grown to fit.
     b2ContactSolverDef ContactSolverDef(const b2TimeStep& step);
 
@@ -78,7 +92,13 @@ public:
     // Contact-solver storage, sized to the largest island so far (grown, never shrunk).
     std::vector<b2ContactPositionConstraint> m_positionConstraints;
     std::vector<b2ContactVelocityConstraint> m_velocityConstraints;
-    std::vector<b2CachedRot> m_rotations;               ///< per body, like m_positions
+    std::vector<b2CachedRot> m_rotations;  ///< per body, like m_positions
+    b2ContactColours m_colours;            ///< the colour order of a large island's contacts
+    /// Workers for a coloured island's loops (IslandShared.h), or nullptr: one thread. Set by
+    /// the world only where the island is solved on the thread stepping it.
+    b2TaskSystem* m_tasks = nullptr;
+    struct Shared;
+    std::unique_ptr<Shared> m_shared;                   ///< the stages of a shared solve, made on first use
     core_detail::Engine::Joints::Solver m_jointSolver;  ///< the joints' rows, sized to the largest island so far
     int32 m_bodyCount = 0;
     int32 m_jointCount = 0;

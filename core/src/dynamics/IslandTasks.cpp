@@ -48,6 +48,7 @@ struct World::ParallelIslands {
     std::vector<uint64_t> saturations;       ///< per island, counted while it was solved
     std::vector<b2ContactImpulse> impulses;  ///< per contact, for PostSolve
     std::vector<int32> order;                ///< islands in the order the blocks take them
+    std::vector<int32> staged;               ///< islands solved one by one, each by every worker
     std::vector<int32> sizes;                ///< per island: bodies + contacts + joints
     std::vector<std::unique_ptr<Scratch>> scratch;
 
@@ -86,11 +87,14 @@ struct World::ParallelIslands {
         saturations[static_cast<size_t>(i)] = count;
     }
 
-    // Fills `order` with the islands that hold more than an eighth of a worker's share of the
-    // work (bodies, contacts and joints), largest first, equal sizes in island order (a key
-    // without ties); then every other island, in island order. The big ones decide how even
-    // the workers' loads end up; the small ones fill the gaps in any order, and sorting them
-    // too cost tumbler's two thousand one-body islands more than they took to solve.
+    // Fills `staged` with the coloured islands that hold more than a worker's share of the
+    // work (bodies, contacts and joints), in island order: blocks of whole islands would leave
+    // the other workers idle while one of these is solved, so each is shared colour by colour
+    // instead (b2Island::m_tasks). Fills `order` with the other islands that hold more than an
+    // eighth of a worker's share, largest first, equal sizes in island order (a key without
+    // ties); then every other island, in island order. The big ones decide how even the
+    // workers' loads end up; the small ones fill the gaps in any order, and sorting them too
+    // cost tumbler's two thousand one-body islands more than they took to solve.
     void OrderLargestFirst(int32 workers) {
         const int32 count = IslandCount();
         sizes.resize(static_cast<size_t>(count));
@@ -102,6 +106,16 @@ struct World::ParallelIslands {
                 (to.body - from.body) + (to.contact - from.contact) + (to.joint - from.joint);
             work += sizes[static_cast<size_t>(i)];
         }
+        staged.clear();
+        for (int32 i = 0; i < count; ++i) {
+            const int32 contactCount =
+                starts[static_cast<size_t>(i) + 1].contact - starts[static_cast<size_t>(i)].contact;
+            if (contactCount >= b2ContactColours::kMinContacts &&
+                int64_t{sizes[static_cast<size_t>(i)]} * workers > work) {
+                staged.push_back(i);
+                sizes[static_cast<size_t>(i)] = -1;  // taken
+            }
+        }
         const int64_t big = work / (8 * static_cast<int64_t>(workers));
         order.clear();
         for (int32 i = 0; i < count; ++i) {
@@ -112,7 +126,8 @@ struct World::ParallelIslands {
             return sa != sb ? sa > sb : a < b;
         });
         for (int32 i = 0; i < count; ++i) {
-            if (sizes[static_cast<size_t>(i)] <= big) order.push_back(i);
+            const int32 size = sizes[static_cast<size_t>(i)];
+            if (size >= 0 && size <= big) order.push_back(i);
         }
     }
 
@@ -201,17 +216,24 @@ void World::SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks) {
     if (p.reportImpulses) p.impulses.assign(p.contacts.size(), b2ContactImpulse());
 
     p.OrderLargestFirst(workers);
-    if (islandCount == 1) {
+    for (const int32 i : p.staged) {
+        ParallelIslands::Scratch& s = *p.scratch.front();
+        s.island.m_tasks = &tasks;
+        p.SolveIsland(s.island, s.profile, i);
+        s.island.m_tasks = nullptr;
+    }
+    const auto blocks = static_cast<int32>(p.order.size());
+    if (blocks == 1) {
         ParallelIslands::SolveRange(0, 1, &p);
-    } else {
+    } else if (blocks > 1) {
         // A few blocks per worker: islands differ in size, and blocks taken as workers free up
         // even the load out. The largest islands go first (the longest-first rule of
         // scheduling): a big island taken last would leave the other workers idle, and the first
         // block, which the calling thread usually takes, keeps the step's largest island on the
         // thread that runs the serial stages, whose caches then already hold it. The order of
         // the work changes no result: the finish below goes in island order.
-        const int32 blockSize = b2Max(1, islandCount / (4 * workers));
-        tasks.ParallelFor(islandCount, blockSize, &ParallelIslands::SolveRange, &p);
+        const int32 blockSize = b2Max(1, blocks / (4 * workers));
+        tasks.ParallelFor(blocks, blockSize, &ParallelIslands::SolveRange, &p);
     }
 
     // Finish in island order, as the one-worker loop does after each island.

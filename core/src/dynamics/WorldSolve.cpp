@@ -118,6 +118,8 @@ void World::Solve(const b2TimeStep& step) {
         if (parallel) {
             RecordIsland();
         } else {
+            // A coloured island solved here is shared colour by colour between the workers.
+            m_island.m_tasks = hasWorkers ? tasks : nullptr;
             if (m_island.Solve(&m_profile, step, m_gravity, m_allowSleep))
                 SleepStaticBodies(m_island.m_bodies.data(), m_island.m_bodyCount);
             ++m_profile.islandsSolved;

@@ -134,6 +134,9 @@ public:
     /// The last step's islands were worth the built-in pool (WorldSolve.cpp). Not state: only
     /// the speed of a step depends on it.
     bool m_shareIslands = false;
+    /// The island buffers as the last island solved one at a time left them (its contacts in
+    /// solve order, with their colours); for tests.
+    const b2Island& LastIsland() const noexcept { return m_island; }
 
     /// A step's islands solved at the same time (IslandTasks.cpp): found serially, in the
     /// one-worker order, then solved on the task system, then finished (PostSolve, static

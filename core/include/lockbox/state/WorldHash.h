@@ -44,8 +44,10 @@ inline constexpr uint32 b2_hashVersion = 3;
 /// through the whole step and positions integrate in Q32.32 (the body keeps both parts below
 /// Q16.16), so forces and impulses below 1/65536 m/s per step accumulate instead of rounding
 /// away and a slow body moves at its velocity's rate, and a slow body pressed into a
-/// static or kinematic contact gets 2.2.1's immediate time of impact.
-inline constexpr uint32 b2_determinismVersion = (b2_hashVersion << 16) | 3u;
+/// static or kinematic contact gets 2.2.1's immediate time of impact; 4 the contacts of an
+/// island of 1,024 or more are solved colour by colour (each colour's contacts share no
+/// dynamic body), the one order that any number of workers reproduces while sharing the island.
+inline constexpr uint32 b2_determinismVersion = (b2_hashVersion << 16) | 4u;
 
 /// Hash categories, in the order they are folded into the world hash.
 enum class b2HashCategory : uint32 {

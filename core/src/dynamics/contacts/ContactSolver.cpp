@@ -106,8 +106,8 @@ b2ContactSolver::ContactSolver(b2ContactSolverDef* def)
     }
 }
 
-void b2ContactSolver::InitializeVelocityConstraints() {
-    for (int32 i = 0; i < m_count; ++i) {
+void b2ContactSolver::InitializeVelocityConstraints(int32 begin, int32 end) {
+    for (int32 i = begin; i < end; ++i) {
         b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
         const b2ContactPositionConstraint* pc = &m_positionConstraints[static_cast<size_t>(i)];
         const b2Manifold* manifold = m_contacts[vc->contactIndex]->GetManifold();
@@ -193,8 +193,8 @@ void b2ContactSolver::InitializeVelocityConstraints() {
     }
 }
 
-void b2ContactSolver::WarmStart() {
-    for (int32 i = 0; i < m_count; ++i) {
+void b2ContactSolver::WarmStart(int32 begin, int32 end) {
+    for (int32 i = begin; i < end; ++i) {
         const b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
         b2WideVec2 vA = m_velocities[vc->indexA].v;
         Wide wA = m_velocities[vc->indexA].w;
@@ -219,15 +219,13 @@ void b2ContactSolver::WarmStart() {
             wA -= n * vcp->turnNA + t * vcp->turnTA;
             wB += n * vcp->turnNB + t * vcp->turnTB;
         }
-        m_velocities[vc->indexA].v = vA;
-        m_velocities[vc->indexA].w = wA;
-        m_velocities[vc->indexB].v = vB;
-        m_velocities[vc->indexB].w = wB;
+        solver::Store(m_velocities[vc->indexA], vA, wA, vc->invMassA, vc->invIA);
+        solver::Store(m_velocities[vc->indexB], vB, wB, vc->invMassB, vc->invIB);
     }
 }
 
-void b2ContactSolver::SolveVelocityConstraints() {
-    for (int32 i = 0; i < m_count; ++i) {
+void b2ContactSolver::SolveVelocityConstraints(int32 begin, int32 end) {
+    for (int32 i = begin; i < end; ++i) {
         b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
         b2WideVec2 vA = m_velocities[vc->indexA].v;
         Wide wA = m_velocities[vc->indexA].w;
@@ -309,10 +307,8 @@ void b2ContactSolver::SolveVelocityConstraints() {
             }
         }
 
-        m_velocities[vc->indexA].v = vA;
-        m_velocities[vc->indexA].w = wA;
-        m_velocities[vc->indexB].v = vB;
-        m_velocities[vc->indexB].w = wB;
+        solver::Store(m_velocities[vc->indexA], vA, wA, vc->invMassA, vc->invIA);
+        solver::Store(m_velocities[vc->indexB], vB, wB, vc->invMassB, vc->invIB);
     }
 }
 

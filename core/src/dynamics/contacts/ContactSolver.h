@@ -97,15 +97,29 @@ public:
     explicit ContactSolver(b2ContactSolverDef* def);
 
     /// Anchors, effective masses, restitution bias and the block-solver matrices.
-    void InitializeVelocityConstraints();
+    void InitializeVelocityConstraints() { InitializeVelocityConstraints(0, m_count); }
+    /// The same for constraints [begin, end) (each reads the bodies and writes only itself).
+    void InitializeVelocityConstraints(int32 begin, int32 end);
     /// Applies the accumulated impulses of the previous step.
-    void WarmStart();
+    void WarmStart() { WarmStart(0, m_count); }
+    /// The same for constraints [begin, end), in order.
+    void WarmStart(int32 begin, int32 end);
     /// One velocity iteration: friction, then normal (block solver for two points).
-    void SolveVelocityConstraints();
+    void SolveVelocityConstraints() { SolveVelocityConstraints(0, m_count); }
+    /// The same for constraints [begin, end), in order.
+    void SolveVelocityConstraints(int32 begin, int32 end);
     /// Copies the accumulated impulses back to the manifolds for warm starting.
     void StoreImpulses();
     /// One position iteration; true when the largest overlap is within 3 linearSlop.
-    bool SolvePositionConstraints();
+    bool SolvePositionConstraints() { return PositionAccepted(SolvePositionConstraints(0, m_count)); }
+    /// One position pass over constraints [begin, end), in order; returns the smallest
+    /// separation seen (m, <= 0).
+    Fixed SolvePositionConstraints(int32 begin, int32 end);
+    /// Whether a position iteration whose smallest separation was minSeparation is done: Box2D
+    /// accepts an overlap of up to 3 linearSlop, since it pushes the separation to -linearSlop.
+    static bool PositionAccepted(Fixed minSeparation) noexcept {
+        return minSeparation >= Fixed::FromRaw(-3 * b2_linearSlop.Raw());
+    }
     /// One TOI position iteration moving only bodies toiIndexA and toiIndexB; true when the
     /// largest overlap is within 1.5 linearSlop.
     bool SolveTOIPositionConstraints(int32 toiIndexA, int32 toiIndexB);

@@ -50,10 +50,10 @@ struct PositionSolverManifold {
 };
 
 // One pass over all constraints; returns the smallest separation seen (m, <= 0).
-Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 count, b2Position* positions,
+Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 begin, int32 end, b2Position* positions,
                 b2CachedRot* rotations, Fixed baumgarte, bool toi, int32 toiIndexA, int32 toiIndexB) {
     Fixed minSeparation;
-    for (int32 i = 0; i < count; ++i) {
+    for (int32 i = begin; i < end; ++i) {
         const b2ContactPositionConstraint* pc = constraints + i;
         const int32 indexA = pc->indexA;
         const int32 indexB = pc->indexB;
@@ -120,27 +120,21 @@ Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 count, b2P
             aB += MulToFixed(iB * impulse, rnB);
         }
 
-        positions[indexA].c = cA;
-        positions[indexA].a = aA;
-        positions[indexB].c = cB;
-        positions[indexB].a = aB;
+        solver::Store(positions[indexA], cA, aA, mA, iA);
+        solver::Store(positions[indexB], cB, aB, mB, iB);
     }
     return minSeparation;
 }
 
 }  // namespace
 
-bool b2ContactSolver::SolvePositionConstraints() {
-    const Fixed minSeparation =
-        SolvePass(m_positionConstraints, m_count, m_positions, m_rotations, b2_baumgarte, false, -1, -1);
-    // Box2D accepts an overlap of up to 3 linearSlop (m, raw 984) since it is pushing the
-    // separation toward -linearSlop.
-    return minSeparation >= Fixed::FromRaw(-3 * b2_linearSlop.Raw());
+Fixed b2ContactSolver::SolvePositionConstraints(int32 begin, int32 end) {
+    return SolvePass(m_positionConstraints, begin, end, m_positions, m_rotations, b2_baumgarte, false, -1, -1);
 }
 
 bool b2ContactSolver::SolveTOIPositionConstraints(int32 toiIndexA, int32 toiIndexB) {
-    const Fixed minSeparation =
-        SolvePass(m_positionConstraints, m_count, m_positions, m_rotations, b2_toiBaugarte, true, toiIndexA, toiIndexB);
+    const Fixed minSeparation = SolvePass(m_positionConstraints, 0, m_count, m_positions, m_rotations, b2_toiBaugarte,
+                                          true, toiIndexA, toiIndexB);
     // TOI tolerance 1.5 linearSlop (m, raw 492), as Box2D.
     return minSeparation >= Fixed::FromRaw(-3 * b2_linearSlop.Raw() / 2);
 }

@@ -1,0 +1,156 @@
+// b2Island's shared solve: a coloured island's velocity and position loops as stages run by
+// every worker. Each stage is one colour (or work that any split does alike), so the result is
+// the colour order's, bit for bit, with any number of workers.
+#include "dynamics/IslandShared.h"
+
+#include <algorithm>
+
+#include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/Tasks.h"
+
+namespace lockbox {
+
+namespace {
+using Shared = b2Island::Shared;
+using Kind = Shared::Kind;
+
+// Items per block: many blocks per worker, since a worker that finishes its share first waits
+// at the stage's end for the block still running elsewhere; but not so few items that claiming
+// a block costs more than solving it.
+int32 BlockSize(int32 items, int32 workers) {
+    constexpr int32 kMinItems = 64;
+    constexpr int32 kBlocksPerWorker = 4;
+    const int32 share = (items + kBlocksPerWorker * workers - 1) / (kBlocksPerWorker * workers);
+    return std::max(kMinItems, share);
+}
+
+void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers) {
+    if (end <= begin) return;
+    Shared::Stage stage;
+    stage.kind = kind;
+    stage.begin = begin;
+    stage.end = end;
+    const bool serial = kind == Kind::e_jointInit || kind == Kind::e_jointVelocity || kind == Kind::e_jointPosition;
+    stage.blockSize = serial ? end - begin : BlockSize(end - begin, workers);
+    s.plan.push_back(stage);
+    s.stages.Add((end - begin + stage.blockSize - 1) / stage.blockSize);
+}
+
+// One stage per colour (its contacts are disjoint in dynamic bodies), the overflow last.
+void AddColourStages(Shared& s, Kind kind, const b2ContactColours& colours, int32 workers) {
+    for (int32 c = 0; c < b2ContactColours::kColourCount; ++c)
+        AddStage(s, kind, colours.Start(c), colours.Start(c + 1), workers);
+    // The overflow's contacts may share bodies: one block, in order.
+    const int32 begin = colours.Start(b2ContactColours::kColourCount);
+    const int32 end = colours.Start(b2ContactColours::kColourCount + 1);
+    if (end > begin) {
+        s.plan.push_back(Shared::Stage{kind, begin, end, end - begin, false});
+        s.stages.Add(1);
+    }
+}
+
+}  // namespace
+
+void Shared::RunBlock(int32 stage, int32 block, void* context) {
+    Shared& s = *static_cast<Shared*>(context);
+    const Shared::Stage& st = s.plan[static_cast<size_t>(stage)];
+    const int32 begin = st.begin + block * st.blockSize;
+    const int32 end = std::min(st.end, begin + st.blockSize);
+    b2Island& island = *s.island;
+    switch (st.kind) {
+        case Kind::e_rotations:
+            for (int32 i = begin; i < end; ++i) {
+                const int32 slot = island.m_bodies[static_cast<size_t>(i)]->m_islandIndex;
+                s.data->rotations[slot].For(s.data->positions[slot].a);
+            }
+            break;
+        case Kind::e_init: s.contacts->InitializeVelocityConstraints(begin, end); break;
+        case Kind::e_warmStart: s.contacts->WarmStart(begin, end); break;
+        case Kind::e_jointInit:
+            island.m_jointSolver.InitVelocityConstraints(island.m_joints.data(), island.m_jointCount, *s.data);
+            break;
+        case Kind::e_jointVelocity: island.m_jointSolver.SolveVelocityConstraints(*s.data); break;
+        case Kind::e_velocity: s.contacts->SolveVelocityConstraints(begin, end); break;
+        case Kind::e_position: {
+            const int32 raw = s.contacts->SolvePositionConstraints(begin, end).Raw();
+            int32 seen = s.minSeparation.load(std::memory_order_relaxed);
+            while (raw < seen && !s.minSeparation.compare_exchange_weak(seen, raw, std::memory_order_relaxed)) {
+            }
+            break;
+        }
+        case Kind::e_jointPosition:
+            if (!island.m_jointSolver.SolvePositionConstraints(*s.data))
+                s.jointsOkay.store(false, std::memory_order_relaxed);
+            break;
+    }
+}
+
+// After each position iteration (its last stage): stop when it was accepted, as the
+// one-thread loop does.
+bool Shared::PositionStageFinished(int32 stage, void* context) {
+    Shared& s = *static_cast<Shared*>(context);
+    if (!s.plan[static_cast<size_t>(stage)].endsIteration) return true;
+    ++s.positionIterations;
+    const bool okay =
+        b2ContactSolver::PositionAccepted(Fixed::FromRaw(s.minSeparation.load(std::memory_order_relaxed))) &&
+        s.jointsOkay.load(std::memory_order_relaxed);
+    if (okay) {
+        s.positionSolved = true;
+        return false;
+    }
+    s.minSeparation.store(0, std::memory_order_relaxed);
+    s.jointsOkay.store(true, std::memory_order_relaxed);
+    return true;
+}
+
+namespace {
+Shared& Prepare(std::unique_ptr<Shared>& shared, b2Island& island, b2ContactSolver& contacts,
+                const b2SolverData& data) {
+    if (!shared) shared = std::make_unique<Shared>();
+    Shared& s = *shared;
+    s.stages.Clear();
+    s.plan.clear();
+    s.island = &island;
+    s.contacts = &contacts;
+    s.data = &data;
+    return s;
+}
+}  // namespace
+
+void b2Island::SolveVelocitiesShared(b2ContactSolver& contacts, const b2SolverData& data, int32 velocityIterations,
+                                     bool warmStarting) {
+    Shared& s = Prepare(m_shared, *this, contacts, data);
+    const int32 workers = m_tasks->GetWorkerCount();
+    // The rotations first, so that the stages after only read a shared body's cache.
+    AddStage(s, Kind::e_rotations, 0, m_bodyCount, workers);
+    AddStage(s, Kind::e_init, 0, m_contactCount, workers);
+    if (warmStarting) AddColourStages(s, Kind::e_warmStart, m_colours, workers);
+    if (m_jointCount > 0) AddStage(s, Kind::e_jointInit, 0, m_jointCount, workers);
+    for (int32 it = 0; it < velocityIterations; ++it) {
+        if (m_jointCount > 0) AddStage(s, Kind::e_jointVelocity, 0, m_jointCount, workers);
+        AddColourStages(s, Kind::e_velocity, m_colours, workers);
+    }
+    s.stages.Run(*m_tasks, &Shared::RunBlock, nullptr, &s);
+}
+
+bool b2Island::SolvePositionsShared(b2ContactSolver& contacts, const b2SolverData& data, int32 positionIterations,
+                                    int32* iterationsRun) {
+    Shared& s = Prepare(m_shared, *this, contacts, data);
+    const int32 workers = m_tasks->GetWorkerCount();
+    // Integration turned the kinematic bodies: their rotations too are brought up to date first.
+    AddStage(s, Kind::e_rotations, 0, m_bodyCount, workers);
+    for (int32 it = 0; it < positionIterations; ++it) {
+        AddColourStages(s, Kind::e_position, m_colours, workers);
+        if (m_jointCount > 0) AddStage(s, Kind::e_jointPosition, 0, m_jointCount, workers);
+        s.plan.back().endsIteration = true;
+    }
+    s.minSeparation.store(0, std::memory_order_relaxed);
+    s.jointsOkay.store(true, std::memory_order_relaxed);
+    s.positionIterations = 0;
+    s.positionSolved = false;
+    s.stages.Run(*m_tasks, &Shared::RunBlock, &Shared::PositionStageFinished, &s);
+    *iterationsRun = s.positionIterations;
+    return s.positionSolved;
+}
+
+}  // namespace lockbox

@@ -1,0 +1,49 @@
+#pragma once
+// The solve of a coloured island shared between workers: the stages of its loops (b2Stages)
+// and what their blocks need. Island.cpp owns one; IslandShared.cpp runs it.
+
+#include <atomic>
+#include <vector>
+
+#include "dynamics/Island.h"
+#include "dynamics/tasks/Stages.h"
+
+namespace lockbox {
+
+struct core_detail::Engine::Island::Shared {
+    enum class Kind : uint8 {
+        e_rotations,      ///< the bodies' cached rotations brought up to date (any split)
+        e_init,           ///< InitializeVelocityConstraints (any split)
+        e_warmStart,      ///< one colour's warm start
+        e_jointInit,      ///< every joint's set-up (one block: joints keep island order)
+        e_jointVelocity,  ///< one velocity iteration of every joint (one block)
+        e_velocity,       ///< one colour's velocity iteration
+        e_position,       ///< one colour's position pass
+        e_jointPosition,  ///< one position pass of every joint (one block); ends an iteration
+    };
+    struct Stage {
+        Kind kind = Kind::e_init;
+        int32 begin = 0, end = 0;  ///< items (bodies or constraints) of the stage
+        int32 blockSize = 1;
+        bool endsIteration = false;  ///< the last stage of a position iteration
+    };
+
+    b2Stages stages;
+    std::vector<Stage> plan;  ///< per stage of `stages`
+    b2Island* island = nullptr;
+    b2ContactSolver* contacts = nullptr;
+    const b2SolverData* data = nullptr;
+    // The position iteration in hand: its smallest separation (raw) and whether its joints
+    // were within their slop; then how many iterations ran and whether the last was accepted.
+    std::atomic<int32> minSeparation{0};
+    std::atomic<bool> jointsOkay{true};
+    int32 positionIterations = 0;
+    bool positionSolved = false;
+
+    /// Runs block `block` of stage `stage` (b2Stages::Block).
+    static void RunBlock(int32 stage, int32 block, void* context);
+    /// Ends the run after an accepted position iteration (b2Stages::Finished).
+    static bool PositionStageFinished(int32 stage, void* context);
+};
+
+}  // namespace lockbox
