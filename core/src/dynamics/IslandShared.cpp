@@ -18,8 +18,8 @@ using Kind = Shared::Kind;
 // at the stage's end for the block still running elsewhere; but not so few items that claiming
 // a block costs more than solving it.
 int32 BlockSize(int32 items, int32 workers) {
-    constexpr int32 kMinItems = 64;
-    constexpr int32 kBlocksPerWorker = 4;
+    constexpr int32 kMinItems = 16;
+    constexpr int32 kBlocksPerWorker = 16;
     const int32 share = (items + kBlocksPerWorker * workers - 1) / (kBlocksPerWorker * workers);
     return std::max(kMinItems, share);
 }

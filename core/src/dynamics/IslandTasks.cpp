@@ -85,6 +85,12 @@ struct World::ParallelIslands {
             slept[static_cast<size_t>(i)] = island.Solve(&profile, *step, gravity, allowSleep) ? 1 : 0;
         }
         saturations[static_cast<size_t>(i)] = count;
+        // A coloured island solved its contacts, and recorded their impulses, in colour order:
+        // its PostSolve calls go in that order too, as with one worker.
+        if (to.contact - from.contact >= b2ContactColours::kMinContacts) {
+            std::copy(island.m_contacts.begin(), island.m_contacts.begin() + (to.contact - from.contact),
+                      contacts.begin() + from.contact);
+        }
     }
 
     // Fills `staged` with the coloured islands that hold more than a worker's share of the

@@ -120,8 +120,9 @@ void World::Solve(const b2TimeStep& step) {
         } else {
             // A coloured island solved here is shared colour by colour between the workers.
             m_island.m_tasks = hasWorkers ? tasks : nullptr;
-            if (m_island.Solve(&m_profile, step, m_gravity, m_allowSleep))
-                SleepStaticBodies(m_island.m_bodies.data(), m_island.m_bodyCount);
+            const bool slept = m_island.Solve(&m_profile, step, m_gravity, m_allowSleep);
+            m_island.m_tasks = nullptr;
+            if (slept) SleepStaticBodies(m_island.m_bodies.data(), m_island.m_bodyCount);
             ++m_profile.islandsSolved;
         }
 

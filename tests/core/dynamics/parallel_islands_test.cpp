@@ -3,7 +3,8 @@
 // The scene makes the workers' hard cases happen together: one static ground shared by many
 // islands (it is never written by an island solve, and sleeps with its islands in island
 // order), stacks that fall asleep while a jointed pendulum on the same ground keeps swinging,
-// and a contact listener.
+// and a contact listener. A second scene adds a pyramid large enough to be solved in colour
+// order, shared colour by colour between the workers, beside the islands solved in blocks.
 #include <cstdint>
 #include <vector>
 
@@ -40,7 +41,10 @@ struct SceneRun {
     int asleepSteps = 0;  // steps at whose end the ground was asleep
 };
 
-SceneRun Simulate(int workers, b2TaskSystem* tasks) {
+// Rows of the pyramid of the second scene: 528 boxes, over 1,024 contacts once they touch.
+constexpr int kPileRows = 32;
+
+SceneRun Simulate(int workers, b2TaskSystem* tasks, bool withPile = false) {
     b2World world(b2Vec2(0, -10));
     if (tasks != nullptr)
         world.SetTaskSystem(tasks);
@@ -63,9 +67,18 @@ SceneRun Simulate(int workers, b2TaskSystem* tasks) {
             lockbox::test::MakeDynamicBox(world, Fixed(-28 + 7 * s), Fixed::FromRatio(51 + 102 * k, 100), Fixed(0.5),
                                           Fixed(0.5));
     }
+    if (withPile) {
+        for (int row = 0; row < kPileRows; ++row) {
+            for (int k = 0; k < kPileRows - row; ++k)
+                lockbox::test::MakeDynamicBox(world, Fixed(-kPileRows / 2 + k) + Fixed::FromRatio(row, 2) + 100,
+                                              Fixed::FromRatio(50 + 100 * row, 100), Fixed(0.5), Fixed(0.5));
+        }
+        lockbox::test::MakeStaticBox(world, 100, Fixed(-0.5), 30, Fixed(0.5));
+    }
 
     SceneRun run;
-    for (int i = 0; i < 240; ++i) {
+    const int steps = withPile ? 40 : 240;
+    for (int i = 0; i < steps; ++i) {
         world.Step(kDt, 8, 3);
         run.hashes.push_back(world.Hash());
         const b2Profile& p = world.GetProfile();
@@ -113,6 +126,19 @@ TEST(ParallelIslands, SharedGroundSleepingStacksAndListenerMatchOneWorker) {
     lockbox::golden::ScrambledTasks scrambled(4, 0x15ad);
     ExpectSame(one, Simulate(0, &scrambled), "scrambled blocks");
     EXPECT_GT(scrambled.Blocks(), scrambled.Loops());
+}
+
+// The pyramid's island is solved in colour order, shared by the workers, while the other
+// islands are solved in blocks: its PostSolve calls keep the one-worker order and impulses.
+TEST(ParallelIslands, ColouredPileBesideSmallIslandsMatchesOneWorker) {
+    const SceneRun one = Simulate(1, nullptr, true);
+    EXPECT_GE(one.contacts.back(), 1024);
+    ExpectSame(one, Simulate(2, nullptr, true), "2 workers of the world's own pool");
+    b2ThreadPool two(2), three(3);
+    ExpectSame(one, Simulate(0, &two, true), "a pool of 2 handed over");
+    ExpectSame(one, Simulate(0, &three, true), "a pool of 3 handed over");
+    lockbox::golden::ScrambledTasks scrambled(4, 0x9ad);
+    ExpectSame(one, Simulate(0, &scrambled, true), "scrambled blocks");
 }
 
 }  // namespace

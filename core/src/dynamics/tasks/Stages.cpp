@@ -16,7 +16,8 @@ namespace {
 // A short pause in a wait loop; after a while the thread gives up its core, so that a worker
 // the system descheduled can run (the waits here last microseconds when every worker runs).
 void Relax(int32& spins) {
-    if (++spins < 256) {
+    if (spins < 256) {
+        ++spins;
 #if defined(__x86_64__) || defined(__i386__)
         _mm_pause();
 #endif
