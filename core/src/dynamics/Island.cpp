@@ -97,12 +97,8 @@ void b2Island::Observe(b2IslandPhase phase) {
                          std::span<b2Position>(m_positions.data(), n), std::span<b2Velocity>(m_velocities.data(), n));
 }
 
-bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep) {
-    Clock::time_point timer = Clock::now();
-    const Fixed h = step.dt;
-
-    // Integrate velocities and apply damping; copy the state into the solver buffers.
-    for (int32 i = 0; i < m_bodyCount; ++i) {
+void b2Island::IntegrateVelocities(int32 begin, int32 end, Fixed h, const b2Vec2& gravity) {
+    for (int32 i = begin; i < end; ++i) {
         b2Body* b = m_bodies[static_cast<size_t>(i)];
         const size_t slot = static_cast<size_t>(b->m_islandIndex);
         const b2Vec2 c = b->m_sweep.c;
@@ -138,26 +134,63 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         m_positions[slot].a = a;
         m_velocities[slot] = vel;
     }
-    profile->bodiesIntegrated += m_bodyCount;
+}
+
+void b2Island::IntegratePositions(int32 begin, int32 end, Fixed h) {
+    for (int32 i = begin; i < end; ++i) {
+        b2Body* b = m_bodies[static_cast<size_t>(i)];
+        if (b->m_type == b2_staticBody) continue;  // no velocity; and islands share it
+        // One island at a time, body i is in slot i: the loop stays on the solver arrays.
+        const size_t slot = m_slotBase == 0 ? static_cast<size_t>(i) : static_cast<size_t>(b->m_islandIndex);
+        b2Position& pos = m_positions[slot];
+        b2Velocity& vel = m_velocities[slot];
+        Wide dx, dy, da;
+        StepDisplacement(h, vel, dx, dy, da);
+        b->Displace(dx, dy, da, pos.c, pos.a);
+    }
+}
+
+void b2Island::StoreBodies(int32 begin, int32 end) {
+    // A static body's state is unchanged (no mass: no impulse or correction moves it), so it is
+    // left alone.
+    for (int32 i = begin; i < end; ++i) {
+        b2Body* body = m_bodies[static_cast<size_t>(i)];
+        if (body->m_type == b2_staticBody) continue;
+        const size_t slot = static_cast<size_t>(body->m_islandIndex);
+        body->m_sweep.c = m_positions[slot].c;
+        body->m_sweep.a = m_positions[slot].a;
+        body->SetSolverVelocity(m_velocities[slot]);
+        body->SynchronizeTransform();
+    }
+}
+
+bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep) {
+    Clock::time_point timer = Clock::now();
+    const Fixed h = step.dt;
+    const bool coloured = m_contactCount >= b2ContactColours::kMinContacts;
+    if (coloured) m_colours.Order(m_contacts.data(), m_contactCount, m_slotBase + m_bodyCount);
+    // A coloured island with workers runs each phase as one parallel loop of stages
+    // (IslandShared.cpp); the profile then counts the velocity phase's set-up in solveVelocityNs.
+    const bool shared = coloured && m_tasks != nullptr;
 
     b2SolverData solverData;
     solverData.step = step;
     solverData.positions = m_positions.data();
     solverData.velocities = m_velocities.data();
     solverData.rotations = m_rotations.data();
-
-    const bool coloured = m_contactCount >= b2ContactColours::kMinContacts;
-    if (coloured) m_colours.Order(m_contacts.data(), m_contactCount, m_slotBase + m_bodyCount);
-    const bool shared = coloured && m_tasks != nullptr;
     b2ContactSolverDef contactSolverDef = ContactSolverDef(step);
     b2ContactSolver contactSolver(&contactSolverDef);
+    profile->bodiesIntegrated += m_bodyCount;
     profile->contactConstraints += m_contactCount;
     profile->jointConstraints += m_jointCount;
     if (shared) {
         profile->solveInitNs += Nanos(timer);
         timer = Clock::now();
-        SolveVelocitiesShared(contactSolver, solverData, step.velocityIterations, step.warmStarting);
+        SolveVelocitiesShared(contactSolver, solverData, gravity);
     } else {
+        // Integrate velocities and apply damping; copy the state into the solver buffers.
+        IntegrateVelocities(0, m_bodyCount, h, gravity);
+        contactSolver.Load();
         contactSolver.InitializeVelocityConstraints();
         if (step.warmStarting) contactSolver.WarmStart();
         // Joint loops are entered only when the island has joints.
@@ -178,24 +211,15 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     Observe(b2IslandPhase::e_velocity);
 
     timer = Clock::now();
-    for (int32 i = 0; i < m_bodyCount; ++i) {
-        b2Body* b = m_bodies[static_cast<size_t>(i)];
-        if (b->m_type == b2_staticBody) continue;  // no velocity; and islands share it
-        // One island at a time, body i is in slot i: the loop stays on the solver arrays.
-        const size_t slot = m_slotBase == 0 ? static_cast<size_t>(i) : static_cast<size_t>(b->m_islandIndex);
-        b2Position& pos = m_positions[slot];
-        b2Velocity& vel = m_velocities[slot];
-        Wide dx, dy, da;
-        StepDisplacement(h, vel, dx, dy, da);
-        b->Displace(dx, dy, da, pos.c, pos.a);
-    }
-
     bool positionSolved = false;
     if (shared) {
+        // Integration, the iterations and the copy back to the bodies, as stages.
         int32 iterations = 0;
-        positionSolved = SolvePositionsShared(contactSolver, solverData, step.positionIterations, &iterations);
+        positionSolved = SolvePositionsShared(contactSolver, solverData, &iterations);
         profile->positionIterations += iterations;
+        Observe(b2IslandPhase::e_position);
     } else {
+        IntegratePositions(0, m_bodyCount, h);
         for (int32 it = 0; it < step.positionIterations; ++it) {
             ++profile->positionIterations;
             const bool contactsOkay = contactSolver.SolvePositionConstraints();
@@ -206,20 +230,9 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
                 break;
             }
         }
-    }
-
-    Observe(b2IslandPhase::e_position);
-
-    // Copy state buffers back to the bodies. A static body's are unchanged (no mass: no
-    // impulse or correction moves it), so it is left alone.
-    for (int32 i = 0; i < m_bodyCount; ++i) {
-        b2Body* body = m_bodies[static_cast<size_t>(i)];
-        if (body->m_type == b2_staticBody) continue;
-        const size_t slot = static_cast<size_t>(body->m_islandIndex);
-        body->m_sweep.c = m_positions[slot].c;
-        body->m_sweep.a = m_positions[slot].a;
-        body->SetSolverVelocity(m_velocities[slot]);
-        body->SynchronizeTransform();
+        Observe(b2IslandPhase::e_position);
+        // Copy state buffers back to the bodies.
+        StoreBodies(0, m_bodyCount);
     }
     profile->solvePositionNs += Nanos(timer);
 
@@ -267,6 +280,7 @@ void b2Island::SolveTOI(b2Profile* profile, const b2TimeStep& subStep, int32 toi
 
     b2ContactSolverDef contactSolverDef = ContactSolverDef(subStep);
     b2ContactSolver contactSolver(&contactSolverDef);
+    contactSolver.Load();
 
     // Solve position constraints.
     for (int32 i = 0; i < subStep.positionIterations; ++i) {

@@ -63,13 +63,20 @@ public:
     /// m_impulseSink set, writes those impulses there instead.
     void Report(b2Profile* profile, const b2ContactVelocityConstraint* constraints);
 
-    /// A coloured island's contact set-up, warm start and velocity iterations (with its joints'),
-    /// as stages on m_tasks; the bits of the one-thread loops in colour order.
-    void SolveVelocitiesShared(b2ContactSolver& contacts, const b2SolverData& data, int32 velocityIterations,
-                               bool warmStarting);
-    /// Its position iterations likewise; returns whether the last was accepted and sets how many ran.
-    bool SolvePositionsShared(b2ContactSolver& contacts, const b2SolverData& data, int32 positionIterations,
-                              int32* iterationsRun);
+    /// Bodies [begin, end): integrate velocities (gravity, forces, damping) and copy the state
+    /// into the solver buffers.
+    void IntegrateVelocities(int32 begin, int32 end, Fixed h, const b2Vec2& gravity);
+    /// Bodies [begin, end): move by the solved velocities (clamped to Box2D's maximum motion).
+    void IntegratePositions(int32 begin, int32 end, Fixed h);
+    /// Bodies [begin, end): copy the solver buffers back and synchronise the transforms.
+    void StoreBodies(int32 begin, int32 end);
+
+    /// A coloured island's velocity phase (integration, contact and joint set-up, warm start,
+    /// iterations) as stages on m_tasks: the bits of the one-thread loops in colour order.
+    void SolveVelocitiesShared(b2ContactSolver& contacts, const b2SolverData& data, const b2Vec2& gravity);
+    /// Its position phase likewise (integration, iterations, copy back to the bodies); returns
+    /// whether the last iteration was accepted and sets how many ran.
+    bool SolvePositionsShared(b2ContactSolver& contacts, const b2SolverData& data, int32* iterationsRun);
 
     /// A contact-solver definition over this island, its constraint storage grown to fit.
     b2ContactSolverDef ContactSolverDef(const b2TimeStep& step);

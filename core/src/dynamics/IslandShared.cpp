@@ -24,14 +24,18 @@ int32 BlockSize(int32 items, int32 workers) {
     return std::max(kMinItems, share);
 }
 
+// Kinds whose stage is one block: the joints keep island order among themselves.
+bool Serial(Kind kind) {
+    return kind == Kind::e_jointInit || kind == Kind::e_jointVelocity || kind == Kind::e_jointPosition;
+}
+
 void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers) {
     if (end <= begin) return;
     Shared::Stage stage;
     stage.kind = kind;
     stage.begin = begin;
     stage.end = end;
-    const bool serial = kind == Kind::e_jointInit || kind == Kind::e_jointVelocity || kind == Kind::e_jointPosition;
-    stage.blockSize = serial ? end - begin : BlockSize(end - begin, workers);
+    stage.blockSize = Serial(kind) ? end - begin : BlockSize(end - begin, workers);
     s.plan.push_back(stage);
     s.stages.Add((end - begin + stage.blockSize - 1) / stage.blockSize);
 }
@@ -49,61 +53,6 @@ void AddColourStages(Shared& s, Kind kind, const b2ContactColours& colours, int3
     }
 }
 
-}  // namespace
-
-void Shared::RunBlock(int32 stage, int32 block, void* context) {
-    Shared& s = *static_cast<Shared*>(context);
-    const Shared::Stage& st = s.plan[static_cast<size_t>(stage)];
-    const int32 begin = st.begin + block * st.blockSize;
-    const int32 end = std::min(st.end, begin + st.blockSize);
-    b2Island& island = *s.island;
-    switch (st.kind) {
-        case Kind::e_rotations:
-            for (int32 i = begin; i < end; ++i) {
-                const int32 slot = island.m_bodies[static_cast<size_t>(i)]->m_islandIndex;
-                s.data->rotations[slot].For(s.data->positions[slot].a);
-            }
-            break;
-        case Kind::e_init: s.contacts->InitializeVelocityConstraints(begin, end); break;
-        case Kind::e_warmStart: s.contacts->WarmStart(begin, end); break;
-        case Kind::e_jointInit:
-            island.m_jointSolver.InitVelocityConstraints(island.m_joints.data(), island.m_jointCount, *s.data);
-            break;
-        case Kind::e_jointVelocity: island.m_jointSolver.SolveVelocityConstraints(*s.data); break;
-        case Kind::e_velocity: s.contacts->SolveVelocityConstraints(begin, end); break;
-        case Kind::e_position: {
-            const int32 raw = s.contacts->SolvePositionConstraints(begin, end).Raw();
-            int32 seen = s.minSeparation.load(std::memory_order_relaxed);
-            while (raw < seen && !s.minSeparation.compare_exchange_weak(seen, raw, std::memory_order_relaxed)) {
-            }
-            break;
-        }
-        case Kind::e_jointPosition:
-            if (!island.m_jointSolver.SolvePositionConstraints(*s.data))
-                s.jointsOkay.store(false, std::memory_order_relaxed);
-            break;
-    }
-}
-
-// After each position iteration (its last stage): stop when it was accepted, as the
-// one-thread loop does.
-bool Shared::PositionStageFinished(int32 stage, void* context) {
-    Shared& s = *static_cast<Shared*>(context);
-    if (!s.plan[static_cast<size_t>(stage)].endsIteration) return true;
-    ++s.positionIterations;
-    const bool okay =
-        b2ContactSolver::PositionAccepted(Fixed::FromRaw(s.minSeparation.load(std::memory_order_relaxed))) &&
-        s.jointsOkay.load(std::memory_order_relaxed);
-    if (okay) {
-        s.positionSolved = true;
-        return false;
-    }
-    s.minSeparation.store(0, std::memory_order_relaxed);
-    s.jointsOkay.store(true, std::memory_order_relaxed);
-    return true;
-}
-
-namespace {
 Shared& Prepare(std::unique_ptr<Shared>& shared, b2Island& island, b2ContactSolver& contacts,
                 const b2SolverData& data) {
     if (!shared) shared = std::make_unique<Shared>();
@@ -117,38 +66,99 @@ Shared& Prepare(std::unique_ptr<Shared>& shared, b2Island& island, b2ContactSolv
 }
 }  // namespace
 
-void b2Island::SolveVelocitiesShared(b2ContactSolver& contacts, const b2SolverData& data, int32 velocityIterations,
-                                     bool warmStarting) {
+void Shared::RunBlock(int32 stage, int32 block, void* context) {
+    Shared& s = *static_cast<Shared*>(context);
+    const Shared::Stage& st = s.plan[static_cast<size_t>(stage)];
+    const int32 begin = st.begin + block * st.blockSize;
+    const int32 end = std::min(st.end, begin + st.blockSize);
+    b2Island& island = *s.island;
+    const b2SolverData& data = *s.data;
+    switch (st.kind) {
+        case Kind::e_integrateVelocities: island.IntegrateVelocities(begin, end, data.step.dt, s.gravity); break;
+        case Kind::e_load: s.contacts->Load(begin, end); break;
+        case Kind::e_rotations:
+            for (int32 i = begin; i < end; ++i) {
+                const int32 slot = island.m_bodies[static_cast<size_t>(i)]->m_islandIndex;
+                data.rotations[slot].For(data.positions[slot].a);
+            }
+            break;
+        case Kind::e_init: s.contacts->InitializeVelocityConstraints(begin, end); break;
+        case Kind::e_warmStart: s.contacts->WarmStart(begin, end); break;
+        case Kind::e_jointInit:
+            island.m_jointSolver.InitVelocityConstraints(island.m_joints.data(), island.m_jointCount, data);
+            break;
+        case Kind::e_jointVelocity: island.m_jointSolver.SolveVelocityConstraints(data); break;
+        case Kind::e_velocity: s.contacts->SolveVelocityConstraints(begin, end); break;
+        case Kind::e_integratePositions: island.IntegratePositions(begin, end, data.step.dt); break;
+        case Kind::e_position: {
+            const int32 raw = s.contacts->SolvePositionConstraints(begin, end).Raw();
+            int32 seen = s.minSeparation.load(std::memory_order_relaxed);
+            while (raw < seen && !s.minSeparation.compare_exchange_weak(seen, raw, std::memory_order_relaxed)) {
+            }
+            break;
+        }
+        case Kind::e_jointPosition:
+            if (!island.m_jointSolver.SolvePositionConstraints(data))
+                s.jointsOkay.store(false, std::memory_order_relaxed);
+            break;
+        case Kind::e_storeBodies: island.StoreBodies(begin, end); break;
+    }
+}
+
+// After each position iteration (its last stage): an accepted iteration skips the remaining
+// iterations, as the one-thread loop does, and goes on to the copy back.
+int32 Shared::NextPositionStage(int32 stage, void* context) {
+    Shared& s = *static_cast<Shared*>(context);
+    if (!s.plan[static_cast<size_t>(stage)].endsIteration) return stage + 1;
+    ++s.positionIterations;
+    const bool okay =
+        b2ContactSolver::PositionAccepted(Fixed::FromRaw(s.minSeparation.load(std::memory_order_relaxed))) &&
+        s.jointsOkay.load(std::memory_order_relaxed);
+    if (okay) {
+        s.positionSolved = true;
+        return s.storeStage;
+    }
+    s.minSeparation.store(0, std::memory_order_relaxed);
+    s.jointsOkay.store(true, std::memory_order_relaxed);
+    return stage + 1;
+}
+
+void b2Island::SolveVelocitiesShared(b2ContactSolver& contacts, const b2SolverData& data, const b2Vec2& gravity) {
     Shared& s = Prepare(m_shared, *this, contacts, data);
+    s.gravity = gravity;
     const int32 workers = m_tasks->GetWorkerCount();
-    // The rotations first, so that the stages after only read a shared body's cache.
+    AddStage(s, Kind::e_integrateVelocities, 0, m_bodyCount, workers);
+    AddStage(s, Kind::e_load, 0, m_contactCount, workers);
+    // The rotations before the set-up, so that the stages after only read a shared body's cache.
     AddStage(s, Kind::e_rotations, 0, m_bodyCount, workers);
     AddStage(s, Kind::e_init, 0, m_contactCount, workers);
-    if (warmStarting) AddColourStages(s, Kind::e_warmStart, m_colours, workers);
+    if (data.step.warmStarting) AddColourStages(s, Kind::e_warmStart, m_colours, workers);
     if (m_jointCount > 0) AddStage(s, Kind::e_jointInit, 0, m_jointCount, workers);
-    for (int32 it = 0; it < velocityIterations; ++it) {
+    for (int32 it = 0; it < data.step.velocityIterations; ++it) {
         if (m_jointCount > 0) AddStage(s, Kind::e_jointVelocity, 0, m_jointCount, workers);
         AddColourStages(s, Kind::e_velocity, m_colours, workers);
     }
     s.stages.Run(*m_tasks, &Shared::RunBlock, nullptr, &s);
 }
 
-bool b2Island::SolvePositionsShared(b2ContactSolver& contacts, const b2SolverData& data, int32 positionIterations,
-                                    int32* iterationsRun) {
+bool b2Island::SolvePositionsShared(b2ContactSolver& contacts, const b2SolverData& data, int32* iterationsRun) {
     Shared& s = Prepare(m_shared, *this, contacts, data);
     const int32 workers = m_tasks->GetWorkerCount();
+    AddStage(s, Kind::e_integratePositions, 0, m_bodyCount, workers);
     // Integration turned the kinematic bodies: their rotations too are brought up to date first.
     AddStage(s, Kind::e_rotations, 0, m_bodyCount, workers);
-    for (int32 it = 0; it < positionIterations; ++it) {
+    for (int32 it = 0; it < data.step.positionIterations; ++it) {
         AddColourStages(s, Kind::e_position, m_colours, workers);
         if (m_jointCount > 0) AddStage(s, Kind::e_jointPosition, 0, m_jointCount, workers);
         s.plan.back().endsIteration = true;
     }
+    s.storeStage = static_cast<int32>(s.plan.size());
+    AddStage(s, Kind::e_storeBodies, 0, m_bodyCount, workers);
     s.minSeparation.store(0, std::memory_order_relaxed);
     s.jointsOkay.store(true, std::memory_order_relaxed);
     s.positionIterations = 0;
     s.positionSolved = false;
-    s.stages.Run(*m_tasks, &Shared::RunBlock, &Shared::PositionStageFinished, &s);
+    s.stages.Run(*m_tasks, &Shared::RunBlock, &Shared::NextPositionStage, &s);
     *iterationsRun = s.positionIterations;
     return s.positionSolved;
 }

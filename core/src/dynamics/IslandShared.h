@@ -12,14 +12,18 @@ namespace lockbox {
 
 struct core_detail::Engine::Island::Shared {
     enum class Kind : uint8 {
-        e_rotations,      ///< the bodies' cached rotations brought up to date (any split)
-        e_init,           ///< InitializeVelocityConstraints (any split)
-        e_warmStart,      ///< one colour's warm start
-        e_jointInit,      ///< every joint's set-up (one block: joints keep island order)
-        e_jointVelocity,  ///< one velocity iteration of every joint (one block)
-        e_velocity,       ///< one colour's velocity iteration
-        e_position,       ///< one colour's position pass
-        e_jointPosition,  ///< one position pass of every joint (one block); ends an iteration
+        e_integrateVelocities,  ///< bodies' velocity integration (any split)
+        e_load,                 ///< the contacts' copy into the solver (any split)
+        e_rotations,            ///< the bodies' cached rotations brought up to date (any split)
+        e_init,                 ///< InitializeVelocityConstraints (any split)
+        e_warmStart,            ///< one colour's warm start
+        e_jointInit,            ///< every joint's set-up (one block: joints keep island order)
+        e_jointVelocity,        ///< one velocity iteration of every joint (one block)
+        e_velocity,             ///< one colour's velocity iteration
+        e_integratePositions,   ///< bodies' position integration (any split)
+        e_position,             ///< one colour's position pass
+        e_jointPosition,        ///< one position pass of every joint (one block)
+        e_storeBodies,          ///< the solver buffers back to the bodies (any split)
     };
     struct Stage {
         Kind kind = Kind::e_init;
@@ -33,6 +37,8 @@ struct core_detail::Engine::Island::Shared {
     b2Island* island = nullptr;
     b2ContactSolver* contacts = nullptr;
     const b2SolverData* data = nullptr;
+    b2Vec2 gravity;
+    int32 storeStage = 0;  ///< the position phase's last stage, where an accepted iteration goes
     // The position iteration in hand: its smallest separation (raw) and whether its joints
     // were within their slop; then how many iterations ran and whether the last was accepted.
     std::atomic<int32> minSeparation{0};
@@ -42,8 +48,8 @@ struct core_detail::Engine::Island::Shared {
 
     /// Runs block `block` of stage `stage` (b2Stages::Block).
     static void RunBlock(int32 stage, int32 block, void* context);
-    /// Ends the run after an accepted position iteration (b2Stages::Finished).
-    static bool PositionStageFinished(int32 stage, void* context);
+    /// After an accepted position iteration, goes on to the copy back (b2Stages::Next).
+    static int32 NextPositionStage(int32 stage, void* context);
 };
 
 }  // namespace lockbox

@@ -27,7 +27,8 @@ struct Log {
     std::vector<std::unique_ptr<std::atomic<int32>[]>> runs;  // per stage, per block
     std::vector<std::unique_ptr<std::atomic<int32>[]>> seen;  // stages finished at the block's start
     std::atomic<int32> finished{0};
-    int32 stopAfter = -1;  // the stage after which the run ends, or -1
+    int32 stopAfter = -1;              // the stage after which the run ends, or -1
+    int32 jumpFrom = -1, jumpTo = -1;  // a stage after which the run goes on at another
     bool saturate = false;
 
     explicit Log(std::vector<int32> counts) : blockCounts(std::move(counts)) {
@@ -46,10 +47,11 @@ struct Log {
             static_cast<void>(Fixed::FromRaw(big) + Fixed::FromRaw(big));  // one saturation
         }
     }
-    static bool Finished(int32 stage, void* context) {
+    static int32 Next(int32 stage, void* context) {
         Log& log = *static_cast<Log*>(context);
         log.finished.fetch_add(1);
-        return stage != log.stopAfter;
+        if (stage == log.jumpFrom) return log.jumpTo;
+        return stage == log.stopAfter ? static_cast<int32>(log.blockCounts.size()) : stage + 1;
     }
 };
 
@@ -58,7 +60,7 @@ void RunAndCheck(b2TaskSystem& tasks, const std::vector<int32>& counts, int32 st
     log.stopAfter = stopAfter;
     b2Stages stages;
     for (const int32 n : counts) stages.Add(n);
-    stages.Run(tasks, &Log::Block, &Log::Finished, &log);
+    stages.Run(tasks, &Log::Block, &Log::Next, &log);
     const int32 ran = stopAfter < 0 ? static_cast<int32>(counts.size()) : stopAfter + 1;
     EXPECT_EQ(log.finished.load(), ran);
     for (size_t s = 0; s < counts.size(); ++s) {
@@ -72,6 +74,24 @@ void RunAndCheck(b2TaskSystem& tasks, const std::vector<int32>& counts, int32 st
 }
 
 const std::vector<int32> kCounts = {1, 7, 64, 3, 1, 200, 2, 33};
+
+// Skips from stage 2 to stage 6: stages 3 to 5 never run, the ones after do.
+TEST(Stages, GoesOnWhereToldTo) {
+    b2ThreadPool pool(3);
+    for (int repeat = 0; repeat < 10; ++repeat) {
+        Log log(kCounts);
+        log.jumpFrom = 2;
+        log.jumpTo = 6;
+        b2Stages stages;
+        for (const int32 n : kCounts) stages.Add(n);
+        stages.Run(pool, &Log::Block, &Log::Next, &log);
+        EXPECT_EQ(log.finished.load(), 5);  // stages 0, 1, 2, 6 and 7
+        for (size_t s = 0; s < kCounts.size(); ++s) {
+            const bool skipped = s >= 3 && s <= 5;
+            for (int32 b = 0; b < kCounts[s]; ++b) EXPECT_EQ(log.runs[s][b].load(), skipped ? 0 : 1) << s;
+        }
+    }
+}
 
 TEST(Stages, EveryBlockRunsOnceAfterTheStageBefore) {
     for (const int32 workers : {2, 3, 8}) {

@@ -48,12 +48,13 @@ b2ContactSolver::ContactSolver(b2ContactSolverDef* def)
       m_velocityConstraints(def->velocityConstraints),
       m_rotations(def->rotations),
       m_contacts(def->contacts),
-      m_count(def->count) {
+      m_count(def->count) {}
+
+void b2ContactSolver::Load(int32 begin, int32 end) {
     // The constraint storage holds the previous island's values: every field read later is
     // written here or in InitializeVelocityConstraints (K and normalMass only for the block
     // solver, which alone reads them).
-
-    for (int32 i = 0; i < m_count; ++i) {
+    for (int32 i = begin; i < end; ++i) {
         b2Contact* contact = m_contacts[i];
         const b2Fixture* fixtureA = contact->m_fixtureA;
         const b2Fixture* fixtureB = contact->m_fixtureB;

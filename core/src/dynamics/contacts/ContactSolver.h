@@ -93,8 +93,13 @@ struct b2ContactSolverDef {
 /// Solves the contacts of one island.
 class core_detail::Engine::ContactSolver {
 public:
-    /// Copies the constraint data; warm-start impulses are scaled by dtRatio.
+    /// A solver over def's contacts; Load copies their data in.
     explicit ContactSolver(b2ContactSolverDef* def);
+
+    /// Copies the constraint data of every contact; warm-start impulses are scaled by dtRatio.
+    void Load() { Load(0, m_count); }
+    /// The same for contacts [begin, end) (each writes only its own constraints).
+    void Load(int32 begin, int32 end);
 
     /// Anchors, effective masses, restitution bias and the block-solver matrices.
     void InitializeVelocityConstraints() { InitializeVelocityConstraints(0, m_count); }

@@ -1,6 +1,7 @@
 // b2Stages: blocks claimed from per-stage counters; the last block of a stage opens the next.
 #include "dynamics/tasks/Stages.h"
 
+#include <algorithm>
 #include <thread>
 
 #include "lockbox/dynamics/Tasks.h"
@@ -32,7 +33,7 @@ int32 b2Stages::Add(int32 blockCount) {
     return static_cast<int32>(m_blockCounts.size()) - 1;
 }
 
-void b2Stages::Run(b2TaskSystem& tasks, Block block, Finished finished, void* context) {
+void b2Stages::Run(b2TaskSystem& tasks, Block block, Next next, void* context) {
     const int32 count = Count();
     if (count == 0) return;
     m_workers = tasks.GetWorkerCount();
@@ -49,7 +50,7 @@ void b2Stages::Run(b2TaskSystem& tasks, Block block, Finished finished, void* co
     for (size_t s = 0; s < stages; ++s) m_done[s].value.store(0, std::memory_order_relaxed);
     for (size_t c = 0; c < claims; ++c) m_claims[c].value.store(0, std::memory_order_relaxed);
     m_block = block;
-    m_finished = finished;
+    m_next = next;
     m_context = context;
     m_saturations.store(0, std::memory_order_relaxed);
     m_stage.store(0, std::memory_order_relaxed);
@@ -101,8 +102,10 @@ void b2Stages::Work(int32 worker) {
             // release store of the next stage hands them to all.
             const int32 blocks = m_blockCounts[static_cast<size_t>(stage)];
             if (m_done[static_cast<size_t>(stage)].value.fetch_add(1, std::memory_order_acq_rel) + 1 == blocks) {
-                const bool more = m_finished == nullptr || m_finished(stage, m_context);
-                m_stage.store(more ? stage + 1 : count, std::memory_order_release);
+                // A stage's counters serve once: the run only moves forward.
+                const int32 following =
+                    m_next == nullptr ? stage + 1 : std::clamp(m_next(stage, m_context), stage + 1, count);
+                m_stage.store(following, std::memory_order_release);
             }
         }
     }

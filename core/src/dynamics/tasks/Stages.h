@@ -28,9 +28,10 @@ class b2Stages {
 public:
     /// Runs block `block` of stage `stage`.
     using Block = void (*)(int32 stage, int32 block, void* context);
-    /// Called once when stage `stage` has finished, before the next starts (by the worker that
-    /// finished its last block); returns false to end the run there.
-    using Finished = bool (*)(int32 stage, void* context);
+    /// Called once when stage `stage` has finished, by the worker that finished its last block,
+    /// before any other stage starts; returns the stage to run next, which must come after
+    /// `stage` (Count() ends the run). Without one, the stages run in order.
+    using Next = int32 (*)(int32 stage, void* context);
 
     /// Appends a stage of `blockCount` blocks (>= 1) and returns its index.
     int32 Add(int32 blockCount);
@@ -38,10 +39,10 @@ public:
     void Clear() noexcept { m_blockCounts.clear(); }
     int32 Count() const noexcept { return static_cast<int32>(m_blockCounts.size()); }
 
-    /// Runs the stages in order on `tasks` (GetWorkerCount() > 1) and returns when the last has
-    /// finished or `finished` ended the run. Every worker's saturations are counted on the calling
+    /// Runs the stages on `tasks` (GetWorkerCount() > 1), from the first, in order or as `next`
+    /// says, and returns when the run has ended. Every worker's saturations are counted on the calling
     /// thread. Called by the thread stepping the world, never from inside a loop.
-    void Run(b2TaskSystem& tasks, Block block, Finished finished, void* context);
+    void Run(b2TaskSystem& tasks, Block block, Next next, void* context);
 
 private:
     // One cache line each: workers claim from their own share without touching the others'.
@@ -66,7 +67,7 @@ private:
     std::atomic<int32> m_stage{0};  ///< the open stage; Count() once the run has ended
     std::atomic<uint64_t> m_saturations{0};
     Block m_block = nullptr;
-    Finished m_finished = nullptr;
+    Next m_next = nullptr;
     void* m_context = nullptr;
 };
 
