@@ -30,8 +30,6 @@ struct Engine {
     class Island;
     /// The contact constraints of one island (dynamics/contacts/ContactSolver.h).
     class ContactSolver;
-    /// The colour order of a large island's contacts (dynamics/contacts/ContactColours.h).
-    class ContactColours;
     /// The few body and contact internals other code reads (dynamics/Access.h).
     struct Bodies;
     struct Contacts;

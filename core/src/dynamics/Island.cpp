@@ -6,6 +6,7 @@
 #include "dynamics/IslandShared.h"
 #include "dynamics/contacts/ContactSolver.h"
 #include "lockbox/dynamics/Body.h"
+#include "lockbox/dynamics/Fixture.h"
 #include "lockbox/dynamics/StepObserver.h"
 #include "lockbox/dynamics/WorldCallbacks.h"
 #include "lockbox/dynamics/contacts/Contact.h"
@@ -164,11 +165,38 @@ void b2Island::StoreBodies(int32 begin, int32 end) {
     }
 }
 
+bool b2Island::Colour() {
+    const int32 slots = m_slotBase + m_bodyCount;
+    const bool contacts = ColoursContacts(), joints = ColoursJoints();
+    if (contacts) {
+        m_contactColours.Order(m_contacts.data(), m_contactCount, slots, [](const b2Contact* c) {
+            const b2Body* a = c->m_fixtureA->m_body;
+            const b2Body* b = c->m_fixtureB->m_body;
+            return b2Colours<b2Contact>::Written{a->m_type == b2_dynamicBody ? a->m_islandIndex : -1,
+                                                 b->m_type == b2_dynamicBody ? b->m_islandIndex : -1, true};
+        });
+    }
+    if (joints) {
+        m_jointColours.Order(m_joints.data(), m_jointCount, slots, [](const b2Joint* j) {
+            // A joint solver writes both its bodies, with or without mass, so only a joint between
+            // two dynamic bodies may share a colour; and only the joints that touch no other
+            // body or joint (a gear reads two joints, a mouse joint has one body).
+            const bool twoBodies = j->m_type == e_revoluteJoint || j->m_type == e_prismaticJoint ||
+                                   j->m_type == e_distanceJoint || j->m_type == e_weldJoint ||
+                                   j->m_type == e_wheelJoint || j->m_type == e_frictionJoint ||
+                                   j->m_type == e_ropeJoint;
+            const bool dynamic = j->m_bodyA->m_type == b2_dynamicBody && j->m_bodyB->m_type == b2_dynamicBody;
+            return b2Colours<b2Joint>::Written{j->m_bodyA->m_islandIndex, j->m_bodyB->m_islandIndex,
+                                               twoBodies && dynamic};
+        });
+    }
+    return contacts || joints;
+}
+
 bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep) {
     Clock::time_point timer = Clock::now();
     const Fixed h = step.dt;
-    const bool coloured = m_contactCount >= b2ContactColours::kMinContacts;
-    if (coloured) m_colours.Order(m_contacts.data(), m_contactCount, m_slotBase + m_bodyCount);
+    const bool coloured = Colour();
     // A coloured island with workers runs each phase as one parallel loop of stages
     // (IslandShared.cpp); the profile then counts the velocity phase's set-up in solveVelocityNs.
     const bool shared = coloured && m_tasks != nullptr;

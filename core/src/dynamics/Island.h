@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "Engine.h"
+#include "dynamics/Colours.h"
 #include "dynamics/TimeStep.h"
-#include "dynamics/contacts/ContactColours.h"
 #include "dynamics/contacts/ContactSolver.h"
 #include "dynamics/joints/JointSolver.h"
 #include "lockbox/common/Settings.h"
@@ -63,6 +63,14 @@ public:
     /// m_impulseSink set, writes those impulses there instead.
     void Report(b2Profile* profile, const b2ContactVelocityConstraint* constraints);
 
+    /// Whether the island's contacts, and its joints, are many enough to be solved in colour
+    /// order (Colours.h).
+    bool ColoursContacts() const noexcept { return m_contactCount >= b2_minColouredConstraints; }
+    bool ColoursJoints() const noexcept { return m_jointCount >= b2_minColouredConstraints; }
+    /// Puts the contacts and the joints that are many enough in colour order; returns whether
+    /// either was.
+    bool Colour();
+
     /// Bodies [begin, end): integrate velocities (gravity, forces, damping) and copy the state
     /// into the solver buffers.
     void IntegrateVelocities(int32 begin, int32 end, Fixed h, const b2Vec2& gravity);
@@ -99,8 +107,9 @@ public:
     // Contact-solver storage, sized to the largest island so far (grown, never shrunk).
     std::vector<b2ContactPositionConstraint> m_positionConstraints;
     std::vector<b2ContactVelocityConstraint> m_velocityConstraints;
-    std::vector<b2CachedRot> m_rotations;  ///< per body, like m_positions
-    b2ContactColours m_colours;            ///< the colour order of a large island's contacts
+    std::vector<b2CachedRot> m_rotations;   ///< per body, like m_positions
+    b2Colours<b2Contact> m_contactColours;  ///< the colour order of a large island's contacts
+    b2Colours<b2Joint> m_jointColours;      ///< and of its joints, when they are many
     /// Workers for a coloured island's loops (IslandShared.h), or nullptr: one thread. Set by
     /// the world only where the island is solved on the thread stepping it.
     b2TaskSystem* m_tasks = nullptr;

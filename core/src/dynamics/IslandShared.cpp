@@ -24,32 +24,33 @@ int32 BlockSize(int32 items, int32 workers) {
     return std::max(kMinItems, share);
 }
 
-// Kinds whose stage is one block: the joints keep island order among themselves.
-bool Serial(Kind kind) {
-    return kind == Kind::e_jointInit || kind == Kind::e_jointVelocity || kind == Kind::e_jointPosition;
-}
-
-void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers) {
+// A stage over items [begin, end), split into blocks, or in one block (in order) when serial.
+void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers, bool serial = false) {
     if (end <= begin) return;
     Shared::Stage stage;
     stage.kind = kind;
     stage.begin = begin;
     stage.end = end;
-    stage.blockSize = Serial(kind) ? end - begin : BlockSize(end - begin, workers);
+    stage.blockSize = serial ? end - begin : BlockSize(end - begin, workers);
     s.plan.push_back(stage);
     s.stages.Add((end - begin + stage.blockSize - 1) / stage.blockSize);
 }
 
-// One stage per colour (its contacts are disjoint in dynamic bodies), the overflow last.
-void AddColourStages(Shared& s, Kind kind, const b2ContactColours& colours, int32 workers) {
-    for (int32 c = 0; c < b2ContactColours::kColourCount; ++c)
-        AddStage(s, kind, colours.Start(c), colours.Start(c + 1), workers);
-    // The overflow's contacts may share bodies: one block, in order.
-    const int32 begin = colours.Start(b2ContactColours::kColourCount);
-    const int32 end = colours.Start(b2ContactColours::kColourCount + 1);
-    if (end > begin) {
-        s.plan.push_back(Shared::Stage{kind, begin, end, end - begin, false});
-        s.stages.Add(1);
+// One stage per colour (its constraints write no body in common), the overflow last and in
+// order.
+template <class Item>
+void AddColourStages(Shared& s, Kind kind, const b2Colours<Item>& colours, int32 workers) {
+    for (int32 c = 0; c < b2_colourCount; ++c) AddStage(s, kind, colours.Start(c), colours.Start(c + 1), workers);
+    AddStage(s, kind, colours.Start(b2_colourCount), colours.Start(b2_colourCount + 1), workers, true);
+}
+
+// The island's joints for one kind of joint stage: by colour when they are many, else all of
+// them in island order on one worker.
+void AddJointStages(Shared& s, Kind kind, const b2Island& island, int32 workers) {
+    if (island.ColoursJoints()) {
+        AddColourStages(s, kind, island.m_jointColours, workers);
+    } else {
+        AddStage(s, kind, 0, island.m_jointCount, workers, true);
     }
 }
 
@@ -85,9 +86,9 @@ void Shared::RunBlock(int32 stage, int32 block, void* context) {
         case Kind::e_init: s.contacts->InitializeVelocityConstraints(begin, end); break;
         case Kind::e_warmStart: s.contacts->WarmStart(begin, end); break;
         case Kind::e_jointInit:
-            island.m_jointSolver.InitVelocityConstraints(island.m_joints.data(), island.m_jointCount, data);
+            island.m_jointSolver.InitVelocityConstraints(island.m_joints.data(), begin, end, data);
             break;
-        case Kind::e_jointVelocity: island.m_jointSolver.SolveVelocityConstraints(data); break;
+        case Kind::e_jointVelocity: island.m_jointSolver.SolveVelocityConstraints(data, begin, end); break;
         case Kind::e_velocity: s.contacts->SolveVelocityConstraints(begin, end); break;
         case Kind::e_integratePositions: island.IntegratePositions(begin, end, data.step.dt); break;
         case Kind::e_position: {
@@ -98,7 +99,7 @@ void Shared::RunBlock(int32 stage, int32 block, void* context) {
             break;
         }
         case Kind::e_jointPosition:
-            if (!island.m_jointSolver.SolvePositionConstraints(data))
+            if (!island.m_jointSolver.SolvePositionConstraints(data, begin, end))
                 s.jointsOkay.store(false, std::memory_order_relaxed);
             break;
         case Kind::e_storeBodies: island.StoreBodies(begin, end); break;
@@ -127,16 +128,26 @@ void b2Island::SolveVelocitiesShared(b2ContactSolver& contacts, const b2SolverDa
     Shared& s = Prepare(m_shared, *this, contacts, data);
     s.gravity = gravity;
     const int32 workers = m_tasks->GetWorkerCount();
+    const bool colourContacts = ColoursContacts();
+    // Contacts too few to colour stay in island order, on one worker.
+    auto addContactStages = [&](Kind kind) {
+        if (colourContacts) {
+            AddColourStages(s, kind, m_contactColours, workers);
+        } else {
+            AddStage(s, kind, 0, m_contactCount, workers, true);
+        }
+    };
     AddStage(s, Kind::e_integrateVelocities, 0, m_bodyCount, workers);
     AddStage(s, Kind::e_load, 0, m_contactCount, workers);
     // The rotations before the set-up, so that the stages after only read a shared body's cache.
     AddStage(s, Kind::e_rotations, 0, m_bodyCount, workers);
     AddStage(s, Kind::e_init, 0, m_contactCount, workers);
-    if (data.step.warmStarting) AddColourStages(s, Kind::e_warmStart, m_colours, workers);
-    if (m_jointCount > 0) AddStage(s, Kind::e_jointInit, 0, m_jointCount, workers);
+    if (data.step.warmStarting) addContactStages(Kind::e_warmStart);
+    if (m_jointCount > 0) m_jointSolver.Begin(m_jointCount);
+    AddJointStages(s, Kind::e_jointInit, *this, workers);
     for (int32 it = 0; it < data.step.velocityIterations; ++it) {
-        if (m_jointCount > 0) AddStage(s, Kind::e_jointVelocity, 0, m_jointCount, workers);
-        AddColourStages(s, Kind::e_velocity, m_colours, workers);
+        AddJointStages(s, Kind::e_jointVelocity, *this, workers);
+        addContactStages(Kind::e_velocity);
     }
     s.stages.Run(*m_tasks, &Shared::RunBlock, nullptr, &s);
 }
@@ -148,8 +159,13 @@ bool b2Island::SolvePositionsShared(b2ContactSolver& contacts, const b2SolverDat
     // Integration turned the kinematic bodies: their rotations too are brought up to date first.
     AddStage(s, Kind::e_rotations, 0, m_bodyCount, workers);
     for (int32 it = 0; it < data.step.positionIterations; ++it) {
-        AddColourStages(s, Kind::e_position, m_colours, workers);
-        if (m_jointCount > 0) AddStage(s, Kind::e_jointPosition, 0, m_jointCount, workers);
+        if (ColoursContacts()) {
+            AddColourStages(s, Kind::e_position, m_contactColours, workers);
+        } else {
+            AddStage(s, Kind::e_position, 0, m_contactCount, workers, true);
+        }
+        AddJointStages(s, Kind::e_jointPosition, *this, workers);
+        // A coloured island has constraints: the iteration added stages, and this is its last.
         s.plan.back().endsIteration = true;
     }
     s.storeStage = static_cast<int32>(s.plan.size());

@@ -87,7 +87,7 @@ struct World::ParallelIslands {
         saturations[static_cast<size_t>(i)] = count;
         // A coloured island solved its contacts, and recorded their impulses, in colour order:
         // its PostSolve calls go in that order too, as with one worker.
-        if (to.contact - from.contact >= b2ContactColours::kMinContacts) {
+        if (island.ColoursContacts()) {
             std::copy(island.m_contacts.begin(), island.m_contacts.begin() + (to.contact - from.contact),
                       contacts.begin() + from.contact);
         }
@@ -114,10 +114,11 @@ struct World::ParallelIslands {
         }
         staged.clear();
         for (int32 i = 0; i < count; ++i) {
-            const int32 contactCount =
-                starts[static_cast<size_t>(i) + 1].contact - starts[static_cast<size_t>(i)].contact;
-            if (contactCount >= b2ContactColours::kMinContacts &&
-                int64_t{sizes[static_cast<size_t>(i)]} * workers > work) {
+            const Start& from = starts[static_cast<size_t>(i)];
+            const Start& to = starts[static_cast<size_t>(i) + 1];
+            const bool coloured = to.contact - from.contact >= b2_minColouredConstraints ||
+                                  to.joint - from.joint >= b2_minColouredConstraints;
+            if (coloured && int64_t{sizes[static_cast<size_t>(i)]} * workers > work) {
                 staged.push_back(i);
                 sizes[static_cast<size_t>(i)] = -1;  // taken
             }

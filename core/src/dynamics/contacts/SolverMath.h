@@ -13,7 +13,7 @@ namespace lockbox::solver {
 // Writes a body's solved state back, unless the body has no mass (static or kinematic): the
 // contact solver never changes such a body (every push and turn on it is zero), so it is only
 // read. This is what lets the contacts of one colour be solved at the same time while they
-// share a static ground (ContactColours.h): no two of them write the same place.
+// share a static ground (dynamics/Colours.h): no two of them write the same place.
 template <class State, class Linear, class Angular>
 [[gnu::always_inline]] inline void Store(State& state, const Linear& linear, const Angular& angular, Wide invMass,
                                          Wide invI) noexcept {

@@ -80,15 +80,18 @@ bool SolvePointPositionRow(const JointSolver::PositionRow& row, const b2SolverDa
 }
 }  // namespace
 
-void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 count, const b2SolverData& data) {
+void JointSolver::Begin(int32 count) {
     if (m_rows.size() < static_cast<size_t>(count)) {
         m_rows.resize(static_cast<size_t>(count));
         m_positionRows.resize(static_cast<size_t>(count));
     }
     m_count = count;
-    for (int32 i = 0; i < count; ++i) {
+}
+
+void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 begin, int32 end, const b2SolverData& data) {
+    for (int32 i = begin; i < end; ++i) {
         b2Joint* joint = joints[i];
-        if (i + kPrefetchAhead < count) Prefetch(joints[i + kPrefetchAhead]);
+        if (i + kPrefetchAhead < end) Prefetch(joints[i + kPrefetchAhead]);
         Row& row = m_rows[static_cast<size_t>(i)];
         row.joint = joint;
         row.revolute = nullptr;
@@ -134,9 +137,9 @@ void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 count, c
     }
 }
 
-void JointSolver::SolveVelocityConstraints(const b2SolverData& data) {
+void JointSolver::SolveVelocityConstraints(const b2SolverData& data, int32 begin, int32 end) {
     Row* rows = m_rows.data();
-    for (int32 i = 0; i < m_count; ++i) {
+    for (int32 i = begin; i < end; ++i) {
         Row& row = rows[i];
         if (row.revolute != nullptr) {
             SolvePointRow(row, data);
@@ -159,9 +162,9 @@ void JointSolver::StoreImpulses() const {
 
 namespace lockbox {
 
-bool JointSolver::SolvePositionConstraints(const b2SolverData& data) const {
+bool JointSolver::SolvePositionConstraints(const b2SolverData& data, int32 begin, int32 end) const {
     bool okay = true;
-    for (int32 i = 0; i < m_count; ++i) {
+    for (int32 i = begin; i < end; ++i) {
         const Row& row = m_rows[static_cast<size_t>(i)];
         const bool jointOkay = row.revolute != nullptr
                                    ? SolvePointPositionRow(m_positionRows[static_cast<size_t>(i)], data)

@@ -27,15 +27,26 @@ class core_detail::Engine::Joints::Solver {
 public:
     /// Runs every joint's InitVelocityConstraints in island order (warm starting included) and
     /// builds the rows. The storage grows to the largest island and is then reused.
-    void InitVelocityConstraints(b2Joint* const* joints, int32 count, const b2SolverData& data);
+    void InitVelocityConstraints(b2Joint* const* joints, int32 count, const b2SolverData& data) {
+        Begin(count);
+        InitVelocityConstraints(joints, 0, count, data);
+    }
+    /// Sizes the rows for `count` joints; the set-up then runs over ranges of them.
+    void Begin(int32 count);
+    /// The set-up of joints [begin, end), in order (each writes its row and its bodies).
+    void InitVelocityConstraints(b2Joint* const* joints, int32 begin, int32 end, const b2SolverData& data);
     /// One velocity iteration over the joints, in island order.
-    void SolveVelocityConstraints(const b2SolverData& data);
+    void SolveVelocityConstraints(const b2SolverData& data) { SolveVelocityConstraints(data, 0, m_count); }
+    /// The same over joints [begin, end), in order.
+    void SolveVelocityConstraints(const b2SolverData& data, int32 begin, int32 end);
     /// Copies the rows' accumulated impulses back to their joints (for warm starting and the
     /// reaction forces). Call once after the velocity iterations.
     void StoreImpulses() const;
     /// One position iteration over the joints, in island order; true when every joint is
     /// within tolerance (every joint is solved either way).
-    bool SolvePositionConstraints(const b2SolverData& data) const;
+    bool SolvePositionConstraints(const b2SolverData& data) const { return SolvePositionConstraints(data, 0, m_count); }
+    /// The same over joints [begin, end), in order.
+    bool SolvePositionConstraints(const b2SolverData& data, int32 begin, int32 end) const;
 
     /// One joint in the iterations: a revolute point row, or a joint solved by itself (joint set,
     /// revolute null). 120 bytes, read front to back by an iteration.

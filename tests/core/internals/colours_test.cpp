@@ -1,0 +1,175 @@
+// A large island's contacts (and, apart, its joints) are solved in colour order: each colour's
+// constraints share no dynamic body (so workers may solve them at the same time), each has the
+// lowest colour its bodies left free (the greedy rule, which makes the order a function of the
+// island alone), and one that found every colour taken, or a joint that touches a body without
+// mass, goes to the overflow, solved last. Then the order's promise: the same bits with one
+// worker, with several, and with a task system that runs its items one after the other.
+
+#include <cstdint>
+#include <set>
+#include <type_traits>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../../cross/ScrambledTasks.h"
+#include "../dynamics/DynamicsTestUtil.h"
+#include "lockbox/dynamics/Tasks.h"
+#include "lockbox_internal/WorldInternals.h"
+
+namespace lockbox {
+namespace {
+
+// A pyramid of boxes on a static ground: one island of well over b2_minColouredConstraints
+// contacts.
+void Pyramid(b2World& world) {
+    test::MakeStaticBox(world, 0, Fixed(-0.5), 100, Fixed(0.5));
+    constexpr int kRows = 40;
+    for (int row = 0; row < kRows; ++row) {
+        for (int k = 0; k < kRows - row; ++k)
+            test::MakeDynamicBox(world, Fixed(-kRows / 2 + k) + Fixed::FromRatio(row, 2),
+                                 Fixed::FromRatio(50 + 100 * row, 100), Fixed(0.5), Fixed(0.5));
+    }
+}
+
+// A net of small discs hung from a static bar: each disc is jointed to its right and lower
+// neighbours, the top row to the bar; one island of well over b2_minColouredConstraints joints.
+void Net(b2World& world) {
+    b2Body* bar = test::MakeStaticBox(world, 0, 30, 40, Fixed(0.25));
+    constexpr int kColumns = 40, kRows = 20;
+    std::vector<b2Body*> discs;
+    for (int r = 0; r < kRows; ++r) {
+        for (int c = 0; c < kColumns; ++c)
+            discs.push_back(test::MakeDynamicCircle(world, Fixed(-20 + c), Fixed(29 - r), Fixed(0.25)));
+    }
+    auto at = [&](int r, int c) { return discs[static_cast<size_t>(r * kColumns + c)]; };
+    for (int r = 0; r < kRows; ++r) {
+        for (int c = 0; c < kColumns; ++c) {
+            b2RevoluteJointDef jd;
+            if (c + 1 < kColumns) {
+                jd.Initialize(at(r, c), at(r, c + 1), at(r, c)->GetPosition());
+                world.CreateJoint(&jd);
+            }
+            b2Body* above = r == 0 ? bar : at(r - 1, c);
+            jd.Initialize(above, at(r, c), at(r, c)->GetPosition());
+            world.CreateJoint(&jd);
+        }
+    }
+}
+
+// The dynamic bodies a contact or a joint may write.
+std::vector<const b2Body*> Written(const b2Body* a, const b2Body* b) {
+    std::vector<const b2Body*> bodies;
+    for (const b2Body* x : {a, b})
+        if (x->GetType() == b2_dynamicBody) bodies.push_back(x);
+    return bodies;
+}
+std::vector<const b2Body*> Written(const b2Contact* c) {
+    return Written(c->GetFixtureA()->GetBody(), c->GetFixtureB()->GetBody());
+}
+std::vector<const b2Body*> Written(const b2Joint* j) { return Written(j->GetBodyA(), j->GetBodyB()); }
+
+template <class Item>
+bool ShareABody(const Item* a, const Item* b) {
+    for (const b2Body* x : Written(a))
+        for (const b2Body* y : Written(b))
+            if (x == y) return true;
+    return false;
+}
+
+// Checks the colour order of items[0, count); returns the number of colours used.
+template <class Item>
+int32 ExpectColourOrder(const b2Colours<Item>& colours, Item* const* items, int32 count) {
+    EXPECT_EQ(colours.Start(0), 0);
+    EXPECT_EQ(colours.Start(b2_colourCount + 1), count);
+    // The island's items, each once.
+    std::set<const Item*> distinct(items, items + count);
+    EXPECT_EQ(static_cast<int32>(distinct.size()), count);
+
+    int32 used = 0;
+    for (int32 c = 0; c <= b2_colourCount; ++c) {
+        const int32 begin = colours.Start(c), end = colours.Start(c + 1);
+        EXPECT_LE(begin, end);
+        if (end > begin && c < b2_colourCount) ++used;
+        for (int32 i = begin; i < end; ++i) {
+            // No other item of its colour touches its dynamic bodies (the overflow may).
+            if (c < b2_colourCount) {
+                for (int32 j = begin; j < end; ++j)
+                    if (j != i) EXPECT_FALSE(ShareABody(items[i], items[j]));
+            }
+            // Every lower colour was taken by one of its bodies, unless it may not be coloured
+            // (a joint with a static end).
+            if (c == b2_colourCount && Written(items[i]).size() < 2 && std::is_same_v<Item, b2Joint>) continue;
+            for (int32 lower = 0; lower < c; ++lower) {
+                bool taken = false;
+                for (int32 j = colours.Start(lower); j < colours.Start(lower + 1) && !taken; ++j)
+                    taken = ShareABody(items[i], items[j]);
+                EXPECT_TRUE(taken) << "item " << i << " of colour " << c << " could have had colour " << lower;
+            }
+        }
+    }
+    return used;
+}
+
+TEST(Colours, ContactsShareNoDynamicBodyWithinAColourAndEachIsTheLowestFree) {
+    b2World world(b2Vec2(0, -10));
+    // The time-of-impact stage reuses the island buffers: without it they keep the pyramid's.
+    world.SetContinuousPhysics(false);
+    Pyramid(world);
+    for (int i = 0; i < 3; ++i) world.Step(test::kDt, 8, 3);
+
+    const auto& island = test::Internals(world).LastIsland();
+    ASSERT_GE(island.m_contactCount, b2_minColouredConstraints);
+    const int32 used = ExpectColourOrder(island.m_contactColours, island.m_contacts.data(), island.m_contactCount);
+    // A pyramid needs a handful of colours: a box touches at most six others and the ground.
+    EXPECT_GE(used, 2);
+    EXPECT_LE(used, 12);
+}
+
+TEST(Colours, JointsShareNoDynamicBodyWithinAColourAndThoseOnTheBarComeLast) {
+    b2World world(b2Vec2(0, -10));
+    world.SetContinuousPhysics(false);
+    Net(world);
+    for (int i = 0; i < 3; ++i) world.Step(test::kDt, 8, 3);
+
+    const auto& island = test::Internals(world).LastIsland();
+    ASSERT_GE(island.m_jointCount, b2_minColouredConstraints);
+    const int32 used = ExpectColourOrder(island.m_jointColours, island.m_joints.data(), island.m_jointCount);
+    // A disc has at most four joints: four colours, and a few more for the greedy order.
+    EXPECT_GE(used, 4);
+    EXPECT_LE(used, 8);
+    // The 40 joints to the static bar are the overflow.
+    EXPECT_EQ(island.m_jointColours.Start(b2_colourCount + 1) - island.m_jointColours.Start(b2_colourCount), 40);
+}
+
+std::vector<uint64_t> Hashes(void (*build)(b2World&), b2TaskSystem* tasks, int workers) {
+    b2World world(b2Vec2(0, -10));
+    if (tasks != nullptr) {
+        world.SetTaskSystem(tasks);
+    } else {
+        world.SetWorkerCount(workers);
+    }
+    build(world);
+    std::vector<uint64_t> hashes;
+    for (int i = 0; i < 20; ++i) {
+        world.Step(test::kDt, 8, 3);
+        hashes.push_back(world.Hash());
+    }
+    return hashes;
+}
+
+TEST(Colours, SameBitsWithAnyWorkers) {
+    for (auto* build : {&Pyramid, &Net}) {
+        const std::vector<uint64_t> one = Hashes(build, nullptr, 1);
+        for (const int workers : {2, 3, 8}) {
+            EXPECT_EQ(Hashes(build, nullptr, workers), one) << workers << " workers, the world's own pool";
+            b2ThreadPool pool(workers);
+            EXPECT_EQ(Hashes(build, &pool, workers), one) << workers << " workers, a pool handed over";
+        }
+        golden::ScrambledTasks serial(4, 11);
+        EXPECT_EQ(Hashes(build, &serial, 4), one) << "items run one after the other";
+    }
+}
+
+}  // namespace
+}  // namespace lockbox
