@@ -36,12 +36,26 @@ void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers, bool 
     s.stages.Add((end - begin + stage.blockSize - 1) / stage.blockSize);
 }
 
-// One stage per colour (its constraints write no body in common), the overflow last and in
-// order.
+// One stage per colour (its constraints write no body in common), split between the workers.
+// A colour too small to be worth a wait at its end runs on one worker, together with the small
+// colours after it and the overflow when it follows: one block in colour order, which is the
+// order of separate stages (a drum that touches hundreds of boxes leaves one contact in each of
+// its last colours).
 template <class Item>
 void AddColourStages(Shared& s, Kind kind, const b2Colours<Item>& colours, int32 workers) {
-    for (int32 c = 0; c < b2_colourCount; ++c) AddStage(s, kind, colours.Start(c), colours.Start(c + 1), workers);
-    AddStage(s, kind, colours.Start(b2_colourCount), colours.Start(b2_colourCount + 1), workers, true);
+    constexpr int32 kMinSharedPerWorker = 32;
+    int32 serialBegin = -1;  // the first small colour not yet in a stage
+    for (int32 c = 0; c <= b2_colourCount; ++c) {
+        const int32 begin = colours.Start(c), end = colours.Start(c + 1);
+        if (c == b2_colourCount || end - begin < kMinSharedPerWorker * workers) {
+            if (serialBegin < 0) serialBegin = begin;
+            continue;
+        }
+        if (serialBegin >= 0) AddStage(s, kind, serialBegin, begin, workers, true);
+        serialBegin = -1;
+        AddStage(s, kind, begin, end, workers);
+    }
+    if (serialBegin >= 0) AddStage(s, kind, serialBegin, colours.Start(b2_colourCount + 1), workers, true);
 }
 
 // The island's joints for one kind of joint stage: by colour when they are many, else all of
