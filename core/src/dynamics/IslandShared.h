@@ -16,13 +16,13 @@ struct core_detail::Engine::Island::Shared {
         e_load,                 ///< the contacts' copy into the solver (any split)
         e_rotations,            ///< the bodies' cached rotations brought up to date (any split)
         e_init,                 ///< InitializeVelocityConstraints (any split)
-        e_warmStart,            ///< one colour's warm start
-        e_jointInit,            ///< every joint's set-up (one block: joints keep island order)
-        e_jointVelocity,        ///< one velocity iteration of every joint (one block)
-        e_velocity,             ///< one colour's velocity iteration
+        e_warmStart,            ///< a colour's warm start
+        e_jointInit,            ///< a joint colour's set-up (or every joint's, in one block)
+        e_jointVelocity,        ///< a joint colour's velocity iteration (or every joint's)
+        e_velocity,             ///< a colour's velocity iteration
         e_integratePositions,   ///< bodies' position integration (any split)
-        e_position,             ///< one colour's position pass
-        e_jointPosition,        ///< one position pass of every joint (one block)
+        e_position,             ///< a colour's position pass
+        e_jointPosition,        ///< a joint colour's position pass (or every joint's)
         e_storeBodies,          ///< the solver buffers back to the bodies (any split)
     };
     struct Stage {

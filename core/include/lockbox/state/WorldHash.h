@@ -45,8 +45,9 @@ inline constexpr uint32 b2_hashVersion = 3;
 /// Q16.16), so forces and impulses below 1/65536 m/s per step accumulate instead of rounding
 /// away and a slow body moves at its velocity's rate, and a slow body pressed into a
 /// static or kinematic contact gets 2.2.1's immediate time of impact; 4 the contacts of an
-/// island of 1,024 or more are solved colour by colour (each colour's contacts share no
-/// dynamic body), the one order that any number of workers reproduces while sharing the island.
+/// island of 1,024 or more, and apart its joints when they are 1,024 or more, are solved colour
+/// by colour (a colour's constraints share no dynamic body), the one order that any number of
+/// workers reproduces while sharing the island.
 inline constexpr uint32 b2_determinismVersion = (b2_hashVersion << 16) | 4u;
 
 /// Hash categories, in the order they are folded into the world hash.
