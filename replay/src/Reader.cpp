@@ -129,6 +129,10 @@ struct Parser {
                     return Fail(ErrorCode::e_badChunk, inputFrames,
                                 "input block of " + std::to_string(count) + " frames has " +
                                     std::to_string(r.Remaining()) + " bytes");
+                if (count > kMaxFrames - static_cast<uint32>(inputFrames))
+                    return Fail(ErrorCode::e_badChunk, inputFrames,
+                                "input block of " + std::to_string(count) + " frames would take the replay past " +
+                                    std::to_string(kMaxFrames) + " frames");
                 const auto bytes = r.Bytes(r.Remaining());
                 out.inputs.insert(out.inputs.end(), bytes.begin(), bytes.end());
                 inputFrames += static_cast<int32>(count);

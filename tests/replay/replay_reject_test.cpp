@@ -1,5 +1,8 @@
 // Bad files are refused with an error naming the offset, chunk and frame, never a crash; a
 // tampered input or stored hash gives the first divergent frame.
+#include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "../../replay/src/Chunks.h"
@@ -104,6 +107,30 @@ TEST(ReplayReject, CorruptChunkContentsAreNamed) {
     EXPECT_EQ(e.chunkType, e_chunkInputs);
     EXPECT_EQ(e.frame, 5);
     EXPECT_NE(e.Describe().find("'INPT'"), std::string::npos) << e.Describe();
+}
+
+// A file found by the fuzzer: a replay without input bytes whose input blocks announce 201
+// million frames (they take no room), which the reader used to allocate hashes for (1.8 GB)
+// before the END record refused the count. The frame limit refuses it first.
+TEST(ReplayReject, FramesWithoutInputsCannotMakeTheReaderAllocate) {
+    std::ifstream in(std::string(LOCKBOX_SOURCE_DIR) + "/tests/replay/bad/frames_without_inputs.lbr", std::ios::binary);
+    ASSERT_TRUE(in.good());
+    std::vector<uint8> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // The file was recorded under one determinism version; it is made this engine's, so that
+    // the reader goes on to the chunks whatever the version.
+    Header header;
+    ASSERT_TRUE(detail::DecodeHeader(bytes, header).ok());
+    header.determinismVersion = b2_determinismVersion;
+    std::vector<uint8> resealed;
+    detail::EncodeHeader(header, resealed);
+    ASSERT_EQ(resealed.size(), size_t{kHeaderBytes});
+    std::copy(resealed.begin(), resealed.end(), bytes.begin());
+    ReplayFile file;
+    const Error e = ParseReplay(bytes, file);
+    EXPECT_EQ(e.code, ErrorCode::e_badChunk);
+    EXPECT_EQ(e.chunkType, e_chunkInputs);
+    EXPECT_NE(e.message.find("frames would take the replay past"), std::string::npos) << e.Describe();
+    EXPECT_LE(file.hashes.size(), size_t{kMaxFrames});
 }
 
 TEST(ReplayReject, CorruptSnapshotIsRefusedByThePlayer) {

@@ -28,6 +28,10 @@ inline constexpr uint32 kChunkHeaderBytes = 24;
 /// Largest raw (decompressed) chunk payload accepted, bytes: 256 MiB. A larger size can only
 /// come from a damaged or hostile file, and refusing it bounds what a reader allocates.
 inline constexpr uint32 kMaxChunkBytes = 256u << 20;
+/// Largest number of frames a replay may hold: 2^24 (77 hours at 60 Hz). Without input bytes
+/// (no players' input) a frame takes no room in the file, so only this bound keeps a reader
+/// from allocating its per-frame hashes for a count a damaged or hostile file made up.
+inline constexpr uint32 kMaxFrames = 1u << 24;
 /// Largest number of players, and of input bytes per player per frame.
 inline constexpr uint32 kMaxPlayers = 64;
 /// Largest input bytes per player per frame.
