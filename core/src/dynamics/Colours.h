@@ -25,6 +25,8 @@ inline constexpr int32 b2_colourCount = 24;
 /// Islands with fewer constraints of a kind keep island order for that kind: they are too small
 /// to share between workers, and their solve order stays 2.2.1's.
 inline constexpr int32 b2_minColouredConstraints = 1024;
+/// Whether an island's `count` constraints of one kind are solved in colour order.
+constexpr bool b2Coloured(int32 count) noexcept { return count >= b2_minColouredConstraints; }
 
 template <class Item>
 class b2Colours {

@@ -65,8 +65,8 @@ public:
 
     /// Whether the island's contacts, and its joints, are many enough to be solved in colour
     /// order (Colours.h).
-    bool ColoursContacts() const noexcept { return m_contactCount >= b2_minColouredConstraints; }
-    bool ColoursJoints() const noexcept { return m_jointCount >= b2_minColouredConstraints; }
+    bool ColoursContacts() const noexcept { return b2Coloured(m_contactCount); }
+    bool ColoursJoints() const noexcept { return b2Coloured(m_jointCount); }
     /// Puts the contacts and the joints that are many enough in colour order; returns whether
     /// either was.
     bool Colour();

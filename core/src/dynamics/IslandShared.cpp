@@ -58,13 +58,14 @@ void AddColourStages(Shared& s, Kind kind, const b2Colours<Item>& colours, int32
     if (serialBegin >= 0) AddStage(s, kind, serialBegin, colours.Start(b2_colourCount + 1), workers, true);
 }
 
-// The island's joints for one kind of joint stage: by colour when they are many, else all of
-// them in island order on one worker.
-void AddJointStages(Shared& s, Kind kind, const b2Island& island, int32 workers) {
-    if (island.ColoursJoints()) {
-        AddColourStages(s, kind, island.m_jointColours, workers);
+// A kind of constraint stage over `count` constraints: by colour when they were coloured, else
+// all of them in island order on one worker.
+template <class Item>
+void AddConstraintStages(Shared& s, Kind kind, const b2Colours<Item>& colours, int32 count, int32 workers) {
+    if (b2Coloured(count)) {
+        AddColourStages(s, kind, colours, workers);
     } else {
-        AddStage(s, kind, 0, island.m_jointCount, workers, true);
+        AddStage(s, kind, 0, count, workers, true);
     }
 }
 
@@ -142,26 +143,17 @@ void b2Island::SolveVelocitiesShared(b2ContactSolver& contacts, const b2SolverDa
     Shared& s = Prepare(m_shared, *this, contacts, data);
     s.gravity = gravity;
     const int32 workers = m_tasks->GetWorkerCount();
-    const bool colourContacts = ColoursContacts();
-    // Contacts too few to colour stay in island order, on one worker.
-    auto addContactStages = [&](Kind kind) {
-        if (colourContacts) {
-            AddColourStages(s, kind, m_contactColours, workers);
-        } else {
-            AddStage(s, kind, 0, m_contactCount, workers, true);
-        }
-    };
     AddStage(s, Kind::e_integrateVelocities, 0, m_bodyCount, workers);
     AddStage(s, Kind::e_load, 0, m_contactCount, workers);
     // The rotations before the set-up, so that the stages after only read a shared body's cache.
     AddStage(s, Kind::e_rotations, 0, m_bodyCount, workers);
     AddStage(s, Kind::e_init, 0, m_contactCount, workers);
-    if (data.step.warmStarting) addContactStages(Kind::e_warmStart);
+    if (data.step.warmStarting) AddConstraintStages(s, Kind::e_warmStart, m_contactColours, m_contactCount, workers);
     if (m_jointCount > 0) m_jointSolver.Begin(m_jointCount);
-    AddJointStages(s, Kind::e_jointInit, *this, workers);
+    AddConstraintStages(s, Kind::e_jointInit, m_jointColours, m_jointCount, workers);
     for (int32 it = 0; it < data.step.velocityIterations; ++it) {
-        AddJointStages(s, Kind::e_jointVelocity, *this, workers);
-        addContactStages(Kind::e_velocity);
+        AddConstraintStages(s, Kind::e_jointVelocity, m_jointColours, m_jointCount, workers);
+        AddConstraintStages(s, Kind::e_velocity, m_contactColours, m_contactCount, workers);
     }
     s.stages.Run(*m_tasks, &Shared::RunBlock, nullptr, &s);
 }
@@ -173,12 +165,8 @@ bool b2Island::SolvePositionsShared(b2ContactSolver& contacts, const b2SolverDat
     // Integration turned the kinematic bodies: their rotations too are brought up to date first.
     AddStage(s, Kind::e_rotations, 0, m_bodyCount, workers);
     for (int32 it = 0; it < data.step.positionIterations; ++it) {
-        if (ColoursContacts()) {
-            AddColourStages(s, Kind::e_position, m_contactColours, workers);
-        } else {
-            AddStage(s, Kind::e_position, 0, m_contactCount, workers, true);
-        }
-        AddJointStages(s, Kind::e_jointPosition, *this, workers);
+        AddConstraintStages(s, Kind::e_position, m_contactColours, m_contactCount, workers);
+        AddConstraintStages(s, Kind::e_jointPosition, m_jointColours, m_jointCount, workers);
         // A coloured island has constraints: the iteration added stages, and this is its last.
         s.plan.back().endsIteration = true;
     }

@@ -116,8 +116,7 @@ struct World::ParallelIslands {
         for (int32 i = 0; i < count; ++i) {
             const Start& from = starts[static_cast<size_t>(i)];
             const Start& to = starts[static_cast<size_t>(i) + 1];
-            const bool coloured = to.contact - from.contact >= b2_minColouredConstraints ||
-                                  to.joint - from.joint >= b2_minColouredConstraints;
+            const bool coloured = b2Coloured(to.contact - from.contact) || b2Coloured(to.joint - from.joint);
             if (coloured && int64_t{sizes[static_cast<size_t>(i)]} * workers > work) {
                 staged.push_back(i);
                 sizes[static_cast<size_t>(i)] = -1;  // taken
