@@ -94,8 +94,11 @@ int32 ExpectColourOrder(const b2Colours<Item>& colours, Item* const* items, int3
         for (int32 i = begin; i < end; ++i) {
             // No other item of its colour touches its dynamic bodies (the overflow may).
             if (c < b2_colourCount) {
-                for (int32 j = begin; j < end; ++j)
-                    if (j != i) EXPECT_FALSE(ShareABody(items[i], items[j]));
+                for (int32 j = begin; j < end; ++j) {
+                    if (j != i) {
+                        EXPECT_FALSE(ShareABody(items[i], items[j]));
+                    }
+                }
             }
             // Every lower colour was taken by one of its bodies, unless it may not be coloured
             // (a joint with a static end).
@@ -111,14 +114,19 @@ int32 ExpectColourOrder(const b2Colours<Item>& colours, Item* const* items, int3
     return used;
 }
 
+// Builds a scene in world, steps it three times and returns its last solved island. The
+// time-of-impact stage reuses the island buffers, so continuous physics is off: they keep the
+// scene's island.
+const auto& SteppedIsland(b2World& world, void (*build)(b2World&)) {
+    world.SetContinuousPhysics(false);
+    build(world);
+    for (int i = 0; i < 3; ++i) world.Step(test::kDt, 8, 3);
+    return test::Internals(world).LastIsland();
+}
+
 TEST(Colours, ContactsShareNoDynamicBodyWithinAColourAndEachIsTheLowestFree) {
     b2World world(b2Vec2(0, -10));
-    // The time-of-impact stage reuses the island buffers: without it they keep the pyramid's.
-    world.SetContinuousPhysics(false);
-    Pyramid(world);
-    for (int i = 0; i < 3; ++i) world.Step(test::kDt, 8, 3);
-
-    const auto& island = test::Internals(world).LastIsland();
+    const auto& island = SteppedIsland(world, Pyramid);
     ASSERT_GE(island.m_contactCount, b2_minColouredConstraints);
     const int32 used = ExpectColourOrder(island.m_contactColours, island.m_contacts.data(), island.m_contactCount);
     // A pyramid needs a handful of colours: a box touches at most six others and the ground.
@@ -128,11 +136,7 @@ TEST(Colours, ContactsShareNoDynamicBodyWithinAColourAndEachIsTheLowestFree) {
 
 TEST(Colours, JointsShareNoDynamicBodyWithinAColourAndThoseOnTheBarComeLast) {
     b2World world(b2Vec2(0, -10));
-    world.SetContinuousPhysics(false);
-    Net(world);
-    for (int i = 0; i < 3; ++i) world.Step(test::kDt, 8, 3);
-
-    const auto& island = test::Internals(world).LastIsland();
+    const auto& island = SteppedIsland(world, Net);
     ASSERT_GE(island.m_jointCount, b2_minColouredConstraints);
     const int32 used = ExpectColourOrder(island.m_jointColours, island.m_joints.data(), island.m_jointCount);
     // A disc has at most four joints: four colours, and a few more for the greedy order.
