@@ -3,8 +3,9 @@
 // agrees with 2.2.1 to 1e-5 on this case) raises a TOI event at the start of the sweep once the
 // box pushes the circle more than about 3 linearSlop into the ground, and the sub-step lifts
 // the circle back: a jump of several millimetres that a "skip slow bodies" shortcut misses.
-#include <cmath>
-#include <cstdlib>
+// Which step crosses that line depends on a tenth of a millimetre of sinking, and that depends
+// on how deep each earlier sub-step left the circle (the bound of the sub-step's position
+// solve, docs/dynamics.md), so the whole trajectory is compared.
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -108,16 +109,12 @@ int LiftStep(const std::vector<double>& y) {
 TEST(DifferentialToi, PressedCircleGetsTheImmediateEvent) {
     const std::vector<double> ref = CircleHeightsFloat();
     const std::vector<double> got = CircleHeightsLockbox();
-    // Both engines apply the same rule (an event once the circle is pressed closer than the query's target
-    // plus its tolerance); which step crosses that line depends on a tenth of a millimetre of
-    // sinking, so the lift may come one step apart.
+    // The same step lifts the circle, and every step (the box's landing at step 34, the sink
+    // at 38, the lift at 40 and the settling after it) puts it where float does.
     const int floatLift = LiftStep(ref);
-    const int lockboxLift = LiftStep(got);
     ASSERT_GT(floatLift, 0);
-    EXPECT_GT(lockboxLift, 0);
-    EXPECT_LE(std::abs(lockboxLift - floatLift), 1) << "lift at step " << lockboxLift << ", float's at " << floatLift;
-    // Once both have lifted and settled, the circle is where float puts it.
-    for (int n = floatLift + 3; n <= kSteps; ++n) {
+    EXPECT_EQ(LiftStep(got), floatLift);
+    for (int n = 1; n <= kSteps; ++n) {
         const auto i = static_cast<size_t>(n - 1);
         EXPECT_NEAR(got[i], ref[i], 0.0005) << "step " << n;
     }

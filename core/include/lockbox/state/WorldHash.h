@@ -47,8 +47,10 @@ inline constexpr uint32 b2_hashVersion = 3;
 /// static or kinematic contact gets 2.2.1's immediate time of impact; 4 the contacts of an
 /// island of 1,024 or more, and apart its joints when they are 1,024 or more, are solved colour
 /// by colour (a colour's constraints share no dynamic body), the one order that any number of
-/// workers reproduces while sharing the island.
-inline constexpr uint32 b2_determinismVersion = (b2_hashVersion << 16) | 4u;
+/// workers reproduces while sharing the island; 5 a time-of-impact sub-step's position solve
+/// ends only once the overlap is less than 1.5 linearSlop, so that the tie its first correction
+/// lands on takes one more, as in float Box2D.
+inline constexpr uint32 b2_determinismVersion = (b2_hashVersion << 16) | 5u;
 
 /// Hash categories, in the order they are folded into the world hash.
 enum class b2HashCategory : uint32 {

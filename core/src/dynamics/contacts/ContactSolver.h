@@ -126,7 +126,7 @@ public:
         return minSeparation >= Fixed::FromRaw(-3 * b2_linearSlop.Raw());
     }
     /// One TOI position iteration moving only bodies toiIndexA and toiIndexB; true when the
-    /// largest overlap is within 1.5 linearSlop.
+    /// largest overlap is less than 1.5 linearSlop.
     bool SolveTOIPositionConstraints(int32 toiIndexA, int32 toiIndexB);
 
     b2TimeStep m_step;
