@@ -193,6 +193,16 @@ bool b2Island::Colour() {
     return contacts || joints;
 }
 
+void b2Island::SolveContactVelocities(b2ContactSolver& contacts) {
+    if (!ColoursContacts()) {
+        contacts.SolveVelocityConstraints();
+        return;
+    }
+    for (int32 c = 0; c < b2_colourCount; ++c)
+        contacts.SolveIndependentVelocityConstraints(m_contactColours.Start(c), m_contactColours.Start(c + 1));
+    contacts.SolveVelocityConstraints(m_contactColours.Start(b2_colourCount), m_contactCount);
+}
+
 bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep) {
     Clock::time_point timer = Clock::now();
     const Fixed h = step.dt;
@@ -228,7 +238,7 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         timer = Clock::now();
         for (int32 it = 0; it < step.velocityIterations; ++it) {
             if (m_jointCount > 0) m_jointSolver.SolveVelocityConstraints(solverData);
-            contactSolver.SolveVelocityConstraints();
+            SolveContactVelocities(contactSolver);
         }
     }
     profile->velocityIterations += step.velocityIterations * m_contactCount;

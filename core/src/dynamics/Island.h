@@ -71,6 +71,10 @@ public:
     /// either was.
     bool Colour();
 
+    /// One velocity iteration over the contacts: in island order, or colour by colour (each
+    /// colour's contacts write no body in common), then the overflow in order.
+    void SolveContactVelocities(b2ContactSolver& contacts);
+
     /// Bodies [begin, end): integrate velocities (gravity, forces, damping) and copy the state
     /// into the solver buffers.
     void IntegrateVelocities(int32 begin, int32 end, Fixed h, const b2Vec2& gravity);

@@ -25,10 +25,12 @@ int32 BlockSize(int32 items, int32 workers) {
 }
 
 // A stage over items [begin, end), split into blocks, or in one block (in order) when serial.
-void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers, bool serial = false) {
+void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers, bool serial = false,
+              bool oneColour = false) {
     if (end <= begin) return;
     Shared::Stage stage;
     stage.kind = kind;
+    stage.oneColour = oneColour;
     stage.begin = begin;
     stage.end = end;
     stage.blockSize = serial ? end - begin : BlockSize(end - begin, workers);
@@ -53,7 +55,7 @@ void AddColourStages(Shared& s, Kind kind, const b2Colours<Item>& colours, int32
         }
         if (serialBegin >= 0) AddStage(s, kind, serialBegin, begin, workers, true);
         serialBegin = -1;
-        AddStage(s, kind, begin, end, workers);
+        AddStage(s, kind, begin, end, workers, false, true);
     }
     if (serialBegin >= 0) AddStage(s, kind, serialBegin, colours.Start(b2_colourCount + 1), workers, true);
 }
@@ -104,7 +106,13 @@ void Shared::RunBlock(int32 stage, int32 block, void* context) {
             island.m_jointSolver.InitVelocityConstraints(island.m_joints.data(), begin, end, data);
             break;
         case Kind::e_jointVelocity: island.m_jointSolver.SolveVelocityConstraints(data, begin, end); break;
-        case Kind::e_velocity: s.contacts->SolveVelocityConstraints(begin, end); break;
+        case Kind::e_velocity:
+            if (st.oneColour) {
+                s.contacts->SolveIndependentVelocityConstraints(begin, end);
+            } else {
+                s.contacts->SolveVelocityConstraints(begin, end);
+            }
+            break;
         case Kind::e_integratePositions: island.IntegratePositions(begin, end, data.step.dt); break;
         case Kind::e_position: {
             const int32 raw = s.contacts->SolvePositionConstraints(begin, end).Raw();

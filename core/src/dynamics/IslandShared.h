@@ -30,6 +30,7 @@ struct core_detail::Engine::Island::Shared {
         int32 begin = 0, end = 0;  ///< items (bodies or constraints) of the stage
         int32 blockSize = 1;
         bool endsIteration = false;  ///< the last stage of a position iteration
+        bool oneColour = false;      ///< its items write no body in common
     };
 
     b2Stages stages;

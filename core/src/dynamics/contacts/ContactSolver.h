@@ -113,6 +113,15 @@ public:
     void SolveVelocityConstraints() { SolveVelocityConstraints(0, m_count); }
     /// The same for constraints [begin, end), in order.
     void SolveVelocityConstraints(int32 begin, int32 end);
+    /// The same for constraints [begin, end) of which no two write the same body (one colour of
+    /// a coloured island): the same bits, four constraints at a time where the machine has
+    /// 64-bit integer lanes (ContactSolverLanes.cpp). Returns how many the lanes solved.
+    int32 SolveIndependentVelocityConstraints(int32 begin, int32 end);
+    /// Whether this machine can take SolveIndependentVelocityConstraints in lanes (x86-64 with
+    /// AVX2).
+    static bool LanesAvailable() noexcept;
+    /// Lets the lanes run (the default) or not. Both paths give the same bits; tests compare them.
+    static void AllowLanes(bool allow) noexcept;
     /// Copies the accumulated impulses back to the manifolds for warm starting.
     void StoreImpulses();
     /// One position iteration; true when the largest overlap is within 3 linearSlop.

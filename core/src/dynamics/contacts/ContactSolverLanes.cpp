@@ -1,0 +1,337 @@
+// b2ContactSolver: the velocity iteration of one colour, four contacts at a time.
+//
+// The contacts of one colour write no body in common (dynamics/Colours.h), so solving four of
+// them at once in 64-bit integer lanes gives what solving them one after the other gives, as
+// long as each lane computes the scalar row's very integers. It does: every rounded product is
+// formed exactly from 32 x 32-bit partial products of the magnitudes and rounded half away from
+// zero, as Wide's operators round; sums are exact. Where the scalar row could saturate (and so
+// report an overflow) the lanes cannot follow, so every quantity is bounded (kBoundBits): a lane
+// that might leave the bound, or whose two-point contact needs a case of the block solver other
+// than "both points pushing", is not written back and is solved again by the scalar row.
+//
+// Lanes need x86-64 with AVX2 (checked once at run time); elsewhere the scalar row runs.
+#include <atomic>
+
+#include "SolverMath.h"
+#include "dynamics/contacts/ContactSolver.h"
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define LOCKBOX_CONTACT_LANES 1
+#include <immintrin.h>
+#endif
+
+namespace lockbox {
+
+namespace {
+// Tests switch the lanes off to compare the two paths; the choice never changes a result.
+std::atomic<bool> g_lanesAllowed{true};
+
+#ifdef LOCKBOX_CONTACT_LANES
+#define LOCKBOX_AVX2 __attribute__((target("avx2")))
+
+// In a namespace of their own: short names, kept apart from the other solver files' helpers.
+namespace lanes {
+
+bool HasAvx2() noexcept {
+    static const bool has = __builtin_cpu_supports("avx2") != 0;
+    return has;
+}
+
+using Lanes = __m256i;
+
+// Every value a lane loads or a product forms stays below 2^kBoundBits in magnitude. A row adds
+// at most eight such terms into one sum, so no sum reaches 2^62, and no lane wraps where the
+// scalar row would saturate.
+constexpr int kBoundBits = 59;
+
+// A lane value as magnitude and sign mask (all ones where negative).
+struct Split {
+    Lanes mag;
+    Lanes neg;
+};
+
+LOCKBOX_AVX2 inline Lanes Zero() { return _mm256_setzero_si256(); }
+LOCKBOX_AVX2 inline Lanes Add(Lanes a, Lanes b) { return _mm256_add_epi64(a, b); }
+LOCKBOX_AVX2 inline Lanes Sub(Lanes a, Lanes b) { return _mm256_sub_epi64(a, b); }
+LOCKBOX_AVX2 inline Lanes Neg(Lanes a) { return _mm256_sub_epi64(Zero(), a); }
+LOCKBOX_AVX2 inline Lanes Max(Lanes a, Lanes b) { return _mm256_blendv_epi8(a, b, _mm256_cmpgt_epi64(b, a)); }
+LOCKBOX_AVX2 inline Lanes Min(Lanes a, Lanes b) { return _mm256_blendv_epi8(a, b, _mm256_cmpgt_epi64(a, b)); }
+
+LOCKBOX_AVX2 inline Split SplitSign(Lanes x) {
+    const Lanes neg = _mm256_cmpgt_epi64(Zero(), x);
+    return {_mm256_sub_epi64(_mm256_xor_si256(x, neg), neg), neg};
+}
+LOCKBOX_AVX2 inline Lanes WithSign(Lanes mag, Lanes neg) { return _mm256_sub_epi64(_mm256_xor_si256(mag, neg), neg); }
+// -x as a split (a zero magnitude gives zero whatever its sign).
+LOCKBOX_AVX2 inline Split Flip(const Split& s) { return {s.mag, _mm256_xor_si256(s.neg, _mm256_set1_epi64x(-1))}; }
+
+// Marks the lanes where `bits` is non-zero.
+LOCKBOX_AVX2 inline void Flag(Lanes& unsafe, Lanes bits) { unsafe = _mm256_or_si256(unsafe, bits); }
+// Marks the lanes where |x| >= 2^kBoundBits (INT64_MIN included: its magnitude is 2^63).
+LOCKBOX_AVX2 inline void Bound(Lanes& unsafe, Lanes x) {
+    Flag(unsafe, _mm256_srli_epi64(SplitSign(x).mag, kBoundBits));
+}
+
+// Wide * Fixed (a Q32.32 raw times a Q16.16 raw, rounded by 2^16): with |w| = h 2^32 + l,
+// round(|w| |f| / 2^16) = h |f| 2^16 + round(l |f| / 2^16), as h |f| 2^32 is a multiple of 2^16.
+LOCKBOX_AVX2 inline Lanes MulWF(Lanes& unsafe, Lanes w, const Split& f) {
+    const Split s = SplitSign(w);
+    const Lanes hi = _mm256_mul_epu32(_mm256_srli_epi64(s.mag, 32), f.mag);
+    const Lanes lo = _mm256_mul_epu32(s.mag, f.mag);
+    // hi < 2^42 keeps the magnitude below 2^58 + 2^47.
+    Flag(unsafe, _mm256_srli_epi64(hi, kBoundBits - 17));
+    const Lanes rounded = _mm256_srli_epi64(_mm256_add_epi64(lo, _mm256_set1_epi64x(int64_t{1} << 15)), 16);
+    const Lanes mag = _mm256_add_epi64(_mm256_slli_epi64(hi, 16), rounded);
+    return WithSign(mag, _mm256_xor_si256(s.neg, f.neg));
+}
+
+// Wide * Wide (rounded by 2^32): with |x| = xh 2^32 + xl and |y| = yh 2^32 + yl,
+// round(|x||y| / 2^32) = xh yh 2^32 + xh yl + xl yh + round(xl yl / 2^32).
+LOCKBOX_AVX2 inline Lanes MulWW(Lanes& unsafe, const Split& sx, const Split& sy) {
+    const Lanes xh = _mm256_srli_epi64(sx.mag, 32), yh = _mm256_srli_epi64(sy.mag, 32);
+    const Lanes hh = _mm256_mul_epu32(xh, yh);
+    const Lanes hl = _mm256_mul_epu32(xh, sy.mag);
+    const Lanes lh = _mm256_mul_epu32(sx.mag, yh);
+    const Lanes ll = _mm256_mul_epu32(sx.mag, sy.mag);
+    // hh < 2^26, hl and lh < 2^57: the magnitude stays below 2^59.
+    Flag(unsafe, _mm256_srli_epi64(hh, kBoundBits - 33));
+    Flag(unsafe, _mm256_or_si256(_mm256_srli_epi64(hl, kBoundBits - 2), _mm256_srli_epi64(lh, kBoundBits - 2)));
+    // floor((ll + 2^31) / 2^32) == floor((floor(ll / 2) + 2^30) / 2^31), without a carry out.
+    const Lanes rounded =
+        _mm256_srli_epi64(_mm256_add_epi64(_mm256_srli_epi64(ll, 1), _mm256_set1_epi64x(int64_t{1} << 30)), 31);
+    const Lanes mag = _mm256_add_epi64(_mm256_add_epi64(_mm256_slli_epi64(hh, 32), _mm256_add_epi64(hl, lh)), rounded);
+    return WithSign(mag, _mm256_xor_si256(sx.neg, sy.neg));
+}
+LOCKBOX_AVX2 inline Lanes MulWW(Lanes& unsafe, Lanes x, const Split& y) { return MulWW(unsafe, SplitSign(x), y); }
+
+// Four constraints' field as lanes (lane k from constraint k).
+#define LOCKBOX_LANES(vc, field)                                                                 \
+    _mm256_set_epi64x(int64_t{(vc)[3]->field}, int64_t{(vc)[2]->field}, int64_t{(vc)[1]->field}, \
+                      int64_t{(vc)[0]->field})
+
+// The two bodies of four contacts.
+struct Pair {
+    Lanes vAx, vAy, wA, vBx, vBy, wB;
+};
+
+// solver::SpeedAlong in lanes: d . (vB - vA) + wB armB - wA armA.
+LOCKBOX_AVX2 inline Lanes SpeedAlong(Lanes& unsafe, const Pair& p, const Split& dx, const Split& dy, const Split& armA,
+                                     const Split& armB) {
+    const Lanes linear = Add(MulWF(unsafe, Sub(p.vBx, p.vAx), dx), MulWF(unsafe, Sub(p.vBy, p.vAy), dy));
+    return Sub(Add(linear, MulWF(unsafe, p.wB, armB)), MulWF(unsafe, p.wA, armA));
+}
+
+// The linear responses of the two bodies to an impulse along a direction (split once, used
+// by every iteration's rows).
+struct Push {
+    Split ax, ay, bx, by;
+};
+
+// solver::ApplyAlong in lanes (B's linear change is always formed from pushB: with equal
+// pushes it is the same product).
+LOCKBOX_AVX2 inline void ApplyAlong(Lanes& unsafe, Pair& p, Lanes lambda, const Push& push, const Split& turnA,
+                                    const Split& turnB) {
+    const Split l = SplitSign(lambda);
+    p.vAx = Sub(p.vAx, MulWW(unsafe, l, push.ax));
+    p.vAy = Sub(p.vAy, MulWW(unsafe, l, push.ay));
+    p.vBx = Add(p.vBx, MulWW(unsafe, l, push.bx));
+    p.vBy = Add(p.vBy, MulWW(unsafe, l, push.by));
+    p.wA = Sub(p.wA, MulWW(unsafe, l, turnA));
+    p.wB = Add(p.wB, MulWW(unsafe, l, turnB));
+}
+
+LOCKBOX_AVX2 inline void Spill(Lanes v, int64_t out[4]) { _mm256_storeu_si256(reinterpret_cast<Lanes*>(out), v); }
+
+// One velocity iteration of four contacts of one colour with `points` points each, the scalar
+// row's operations in its order. Writes back the lanes it could follow and returns a mask of
+// the others (bit k: constraint k still to be solved).
+LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], b2Velocity* velocities, int32 points) {
+    Lanes unsafe = Zero();
+    Pair p;
+    // Each lane reads its own two bodies.
+    alignas(32) int64_t raw[6][4];
+    for (int k = 0; k < 4; ++k) {
+        const b2Velocity& a = velocities[vc[k]->indexA];
+        const b2Velocity& b = velocities[vc[k]->indexB];
+        raw[0][k] = a.v.x.Raw();
+        raw[1][k] = a.v.y.Raw();
+        raw[2][k] = a.w.Raw();
+        raw[3][k] = b.v.x.Raw();
+        raw[4][k] = b.v.y.Raw();
+        raw[5][k] = b.w.Raw();
+    }
+    p.vAx = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[0]));
+    p.vAy = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[1]));
+    p.wA = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[2]));
+    p.vBx = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[3]));
+    p.vBy = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[4]));
+    p.wB = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[5]));
+    Bound(unsafe, p.vAx);
+    Bound(unsafe, p.vAy);
+    Bound(unsafe, p.wA);
+    Bound(unsafe, p.vBx);
+    Bound(unsafe, p.vBy);
+    Bound(unsafe, p.wB);
+
+    const Split nx = SplitSign(LOCKBOX_LANES(vc, normal.x.Raw()));
+    const Split ny = SplitSign(LOCKBOX_LANES(vc, normal.y.Raw()));
+    const Split tx = SplitSign(LOCKBOX_LANES(vc, tangent.x.Raw()));
+    const Split ty = SplitSign(LOCKBOX_LANES(vc, tangent.y.Raw()));
+    const Push normalPush{SplitSign(LOCKBOX_LANES(vc, pushA.x.Raw())), SplitSign(LOCKBOX_LANES(vc, pushA.y.Raw())),
+                          SplitSign(LOCKBOX_LANES(vc, pushB.x.Raw())), SplitSign(LOCKBOX_LANES(vc, pushB.y.Raw()))};
+    // The tangent (n.y, -n.x) pushes by (push.y, -push.x).
+    const Push tangentPush{normalPush.ay, Flip(normalPush.ax), normalPush.by, Flip(normalPush.bx)};
+    const Split friction = SplitSign(LOCKBOX_LANES(vc, friction.Raw()));
+
+    Lanes normalImpulse[b2_maxManifoldPoints], tangentImpulse[b2_maxManifoldPoints];
+    for (int32 j = 0; j < points; ++j) {
+        normalImpulse[j] = LOCKBOX_LANES(vc, points[j].normalImpulse.Raw());
+        tangentImpulse[j] = LOCKBOX_LANES(vc, points[j].tangentImpulse.Raw());
+        Bound(unsafe, normalImpulse[j]);
+        Bound(unsafe, tangentImpulse[j]);
+    }
+
+    // Friction first, as the scalar row.
+    for (int32 j = 0; j < points; ++j) {
+        const Split rtA = SplitSign(LOCKBOX_LANES(vc, points[j].rtA.Raw()));
+        const Split rtB = SplitSign(LOCKBOX_LANES(vc, points[j].rtB.Raw()));
+        const Lanes vt = SpeedAlong(unsafe, p, tx, ty, rtA, rtB);
+        Lanes lambda = Neg(MulWW(unsafe, vt, SplitSign(LOCKBOX_LANES(vc, points[j].tangentMass.Raw()))));
+        const Lanes maxFriction = MulWF(unsafe, normalImpulse[j], friction);
+        const Lanes newImpulse = Max(Neg(maxFriction), Min(Add(tangentImpulse[j], lambda), maxFriction));
+        lambda = Sub(newImpulse, tangentImpulse[j]);
+        tangentImpulse[j] = newImpulse;
+        ApplyAlong(unsafe, p, lambda, tangentPush, SplitSign(LOCKBOX_LANES(vc, points[j].turnTA.Raw())),
+                   SplitSign(LOCKBOX_LANES(vc, points[j].turnTB.Raw())));
+    }
+
+    if (points == 1) {
+        const Split rnA = SplitSign(LOCKBOX_LANES(vc, points[0].rnA.Raw()));
+        const Split rnB = SplitSign(LOCKBOX_LANES(vc, points[0].rnB.Raw()));
+        const Lanes bias = _mm256_slli_epi64(LOCKBOX_LANES(vc, points[0].velocityBias.Raw()), 16);
+        const Lanes vn = SpeedAlong(unsafe, p, nx, ny, rnA, rnB);
+        Lanes lambda = Neg(MulWW(unsafe, Sub(vn, bias), SplitSign(LOCKBOX_LANES(vc, points[0].normalMass.Raw()))));
+        const Lanes newImpulse = Max(Add(normalImpulse[0], lambda), Zero());
+        lambda = Sub(newImpulse, normalImpulse[0]);
+        normalImpulse[0] = newImpulse;
+        ApplyAlong(unsafe, p, lambda, normalPush, SplitSign(LOCKBOX_LANES(vc, points[0].turnNA.Raw())),
+                   SplitSign(LOCKBOX_LANES(vc, points[0].turnNB.Raw())));
+    } else {
+        // The block solver's first case (both points pushing), which resting contacts take; a
+        // lane that needs another case is left to the scalar row.
+        const Lanes a1 = normalImpulse[0], a2 = normalImpulse[1];
+        const Split sa1 = SplitSign(a1), sa2 = SplitSign(a2);
+        const Lanes vn1 = SpeedAlong(unsafe, p, nx, ny, SplitSign(LOCKBOX_LANES(vc, points[0].rnA.Raw())),
+                                     SplitSign(LOCKBOX_LANES(vc, points[0].rnB.Raw())));
+        const Lanes vn2 = SpeedAlong(unsafe, p, nx, ny, SplitSign(LOCKBOX_LANES(vc, points[1].rnA.Raw())),
+                                     SplitSign(LOCKBOX_LANES(vc, points[1].rnB.Raw())));
+        const Split k11 = SplitSign(LOCKBOX_LANES(vc, K.k11.Raw())), k12 = SplitSign(LOCKBOX_LANES(vc, K.k12.Raw()));
+        const Split k22 = SplitSign(LOCKBOX_LANES(vc, K.k22.Raw()));
+        const Lanes bias1 = _mm256_slli_epi64(LOCKBOX_LANES(vc, points[0].velocityBias.Raw()), 16);
+        const Lanes bias2 = _mm256_slli_epi64(LOCKBOX_LANES(vc, points[1].velocityBias.Raw()), 16);
+        const Lanes b1 = Sub(Sub(vn1, bias1), Add(MulWW(unsafe, k11, sa1), MulWW(unsafe, k12, sa2)));
+        const Lanes b2 = Sub(Sub(vn2, bias2), Add(MulWW(unsafe, k12, sa1), MulWW(unsafe, k22, sa2)));
+        const Split m11 = SplitSign(LOCKBOX_LANES(vc, normalMass.k11.Raw()));
+        const Split m12 = SplitSign(LOCKBOX_LANES(vc, normalMass.k12.Raw()));
+        const Split m22 = SplitSign(LOCKBOX_LANES(vc, normalMass.k22.Raw()));
+        const Split sb1 = SplitSign(b1), sb2 = SplitSign(b2);
+        const Lanes x1 = Neg(Add(MulWW(unsafe, m11, sb1), MulWW(unsafe, m12, sb2)));
+        const Lanes x2 = Neg(Add(MulWW(unsafe, m12, sb1), MulWW(unsafe, m22, sb2)));
+        Flag(unsafe, _mm256_or_si256(_mm256_cmpgt_epi64(Zero(), x1), _mm256_cmpgt_epi64(Zero(), x2)));
+        const Split d1 = SplitSign(Sub(x1, a1)), d2 = SplitSign(Sub(x2, a2));
+        // Both impulses act along the normal: one linear impulse, two lever arms.
+        const Split d = SplitSign(Add(Sub(x1, a1), Sub(x2, a2)));
+        p.vAx = Sub(p.vAx, MulWW(unsafe, d, normalPush.ax));
+        p.vAy = Sub(p.vAy, MulWW(unsafe, d, normalPush.ay));
+        p.vBx = Add(p.vBx, MulWW(unsafe, d, normalPush.bx));
+        p.vBy = Add(p.vBy, MulWW(unsafe, d, normalPush.by));
+        p.wA = Sub(p.wA, Add(MulWW(unsafe, d1, SplitSign(LOCKBOX_LANES(vc, points[0].turnNA.Raw()))),
+                             MulWW(unsafe, d2, SplitSign(LOCKBOX_LANES(vc, points[1].turnNA.Raw())))));
+        p.wB = Add(p.wB, Add(MulWW(unsafe, d1, SplitSign(LOCKBOX_LANES(vc, points[0].turnNB.Raw()))),
+                             MulWW(unsafe, d2, SplitSign(LOCKBOX_LANES(vc, points[1].turnNB.Raw())))));
+        normalImpulse[0] = x1;
+        normalImpulse[1] = x2;
+    }
+
+    // Lanes with no flag are written back; the rest are the scalar row's.
+    const uint32 followed =
+        static_cast<uint32>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(unsafe, Zero()))));
+    Spill(p.vAx, raw[0]);
+    Spill(p.vAy, raw[1]);
+    Spill(p.wA, raw[2]);
+    Spill(p.vBx, raw[3]);
+    Spill(p.vBy, raw[4]);
+    Spill(p.wB, raw[5]);
+    alignas(32) int64_t normal[b2_maxManifoldPoints][4], tangent[b2_maxManifoldPoints][4];
+    for (int32 j = 0; j < points; ++j) {
+        Spill(normalImpulse[j], normal[j]);
+        Spill(tangentImpulse[j], tangent[j]);
+    }
+    for (int k = 0; k < 4; ++k) {
+        if ((followed & (1u << k)) == 0) continue;
+        b2ContactVelocityConstraint* c = vc[k];
+        for (int32 j = 0; j < points; ++j) {
+            c->points[j].normalImpulse = Wide::FromRaw(normal[j][k]);
+            c->points[j].tangentImpulse = Wide::FromRaw(tangent[j][k]);
+        }
+        const b2WideVec2 vA(Wide::FromRaw(raw[0][k]), Wide::FromRaw(raw[1][k]));
+        const b2WideVec2 vB(Wide::FromRaw(raw[3][k]), Wide::FromRaw(raw[4][k]));
+        solver::Store(velocities[c->indexA], vA, Wide::FromRaw(raw[2][k]), c->invMassA, c->invIA);
+        solver::Store(velocities[c->indexB], vB, Wide::FromRaw(raw[5][k]), c->invMassB, c->invIB);
+    }
+    return ~followed & 0xFu;
+}
+
+#undef LOCKBOX_LANES
+#undef LOCKBOX_AVX2
+}  // namespace lanes
+#endif  // LOCKBOX_CONTACT_LANES
+
+}  // namespace
+
+bool b2ContactSolver::LanesAvailable() noexcept {
+#ifdef LOCKBOX_CONTACT_LANES
+    return lanes::HasAvx2();
+#else
+    return false;
+#endif
+}
+
+void b2ContactSolver::AllowLanes(bool allow) noexcept { g_lanesAllowed.store(allow, std::memory_order_relaxed); }
+
+int32 b2ContactSolver::SolveIndependentVelocityConstraints(int32 begin, int32 end) {
+#ifdef LOCKBOX_CONTACT_LANES
+    if (lanes::HasAvx2() && g_lanesAllowed.load(std::memory_order_relaxed)) {
+        // The constraints write no body in common, so any order gives the same bits: groups of
+        // four with the same point count go to the lanes, the others to the scalar row.
+        int32 i = begin, inLanes = 0;
+        while (i + 4 <= end) {
+            b2ContactVelocityConstraint* const first = m_velocityConstraints + i;
+            b2ContactVelocityConstraint* const vc[4] = {first, first + 1, first + 2, first + 3};
+            const int32 points = vc[0]->pointCount;
+            if (vc[1]->pointCount != points || vc[2]->pointCount != points || vc[3]->pointCount != points) {
+                SolveVelocityConstraints(i, i + 1);
+                ++i;
+                continue;
+            }
+            const uint32 rest = lanes::SolveFour(vc, m_velocities, points);
+            for (int32 k = 0; k < 4; ++k) {
+                if (rest & (1u << k)) {
+                    SolveVelocityConstraints(i + k, i + k + 1);
+                } else {
+                    ++inLanes;
+                }
+            }
+            i += 4;
+        }
+        SolveVelocityConstraints(i, end);
+        return inLanes;
+    }
+#endif
+    SolveVelocityConstraints(begin, end);
+    return 0;
+}
+
+}  // namespace lockbox
+
+#undef LOCKBOX_CONTACT_LANES
