@@ -130,6 +130,11 @@ SceneResult JsonTree::Parse(std::string_view json, const SceneLimits& limits) {
         return {SceneError::e_syntax, "", "not JSON at byte " + std::to_string(nul) + ": a NUL byte"};
     }
     m_buffer.assign(json.data(), json.size());
+    // The parser's UTF-8 check reads every byte a lead byte announces (up to three more) before
+    // it judges them, so a text that ends inside a character would be read past its end: the
+    // padding keeps those reads in the buffer (they see NUL bytes, which no character continues
+    // with, and the parse fails there).
+    m_buffer.append(3, '\0');
     // A rough reservation (a typical file has one value per 12 to 16 bytes) saves most regrowth.
     const size_t guess = json.size() / 16 + 16;
     m_nodes.reserve(guess < limits.maxValues ? guess : limits.maxValues);

@@ -19,6 +19,8 @@ const BadFile kBadFiles[] = {
     {"syntax", SceneError::e_syntax, "not JSON at byte 47: Invalid value."},
     {"not_an_object", SceneError::e_type, "expected an object, found an array"},
     {"nul_byte", SceneError::e_syntax, "not JSON at byte 14: a NUL byte"},
+    // Ends inside a four-byte character: the encoding check must not read past the text.
+    {"truncated_utf8", SceneError::e_syntax, "not JSON at byte 63: Invalid encoding in string."},
     {"too_deep", SceneError::e_limit, "nesting deeper than 32 arrays and objects"},
     {"duplicate_key", SceneError::e_syntax, "body[0].angle: the key appears twice"},
     {"body_not_array", SceneError::e_type, "body: expected an array, found an object"},
