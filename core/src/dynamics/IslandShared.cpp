@@ -24,16 +24,19 @@ int32 BlockSize(int32 items, int32 workers) {
     return std::max(kMinItems, share);
 }
 
-// A stage over items [begin, end), split into blocks, or in one block (in order) when serial.
-void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers, bool serial = false,
-              bool oneColour = false) {
+// How a stage's items are taken: split into blocks, split into blocks of one colour (whose items
+// write no body in common), or in one block, in order.
+enum class Split { e_blocks, e_colour, e_serial };
+
+// A stage over items [begin, end).
+void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers, Split split = Split::e_blocks) {
     if (end <= begin) return;
     Shared::Stage stage;
     stage.kind = kind;
-    stage.oneColour = oneColour;
+    stage.oneColour = split == Split::e_colour;
     stage.begin = begin;
     stage.end = end;
-    stage.blockSize = serial ? end - begin : BlockSize(end - begin, workers);
+    stage.blockSize = split == Split::e_serial ? end - begin : BlockSize(end - begin, workers);
     s.plan.push_back(stage);
     s.stages.Add((end - begin + stage.blockSize - 1) / stage.blockSize);
 }
@@ -53,11 +56,11 @@ void AddColourStages(Shared& s, Kind kind, const b2Colours<Item>& colours, int32
             if (serialBegin < 0) serialBegin = begin;
             continue;
         }
-        if (serialBegin >= 0) AddStage(s, kind, serialBegin, begin, workers, true);
+        if (serialBegin >= 0) AddStage(s, kind, serialBegin, begin, workers, Split::e_serial);
         serialBegin = -1;
-        AddStage(s, kind, begin, end, workers, false, true);
+        AddStage(s, kind, begin, end, workers, Split::e_colour);
     }
-    if (serialBegin >= 0) AddStage(s, kind, serialBegin, colours.Start(b2_colourCount + 1), workers, true);
+    if (serialBegin >= 0) AddStage(s, kind, serialBegin, colours.Start(b2_colourCount + 1), workers, Split::e_serial);
 }
 
 // A kind of constraint stage over `count` constraints: by colour when they were coloured, else
@@ -67,7 +70,7 @@ void AddConstraintStages(Shared& s, Kind kind, const b2Colours<Item>& colours, i
     if (b2Coloured(count)) {
         AddColourStages(s, kind, colours, workers);
     } else {
-        AddStage(s, kind, 0, count, workers, true);
+        AddStage(s, kind, 0, count, workers, Split::e_serial);
     }
 }
 

@@ -50,6 +50,17 @@ inline b2Body* MakeDynamicBox(b2World& world, Fixed x, Fixed y, Fixed hx, Fixed 
     return body;
 }
 
+/// A pyramid of unit boxes on a wide static ground: `rows` rows, each half a box to the right of
+/// the one below, row r centred at height (baseCm + r stepCm) / 100 m.
+inline void MakeBoxPyramid(b2World& world, int rows, int baseCm, int stepCm) {
+    MakeStaticBox(world, 0, Fixed(-0.5), 100, Fixed(0.5));
+    for (int row = 0; row < rows; ++row) {
+        for (int k = 0; k < rows - row; ++k)
+            MakeDynamicBox(world, Fixed(-rows / 2 + k) + Fixed::FromRatio(row, 2),
+                           Fixed::FromRatio(baseCm + stepCm * row, 100), Fixed(0.5), Fixed(0.5));
+    }
+}
+
 /// A dynamic circle of radius r at (x, y).
 inline b2Body* MakeDynamicCircle(b2World& world, Fixed x, Fixed y, Fixed r, Fixed density = 1,
                                  Fixed friction = Fixed(0.2), Fixed restitution = Fixed()) {

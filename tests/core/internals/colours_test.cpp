@@ -22,15 +22,7 @@ namespace {
 
 // A pyramid of boxes on a static ground: one island of well over b2_minColouredConstraints
 // contacts.
-void Pyramid(b2World& world) {
-    test::MakeStaticBox(world, 0, Fixed(-0.5), 100, Fixed(0.5));
-    constexpr int kRows = 40;
-    for (int row = 0; row < kRows; ++row) {
-        for (int k = 0; k < kRows - row; ++k)
-            test::MakeDynamicBox(world, Fixed(-kRows / 2 + k) + Fixed::FromRatio(row, 2),
-                                 Fixed::FromRatio(50 + 100 * row, 100), Fixed(0.5), Fixed(0.5));
-    }
-}
+void Pyramid(b2World& world) { test::MakeBoxPyramid(world, 40, 50, 100); }
 
 // A net of small discs hung from a static bar: each disc is jointed to its right and lower
 // neighbours, the top row to the bar; one island of well over b2_minColouredConstraints joints.
