@@ -112,6 +112,7 @@ public:
     std::vector<b2ContactPositionConstraint> m_positionConstraints;
     std::vector<b2ContactVelocityConstraint> m_velocityConstraints;
     std::vector<b2CachedRot> m_rotations;   ///< per body, like m_positions
+    std::vector<b2LaneQuad> m_laneRows;     ///< the lanes' constants of a coloured island (grown, never shrunk)
     b2Colours<b2Contact> m_contactColours;  ///< the colour order of a large island's contacts
     b2Colours<b2Joint> m_jointColours;      ///< and of its joints, when they are many
     /// Workers for a coloured island's loops (IslandShared.h), or nullptr: one thread. Set by

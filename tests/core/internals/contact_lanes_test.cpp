@@ -32,8 +32,11 @@ public:
 
     int64_t WideRaw(double typical) {
         const int kind = Pick(20);
-        if (kind == 0) return static_cast<int64_t>(m_rng());                      // anywhere
-        if (kind == 1) return Sign() * static_cast<int64_t>(m_rng() >> Pick(8));  // near the top
+        if (kind == 0) return static_cast<int64_t>(m_rng());  // anywhere
+        if (kind == 1) {  // near the top, either sign (~x is -x - 1: no overflow at 2^63)
+            const uint64_t bits = m_rng() >> Pick(8);
+            return Pick(2) == 0 ? static_cast<int64_t>(bits) : static_cast<int64_t>(~bits);
+        }
         if (kind == 2) return 0;
         return static_cast<int64_t>(Uniform(-typical, typical) * 4294967296.0);
     }
@@ -92,7 +95,6 @@ public:
 
 private:
     double Uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(m_rng); }
-    int64_t Sign() { return Pick(2) == 0 ? 1 : -1; }
     std::mt19937_64 m_rng;
 };
 
@@ -103,18 +105,28 @@ struct SolveResult {
     int64_t inLanes = 0;  ///< rows the lanes solved, over all iterations
 };
 
+// Solves one colour `iterations` times; its set-up and each iteration run over the ranges that
+// `cuts` (ascending, inside the colour) divide it into, as workers' blocks divide a colour.
 SolveResult SolveColour(std::vector<b2ContactVelocityConstraint> constraints, std::vector<b2Velocity> velocities,
-                        bool lanes, int iterations) {
+                        bool lanes, int iterations, std::vector<int32> cuts = {}) {
     b2ContactSolver::AllowLanes(lanes);
     b2ContactSolverDef def;
     def.count = static_cast<int32>(constraints.size());
     def.velocities = velocities.data();
     def.velocityConstraints = constraints.data();
+    std::vector<b2LaneQuad> laneRows(b2ContactSolver::LaneRowsSize(def.count));
+    def.laneRows = laneRows.data();
     b2ContactSolver solver(&def);
+    cuts.insert(cuts.begin(), 0);
+    cuts.push_back(def.count);
+    for (size_t r = 0; r + 1 < cuts.size(); ++r) solver.StoreLaneRows(cuts[r], cuts[r + 1]);
     SolveResult result;
     {
         const SaturationCapture capture(&result.saturations);
-        for (int i = 0; i < iterations; ++i) result.inLanes += solver.SolveIndependentVelocityConstraints(0, def.count);
+        for (int i = 0; i < iterations; ++i) {
+            for (size_t r = 0; r + 1 < cuts.size(); ++r)
+                result.inLanes += solver.SolveIndependentVelocityConstraints(cuts[r], cuts[r + 1]);
+        }
     }
     result.velocities = std::move(velocities);
     result.constraints = std::move(constraints);
@@ -143,7 +155,12 @@ TEST(ContactLanes, RandomRowsGiveTheScalarRowsBits) {
             v.w = make.WideValue(6);
         }
 
-        const SolveResult lanes = SolveColour(constraints, velocities, true, 8);
+        // Odd seeds cut the colour into ranges at random places, most not on a multiple of four.
+        std::vector<int32> cuts;
+        if (seed % 2 == 1) {
+            for (int32 at = make.Pick(9) + 1; at < kRows; at += make.Pick(61) + 1) cuts.push_back(at);
+        }
+        const SolveResult lanes = SolveColour(constraints, velocities, true, 8, cuts);
         const SolveResult scalar = SolveColour(constraints, velocities, false, 8);
         EXPECT_EQ(scalar.inLanes, 0);
         lanesTotal += lanes.inLanes;

@@ -48,6 +48,7 @@ b2ContactSolver::ContactSolver(b2ContactSolverDef* def)
       m_velocityConstraints(def->velocityConstraints),
       m_rotations(def->rotations),
       m_contacts(def->contacts),
+      m_laneRows(def->laneRows),
       m_count(def->count) {}
 
 void b2ContactSolver::Load(int32 begin, int32 end) {
@@ -192,6 +193,7 @@ void b2ContactSolver::InitializeVelocityConstraints(int32 begin, int32 end) {
             }
         }
     }
+    if (m_laneRows != nullptr) StoreLaneRows(begin, end);
 }
 
 void b2ContactSolver::WarmStart(int32 begin, int32 end) {

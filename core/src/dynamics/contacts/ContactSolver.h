@@ -75,6 +75,11 @@ struct b2ContactPositionConstraint {
     int32 pointCount = 0;
 };
 
+/// Four 64-bit values, aligned for one vector load: the unit of the contact lanes' rows.
+struct alignas(32) b2LaneQuad {
+    int64_t lane[4];
+};
+
 /// Input to the contact solver.
 struct b2ContactSolverDef {
     b2TimeStep step;
@@ -88,6 +93,10 @@ struct b2ContactSolverDef {
     b2ContactVelocityConstraint* velocityConstraints = nullptr;
     /// One entry per island body (indexed like positions), reused likewise.
     b2CachedRot* rotations = nullptr;
+    /// Room for LaneRowsSize(count) quads, or null: the velocity constraints' constants by
+    /// quads of constraints, for SolveIndependentVelocityConstraints' lanes (written by the
+    /// set-up).
+    b2LaneQuad* laneRows = nullptr;
 };
 
 /// Solves the contacts of one island.
@@ -120,6 +129,11 @@ public:
     /// Whether this machine can take SolveIndependentVelocityConstraints in lanes (x86-64 with
     /// AVX2).
     static bool LanesAvailable() noexcept;
+    /// The lane rows' size for `count` constraints (quads).
+    static size_t LaneRowsSize(int32 count) noexcept;
+    /// Copies the constants of velocity constraints [begin, end) into the lane rows (the set-up
+    /// does it when the definition has lane rows).
+    void StoreLaneRows(int32 begin, int32 end);
     /// Lets the lanes run (the default) or not. Both paths give the same bits; tests compare them.
     static void AllowLanes(bool allow) noexcept;
     /// Copies the accumulated impulses back to the manifolds for warm starting.
@@ -145,6 +159,7 @@ public:
     b2ContactVelocityConstraint* m_velocityConstraints;
     b2CachedRot* m_rotations;
     b2Contact** m_contacts;
+    b2LaneQuad* m_laneRows;
     int32 m_count;
 };
 

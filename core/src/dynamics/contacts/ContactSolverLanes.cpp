@@ -11,6 +11,7 @@
 //
 // Lanes need x86-64 with AVX2 (checked once at run time); elsewhere the scalar row runs.
 #include <atomic>
+#include <cstddef>
 
 #include "SolverMath.h"
 #include "dynamics/contacts/ContactSolver.h"
@@ -23,6 +24,52 @@
 namespace lockbox {
 
 namespace {
+// The lane rows: each constant of a velocity row that the lanes read, stored by quads of
+// constraints (4q to 4q + 3) and in a quad field by field, so that one quad's value of a field
+// is one aligned load and a quad's constants are one contiguous block. Fixed values are
+// widened; a velocity bias is stored as the Wide it enters the row as. (Storing the constants
+// already split into magnitude and sign saved the lanes 5 % of their instructions and cost the
+// set-up more than that.)
+enum LaneField : int32 {
+    kNormalX,
+    kNormalY,
+    kTangentX,
+    kTangentY,
+    kPushAX,
+    kPushAY,
+    kPushBX,
+    kPushBY,
+    kFriction,
+    kK11,
+    kK12,
+    kK22,
+    kMass11,
+    kMass12,
+    kMass22,
+    kFirstPointField,
+};
+// Per point, from kFirstPointField + j * kPointFields.
+enum LanePointField : int32 {
+    kRnA,
+    kRnB,
+    kRtA,
+    kRtB,
+    kBias,
+    kNormalMass,
+    kTangentMass,
+    kTurnNA,
+    kTurnNB,
+    kTurnTA,
+    kTurnTB,
+    kPointFields,
+};
+constexpr int32 kLaneFields = kFirstPointField + b2_maxManifoldPoints * kPointFields;
+constexpr int32 PointField(int32 point, int32 field) noexcept {
+    return kFirstPointField + point * kPointFields + field;
+}
+// The lane rows' first vector of the quad that holds constraint i (field f is vector f).
+constexpr std::ptrdiff_t QuadOf(int32 i) noexcept { return static_cast<std::ptrdiff_t>(i / 4) * kLaneFields; }
+
 // Tests switch the lanes off to compare the two paths; the choice never changes a result.
 std::atomic<bool> g_lanesAllowed{true};
 
@@ -104,6 +151,15 @@ LOCKBOX_AVX2 inline Lanes MulWW(Lanes& unsafe, const Split& sx, const Split& sy)
 }
 LOCKBOX_AVX2 inline Lanes MulWW(Lanes& unsafe, Lanes x, const Split& y) { return MulWW(unsafe, SplitSign(x), y); }
 
+// The lane rows of one quad of constraints.
+struct Rows {
+    const b2LaneQuad* quad;  // the quad's first field
+    LOCKBOX_AVX2 Lanes Load(int32 field) const {
+        return _mm256_load_si256(reinterpret_cast<const Lanes*>(quad + field));
+    }
+    LOCKBOX_AVX2 Split LoadSplit(int32 field) const { return SplitSign(Load(field)); }
+};
+
 // Four constraints' field as lanes (lane k from constraint k).
 #define LOCKBOX_LANES(vc, field)                                                                 \
     _mm256_set_epi64x(int64_t{(vc)[3]->field}, int64_t{(vc)[2]->field}, int64_t{(vc)[1]->field}, \
@@ -145,7 +201,8 @@ LOCKBOX_AVX2 inline void Spill(Lanes v, int64_t out[4]) { _mm256_storeu_si256(re
 // One velocity iteration of four contacts of one colour with `points` points each, the scalar
 // row's operations in its order. Writes back the lanes it could follow and returns a mask of
 // the others (bit k: constraint k still to be solved).
-LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], b2Velocity* velocities, int32 points) {
+LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], const Rows& rows, b2Velocity* velocities,
+                              int32 points) {
     Lanes unsafe = Zero();
     Pair p;
     // Each lane reads its own two bodies.
@@ -173,15 +230,13 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], b2Veloci
     Bound(unsafe, p.vBy);
     Bound(unsafe, p.wB);
 
-    const Split nx = SplitSign(LOCKBOX_LANES(vc, normal.x.Raw()));
-    const Split ny = SplitSign(LOCKBOX_LANES(vc, normal.y.Raw()));
-    const Split tx = SplitSign(LOCKBOX_LANES(vc, tangent.x.Raw()));
-    const Split ty = SplitSign(LOCKBOX_LANES(vc, tangent.y.Raw()));
-    const Push normalPush{SplitSign(LOCKBOX_LANES(vc, pushA.x.Raw())), SplitSign(LOCKBOX_LANES(vc, pushA.y.Raw())),
-                          SplitSign(LOCKBOX_LANES(vc, pushB.x.Raw())), SplitSign(LOCKBOX_LANES(vc, pushB.y.Raw()))};
+    const Split nx = rows.LoadSplit(kNormalX), ny = rows.LoadSplit(kNormalY);
+    const Split tx = rows.LoadSplit(kTangentX), ty = rows.LoadSplit(kTangentY);
+    const Push normalPush{rows.LoadSplit(kPushAX), rows.LoadSplit(kPushAY), rows.LoadSplit(kPushBX),
+                          rows.LoadSplit(kPushBY)};
     // The tangent (n.y, -n.x) pushes by (push.y, -push.x).
     const Push tangentPush{normalPush.ay, Flip(normalPush.ax), normalPush.by, Flip(normalPush.bx)};
-    const Split friction = SplitSign(LOCKBOX_LANES(vc, friction.Raw()));
+    const Split friction = rows.LoadSplit(kFriction);
 
     Lanes normalImpulse[b2_maxManifoldPoints], tangentImpulse[b2_maxManifoldPoints];
     for (int32 j = 0; j < points; ++j) {
@@ -193,47 +248,44 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], b2Veloci
 
     // Friction first, as the scalar row.
     for (int32 j = 0; j < points; ++j) {
-        const Split rtA = SplitSign(LOCKBOX_LANES(vc, points[j].rtA.Raw()));
-        const Split rtB = SplitSign(LOCKBOX_LANES(vc, points[j].rtB.Raw()));
+        const Split rtA = rows.LoadSplit(PointField(j, kRtA));
+        const Split rtB = rows.LoadSplit(PointField(j, kRtB));
         const Lanes vt = SpeedAlong(unsafe, p, tx, ty, rtA, rtB);
-        Lanes lambda = Neg(MulWW(unsafe, vt, SplitSign(LOCKBOX_LANES(vc, points[j].tangentMass.Raw()))));
+        Lanes lambda = Neg(MulWW(unsafe, vt, rows.LoadSplit(PointField(j, kTangentMass))));
         const Lanes maxFriction = MulWF(unsafe, normalImpulse[j], friction);
         const Lanes newImpulse = Max(Neg(maxFriction), Min(Add(tangentImpulse[j], lambda), maxFriction));
         lambda = Sub(newImpulse, tangentImpulse[j]);
         tangentImpulse[j] = newImpulse;
-        ApplyAlong(unsafe, p, lambda, tangentPush, SplitSign(LOCKBOX_LANES(vc, points[j].turnTA.Raw())),
-                   SplitSign(LOCKBOX_LANES(vc, points[j].turnTB.Raw())));
+        ApplyAlong(unsafe, p, lambda, tangentPush, rows.LoadSplit(PointField(j, kTurnTA)),
+                   rows.LoadSplit(PointField(j, kTurnTB)));
     }
 
     if (points == 1) {
-        const Split rnA = SplitSign(LOCKBOX_LANES(vc, points[0].rnA.Raw()));
-        const Split rnB = SplitSign(LOCKBOX_LANES(vc, points[0].rnB.Raw()));
-        const Lanes bias = _mm256_slli_epi64(LOCKBOX_LANES(vc, points[0].velocityBias.Raw()), 16);
+        const Split rnA = rows.LoadSplit(PointField(0, kRnA));
+        const Split rnB = rows.LoadSplit(PointField(0, kRnB));
+        const Lanes bias = rows.Load(PointField(0, kBias));
         const Lanes vn = SpeedAlong(unsafe, p, nx, ny, rnA, rnB);
-        Lanes lambda = Neg(MulWW(unsafe, Sub(vn, bias), SplitSign(LOCKBOX_LANES(vc, points[0].normalMass.Raw()))));
+        Lanes lambda = Neg(MulWW(unsafe, Sub(vn, bias), rows.LoadSplit(PointField(0, kNormalMass))));
         const Lanes newImpulse = Max(Add(normalImpulse[0], lambda), Zero());
         lambda = Sub(newImpulse, normalImpulse[0]);
         normalImpulse[0] = newImpulse;
-        ApplyAlong(unsafe, p, lambda, normalPush, SplitSign(LOCKBOX_LANES(vc, points[0].turnNA.Raw())),
-                   SplitSign(LOCKBOX_LANES(vc, points[0].turnNB.Raw())));
+        ApplyAlong(unsafe, p, lambda, normalPush, rows.LoadSplit(PointField(0, kTurnNA)),
+                   rows.LoadSplit(PointField(0, kTurnNB)));
     } else {
         // The block solver's first case (both points pushing), which resting contacts take; a
         // lane that needs another case is left to the scalar row.
         const Lanes a1 = normalImpulse[0], a2 = normalImpulse[1];
         const Split sa1 = SplitSign(a1), sa2 = SplitSign(a2);
-        const Lanes vn1 = SpeedAlong(unsafe, p, nx, ny, SplitSign(LOCKBOX_LANES(vc, points[0].rnA.Raw())),
-                                     SplitSign(LOCKBOX_LANES(vc, points[0].rnB.Raw())));
-        const Lanes vn2 = SpeedAlong(unsafe, p, nx, ny, SplitSign(LOCKBOX_LANES(vc, points[1].rnA.Raw())),
-                                     SplitSign(LOCKBOX_LANES(vc, points[1].rnB.Raw())));
-        const Split k11 = SplitSign(LOCKBOX_LANES(vc, K.k11.Raw())), k12 = SplitSign(LOCKBOX_LANES(vc, K.k12.Raw()));
-        const Split k22 = SplitSign(LOCKBOX_LANES(vc, K.k22.Raw()));
-        const Lanes bias1 = _mm256_slli_epi64(LOCKBOX_LANES(vc, points[0].velocityBias.Raw()), 16);
-        const Lanes bias2 = _mm256_slli_epi64(LOCKBOX_LANES(vc, points[1].velocityBias.Raw()), 16);
+        const Lanes vn1 =
+            SpeedAlong(unsafe, p, nx, ny, rows.LoadSplit(PointField(0, kRnA)), rows.LoadSplit(PointField(0, kRnB)));
+        const Lanes vn2 =
+            SpeedAlong(unsafe, p, nx, ny, rows.LoadSplit(PointField(1, kRnA)), rows.LoadSplit(PointField(1, kRnB)));
+        const Split k11 = rows.LoadSplit(kK11), k12 = rows.LoadSplit(kK12), k22 = rows.LoadSplit(kK22);
+        const Lanes bias1 = rows.Load(PointField(0, kBias));
+        const Lanes bias2 = rows.Load(PointField(1, kBias));
         const Lanes b1 = Sub(Sub(vn1, bias1), Add(MulWW(unsafe, k11, sa1), MulWW(unsafe, k12, sa2)));
         const Lanes b2 = Sub(Sub(vn2, bias2), Add(MulWW(unsafe, k12, sa1), MulWW(unsafe, k22, sa2)));
-        const Split m11 = SplitSign(LOCKBOX_LANES(vc, normalMass.k11.Raw()));
-        const Split m12 = SplitSign(LOCKBOX_LANES(vc, normalMass.k12.Raw()));
-        const Split m22 = SplitSign(LOCKBOX_LANES(vc, normalMass.k22.Raw()));
+        const Split m11 = rows.LoadSplit(kMass11), m12 = rows.LoadSplit(kMass12), m22 = rows.LoadSplit(kMass22);
         const Split sb1 = SplitSign(b1), sb2 = SplitSign(b2);
         const Lanes x1 = Neg(Add(MulWW(unsafe, m11, sb1), MulWW(unsafe, m12, sb2)));
         const Lanes x2 = Neg(Add(MulWW(unsafe, m12, sb1), MulWW(unsafe, m22, sb2)));
@@ -245,10 +297,10 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], b2Veloci
         p.vAy = Sub(p.vAy, MulWW(unsafe, d, normalPush.ay));
         p.vBx = Add(p.vBx, MulWW(unsafe, d, normalPush.bx));
         p.vBy = Add(p.vBy, MulWW(unsafe, d, normalPush.by));
-        p.wA = Sub(p.wA, Add(MulWW(unsafe, d1, SplitSign(LOCKBOX_LANES(vc, points[0].turnNA.Raw()))),
-                             MulWW(unsafe, d2, SplitSign(LOCKBOX_LANES(vc, points[1].turnNA.Raw())))));
-        p.wB = Add(p.wB, Add(MulWW(unsafe, d1, SplitSign(LOCKBOX_LANES(vc, points[0].turnNB.Raw()))),
-                             MulWW(unsafe, d2, SplitSign(LOCKBOX_LANES(vc, points[1].turnNB.Raw())))));
+        p.wA = Sub(p.wA, Add(MulWW(unsafe, d1, rows.LoadSplit(PointField(0, kTurnNA))),
+                             MulWW(unsafe, d2, rows.LoadSplit(PointField(1, kTurnNA)))));
+        p.wB = Add(p.wB, Add(MulWW(unsafe, d1, rows.LoadSplit(PointField(0, kTurnNB))),
+                             MulWW(unsafe, d2, rows.LoadSplit(PointField(1, kTurnNB)))));
         normalImpulse[0] = x1;
         normalImpulse[1] = x2;
     }
@@ -289,6 +341,49 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], b2Veloci
 
 }  // namespace
 
+size_t b2ContactSolver::LaneRowsSize(int32 count) noexcept {
+    return static_cast<size_t>(kLaneFields) * static_cast<size_t>((count + 3) / 4);
+}
+
+void b2ContactSolver::StoreLaneRows(int32 begin, int32 end) {
+    for (int32 i = begin; i < end; ++i) {
+        b2LaneQuad* const quad = m_laneRows + QuadOf(i);
+        const int32 lane = i & 3;
+        auto at = [quad, lane](int32 field, int64_t raw) { quad[field].lane[lane] = raw; };
+        const b2ContactVelocityConstraint& vc = m_velocityConstraints[i];
+        at(kNormalX, vc.normal.x.Raw());
+        at(kNormalY, vc.normal.y.Raw());
+        at(kTangentX, vc.tangent.x.Raw());
+        at(kTangentY, vc.tangent.y.Raw());
+        at(kPushAX, vc.pushA.x.Raw());
+        at(kPushAY, vc.pushA.y.Raw());
+        at(kPushBX, vc.pushB.x.Raw());
+        at(kPushBY, vc.pushB.y.Raw());
+        at(kFriction, vc.friction.Raw());
+        // The block matrices are read only for two-point rows, which set them.
+        at(kK11, vc.K.k11.Raw());
+        at(kK12, vc.K.k12.Raw());
+        at(kK22, vc.K.k22.Raw());
+        at(kMass11, vc.normalMass.k11.Raw());
+        at(kMass12, vc.normalMass.k12.Raw());
+        at(kMass22, vc.normalMass.k22.Raw());
+        for (int32 j = 0; j < vc.pointCount; ++j) {
+            const b2VelocityConstraintPoint& p = vc.points[j];
+            at(PointField(j, kRnA), p.rnA.Raw());
+            at(PointField(j, kRnB), p.rnB.Raw());
+            at(PointField(j, kRtA), p.rtA.Raw());
+            at(PointField(j, kRtB), p.rtB.Raw());
+            at(PointField(j, kBias), Wide(p.velocityBias).Raw());
+            at(PointField(j, kNormalMass), p.normalMass.Raw());
+            at(PointField(j, kTangentMass), p.tangentMass.Raw());
+            at(PointField(j, kTurnNA), p.turnNA.Raw());
+            at(PointField(j, kTurnNB), p.turnNB.Raw());
+            at(PointField(j, kTurnTA), p.turnTA.Raw());
+            at(PointField(j, kTurnTB), p.turnTB.Raw());
+        }
+    }
+}
+
 bool b2ContactSolver::LanesAvailable() noexcept {
 #ifdef LOCKBOX_CONTACT_LANES
     return lanes::HasAvx2();
@@ -301,20 +396,23 @@ void b2ContactSolver::AllowLanes(bool allow) noexcept { g_lanesAllowed.store(all
 
 int32 b2ContactSolver::SolveIndependentVelocityConstraints(int32 begin, int32 end) {
 #ifdef LOCKBOX_CONTACT_LANES
-    if (lanes::HasAvx2() && g_lanesAllowed.load(std::memory_order_relaxed)) {
-        // The constraints write no body in common, so any order gives the same bits: groups of
-        // four with the same point count go to the lanes, the others to the scalar row.
-        int32 i = begin, inLanes = 0;
-        while (i + 4 <= end) {
+    if (m_laneRows != nullptr && lanes::HasAvx2() && g_lanesAllowed.load(std::memory_order_relaxed)) {
+        // The constraints write no body in common, so any order gives the same bits: each quad
+        // of the lane rows whose constraints have one point count goes to the lanes; the
+        // constraints before the first quad, in mixed quads and after the last go to the
+        // scalar row, and so do the lanes' rows the lanes cannot follow.
+        int32 i = b2Min(end, (begin + 3) & ~3);
+        int32 inLanes = 0;
+        SolveVelocityConstraints(begin, i);
+        for (; i + 4 <= end; i += 4) {
             b2ContactVelocityConstraint* const first = m_velocityConstraints + i;
             b2ContactVelocityConstraint* const vc[4] = {first, first + 1, first + 2, first + 3};
             const int32 points = vc[0]->pointCount;
             if (vc[1]->pointCount != points || vc[2]->pointCount != points || vc[3]->pointCount != points) {
-                SolveVelocityConstraints(i, i + 1);
-                ++i;
+                SolveVelocityConstraints(i, i + 4);
                 continue;
             }
-            const uint32 rest = lanes::SolveFour(vc, m_velocities, points);
+            const uint32 rest = lanes::SolveFour(vc, lanes::Rows{m_laneRows + QuadOf(i)}, m_velocities, points);
             for (int32 k = 0; k < 4; ++k) {
                 if (rest & (1u << k)) {
                     SolveVelocityConstraints(i + k, i + k + 1);
@@ -322,7 +420,6 @@ int32 b2ContactSolver::SolveIndependentVelocityConstraints(int32 begin, int32 en
                     ++inLanes;
                 }
             }
-            i += 4;
         }
         SolveVelocityConstraints(i, end);
         return inLanes;
