@@ -68,7 +68,9 @@ void RunAndCheck(b2TaskSystem& tasks, const std::vector<int32>& counts, int32 st
             const bool expected = static_cast<int32>(s) < ran;
             EXPECT_EQ(log.runs[s][b].load(), expected ? 1 : 0) << "stage " << s << " block " << b;
             // Every stage before this one had finished, and none after it.
-            if (expected) EXPECT_EQ(log.seen[s][b].load(), static_cast<int32>(s)) << "stage " << s << " block " << b;
+            if (expected) {
+                EXPECT_EQ(log.seen[s][b].load(), static_cast<int32>(s)) << "stage " << s << " block " << b;
+            }
         }
     }
 }
