@@ -83,8 +83,8 @@ b2ContactSolverDef b2Island::ContactSolverDef(const b2TimeStep& step) {
     def.positionConstraints = m_positionConstraints.data();
     def.velocityConstraints = m_velocityConstraints.data();
     def.rotations = m_rotations.data();
-    // The lanes solve the colours of a coloured island; they read the rows' constants field by
-    // field, which the set-up writes.
+    // The lanes solve the colours of a coloured island; they read the rows' constants from the
+    // lane rows, which the set-up writes.
     if (ColoursContacts() && b2ContactSolver::LanesAvailable()) {
         const size_t size = b2ContactSolver::LaneRowsSize(m_contactCount);
         if (m_laneRows.size() < size) m_laneRows.resize(size);

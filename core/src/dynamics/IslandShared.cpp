@@ -37,15 +37,11 @@ void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers, Split
     stage.begin = begin;
     stage.end = end;
     stage.blockSize = split == Split::e_serial ? end - begin : BlockSize(end - begin, workers);
-    stage.grid = begin;
-    if (split == Split::e_colour) {
-        // A colour's blocks are cut at multiples of four, where the contact lanes' quads begin,
-        // so that no quad is split between two blocks (and solved by the scalar row).
-        stage.blockSize = (stage.blockSize + 3) & ~3;
-        stage.grid = begin & ~3;
-    }
+    // A colour's blocks are cut where the contact lanes' quads begin (Stage::Grid), so that no
+    // quad is split between two blocks (and solved by the scalar row).
+    if (stage.oneColour) stage.blockSize = b2LaneQuad::CeilBoundary(stage.blockSize);
     s.plan.push_back(stage);
-    s.stages.Add((end - stage.grid + stage.blockSize - 1) / stage.blockSize);
+    s.stages.Add((end - stage.Grid() + stage.blockSize - 1) / stage.blockSize);
 }
 
 // One stage per colour (its constraints write no body in common), split between the workers.
@@ -97,8 +93,8 @@ Shared& Prepare(std::unique_ptr<Shared>& shared, b2Island& island, b2ContactSolv
 void Shared::RunBlock(int32 stage, int32 block, void* context) {
     Shared& s = *static_cast<Shared*>(context);
     const Shared::Stage& st = s.plan[static_cast<size_t>(stage)];
-    const int32 begin = std::max(st.begin, st.grid + block * st.blockSize);
-    const int32 end = std::min(st.end, st.grid + (block + 1) * st.blockSize);
+    const int32 begin = std::max(st.begin, st.Grid() + block * st.blockSize);
+    const int32 end = std::min(st.end, st.Grid() + (block + 1) * st.blockSize);
     b2Island& island = *s.island;
     const b2SolverData& data = *s.data;
     switch (st.kind) {

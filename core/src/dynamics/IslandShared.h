@@ -29,9 +29,12 @@ struct core_detail::Engine::Island::Shared {
         Kind kind = Kind::e_init;
         int32 begin = 0, end = 0;  ///< items (bodies or constraints) of the stage
         int32 blockSize = 1;
-        int32 grid = 0;              ///< block k covers [grid + k blockSize, grid + (k + 1) blockSize) within the items
         bool endsIteration = false;  ///< the last stage of a position iteration
         bool oneColour = false;      ///< its items write no body in common
+
+        /// Block k covers [Grid() + k blockSize, Grid() + (k + 1) blockSize) within the items: a
+        /// colour's blocks start on the contact lanes' quad boundaries.
+        int32 Grid() const noexcept { return oneColour ? b2LaneQuad::FloorBoundary(begin) : begin; }
     };
 
     b2Stages stages;

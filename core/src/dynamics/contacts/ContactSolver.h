@@ -75,9 +75,15 @@ struct b2ContactPositionConstraint {
     int32 pointCount = 0;
 };
 
-/// Four 64-bit values, aligned for one vector load: the unit of the contact lanes' rows.
+/// One field of four consecutive constraints, aligned for one vector load: the unit of the
+/// contact lanes' rows. The lanes take quads that begin at a multiple of kConstraints.
 struct alignas(32) b2LaneQuad {
-    int64_t lane[4];
+    static constexpr int32 kConstraints = 4;
+    int64_t lane[kConstraints];
+
+    /// The first quad boundary at or after constraint i, and the last at or before it.
+    static constexpr int32 CeilBoundary(int32 i) noexcept { return (i + kConstraints - 1) & ~(kConstraints - 1); }
+    static constexpr int32 FloorBoundary(int32 i) noexcept { return i & ~(kConstraints - 1); }
 };
 
 /// Input to the contact solver.

@@ -68,7 +68,9 @@ constexpr int32 PointField(int32 point, int32 field) noexcept {
     return kFirstPointField + point * kPointFields + field;
 }
 // The lane rows' first vector of the quad that holds constraint i (field f is vector f).
-constexpr std::ptrdiff_t QuadOf(int32 i) noexcept { return static_cast<std::ptrdiff_t>(i / 4) * kLaneFields; }
+constexpr std::ptrdiff_t QuadOf(int32 i) noexcept {
+    return static_cast<std::ptrdiff_t>(i / b2LaneQuad::kConstraints) * kLaneFields;
+}
 
 // Tests switch the lanes off to compare the two paths; the choice never changes a result.
 std::atomic<bool> g_lanesAllowed{true};
@@ -342,13 +344,14 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], const Ro
 }  // namespace
 
 size_t b2ContactSolver::LaneRowsSize(int32 count) noexcept {
-    return static_cast<size_t>(kLaneFields) * static_cast<size_t>((count + 3) / 4);
+    return static_cast<size_t>(kLaneFields) *
+           static_cast<size_t>(b2LaneQuad::CeilBoundary(count) / b2LaneQuad::kConstraints);
 }
 
 void b2ContactSolver::StoreLaneRows(int32 begin, int32 end) {
     for (int32 i = begin; i < end; ++i) {
         b2LaneQuad* const quad = m_laneRows + QuadOf(i);
-        const int32 lane = i & 3;
+        const int32 lane = i - b2LaneQuad::FloorBoundary(i);
         auto at = [quad, lane](int32 field, int64_t raw) { quad[field].lane[lane] = raw; };
         const b2ContactVelocityConstraint& vc = m_velocityConstraints[i];
         at(kNormalX, vc.normal.x.Raw());
@@ -401,7 +404,7 @@ int32 b2ContactSolver::SolveIndependentVelocityConstraints(int32 begin, int32 en
         // of the lane rows whose constraints have one point count goes to the lanes; the
         // constraints before the first quad, in mixed quads and after the last go to the
         // scalar row, and so do the lanes' rows the lanes cannot follow.
-        int32 i = b2Min(end, (begin + 3) & ~3);
+        int32 i = b2Min(end, b2LaneQuad::CeilBoundary(begin));
         int32 inLanes = 0;
         SolveVelocityConstraints(begin, i);
         for (; i + 4 <= end; i += 4) {
