@@ -24,8 +24,6 @@ struct PairData {
     b2Transform fxfA, fxfB;
 };
 
-float F(Fixed v) { return static_cast<float>(v.ToDouble()); }
-
 uint64_t Mix(uint64_t& s) {
     uint64_t z = (s += 0x9E3779B97F4A7C15ull);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -45,12 +43,12 @@ std::vector<PairData> MakePairs(uint64_t seed) {
         p.xfA.Set(lockbox::b2Vec2(ax, Fixed()), angleA);
         p.xfB.Set(lockbox::b2Vec2(bx, by), angleB);
         // Float transforms from the same rotation values, so both engines see the same frames.
-        p.fxfA.p.Set(F(p.xfA.p.x), F(p.xfA.p.y));
-        p.fxfA.q.s = F(p.xfA.q.s);
-        p.fxfA.q.c = F(p.xfA.q.c);
-        p.fxfB.p.Set(F(p.xfB.p.x), F(p.xfB.p.y));
-        p.fxfB.q.s = F(p.xfB.q.s);
-        p.fxfB.q.c = F(p.xfB.q.c);
+        p.fxfA.p.Set(p.xfA.p.x.ToFloat(), p.xfA.p.y.ToFloat());
+        p.fxfA.q.s = p.xfA.q.s.ToFloat();
+        p.fxfA.q.c = p.xfA.q.c.ToFloat();
+        p.fxfB.p.Set(p.xfB.p.x.ToFloat(), p.xfB.p.y.ToFloat());
+        p.fxfB.q.s = p.xfB.q.s.ToFloat();
+        p.fxfB.q.c = p.xfB.q.c.ToFloat();
     }
     return pairs;
 }
@@ -66,11 +64,12 @@ struct Shapes {
         circle.SetRadius(Fixed(0.5));
         box.SetAsBox(Fixed(0.5), Fixed(0.25));
         edge.Set(lockbox::b2Vec2(Fixed(-2), Fixed()), lockbox::b2Vec2(Fixed(2), Fixed()));
-        fcircle.m_radius = F(circle.m_radius);
+        fcircle.m_radius = circle.m_radius.ToFloat();
         b2Vec2 v[lockbox::b2_maxPolygonVertices];
-        for (int i = 0; i < box.m_vertexCount; ++i) v[i].Set(F(box.m_vertices[i].x), F(box.m_vertices[i].y));
+        for (int i = 0; i < box.m_vertexCount; ++i)
+            v[i].Set(box.m_vertices[i].x.ToFloat(), box.m_vertices[i].y.ToFloat());
         fbox.Set(v, box.m_vertexCount);
-        fbox.m_radius = F(box.m_radius);
+        fbox.m_radius = box.m_radius.ToFloat();
         fedge.SetTwoSided(b2Vec2(-2.0f, 0.0f), b2Vec2(2.0f, 0.0f));
     }
 };

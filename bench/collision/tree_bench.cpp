@@ -97,11 +97,11 @@ lockbox::b2AABB ToLockbox(const RawBox& b) {
     using lockbox::Fixed;
     return {{Fixed::FromRaw(b.lx), Fixed::FromRaw(b.ly)}, {Fixed::FromRaw(b.ux), Fixed::FromRaw(b.uy)}};
 }
-float F(int32_t raw) { return static_cast<float>(raw) / 65536.0f; }
+float RawToFloat(int32_t raw) { return static_cast<float>(raw) / 65536.0f; }
 ::b2AABB ToBox2D(const RawBox& b) {
     ::b2AABB a;
-    a.lowerBound.Set(F(b.lx), F(b.ly));
-    a.upperBound.Set(F(b.ux), F(b.uy));
+    a.lowerBound.Set(RawToFloat(b.lx), RawToFloat(b.ly));
+    a.upperBound.Set(RawToFloat(b.ux), RawToFloat(b.uy));
     return a;
 }
 
@@ -166,7 +166,7 @@ void BM_Move_Box2D(benchmark::State& state) {
         for (int i = 0; i < kProxies; ++i) {
             const RawBox& a = from[static_cast<size_t>(i)];
             const RawBox& b = to[static_cast<size_t>(i)];
-            const ::b2Vec2 d(F(b.lx - a.lx), F(b.ly - a.ly));
+            const ::b2Vec2 d(RawToFloat(b.lx - a.lx), RawToFloat(b.ly - a.ly));
             reinserted += tree.MoveProxy(ids[static_cast<size_t>(i)], ToBox2D(b), d);
         }
         f = next;

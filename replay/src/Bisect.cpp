@@ -1,18 +1,15 @@
 // Bisect: binary search over stored states, scan of one interval, then the fencepost.
 #include "lockbox/replay/Bisect.h"
 
-#include <cstdio>
 #include <vector>
+
+#include "HexText.h"
 
 namespace lockbox::replay {
 
-namespace {
+using detail::Hex;
 
-std::string Hex(uint64 v) {
-    char buf[24];
-    std::snprintf(buf, sizeof buf, "0x%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
+namespace {
 
 // A stored state with a known hash: the seed, a keyframe, or the end.
 struct Point {

@@ -4,15 +4,13 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "HexText.h"
+
 namespace lockbox::replay {
 
-namespace {
+using detail::Hex;
 
-std::string Hex(uint64 v) {
-    char buf[24];
-    std::snprintf(buf, sizeof buf, "0x%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
+namespace {
 
 // Integer-only decimal text of raw / 2^bits with 6 truncated fraction digits.
 std::string Decimal(int64_t raw, int bits) {

@@ -1,19 +1,12 @@
 // Player: seed and keyframe restores, frame stepping, verification.
 #include "lockbox/replay/Player.h"
 
-#include <cstdio>
-
+#include "HexText.h"
 #include "StageHasher.h"
 
 namespace lockbox::replay {
 
-namespace {
-std::string Hex(uint64 v) {
-    char buf[24];
-    std::snprintf(buf, sizeof buf, "0x%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
-}  // namespace
+using detail::Hex;
 
 Player::Player(const ReplayFile& file, b2World& world, Game& game) : m_file(file), m_world(world), m_game(game) {}
 

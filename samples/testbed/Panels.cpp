@@ -16,8 +16,6 @@ namespace lockbox::testbed {
 
 namespace {
 
-constexpr float kPanelWidth = 360.0f;  // as in Testbed.cpp's layout
-
 // Nanoseconds to milliseconds, for display.
 double Ms(int64_t ns) { return static_cast<double>(ns) * 1e-6; }
 
@@ -26,8 +24,8 @@ double Ms(int64_t ns) { return static_cast<double>(ns) * 1e-6; }
 void Testbed::DrawPanels() {
     DrawLabels();
     if (!showPanel_) return;
-    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(windowWidth_) - kPanelWidth, 0.0f));
-    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, static_cast<float>(windowHeight_)));
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(windowWidth_) - static_cast<float>(kPanelWidth), 0.0f));
+    ImGui::SetNextWindowSize(ImVec2(static_cast<float>(kPanelWidth), static_cast<float>(windowHeight_)));
     ImGui::Begin("lockbox testbed", nullptr,
                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     // Sliders and fields take 55 % of the width, leaving room for their labels.

@@ -5,7 +5,8 @@
 ///
 /// Adding a testbed-only scene takes one file: write a scenes::LockboxScene subclass in
 /// samples/testbed/scenes/<name>.cpp and register it there with a namespace-scope
-/// `SceneRegistration` object. The build globs that folder, so nothing else changes.
+/// `SceneRegistration` object named after the scene (k<Name>Registration: a unity build
+/// compiles the scene files together). The build globs that folder, so nothing else changes.
 
 #include <memory>
 #include <string>

@@ -16,8 +16,6 @@ namespace lockbox::testbed {
 
 namespace {
 
-// Width of the side panel, window pixels.
-constexpr int kPanelWidth = 360;
 // Zoom factor per wheel notch and per Z/X key frame.
 constexpr double kWheelZoom = 1.15;
 constexpr double kKeyZoom = 1.03;

@@ -102,6 +102,9 @@ public:
     const std::string& CheckText() const noexcept { return checkText_; }
 
 private:
+    // Width of the side panel, window pixels: the panel (Panels.cpp) and the views left of it.
+    static constexpr int kPanelWidth = 360;
+
     // Viewports of the world views: one, or two side by side, left of the panel.
     std::vector<Viewport> Views() const;
     // The world shown in view i (nullptr: nothing loaded).

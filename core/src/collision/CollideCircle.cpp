@@ -5,6 +5,7 @@
 // manifold is therefore identical bit for bit when both bodies move by the same whole metres.
 // Every distance test compares exact Q32.32 squares (never a square rounded to Q16.16).
 
+#include "Midpoint.h"
 #include "lockbox/collision/CircleShape.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/PolygonShape.h"
@@ -12,14 +13,6 @@
 namespace lockbox {
 
 namespace {
-
-/// Exact midpoint of two body-frame points, rounded once per axis (ties away from zero).
-b2Vec2 Midpoint(const b2Vec2& a, const b2Vec2& b) {
-    const int64_t sx = int64_t{a.x.Raw()} + b.x.Raw();
-    const int64_t sy = int64_t{a.y.Raw()} + b.y.Raw();
-    return {Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(sx, 1), "Midpoint", sx, 0)),
-            Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(sy, 1), "Midpoint", sy, 0))};
-}
 
 /// A single-point manifold carrying the circle centre, with the all-zero contact id.
 void SetCirclePoint(b2Manifold* manifold, b2Manifold::Type type, const b2Vec2& localNormal, const b2Vec2& localPoint,
@@ -85,7 +78,8 @@ void b2CollidePolygonAndCircle(b2Manifold* manifold, const b2PolygonShape* polyg
     // If the center is inside the polygon. Box2D tests separation < b2_epsilon; with exact
     // separations the smallest positive value is 1 raw Q32.32, so the test is separation <= 0.
     if (separation <= Wide()) {
-        SetCirclePoint(manifold, b2Manifold::e_faceA, normals[normalIndex], Midpoint(v1, v2), circleB->m_p);
+        SetCirclePoint(manifold, b2Manifold::e_faceA, normals[normalIndex],
+                       collision_detail::MidpointRoundedOnSum(v1, v2), circleB->m_p);
         return;
     }
 
@@ -120,7 +114,7 @@ void b2CollidePolygonAndCircle(b2Manifold* manifold, const b2PolygonShape* polyg
     const int64_t twiceSeparation = tx * n.x.Raw() + ty * n.y.Raw();
     if (twiceSeparation > 2 * radiusWide.Raw()) return;
 
-    SetCirclePoint(manifold, b2Manifold::e_faceA, n, Midpoint(v1, v2), circleB->m_p);
+    SetCirclePoint(manifold, b2Manifold::e_faceA, n, collision_detail::MidpointRoundedOnSum(v1, v2), circleB->m_p);
 }
 
 }  // namespace lockbox

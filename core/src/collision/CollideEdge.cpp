@@ -7,6 +7,7 @@
 // whole metres gives the identical manifold. Separations, region tests and distance tests are
 // exact Q32.32 (or 128-bit) values; nothing is compared after rounding.
 
+#include "ReferenceFace.h"
 #include "lockbox/collision/CircleShape.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/EdgeShape.h"
@@ -111,14 +112,6 @@ void b2CollideEdgeAndCircle(b2Manifold* manifold, const b2EdgeShape* edgeA, cons
 }
 
 namespace {
-
-/// Hysteresis of the reference-face choice (Box2D's k_relativeTol 0.98, k_absoluteTol 0.001
-/// m): the polygon face wins only when its separation exceeds 0.98 * edge separation + 0.001
-/// m. The ratio is exact (98/100); 0.001 m rounds to raw 66 (about linearSlop / 5), a small
-/// fraction of the slop so that nearly equal separations keep the edge face.
-constexpr int64_t k_relativeTolNum = 98;
-constexpr int64_t k_relativeTolDen = 100;
-constexpr Fixed k_absoluteTol = Fixed::FromRaw(66);
 
 /// The best separating axis found so far.
 struct b2EPAxis {
@@ -310,14 +303,12 @@ void b2EPCollider::Collide(b2Manifold* manifold, const b2EdgeShape* edgeA, const
     const b2EPAxis polygonAxis = ComputePolygonSeparation();
     if (polygonAxis.type != b2EPAxis::e_unknown && polygonAxis.separation > radiusWide) return;
 
-    // Use hysteresis for jitter reduction: polygon axis when
-    // sepP > 0.98 sepE + 0.001, i.e. 100 sepP > 98 sepE + 100 tol, exact in int64 (|sep| < 2^48
-    // raw, so the scaled sums stay below 2^55).
+    // Hysteresis for jitter reduction (ReferenceFace.h): the polygon axis only when sepP > 0.98
+    // sepE + 0.001, so that nearly equal separations keep the edge face.
     b2EPAxis primaryAxis;
     if (polygonAxis.type == b2EPAxis::e_unknown) {
         primaryAxis = edgeAxis;
-    } else if (k_relativeTolDen * polygonAxis.separation.Raw() >
-               k_relativeTolNum * edgeAxis.separation.Raw() + k_relativeTolDen * Wide(k_absoluteTol).Raw()) {
+    } else if (collision_detail::PreferSecond(edgeAxis.separation, polygonAxis.separation)) {
         primaryAxis = polygonAxis;
     } else {
         primaryAxis = edgeAxis;

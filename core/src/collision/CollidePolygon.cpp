@@ -10,39 +10,14 @@
 //
 // Every separation is an exact Q32.32 dot product; comparisons never round.
 
+#include "Midpoint.h"
+#include "ReferenceFace.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/PolygonShape.h"
 
 namespace lockbox {
 
 namespace {
-
-/// Hysteresis of the reference-face choice (Box2D's k_relativeTol = 0.98 and k_absoluteTol =
-/// 0.001 m): face B is chosen only when sepB > 0.98 * sepA + 0.001 m. The relative factor is
-/// kept as the exact ratio 98/100; the absolute one is 0.001 m rounded to raw 66 (1.007 mm,
-/// about linearSlop / 5), as in Box2D a small fraction of the slop so that nearly equal
-/// separations keep the previous face and the contact ids stay stable.
-constexpr int64_t k_relativeTolNum = 98;
-constexpr int64_t k_relativeTolDen = 100;
-constexpr Fixed k_absoluteTol = Fixed::FromRaw(66);
-
-/// True when separationB > k_relativeTol * separationA + k_absoluteTol, compared exactly:
-/// 100 * sepB > 98 * sepA + 100 * tol in Q32.32 raw. Separations are dot products of in-range
-/// differences with unit normals, so |sep| < 2^16 m (2^48 raw) and the scaled sums stay below
-/// 2^55: no overflow.
-bool PreferSecond(Wide separationA, Wide separationB) {
-    const int64_t lhs = k_relativeTolDen * separationB.Raw();
-    const int64_t rhs = k_relativeTolNum * separationA.Raw() + k_relativeTolDen * Wide(k_absoluteTol).Raw();
-    return lhs > rhs;
-}
-
-/// Exact midpoint of two body-frame points, rounded once per axis.
-b2Vec2 Midpoint(const b2Vec2& a, const b2Vec2& b) {
-    const int64_t sx = int64_t{a.x.Raw()} + b.x.Raw();
-    const int64_t sy = int64_t{a.y.Raw()} + b.y.Raw();
-    return {Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(sx, 1), "Midpoint", sx, 0)),
-            Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(sy, 1), "Midpoint", sy, 0))};
-}
 
 /// Separation of poly2 from edge `edge1` of poly1 (both in poly1's frame; xf maps poly2's
 /// frame into poly1's). Box2D's b2EdgeSeparation.
@@ -165,7 +140,7 @@ void b2CollidePolygons(b2Manifold* manifold, const b2PolygonShape* polyA, const 
     int32 edge1;                  // reference edge
     bool flip;
 
-    if (PreferSecond(separationA, separationB)) {
+    if (collision_detail::PreferSecond(separationA, separationB)) {
         poly1 = polyB;
         poly2 = polyA;
         xf = xfBA;
@@ -197,7 +172,7 @@ void b2CollidePolygons(b2Manifold* manifold, const b2PolygonShape* polyA, const 
     b2Vec2 tangent = v12 - v11;
     tangent.Normalize();
     const b2Vec2 normal = b2Cross(tangent, Fixed(1));
-    const b2Vec2 planePoint = Midpoint(v11, v12);
+    const b2Vec2 planePoint = collision_detail::MidpointRoundedOnSum(v11, v12);
 
     // Side offsets, extended by polytope skin thickness (rounded once each).
     const Fixed sideOffset1 = totalRadius - b2Dot(tangent, v11);

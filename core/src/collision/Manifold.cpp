@@ -25,11 +25,11 @@ Fixed HalfToFixed(Wide w) {
 
 /// a + round((b - a) / 2): the midpoint, rounded on the difference so that it moves exactly
 /// with a translation of both points.
-b2Vec2 Midpoint(const b2Vec2& a, const b2Vec2& b) {
+b2Vec2 MidpointRoundedOnDifference(const b2Vec2& a, const b2Vec2& b) {
     const int64_t dx = int64_t{b.x.Raw()} - a.x.Raw();
     const int64_t dy = int64_t{b.y.Raw()} - a.y.Raw();
-    const Fixed hx = Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(dx, 1), "Midpoint", dx, 0));
-    const Fixed hy = Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(dy, 1), "Midpoint", dy, 0));
+    const Fixed hx = Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(dx, 1), "MidpointRoundedOnDifference", dx, 0));
+    const Fixed hy = Fixed::FromRaw(detail::NarrowRaw(detail::ShiftRound(dy, 1), "MidpointRoundedOnDifference", dy, 0));
     return {a.x + hx, a.y + hy};
 }
 
@@ -53,7 +53,7 @@ void b2WorldManifold::Initialize(const b2Manifold* manifold, const b2Transform& 
             }
             const b2Vec2 cA = pointA + radiusA * normal;
             const b2Vec2 cB = pointB - radiusB * normal;
-            points[0] = Midpoint(cA, cB);
+            points[0] = MidpointRoundedOnDifference(cA, cB);
             // Box2D 2.3+: dot(cB - cA, n), which is |d| - rA - rB; the correctly rounded length
             // is the only rounding (a dot with the rounded unit normal would add its 2-ULP
             // length error times |d|).

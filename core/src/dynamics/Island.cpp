@@ -1,9 +1,8 @@
 // b2Island: integration, the contact/joint solver loops and sleep.
 #include "dynamics/Island.h"
 
-#include <chrono>
-
 #include "dynamics/IslandShared.h"
+#include "dynamics/ProfileTimer.h"
 #include "dynamics/contacts/ContactSolver.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
@@ -14,12 +13,10 @@
 
 namespace lockbox {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-int64_t Nanos(Clock::time_point from) {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
-}
+using core_detail::Clock;
+using core_detail::Nanos;
 
+namespace {
 // One step's displacement h v, in Q32.32 for b2Body::Displace: clamps the motion (Box2D's
 // maxTranslation and maxRotation) by scaling the velocity. h v is formed once, and again only
 // for a clamped velocity.

@@ -26,17 +26,17 @@ int32 BlockSize(int32 items, int32 workers) {
 
 // How a stage's items are taken: split into blocks, split into blocks of one colour (whose items
 // write no body in common), or in one block, in order.
-enum class Split { e_blocks, e_colour, e_serial };
+enum class StageSplit { e_blocks, e_colour, e_serial };
 
 // A stage over items [begin, end).
-void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers, Split split = Split::e_blocks) {
+void AddStage(Shared& s, Kind kind, int32 begin, int32 end, int32 workers, StageSplit split = StageSplit::e_blocks) {
     if (end <= begin) return;
     Shared::Stage stage;
     stage.kind = kind;
-    stage.oneColour = split == Split::e_colour;
+    stage.oneColour = split == StageSplit::e_colour;
     stage.begin = begin;
     stage.end = end;
-    stage.blockSize = split == Split::e_serial ? end - begin : BlockSize(end - begin, workers);
+    stage.blockSize = split == StageSplit::e_serial ? end - begin : BlockSize(end - begin, workers);
     // A colour's blocks are cut where the contact lanes' quads begin (Stage::Grid), so that no
     // quad is split between two blocks (and solved by the scalar row).
     if (stage.oneColour) stage.blockSize = b2LaneQuad::CeilBoundary(stage.blockSize);
@@ -59,11 +59,12 @@ void AddColourStages(Shared& s, Kind kind, const b2Colours<Item>& colours, int32
             if (serialBegin < 0) serialBegin = begin;
             continue;
         }
-        if (serialBegin >= 0) AddStage(s, kind, serialBegin, begin, workers, Split::e_serial);
+        if (serialBegin >= 0) AddStage(s, kind, serialBegin, begin, workers, StageSplit::e_serial);
         serialBegin = -1;
-        AddStage(s, kind, begin, end, workers, Split::e_colour);
+        AddStage(s, kind, begin, end, workers, StageSplit::e_colour);
     }
-    if (serialBegin >= 0) AddStage(s, kind, serialBegin, colours.Start(b2_colourCount + 1), workers, Split::e_serial);
+    if (serialBegin >= 0)
+        AddStage(s, kind, serialBegin, colours.Start(b2_colourCount + 1), workers, StageSplit::e_serial);
 }
 
 // A kind of constraint stage over `count` constraints: by colour when they were coloured, else
@@ -73,7 +74,7 @@ void AddConstraintStages(Shared& s, Kind kind, const b2Colours<Item>& colours, i
     if (b2Coloured(count)) {
         AddColourStages(s, kind, colours, workers);
     } else {
-        AddStage(s, kind, 0, count, workers, Split::e_serial);
+        AddStage(s, kind, 0, count, workers, StageSplit::e_serial);
     }
 }
 

@@ -2,21 +2,15 @@
 // switches and the assert handler.
 #include "lockbox/dynamics/World.h"
 
-#include <chrono>
-
+#include "dynamics/ProfileTimer.h"
 #include "dynamics/WorldState.h"
 #include "dynamics/joints/JointAccess.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 
 namespace lockbox {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-int64_t Nanos(Clock::time_point from) {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
-}
-}  // namespace
-
+using core_detail::Clock;
+using core_detail::Nanos;
 using World = core_detail::Engine::World;
 using Joints = core_detail::Engine::Joints;
 

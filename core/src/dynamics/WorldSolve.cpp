@@ -1,7 +1,7 @@
 // b2World::Solve: the island search and the islands' solve (the discrete step).
-#include <chrono>
 #include <cstddef>
 
+#include "dynamics/ProfileTimer.h"
 #include "dynamics/WorldState.h"
 #include "dynamics/contacts/ContactRules.h"
 #include "lockbox/dynamics/World.h"
@@ -10,14 +10,11 @@
 namespace lockbox {
 
 using World = core_detail::Engine::World;
+using core_detail::Clock;
 using core_detail::IsSensorContact;
+using core_detail::Nanos;
 
 namespace {
-using Clock = std::chrono::steady_clock;
-int64_t Nanos(Clock::time_point from) {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
-}
-
 // Whether the built-in pool should take a step's islands, judged on the islands of the step
 // before (islands change little from one step to the next). Waking the pool's sleeping threads
 // costs tens of microseconds, recording the islands for them costs instructions, and the serial

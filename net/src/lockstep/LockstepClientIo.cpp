@@ -11,8 +11,6 @@
 namespace lockbox::net {
 namespace {
 constexpr uint64_t kSyncPingMicros = 20'000;  // handshake RTT probes, a few per 100 ms
-constexpr uint64_t kSnapshotResendMicros = 100'000;
-constexpr size_t kSnapshotWindow = 16;
 constexpr size_t kMaxHashesPerDatagram = 4;
 // Newest inputs sent in every datagram: each input goes out this many times (covers that many
 // minus one losses in a row) before only the retransmit timeout sends it again.

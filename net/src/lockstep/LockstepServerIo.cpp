@@ -7,8 +7,6 @@
 
 namespace lockbox::net {
 namespace {
-constexpr uint64_t kSnapshotResendMicros = 100'000;
-constexpr size_t kSnapshotWindow = 16;
 using State = SlotInfo::State;
 }  // namespace
 

@@ -117,14 +117,14 @@ bool Enc(Writer& w, const SnapshotRequest& m, const SessionShape&) {
     return true;
 }
 // Bytes chunk `index` of a `total`-byte snapshot must carry, or 0 when the index is past the end.
-uint64_t ChunkLength(uint64_t total, uint64_t index) {
+uint64_t SnapshotChunkLength(uint64_t total, uint64_t index) {
     const uint64_t offset = index * kSnapshotChunkBytes;  // index < 2^32: no overflow
     if (offset >= total) return 0;
     return std::min<uint64_t>(kSnapshotChunkBytes, total - offset);
 }
 bool Enc(Writer& w, const SnapshotChunk& m, const SessionShape&) {
     if (!FrameOk(m.frame) || m.totalSize < 1 || m.totalSize > kMaxSnapshotBytes) return false;
-    const uint64_t len = ChunkLength(m.totalSize, m.index);
+    const uint64_t len = SnapshotChunkLength(m.totalSize, m.index);
     if (len == 0 || m.bytes.size() != len) return false;
     w.Varint(static_cast<uint64_t>(m.frame));
     w.Varint(m.totalSize);
@@ -229,7 +229,7 @@ void Dec(Reader& r, SnapshotChunk& m, const SessionShape&) {
     const uint64_t index = r.Varint();
     if (!r.Ok()) return;
     if (total < 1 || total > kMaxSnapshotBytes || index > 0xFFFFFFFFull) return r.Fail(DecodeError::e_badValue);
-    const uint64_t len = ChunkLength(total, index);
+    const uint64_t len = SnapshotChunkLength(total, index);
     if (len == 0) return r.Fail(DecodeError::e_badValue);
     m.totalSize = static_cast<uint32_t>(total);
     m.index = static_cast<uint32_t>(index);

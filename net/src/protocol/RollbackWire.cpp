@@ -150,7 +150,7 @@ void Dec(Reader& r, RbJoinRequest& m, const RollbackShape&) {
 }
 
 // Payload bytes of chunk `index` of a `total`-byte snapshot; 0 when the index is past the end.
-size_t ChunkLength(uint32_t total, uint32_t index) noexcept {
+size_t RbSnapshotChunkLength(uint32_t total, uint32_t index) noexcept {
     const uint64_t offset = uint64_t{index} * kRbSnapshotChunkBytes;
     if (offset >= total) return 0;
     return static_cast<size_t>(std::min<uint64_t>(kRbSnapshotChunkBytes, total - offset));
@@ -158,7 +158,7 @@ size_t ChunkLength(uint32_t total, uint32_t index) noexcept {
 
 bool Enc(Writer& w, const RbSnapshotChunk& m, const RollbackShape&) {
     if (m.frame < 0 || m.totalSize < 1 || m.totalSize > kRbMaxSnapshotBytes) return false;
-    const size_t len = ChunkLength(m.totalSize, m.index);
+    const size_t len = RbSnapshotChunkLength(m.totalSize, m.index);
     if (len == 0 || m.bytes.size() != len) return false;
     w.Varint(static_cast<uint64_t>(m.frame));
     w.Varint(m.totalSize);
@@ -179,7 +179,7 @@ void Dec(Reader& r, RbSnapshotChunk& m, const RollbackShape&) {
         r.Fail(DecodeError::e_badValue);
     if (!r.Ok()) return;
     m.index = static_cast<uint32_t>(index);
-    m.bytes.resize(ChunkLength(m.totalSize, m.index));
+    m.bytes.resize(RbSnapshotChunkLength(m.totalSize, m.index));
     r.Copy(m.bytes);
 }
 

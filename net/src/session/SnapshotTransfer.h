@@ -22,6 +22,11 @@ namespace lockbox::net {
 /// late join offered to several joiners at once compresses it once).
 using CompressedSnapshot = std::shared_ptr<const std::vector<uint8_t>>;
 
+/// How the lockstep server and client pace the snapshots they send (SnapshotSender::Pump): the
+/// resend timer's floor, and the chunks sent per call. One setting for both ends of a late join.
+inline constexpr uint64_t kSnapshotResendMicros = 100'000;
+inline constexpr size_t kSnapshotWindow = 16;
+
 /// Sends one snapshot blob, compressed, in kSnapshotChunkBytes pieces.
 class SnapshotSender {
 public:

@@ -9,7 +9,12 @@
 
 #include <enet/enet.h>
 
+#include "transport/SocketSetup.h"
+
 namespace lockbox::net {
+
+using transport_detail::kSocketBufferBytes;
+using transport_detail::SetError;
 
 struct EnetTransport::Slot {
     ENetPeer* peer = nullptr;  // null: the slot is free
@@ -20,11 +25,6 @@ struct EnetTransport::Slot {
 namespace {
 
 constexpr size_t kChannels = 2;
-constexpr int kSocketBufferBytes = 4 << 20;  // room for bursts on loopback; the kernel may cap it
-
-void SetError(std::string* error, std::string message) {
-    if (error != nullptr) *error = std::move(message);
-}
 
 // ENet keeps global state (on Windows, Winsock); initialize it once per process and tear it
 // down at exit, after every transport is gone.

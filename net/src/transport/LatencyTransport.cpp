@@ -4,14 +4,15 @@
 #include <iterator>
 #include <limits>
 
+#include "transport/SaturatingAdd.h"
+
 namespace lockbox::net {
+
+using transport_detail::SatAdd;
+
 namespace {
 
 constexpr uint64_t kPermille = 1000;
-
-uint64_t SatAdd(uint64_t a, uint64_t b) {
-    return a > std::numeric_limits<uint64_t>::max() - b ? std::numeric_limits<uint64_t>::max() : a + b;
-}
 
 }  // namespace
 

@@ -7,7 +7,12 @@
 #include <stdexcept>
 #include <utility>
 
+#include "transport/SaturatingAdd.h"
+
 namespace lockbox::net {
+
+using transport_detail::SatAdd;
+
 namespace {
 
 constexpr uint64_t kPpmScale = 1000000;
@@ -20,10 +25,6 @@ uint64_t SplitMix(uint64_t& state) {
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);
-}
-
-uint64_t SatAdd(uint64_t a, uint64_t b) {
-    return a > std::numeric_limits<uint64_t>::max() - b ? std::numeric_limits<uint64_t>::max() : a + b;
 }
 
 // xoshiro256**: small state, good statistics, and all arithmetic is unsigned (wraps by design).

@@ -14,7 +14,12 @@
 #include <netinet/in.h>
 #include <sys/socket.h>
 
+#include "transport/SocketSetup.h"
+
 namespace lockbox::net {
+
+using transport_detail::kSocketBufferBytes;
+using transport_detail::SetError;
 
 struct UdpTransport::Slot {
     bool used = false;
@@ -26,11 +31,6 @@ struct UdpTransport::Slot {
 namespace {
 
 constexpr size_t kMaxPeersLimit = 65536;
-constexpr int kSocketBufferBytes = 4 << 20;  // room for bursts on loopback; the kernel may cap it
-
-void SetError(std::string* error, std::string message) {
-    if (error != nullptr) *error = std::move(message);
-}
 
 std::string Errno(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
 

@@ -69,7 +69,7 @@ public:
     }
 };
 
-const SceneRegistration kRegistration("bridge", [] {
+const SceneRegistration kBridgeRegistration("bridge", [] {
     return std::unique_ptr<scenes::LockboxScene>(std::make_unique<BridgeScene>());
 });
 

@@ -54,7 +54,7 @@ public:
     }
 };
 
-const SceneRegistration kRegistration("dominoes", [] {
+const SceneRegistration kDominoesRegistration("dominoes", [] {
     return std::unique_ptr<scenes::LockboxScene>(std::make_unique<DominoesScene>());
 });
 

@@ -8,8 +8,6 @@ namespace lockbox {
 
 namespace {
 
-constexpr int64_t kChainWeldSquared = int64_t{b2_chainWeldDistance.Raw()} * b2_chainWeldDistance.Raw();
-
 // Range and spacing checks shared by CreateChain and CreateLoop; `closed` also checks the
 // closing pair last -> first.
 b2ShapeError CheckChain(const b2Vec2* vertices, int32 count, bool closed) noexcept {
@@ -17,11 +15,12 @@ b2ShapeError CheckChain(const b2Vec2* vertices, int32 count, bool closed) noexce
         if (!shape_detail::InShapeRange(vertices[i])) return b2ShapeError::outOfRange;
     }
     for (int32 i = 0; i + 1 < count; ++i) {
-        if (shape_detail::DistanceSquaredRaw(vertices[i], vertices[i + 1]) < kChainWeldSquared) {
+        if (shape_detail::DistanceSquaredRaw(vertices[i], vertices[i + 1]) < shape_detail::kChainWeldSquared) {
             return b2ShapeError::duplicateVertices;
         }
     }
-    if (closed && shape_detail::DistanceSquaredRaw(vertices[count - 1], vertices[0]) < kChainWeldSquared) {
+    if (closed &&
+        shape_detail::DistanceSquaredRaw(vertices[count - 1], vertices[0]) < shape_detail::kChainWeldSquared) {
         return b2ShapeError::duplicateVertices;
     }
     return b2ShapeError::ok;

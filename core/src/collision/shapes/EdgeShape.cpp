@@ -6,13 +6,10 @@
 
 namespace lockbox {
 
-namespace {
-constexpr int64_t kChainWeldSquared = int64_t{b2_chainWeldDistance.Raw()} * b2_chainWeldDistance.Raw();
-}  // namespace
-
 b2ShapeError b2EdgeShape::Set(const b2Vec2& v1, const b2Vec2& v2) noexcept {
     if (!shape_detail::InShapeRange(v1) || !shape_detail::InShapeRange(v2)) return b2ShapeError::outOfRange;
-    if (shape_detail::DistanceSquaredRaw(v1, v2) < kChainWeldSquared) return b2ShapeError::duplicateVertices;
+    if (shape_detail::DistanceSquaredRaw(v1, v2) < shape_detail::kChainWeldSquared)
+        return b2ShapeError::duplicateVertices;
     m_vertex1 = v1;
     m_vertex2 = v2;
     m_hasVertex0 = false;

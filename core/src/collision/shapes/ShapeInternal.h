@@ -63,6 +63,10 @@ constexpr bool InShapeRange(const b2Vec2& v) noexcept {
     return InRange(v.x, b2_maxShapeCoordinate) && InRange(v.y, b2_maxShapeCoordinate);
 }
 
+/// b2_chainWeldDistance squared as a Q32.32 raw, the bound DistanceSquaredRaw is held to: edge
+/// and chain vertices closer than this are rejected as duplicates by both shapes alike.
+constexpr int64_t kChainWeldSquared = int64_t{b2_chainWeldDistance.Raw()} * b2_chainWeldDistance.Raw();
+
 /// Exact squared distance of two points as a Q32.32 raw (coordinates within the shape range,
 /// so each difference is below 2^30 raw and the sum below 2^61).
 constexpr int64_t DistanceSquaredRaw(const b2Vec2& a, const b2Vec2& b) noexcept {

@@ -77,8 +77,8 @@ b2WideMat33 MakeK(Wide mA, Wide mB, Wide iA, Wide iB, Fixed s1, Fixed s2, Fixed 
 // P = px * perp + pz * axis, LA = px s1 + py + pz a1, LB = px s2 + py + pz a2; applied with
 // sign -1 to A and +1 to B.
 template <class Vec, class Scalar>
-void Apply(Vec& vA, Scalar& wA, Vec& vB, Scalar& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& perp,
-           const b2Vec2& axis, Fixed s1, Fixed s2, Fixed a1, Fixed a2, Wide px, Wide py, Wide pz) {
+void ApplyFrameImpulse(Vec& vA, Scalar& wA, Vec& vB, Scalar& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& perp,
+                       const b2Vec2& axis, Fixed s1, Fixed s2, Fixed a1, Fixed a2, Wide px, Wide py, Wide pz) {
     const b2WideVec2 P = px * perp + pz * axis;
     const Wide LA = px * s1 + py + pz * a1;
     const Wide LB = px * s2 + py + pz * a2;
@@ -136,8 +136,8 @@ void b2PrismaticJoint::InitVelocityConstraints(const b2SolverData& data) {
         const Fixed r = data.step.dtRatio;
         m_impulse = {m_impulse.x * r, m_impulse.y * r, m_impulse.z * r};
         m_motorImpulse = m_motorImpulse * r;
-        Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, m_impulse.x, m_impulse.y,
-              m_motorImpulse + m_impulse.z);
+        ApplyFrameImpulse(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, m_impulse.x,
+                          m_impulse.y, m_motorImpulse + m_impulse.z);
     } else {
         m_impulse.SetZero();
         m_motorImpulse = Wide();
@@ -167,7 +167,8 @@ void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
         const Wide maxImpulse = MulWide(data.step.dt, m_maxMotorForce);
         m_motorImpulse = b2Clamp(m_motorImpulse + impulse, -maxImpulse, maxImpulse);
         impulse = m_motorImpulse - oldImpulse;
-        Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, Wide(), Wide(), impulse);
+        ApplyFrameImpulse(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, Wide(), Wide(),
+                          impulse);
     }
 
     const b2WideVec2 Cdot1(DotW(m_perp, vB - vA) + wB * m_s2 - wA * m_s1, wB - wA);
@@ -193,13 +194,13 @@ void b2PrismaticJoint::SolveVelocityConstraints(const b2SolverData& data) {
         m_impulse.y = f2r.y;
 
         const b2WideVec3 d = m_impulse - f1;
-        Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, d.x, d.y, d.z);
+        ApplyFrameImpulse(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, d.x, d.y, d.z);
     } else {
         // Limit is inactive: just solve the prismatic constraint in block form.
         const b2WideVec2 df = -math::Mul(m_pointMass, Cdot1);
         m_impulse.x += df.x;
         m_impulse.y += df.y;
-        Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, df.x, df.y, Wide());
+        ApplyFrameImpulse(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, df.x, df.y, Wide());
     }
 
     data.velocities[m_indexA].v = vA;
@@ -254,7 +255,8 @@ bool b2PrismaticJoint::SolvePositionConstraints(const b2SolverData& data) {
         impulse = {impulse1.x, impulse1.y, Wide()};
     }
 
-    Apply(cA, aA, cB, aB, mA, mB, iA, iB, f.perp, f.axis, f.s1, f.s2, f.a1, f.a2, impulse.x, impulse.y, impulse.z);
+    ApplyFrameImpulse(cA, aA, cB, aB, mA, mB, iA, iB, f.perp, f.axis, f.s1, f.s2, f.a1, f.a2, impulse.x, impulse.y,
+                      impulse.z);
 
     data.positions[m_indexA].c = cA;
     data.positions[m_indexA].a = aA;

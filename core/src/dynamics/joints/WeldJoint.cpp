@@ -43,8 +43,8 @@ b2WideMat33 WeldK(Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA, const b2
 }
 
 template <class Vec, class Scalar>
-void Apply(Vec& vA, Scalar& wA, Vec& vB, Scalar& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA,
-           const b2Vec2& rB, const b2WideVec2& P, Wide L) {
+void ApplyAnchorImpulse(Vec& vA, Scalar& wA, Vec& vB, Scalar& wB, Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA,
+                        const b2Vec2& rB, const b2WideVec2& P, Wide L) {
     SubProduct(vA.x, mA, P.x);
     SubProduct(vA.y, mA, P.y);
     SubProduct(wA, iA, b2Cross(rA, P) + L);
@@ -85,7 +85,8 @@ void b2WeldJoint::InitVelocityConstraints(const b2SolverData& data) {
     if (data.step.warmStarting) {
         const Fixed r = data.step.dtRatio;
         m_impulse = {m_impulse.x * r, m_impulse.y * r, m_impulse.z * r};
-        Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, b2WideVec2(m_impulse.x, m_impulse.y), m_impulse.z);
+        ApplyAnchorImpulse(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, b2WideVec2(m_impulse.x, m_impulse.y),
+                           m_impulse.z);
     } else {
         m_impulse.SetZero();
     }
@@ -114,13 +115,13 @@ void b2WeldJoint::SolveVelocityConstraints(const b2SolverData& data) {
         const b2WideVec2 impulse1 = -math::Mul(m_pointMass, Cdot1);
         m_impulse.x += impulse1.x;
         m_impulse.y += impulse1.y;
-        Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, impulse1, Wide());
+        ApplyAnchorImpulse(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, impulse1, Wide());
     } else {
         const b2WideVec2 Cdot1 = PointVelocity(vB, wB, m_rB) - PointVelocity(vA, wA, m_rA);
         const Wide Cdot2 = wB - wA;
         const b2WideVec3 impulse = -m_rigidSolver.Solve33(b2WideVec3(Cdot1.x, Cdot1.y, Cdot2));
         m_impulse += impulse;
-        Apply(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, b2WideVec2(impulse.x, impulse.y), impulse.z);
+        ApplyAnchorImpulse(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, b2WideVec2(impulse.x, impulse.y), impulse.z);
     }
 
     data.velocities[m_indexA].v = vA;
@@ -147,12 +148,12 @@ bool b2WeldJoint::SolvePositionConstraints(const b2SolverData& data) {
 
     if (m_frequencyHz > Fixed()) {
         const b2WideVec2 P = -K.Solve22(C1);
-        Apply(cA, aA, cB, aB, mA, mB, iA, iB, rA, rB, P, Wide());
+        ApplyAnchorImpulse(cA, aA, cB, aB, mA, mB, iA, iB, rA, rB, P, Wide());
     } else {
         const Fixed C2 = math::WrapAngle(aB - aA - m_referenceAngle);
         angularError = b2Abs(C2);
         const b2WideVec3 impulse = -K.Solve33(b2Vec3(C1.x, C1.y, C2));
-        Apply(cA, aA, cB, aB, mA, mB, iA, iB, rA, rB, b2WideVec2(impulse.x, impulse.y), impulse.z);
+        ApplyAnchorImpulse(cA, aA, cB, aB, mA, mB, iA, iB, rA, rB, b2WideVec2(impulse.x, impulse.y), impulse.z);
     }
 
     data.positions[m_indexA].c = cA;
