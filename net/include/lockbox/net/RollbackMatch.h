@@ -110,7 +110,7 @@ struct RollbackRemoteEnd {
 };
 
 /// How a match ended (RollbackMatch::End).
-struct RollbackMatchEnd {
+struct LOCKBOX_API RollbackMatchEnd {
     bool ended = false;     ///< the match is over (phase e_ended or e_failed)
     bool finished = false;  ///< frame `frame` is final here and every remote hashed it or left
     bool timedOut = false;  ///< the wait for the remotes hit the timeout
