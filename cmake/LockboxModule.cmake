@@ -71,6 +71,10 @@ function(lockbox_add_test_suite)
         return()
     endif()
     add_executable(${ARG_NAME} ${_sources})
+    # Test files are written as independent units (each with its own helpers in an anonymous
+    # namespace), so a unity build (CMAKE_UNITY_BUILD, which the CI presets use for the
+    # libraries) leaves them one file per unit; the precompiled headers below share their cost.
+    set_target_properties(${ARG_NAME} PROPERTIES UNITY_BUILD OFF)
     target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gmock GTest::gtest_main lockbox_compile_options)
     target_include_directories(${ARG_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests/support")
     # GoogleTest, the standard headers most tests use and, for suites over the engine, its public

@@ -18,8 +18,9 @@
 #   deb     the lockbox-dev .deb that CPack makes from the static build, installed with dpkg -i,
 #           used through find_package and pkg-config, then removed
 #
-# Library builds compile the libraries only (no tests, samples or benchmarks), with ccache when it
-# is installed. Every consumer compile line is checked for our private flags (warnings,
+# Library builds compile the libraries only (no tests, samples or benchmarks), as unity builds
+# (about half the time; the release build and the subdir step keep one unit per file), with
+# ccache when it is installed. Every consumer compile line is checked for our private flags (warnings,
 # -ffp-contract, sanitizers), which must not reach it.
 #
 # Usage: scripts/check-consumer.sh [--only "static shared subdir fetch deb"] [--keep DIR]
@@ -64,7 +65,7 @@ trap cleanup EXIT
 generator=(-G Ninja)
 launcher=()
 if command -v ccache > /dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-libs_only=(-DLOCKBOX_BUILD_TESTS=OFF -DLOCKBOX_BUILD_SAMPLES=OFF -DLOCKBOX_BUILD_BENCH=OFF)
+libs_only=(-DLOCKBOX_BUILD_TESTS=OFF -DLOCKBOX_BUILD_SAMPLES=OFF -DLOCKBOX_BUILD_BENCH=OFF -DCMAKE_UNITY_BUILD=ON)
 hello="$repo_root/samples/hello_world/main.cpp"
 hashes=()
 
