@@ -27,69 +27,75 @@ uint64_t SplitMix(uint64_t& state) {
     return z ^ (z >> 31);
 }
 
-// xoshiro256**: small state, good statistics, and all arithmetic is unsigned (wraps by design).
-class Rng {
-public:
-    explicit Rng(uint64_t seed = 0) {
-        for (uint64_t& word : m_s) word = SplitMix(seed);
-    }
-    uint64_t Next() {
-        const uint64_t result = Rotl(m_s[1] * 5, 7) * 9;
-        const uint64_t t = m_s[1] << 17;
-        m_s[2] ^= m_s[0];
-        m_s[3] ^= m_s[1];
-        m_s[1] ^= m_s[2];
-        m_s[0] ^= m_s[3];
-        m_s[2] ^= t;
-        m_s[3] = Rotl(m_s[3], 45);
-        return result;
-    }
-    // True with probability ppm / 1e6. The modulo bias (2^64 mod 1e6 out of 2^64) is negligible.
-    bool Chance(uint32_t ppm) {
-        if (ppm == 0) return false;
-        if (ppm >= kPpmScale) return true;
-        return Next() % kPpmScale < ppm;
-    }
-    // Uniform in [0, max].
-    uint64_t UpTo(uint32_t max) { return max == 0 ? 0 : Next() % (uint64_t{max} + 1); }
-
-private:
-    static uint64_t Rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-    uint64_t m_s[4];
-};
-
-struct Window {
-    uint64_t start, end;
-};
-
-struct LinkState {
-    LinkProfile profile;
-    Rng rng;
-    LinkStats stats;
-    std::vector<Window> blackouts;
-    bool burstBad = false;
-    // The transmitter is busy until busyUntil + busyFrac / bandwidth microseconds; keeping the
-    // fraction exactly means a long run of datagrams has no rounding drift.
-    uint64_t busyUntil = 0;
-    uint64_t busyFrac = 0;
-};
-
-struct Packet {
-    uint64_t due;
-    uint64_t seq;
-    PeerId from;
-    LinkState* link;  // std::map nodes never move; saves a lookup per delivery
-    std::vector<uint8_t> bytes;
-};
-
-// Heap order: the earliest (due, seq) on top. seq is unique per net, so the order is total.
-struct Later {
-    bool operator()(const Packet& a, const Packet& b) const { return a.due != b.due ? a.due > b.due : a.seq > b.seq; }
-};
-
 }  // namespace
 
 struct SimNet::Impl {
+    // The types an Impl holds are nested in it rather than file-local: a class with external
+    // linkage whose fields have internal-linkage types draws GCC's -Wsubobject-linkage when a
+    // unity build includes this file.
+
+    // xoshiro256**: small state, good statistics, and all arithmetic is unsigned (wraps by design).
+    class Rng {
+    public:
+        explicit Rng(uint64_t seed = 0) {
+            for (uint64_t& word : m_s) word = SplitMix(seed);
+        }
+        uint64_t Next() {
+            const uint64_t result = Rotl(m_s[1] * 5, 7) * 9;
+            const uint64_t t = m_s[1] << 17;
+            m_s[2] ^= m_s[0];
+            m_s[3] ^= m_s[1];
+            m_s[1] ^= m_s[2];
+            m_s[0] ^= m_s[3];
+            m_s[2] ^= t;
+            m_s[3] = Rotl(m_s[3], 45);
+            return result;
+        }
+        // True with probability ppm / 1e6. The modulo bias (2^64 mod 1e6 out of 2^64) is negligible.
+        bool Chance(uint32_t ppm) {
+            if (ppm == 0) return false;
+            if (ppm >= kPpmScale) return true;
+            return Next() % kPpmScale < ppm;
+        }
+        // Uniform in [0, max].
+        uint64_t UpTo(uint32_t max) { return max == 0 ? 0 : Next() % (uint64_t{max} + 1); }
+
+    private:
+        static uint64_t Rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+        uint64_t m_s[4];
+    };
+
+    struct Window {
+        uint64_t start, end;
+    };
+
+    struct LinkState {
+        LinkProfile profile;
+        Rng rng;
+        LinkStats stats;
+        std::vector<Window> blackouts;
+        bool burstBad = false;
+        // The transmitter is busy until busyUntil + busyFrac / bandwidth microseconds; keeping the
+        // fraction exactly means a long run of datagrams has no rounding drift.
+        uint64_t busyUntil = 0;
+        uint64_t busyFrac = 0;
+    };
+
+    struct Packet {
+        uint64_t due;
+        uint64_t seq;
+        PeerId from;
+        LinkState* link;  // std::map nodes never move; saves a lookup per delivery
+        std::vector<uint8_t> bytes;
+    };
+
+    // Heap order: the earliest (due, seq) on top. seq is unique per net, so the order is total.
+    struct Later {
+        bool operator()(const Packet& a, const Packet& b) const {
+            return a.due != b.due ? a.due > b.due : a.seq > b.seq;
+        }
+    };
+
     uint64_t seed;
     uint64_t now = 0;
     uint64_t nextSeq = 0;
@@ -272,7 +278,7 @@ void SimNet::SetAllLinks(const LinkProfile& profile) {
 
 void SimNet::Blackout(PeerId from, PeerId to, uint64_t startMicros, uint64_t endMicros) {
     m_impl->CheckPair(from, to);
-    if (endMicros > startMicros) m_impl->LinkFor(from, to).blackouts.push_back(Window{startMicros, endMicros});
+    if (endMicros > startMicros) m_impl->LinkFor(from, to).blackouts.push_back(Impl::Window{startMicros, endMicros});
 }
 
 uint64_t SimNet::NowMicros() const noexcept { return m_impl->now; }
