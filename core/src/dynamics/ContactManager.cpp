@@ -1,6 +1,7 @@
 // b2ContactManager: pairs to contacts, contact destruction and the narrow-phase pass.
 #include "dynamics/ContactManager.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "dynamics/contacts/ContactRules.h"
@@ -73,6 +74,7 @@ void b2ContactManager::AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB) {
     if (m_profile) ++m_profile->contactsCreated;
 
     // Insert at the head of the world list.
+    c->m_listKey = m_contactList != nullptr ? m_contactList->m_listKey - 1 : 0;
     c->m_prev = nullptr;
     c->m_next = m_contactList;
     if (m_contactList != nullptr) m_contactList->m_prev = c;
@@ -186,62 +188,173 @@ void b2ContactManager::EvaluateAhead(b2TaskSystem& tasks) {
     tasks.ParallelFor(static_cast<int32>(m_evaluatedContacts.size()), kContactsPerBlock, &EvaluateRange, this);
 }
 
-void b2ContactManager::Collide(b2TaskSystem* tasks, int32 minParallelContacts) {
-    m_evaluatedContacts.clear();
-    if (tasks != nullptr && tasks->GetWorkerCount() > 1 && m_contactCount >= minParallelContacts) EvaluateAhead(*tasks);
-    size_t nextEvaluated = 0;
+bool b2ContactManager::CollideInOrder(b2Contact* c, const Evaluated* evaluated) {
+    b2Fixture* fixtureA = c->GetFixtureA();
+    b2Fixture* fixtureB = c->GetFixtureB();
+    b2Body* bodyA = fixtureA->GetBody();
+    b2Body* bodyB = fixtureB->GetBody();
 
+    // Re-filter contacts whose filter data or body type changed.
+    if (c->m_flags & b2Contact::e_filterFlag) {
+        // Flagged by a listener since the evaluation: the serial path decides.
+        evaluated = nullptr;
+        if (!bodyB->ShouldCollide(bodyA) || !ShouldCollide(fixtureA, fixtureB)) {
+            Destroy(c);
+            return true;
+        }
+        c->m_flags &= ~b2Contact::e_filterFlag;
+    }
+
+    // At least one body must be awake and dynamic or kinematic.
+    if (!IsActivePair(bodyA, bodyB)) return false;
+
+    // Destroy contacts whose fat AABBs ceased to overlap.
+    const int32 proxyIdA = fixtureA->m_proxies[static_cast<size_t>(c->GetChildIndexA())].proxyId;
+    const int32 proxyIdB = fixtureB->m_proxies[static_cast<size_t>(c->GetChildIndexB())].proxyId;
+    if (!m_broadPhase.TestOverlap(proxyIdA, proxyIdB)) {
+        Destroy(c);
+        return true;
+    }
+
+    if (evaluated != nullptr && evaluated->sensor == c->IsSensorPair()) {
+        // Counted here, on the stepping thread, exactly when the serial update would.
+        AddSaturations(evaluated->saturations);
+        c->UpdateFrom(m_contactListener, m_profile, evaluated->sensor, evaluated->manifold, evaluated->touching);
+    } else {
+        c->Update(m_contactListener, m_profile);
+    }
+    return true;
+}
+
+void b2ContactManager::Collide(b2TaskSystem* tasks, int32 minParallelContacts) {
+    const bool parallel = tasks != nullptr && tasks->GetWorkerCount() > 1 && m_contactCount >= minParallelContacts;
+    if (parallel && m_contactListener == nullptr) {
+        UpdateOnWorkers(*tasks);
+        return;
+    }
+    m_evaluatedContacts.clear();
+    if (parallel) EvaluateAhead(*tasks);
+    size_t nextEvaluated = 0;
     b2Contact* c = m_contactList;
     while (c) {
         // The walk meets the contacts evaluated ahead in the same order (it only removes).
         const Evaluated* evaluated = nullptr;
         if (nextEvaluated < m_evaluatedContacts.size() && m_evaluatedContacts[nextEvaluated] == c)
             evaluated = &m_evaluated[nextEvaluated++];
+        b2Contact* next = c->GetNext();  // c may be destroyed
+        CollideInOrder(c, evaluated);
+        c = next;
+    }
+}
 
-        b2Fixture* fixtureA = c->GetFixtureA();
-        b2Fixture* fixtureB = c->GetFixtureB();
-        const int32 indexA = c->GetChildIndexA();
-        const int32 indexB = c->GetChildIndexB();
-        b2Body* bodyA = fixtureA->GetBody();
-        b2Body* bodyB = fixtureB->GetBody();
+namespace {
+// Contact slots per block of the workers' pass.
+constexpr int32 kSlotsPerBlock = 64;
+}  // namespace
 
-        // Re-filter contacts whose filter data or body type changed.
+bool b2ContactManager::LaterInList(const b2Contact* a, const b2Contact* b) { return a->m_listKey > b->m_listKey; }
+
+void b2ContactManager::UpdateSlots(int32 begin, int32 end, void* self) {
+    auto* manager = static_cast<b2ContactManager*>(self);
+    // Counted locally and stored once: neighbouring blocks' tallies share cache lines.
+    BlockTally tally;
+    const SaturationCapture capture(&tally.saturations);
+    for (int32 id = begin; id < end; ++id) {
+        Pending& pending = manager->m_pending[static_cast<size_t>(id)];
+        b2Contact* c = manager->m_contacts.Get(id);
+        if (c == nullptr) {
+            pending = Pending::kDone;
+            continue;
+        }
+        // The walk's tests, on the state before the walk: what they decide here, the walk
+        // would decide too, except that a body woken earlier in the list can make an inactive
+        // pair active (the list-order pass sees to that).
+        const b2Fixture* fixtureA = c->GetFixtureA();
+        const b2Fixture* fixtureB = c->GetFixtureB();
         if (c->m_flags & b2Contact::e_filterFlag) {
-            // Flagged by a listener since the evaluation: the serial path decides.
-            evaluated = nullptr;
-            if (!bodyB->ShouldCollide(bodyA) || !ShouldCollide(fixtureA, fixtureB)) {
-                b2Contact* cNuke = c;
-                c = cNuke->GetNext();
-                Destroy(cNuke);
-                continue;
-            }
-            c->m_flags &= ~b2Contact::e_filterFlag;
-        }
-
-        // At least one body must be awake and dynamic or kinematic.
-        if (!IsActivePair(bodyA, bodyB)) {
-            c = c->GetNext();
-            continue;
-        }
-
-        // Destroy contacts whose fat AABBs ceased to overlap.
-        const int32 proxyIdA = fixtureA->m_proxies[static_cast<size_t>(indexA)].proxyId;
-        const int32 proxyIdB = fixtureB->m_proxies[static_cast<size_t>(indexB)].proxyId;
-        if (!m_broadPhase.TestOverlap(proxyIdA, proxyIdB)) {
-            b2Contact* cNuke = c;
-            c = cNuke->GetNext();
-            Destroy(cNuke);
-            continue;
-        }
-
-        if (evaluated != nullptr && evaluated->sensor == c->IsSensorPair()) {
-            // Counted here, on the stepping thread, exactly when the serial update would.
-            AddSaturations(evaluated->saturations);
-            c->UpdateFrom(m_contactListener, m_profile, evaluated->sensor, evaluated->manifold, evaluated->touching);
+            pending = Pending::kRefilter;
+        } else if (!IsActivePair(fixtureA->GetBody(), fixtureB->GetBody())) {
+            pending = Pending::kInactive;
+        } else if (!manager->m_broadPhase.TestOverlap(
+                       fixtureA->m_proxies[static_cast<size_t>(c->GetChildIndexA())].proxyId,
+                       fixtureB->m_proxies[static_cast<size_t>(c->GetChildIndexB())].proxyId)) {
+            pending = Pending::kDestroy;
         } else {
-            c->Update(m_contactListener, m_profile);
+            ++tally.updated;
+            if (!c->IsSensorPair()) ++tally.evaluated;
+            pending = c->UpdateUnobserved() ? Pending::kWake : Pending::kDone;
         }
-        c = c->GetNext();
+    }
+    manager->m_tallies[static_cast<size_t>(begin / kSlotsPerBlock)] = tally;
+}
+
+void b2ContactManager::UpdateOnWorkers(b2TaskSystem& tasks) {
+    const int32 slots = m_contacts.GetCapacity();
+    if (slots == 0) return;
+    const int32 blocks = 1 + (slots - 1) / kSlotsPerBlock;
+    m_pending.resize(static_cast<size_t>(slots));
+    m_tallies.resize(static_cast<size_t>(blocks));
+    tasks.ParallelFor(slots, kSlotsPerBlock, &UpdateSlots, this);
+
+    uint64 saturations = 0;
+    for (int32 k = 0; k < blocks; ++k) {
+        const BlockTally& tally = m_tallies[static_cast<size_t>(k)];
+        saturations += tally.saturations;
+        if (m_profile) {
+            m_profile->contactsUpdated += tally.updated;
+            m_profile->manifoldsEvaluated += tally.evaluated;
+        }
+    }
+    AddSaturations(saturations);
+
+    m_inOrder.clear();
+    m_lastWoken = WokenCounts{};
+    for (int32 id = 0; id < slots; ++id) {
+        const Pending pending = m_pending[static_cast<size_t>(id)];
+        if (pending == Pending::kWake || pending == Pending::kDestroy || pending == Pending::kRefilter)
+            m_inOrder.push_back(m_contacts.Get(id));
+    }
+    std::make_heap(m_inOrder.begin(), m_inOrder.end(), LaterInList);
+    while (!m_inOrder.empty()) {
+        std::pop_heap(m_inOrder.begin(), m_inOrder.end(), LaterInList);
+        b2Contact* c = m_inOrder.back();
+        m_inOrder.pop_back();
+        const int64_t key = c->m_listKey;
+        Pending& pending = m_pending[static_cast<size_t>(c->m_id)];
+        b2Body* bodyA = c->GetFixtureA()->GetBody();
+        b2Body* bodyB = c->GetFixtureB()->GetBody();
+        const bool awakeA = bodyA->IsAwake();
+        const bool awakeB = bodyB->IsAwake();
+        if (pending == Pending::kWake) {
+            pending = Pending::kDone;
+            bodyA->SetAwake(true);
+            bodyB->SetAwake(true);
+        } else if (pending == Pending::kDestroy) {
+            pending = Pending::kDone;
+            Destroy(c);
+        } else {
+            // Refiltered, or made active by a body woken before it: the walk's own work.
+            pending = CollideInOrder(c, nullptr) ? Pending::kDone : Pending::kInactive;
+        }
+        QueueWoken(bodyA, awakeA, key);
+        QueueWoken(bodyB, awakeB, key);
+    }
+}
+
+void b2ContactManager::QueueWoken(const b2Body* body, bool wasAwake, int64_t key) {
+    if (wasAwake || !body->IsAwake()) return;
+    for (const b2ContactEdge* edge = body->m_contactList; edge != nullptr; edge = edge->next) {
+        b2Contact* c = edge->contact;
+        Pending& pending = m_pending[static_cast<size_t>(c->m_id)];
+        if (pending != Pending::kInactive) continue;
+        if (c->m_listKey <= key) {
+            ++m_lastWoken.passed;
+            continue;
+        }
+        ++m_lastWoken.joined;
+        pending = Pending::kQueued;
+        m_inOrder.push_back(c);
+        std::push_heap(m_inOrder.begin(), m_inOrder.end(), LaterInList);
     }
 }
 

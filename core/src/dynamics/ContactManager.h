@@ -36,9 +36,9 @@ public:
     void Destroy(b2Contact* c);
     /// Re-filters flagged contacts, drops contacts whose fat AABBs separated, and updates the
     /// manifolds of contacts with an awake, non-static body. With a task system of more than
-    /// one worker and at least minParallelContacts contacts, the manifolds are evaluated in
-    /// parallel first; everything else (and every listener call) then happens in list order,
-    /// exactly as with one worker.
+    /// one worker and at least minParallelContacts contacts, the workers take the contacts'
+    /// own work; what reaches outside a contact (destroying it, waking its bodies, every
+    /// listener call) still happens in list order, so the result is the one-worker result.
     void Collide(b2TaskSystem* tasks, int32 minParallelContacts);
 
     /// The contact with a given id (nullptr when free).
@@ -58,6 +58,15 @@ public:
     b2ContactListener* m_contactListener = nullptr;  ///< nullptr: no events, no overhead
     b2Profile* m_profile = nullptr;                  ///< counters of the current step (owned by the world)
 
+    /// What the last narrow phase on workers without a listener left to the list order, for
+    /// tests: inactive contacts that a body woken before them in the list brought into the
+    /// walk, and those of woken bodies that the walk had already passed (left as they were).
+    struct WokenCounts {
+        int32 joined = 0;
+        int32 passed = 0;
+    };
+    WokenCounts m_lastWoken;
+
 private:
     /// A manifold evaluated ahead of the list walk (possibly on a worker thread).
     struct Evaluated {
@@ -67,15 +76,49 @@ private:
         bool touching = false;
     };
 
+    /// What the workers' pass left a contact with, for the pass in list order (by contact id).
+    enum class Pending : uint8 {
+        kDone,      ///< updated, nothing left to do (or a free slot)
+        kInactive,  ///< neither body awake and movable: updated only if a body is woken before it
+        kQueued,    ///< was inactive, a body was woken before it: the list walk's work, in order
+        kWake,      ///< updated; began or stopped touching, so both bodies wake, in order
+        kDestroy,   ///< fat AABBs apart: destroyed, in order
+        kRefilter   ///< flagged for filtering: the list walk's work, in order
+    };
+    /// One block of the workers' pass: what it counted.
+    struct BlockTally {
+        uint64 saturations = 0;
+        int32 updated = 0;
+        int32 evaluated = 0;
+    };
+
     bool ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB);
+    /// The list walk's work on one contact (2.2.1's loop body): re-filter it when flagged, skip
+    /// it unless a body is awake and movable, destroy it when the fat AABBs separated, else
+    /// update it (from `evaluated` when it was evaluated ahead). Returns false when it skipped
+    /// the contact as inactive.
+    bool CollideInOrder(b2Contact* c, const Evaluated* evaluated);
     /// Evaluates, on the task system, the contacts the list walk will update unless a listener
     /// changes their filtering first: m_evaluatedContacts in list order, m_evaluated beside.
     void EvaluateAhead(b2TaskSystem& tasks);
     static void EvaluateRange(int32 begin, int32 end, void* self);
+    /// Collide for a world without a contact listener: the workers update in place, by slot,
+    /// every contact that is active and still overlapping; what is left is then done in list
+    /// order (by list key), as the walk would meet it.
+    void UpdateOnWorkers(b2TaskSystem& tasks);
+    static void UpdateSlots(int32 begin, int32 end, void* self);
+    /// Min-heap order on list keys (distinct, so no ties): the head comes out first.
+    static bool LaterInList(const b2Contact* a, const b2Contact* b);
+    /// After an operation at list key `key`: if `body` was asleep before it and is awake now,
+    /// its inactive contacts after that key join the walk.
+    void QueueWoken(const b2Body* body, bool wasAwake, int64_t key);
 
-    // Narrow-phase scratch of the parallel path (grown, never shrunk; not state).
+    // Narrow-phase scratch of the parallel paths (grown, never shrunk; not state).
     std::vector<b2Contact*> m_evaluatedContacts;
     std::vector<Evaluated> m_evaluated;
+    std::vector<Pending> m_pending;
+    std::vector<BlockTally> m_tallies;
+    std::vector<b2Contact*> m_inOrder;  ///< min-heap on list key
 
     b2Pool<b2Fixture>* m_fixtures;
     b2Pool<b2Contact> m_contacts;

@@ -124,13 +124,18 @@ public:
     /// its wake-ups on the stepping thread (a game's own task system gets every loop: what a
     /// loop costs on it is the game's to judge).
     bool OnOwnPool() const noexcept { return m_userTasks == nullptr; }
-    /// Contacts from which the narrow phase is evaluated in parallel. A game's task system is
-    /// trusted from a few blocks on. The built-in pool wakes sleeping threads, and its worker
-    /// reads manifolds and transforms last written on the stepping thread's core: on two cores
-    /// the stage took longer on the pool than on one thread up to tumbler's 22,000 contacts and
-    /// broke even at many_pyramids' 58,000 (docs/benchmarks.md, "Workers"). The islands' rule
-    /// is in WorldSolve.cpp, since it needs the last step's islands.
-    int32 MinParallelContacts() const noexcept { return OnOwnPool() ? 32768 : 64; }
+    /// Contacts from which the narrow phase runs on the workers. A game's task system is
+    /// trusted from a few blocks on. On the built-in pool, without a contact listener the
+    /// workers update the contacts in place and pay from a few thousand (rain's 8,000 and
+    /// tumbler's 22,000 halve their stage on two cores; pyramid20's 590 do not gain). With a
+    /// listener they can only evaluate ahead of the list walk, which reads every contact again:
+    /// on two cores that took longer than one thread up to tumbler's size and broke even at
+    /// many_pyramids' 58,000 (docs/benchmarks.md, "Workers"). The islands' rule is in
+    /// WorldSolve.cpp, since it needs the last step's islands.
+    int32 MinParallelContacts() const noexcept {
+        if (!OnOwnPool()) return 64;
+        return m_contactManager.m_contactListener == nullptr ? 2048 : 32768;
+    }
     /// The last step's islands were worth the built-in pool (WorldSolve.cpp). Not state: only
     /// the speed of a step depends on it.
     bool m_shareIslands = false;
@@ -156,13 +161,12 @@ public:
     // could take, in contact-list order up to `m_toiSorted`, unsorted additions after it.
     std::vector<b2Contact*> m_toiCandidates;
     size_t m_toiSorted = 0;
-    int64_t m_toiHeadOrder = 0;  ///< the m_toiOrder of the list's head
     /// Counts the edits that can turn a filter of the search from reject to accept while the
     /// events are solved (a listener's SetBullet or SetSensor); the search drops a candidate
     /// that a filter rejects only while this count stays put (not state).
     uint32 m_toiFilterEdits = 0;
     void NoteToiFilterEdit() noexcept { ++m_toiFilterEdits; }
-    /// Every contact with a cached time of impact or a fast body, numbered in list order; with
+    /// Every contact with a cached time of impact or a fast body, in list order; with
     /// `invalidate` (a new step) the cached times of impact are dropped first.
     void CollectToiCandidates(bool invalidate);
     void AddToiCandidate(b2Contact* c) { m_toiCandidates.push_back(c); }

@@ -83,8 +83,6 @@ bool MayReachToiTarget(const b2Contact& c, const b2Sweep& sweepA, const b2Sweep&
 void World::CollectToiCandidates(bool invalidate) {
     m_toiCandidates.clear();
     m_toiSorted = 0;
-    m_toiHeadOrder = 0;
-    int64_t order = 0;
     for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) {
         if (invalidate) {
             // Invalidate TOI.
@@ -93,7 +91,6 @@ void World::CollectToiCandidates(bool invalidate) {
             c->m_toi = Fixed(1);
         }
         if (m_toiSearchEveryContact) continue;
-        c->m_toiOrder = order++;
         const uint32 bodyFlags = c->GetFixtureA()->GetBody()->m_flags | c->GetFixtureB()->GetBody()->m_flags;
         if ((c->m_flags & b2Contact::e_toiFlag) != 0 || (bodyFlags & b2Body::e_fastFlag) != 0) AddToiCandidate(c);
     }
@@ -101,22 +98,14 @@ void World::CollectToiCandidates(bool invalidate) {
 }
 
 void World::AddNewToiCandidates(const b2Contact* oldHead) {
-    int64_t created = 0;
-    for (b2Contact* c = m_contactManager.m_contactList; c != oldHead; c = c->m_next) ++created;
-    // The newest is the head: the orders rise from it towards the old head.
-    int64_t order = m_toiHeadOrder - created;
-    m_toiHeadOrder = order;
-    for (b2Contact* c = m_contactManager.m_contactList; c != oldHead; c = c->m_next) {
-        c->m_toiOrder = order++;
-        AddToiCandidate(c);
-    }
+    for (b2Contact* c = m_contactManager.m_contactList; c != oldHead; c = c->m_next) AddToiCandidate(c);
 }
 
 void World::SortToiCandidates() {
     if (m_toiSorted == m_toiCandidates.size()) return;
-    // Orders are distinct (one per list place), so the order has no ties; a contact added twice
-    // sits next to itself and is kept once.
-    const auto before = [](const b2Contact* a, const b2Contact* b) { return a->m_toiOrder < b->m_toiOrder; };
+    // List keys are distinct, so the order has no ties; a contact added twice sits next to
+    // itself and is kept once.
+    const auto before = [](const b2Contact* a, const b2Contact* b) { return a->m_listKey < b->m_listKey; };
     const auto middle = m_toiCandidates.begin() + static_cast<std::ptrdiff_t>(m_toiSorted);
     std::sort(middle, m_toiCandidates.end(), before);
     std::inplace_merge(m_toiCandidates.begin(), middle, m_toiCandidates.end(), before);

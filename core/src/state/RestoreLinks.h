@@ -97,6 +97,8 @@ inline void core_detail::Engine::RestoreLinks::LinkRestoredContact(b2Contact* c,
     c->m_indexB = indexB;
     c->m_nodeA = b2ContactEdge{b.body, c, nullptr, nullptr};
     c->m_nodeB = b2ContactEdge{a.body, c, nullptr, nullptr};
+    // Appended at the tail: one more than the contact before it (b2Contact::m_listKey).
+    c->m_listKey = tail.last != nullptr ? tail.last->m_listKey + 1 : 0;
     AppendToWorldList(c, head, tail.last);
     state_detail::AppendEdge(&c->m_nodeA, a.body->m_contactList, tail.edgeTails[static_cast<size_t>(a.bodyId)]);
     state_detail::AppendEdge(&c->m_nodeB, b.body->m_contactList, tail.edgeTails[static_cast<size_t>(b.bodyId)]);

@@ -155,8 +155,15 @@ void b2Contact::UpdateFrom(b2ContactListener* listener, b2Profile* profile, bool
     FinishUpdate(listener, profile, oldManifold, sensor, touching);
 }
 
-void b2Contact::FinishUpdate(b2ContactListener* listener, b2Profile* profile, const b2Manifold& oldManifold,
-                             bool sensor, bool touching) {
+bool b2Contact::UpdateUnobserved() {
+    const b2Manifold oldManifold = m_manifold;
+    m_flags |= e_enabledFlag;
+    const bool sensor = IsSensorPair();
+    const bool touching = EvaluateUpdate(sensor, &m_manifold);
+    return SettleUpdate(oldManifold, sensor, touching);
+}
+
+bool b2Contact::SettleUpdate(const b2Manifold& oldManifold, bool sensor, bool touching) {
     const bool wasTouching = (m_flags & e_touchingFlag) != 0;
     if (!sensor) {
         // Match new points to old ones by feature key and carry their impulses over for warm
@@ -175,17 +182,22 @@ void b2Contact::FinishUpdate(b2ContactListener* listener, b2Profile* profile, co
                 }
             }
         }
-
-        if (touching != wasTouching) {
-            m_fixtureA->GetBody()->SetAwake(true);
-            m_fixtureB->GetBody()->SetAwake(true);
-        }
     }
 
     if (touching)
         m_flags |= e_touchingFlag;
     else
         m_flags &= ~e_touchingFlag;
+    return !sensor && touching != wasTouching;
+}
+
+void b2Contact::FinishUpdate(b2ContactListener* listener, b2Profile* profile, const b2Manifold& oldManifold,
+                             bool sensor, bool touching) {
+    const bool wasTouching = (m_flags & e_touchingFlag) != 0;
+    if (SettleUpdate(oldManifold, sensor, touching)) {
+        m_fixtureA->GetBody()->SetAwake(true);
+        m_fixtureB->GetBody()->SetAwake(true);
+    }
 
     if (listener == nullptr) return;
     if (!wasTouching && touching) {

@@ -126,10 +126,19 @@ private:
     /// shapes touch. Reads only the shapes and the bodies' transforms and writes only
     /// `*manifold`, so different contacts can be evaluated on different threads.
     bool EvaluateUpdate(bool sensor, b2Manifold* manifold);
+    /// Update for a world with no contact listener, leaving the waking of the bodies to the
+    /// caller, so that different contacts can be updated on different threads: the same
+    /// manifold, impulses and flags as Update. Returns whether the bodies must be woken (a
+    /// non-sensor pair began or stopped touching). Counts nothing.
+    bool UpdateUnobserved();
     /// Update with its geometry already evaluated by EvaluateUpdate(sensor, &manifold) for the
     /// current transforms: the same result and listener calls as Update.
     void UpdateFrom(b2ContactListener* listener, b2Profile* profile, bool sensor, const b2Manifold& manifold,
                     bool touching);
+    /// The part of an update that needs nothing outside the contact, once the new manifold is in
+    /// place: impulses carried over by feature, touching flag. Returns whether the bodies must
+    /// be woken.
+    bool SettleUpdate(const b2Manifold& oldManifold, bool sensor, bool touching);
     /// What Update and UpdateFrom share once the new manifold is in place.
     void FinishUpdate(b2ContactListener* listener, b2Profile* profile, const b2Manifold& oldManifold, bool sensor,
                       bool touching);
@@ -155,10 +164,12 @@ private:
     int32 m_id;
     b2ContactEdge m_nodeA;
     b2ContactEdge m_nodeB;
-    /// Where the contact stands in the world's contact list while time of impact is solved
-    /// (smaller is nearer the head): the order of the event search's candidates. Scratch of
-    /// b2World::Step, never state.
-    int64_t m_toiOrder = 0;
+    /// Where the contact stands in the world's contact list: smaller is nearer the head, and
+    /// no two contacts of a world share one. A contact inserted at the head takes the old
+    /// head's key minus one, a restored list numbers its contacts upwards from the head, and
+    /// removals leave the others' order as it was, so sorting by it gives list order without
+    /// walking the list. Derived from the list, never state.
+    int64_t m_listKey = 0;
 };
 
 }  // namespace lockbox
