@@ -154,6 +154,12 @@ bool IsActivePair(const b2Body* bodyA, const b2Body* bodyB) {
 }
 }  // namespace
 
+bool b2ContactManager::FatAABBsOverlap(const b2Contact& c) const {
+    const int32 proxyIdA = c.GetFixtureA()->m_proxies[static_cast<size_t>(c.GetChildIndexA())].proxyId;
+    const int32 proxyIdB = c.GetFixtureB()->m_proxies[static_cast<size_t>(c.GetChildIndexB())].proxyId;
+    return m_broadPhase.TestOverlap(proxyIdA, proxyIdB);
+}
+
 void b2ContactManager::EvaluateRange(int32 begin, int32 end, void* self) {
     auto* manager = static_cast<b2ContactManager*>(self);
     for (int32 i = begin; i < end; ++i) {
@@ -175,12 +181,8 @@ void b2ContactManager::EvaluateAhead(b2TaskSystem& tasks) {
     m_evaluatedContacts.clear();
     for (b2Contact* c = m_contactList; c; c = c->m_next) {
         if (c->m_flags & b2Contact::e_filterFlag) continue;
-        const b2Fixture* fixtureA = c->GetFixtureA();
-        const b2Fixture* fixtureB = c->GetFixtureB();
-        if (!IsActivePair(fixtureA->GetBody(), fixtureB->GetBody())) continue;
-        const int32 proxyIdA = fixtureA->m_proxies[static_cast<size_t>(c->GetChildIndexA())].proxyId;
-        const int32 proxyIdB = fixtureB->m_proxies[static_cast<size_t>(c->GetChildIndexB())].proxyId;
-        if (!m_broadPhase.TestOverlap(proxyIdA, proxyIdB)) continue;
+        if (!IsActivePair(c->GetFixtureA()->GetBody(), c->GetFixtureB()->GetBody())) continue;
+        if (!FatAABBsOverlap(*c)) continue;
         m_evaluatedContacts.push_back(c);
     }
     if (m_evaluated.size() < m_evaluatedContacts.size()) m_evaluated.resize(m_evaluatedContacts.size());
@@ -209,9 +211,7 @@ bool b2ContactManager::CollideInOrder(b2Contact* c, const Evaluated* evaluated) 
     if (!IsActivePair(bodyA, bodyB)) return false;
 
     // Destroy contacts whose fat AABBs ceased to overlap.
-    const int32 proxyIdA = fixtureA->m_proxies[static_cast<size_t>(c->GetChildIndexA())].proxyId;
-    const int32 proxyIdB = fixtureB->m_proxies[static_cast<size_t>(c->GetChildIndexB())].proxyId;
-    if (!m_broadPhase.TestOverlap(proxyIdA, proxyIdB)) {
+    if (!FatAABBsOverlap(*c)) {
         Destroy(c);
         return true;
     }
@@ -269,15 +269,11 @@ void b2ContactManager::UpdateSlots(int32 begin, int32 end, void* self) {
         // The walk's tests, on the state before the walk: what they decide here, the walk
         // would decide too, except that a body woken earlier in the list can make an inactive
         // pair active (the list-order pass sees to that).
-        const b2Fixture* fixtureA = c->GetFixtureA();
-        const b2Fixture* fixtureB = c->GetFixtureB();
         if (c->m_flags & b2Contact::e_filterFlag) {
             pending = Pending::kRefilter;
-        } else if (!IsActivePair(fixtureA->GetBody(), fixtureB->GetBody())) {
+        } else if (!IsActivePair(c->GetFixtureA()->GetBody(), c->GetFixtureB()->GetBody())) {
             pending = Pending::kInactive;
-        } else if (!manager->m_broadPhase.TestOverlap(
-                       fixtureA->m_proxies[static_cast<size_t>(c->GetChildIndexA())].proxyId,
-                       fixtureB->m_proxies[static_cast<size_t>(c->GetChildIndexB())].proxyId)) {
+        } else if (!manager->FatAABBsOverlap(*c)) {
             pending = Pending::kDestroy;
         } else {
             ++tally.updated;

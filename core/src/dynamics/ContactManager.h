@@ -93,6 +93,8 @@ private:
     };
 
     bool ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB);
+    /// The walk's keep test: the fat AABBs of the contact's two proxies still overlap.
+    bool FatAABBsOverlap(const b2Contact& c) const;
     /// The list walk's work on one contact (2.2.1's loop body): re-filter it when flagged, skip
     /// it unless a body is awake and movable, destroy it when the fat AABBs separated, else
     /// update it (from `evaluated` when it was evaluated ahead). Returns false when it skipped

@@ -31,6 +31,14 @@ inline b2Body* MakeStaticBox(b2World& world, Fixed x, Fixed y, Fixed hx, Fixed h
     return body;
 }
 
+/// A static sensor box of half-extents (hx, hy) centred at (x, y): it reports overlaps and
+/// pushes nothing.
+inline b2Body* MakeStaticSensorBox(b2World& world, Fixed x, Fixed y, Fixed hx, Fixed hy) {
+    b2Body* body = MakeStaticBox(world, x, y, hx, hy);
+    body->GetFixtureList()->SetSensor(true);
+    return body;
+}
+
 /// A dynamic box of half-extents (hx, hy) at (x, y).
 inline b2Body* MakeDynamicBox(b2World& world, Fixed x, Fixed y, Fixed hx, Fixed hy, Fixed density = 1,
                               Fixed friction = Fixed(0.2), Fixed restitution = Fixed(), Fixed angle = Fixed()) {

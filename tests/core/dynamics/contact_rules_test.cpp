@@ -105,14 +105,7 @@ TEST(ContactRules, SensorReportsBeginEndWithoutPointsOrResponse) {
     RecordingListener listener;
     world.SetContactListener(&listener);
     // A static sensor zone between y = -1 and 1; a ball falls through it.
-    b2BodyDef zd;
-    b2Body* zone = world.CreateBody(&zd);
-    b2PolygonShape zoneBox;
-    zoneBox.SetAsBox(2, 1);
-    b2FixtureDef fd;
-    fd.shape = &zoneBox;
-    fd.isSensor = true;
-    zone->CreateFixture(&fd);
+    MakeStaticSensorBox(world, 0, 0, 2, 1);
     b2Body* ball = MakeDynamicCircle(world, 0, 3, Fixed(0.25));
 
     bool sawTouching = false;

@@ -35,15 +35,7 @@ void BuildScene(b2World& world, std::vector<b2Body*>& pile) {
 
     // A static sensor over the left half of the container: sensor pairs update without a
     // manifold and never wake their bodies.
-    b2BodyDef sensorDef;
-    sensorDef.position.Set(-10, 3);
-    b2Body* sensorBody = world.CreateBody(&sensorDef);
-    b2PolygonShape sensorBox;
-    sensorBox.SetAsBox(8, 3);
-    b2FixtureDef sensorFixture;
-    sensorFixture.shape = &sensorBox;
-    sensorFixture.isSensor = true;
-    sensorBody->CreateFixture(&sensorFixture);
+    test::MakeStaticSensorBox(world, -10, 3, 8, 3);
 
     for (int row = 0; row < 12; ++row) {
         for (int col = 0; col < 24; ++col) {
