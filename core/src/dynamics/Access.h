@@ -23,7 +23,7 @@ struct core_detail::Engine::Bodies {
 
 struct core_detail::Engine::Contacts {
     /// Bytes from a contact's start to its graph edges: what the state walks read of it (the
-    /// edges come last, so the walks can request just these cache lines).
+    /// flags end it and the edges follow them, so the walks can request just these cache lines).
     static size_t WalkedBytes(const b2Contact& c) noexcept {
         return static_cast<size_t>(reinterpret_cast<const char*>(&c.m_nodeA) - reinterpret_cast<const char*>(&c));
     }

@@ -231,6 +231,7 @@ void b2Body::SetType(b2BodyType type) {
     m_torque = Fixed();
     // The type rule may now accept or reject existing pairs.
     for (b2ContactEdge* ce = m_contactList; ce; ce = ce->next) ce->contact->FlagForFiltering();
+    Engine::Of(*m_world).NoteToiBodiesEdit(*this);
 }
 
 // Set-up fields that rollback frames share through the structure image: each setter marks
@@ -256,11 +257,12 @@ void b2Body::SetUserData(uint64 data) noexcept {
 }
 
 void b2Body::SetBullet(bool flag) noexcept {
-    if (flag != IsBullet()) Engine::Of(*m_world).NoteToiFilterEdit();
+    const bool edit = flag != IsBullet();
     if (flag)
         m_flags |= e_bulletFlag;
     else
         m_flags &= ~e_bulletFlag;
+    if (edit) Engine::Of(*m_world).NoteToiBodiesEdit(*this);
 }
 
 void b2Body::SetSleepingAllowed(bool flag) {

@@ -41,6 +41,20 @@ public:
     /// listener call) still happens in list order, so the result is the one-worker result.
     void Collide(b2TaskSystem* tasks, int32 minParallelContacts);
 
+    /// Clears every contact's island flag (in slot order, which is memory order).
+    void ClearIslandFlags() {
+        m_contacts.ForEachLive([](b2Contact& c) { c.m_flags &= ~b2Contact::e_islandFlag; });
+    }
+
+    /// Calls f(b2Contact&) for every contact in slots [begin, end), in slot order (memory
+    /// order); slots are below SlotCount().
+    template <class F>
+    void ForEachInSlots(int32 begin, int32 end, F f) {
+        m_contacts.ForEachLiveIn(begin, end, f);
+    }
+    /// Number of contact slots (live or free).
+    int32 SlotCount() const noexcept { return m_contacts.GetCapacity(); }
+
     /// The contact with a given id (nullptr when free).
     b2Contact* GetContact(int32 id) noexcept { return m_contacts.Get(id); }
     /// The contact pool (ids and free list).

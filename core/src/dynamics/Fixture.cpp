@@ -79,9 +79,9 @@ b2Shape* b2Fixture::EditShape() noexcept {
 
 void b2Fixture::SetSensor(bool sensor) noexcept {
     MarkChanged(m_body);
-    if (sensor != m_isSensor && m_body != nullptr && m_body->GetWorld() != nullptr)
-        core_detail::Engine::Of(*m_body->GetWorld()).NoteToiFilterEdit();
+    const bool edit = sensor != m_isSensor && m_body != nullptr && m_body->GetWorld() != nullptr;
     m_isSensor = sensor;
+    if (edit) core_detail::Engine::Of(*m_body->GetWorld()).NoteSensorEdit(*m_body);
 }
 
 void b2Fixture::SetUserData(uint64 data) noexcept {

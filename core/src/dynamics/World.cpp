@@ -34,6 +34,20 @@ void World::MarkBodyStructureChanged(int32 bodyId) noexcept {
     m_frames.LogStructureChange({0, bodyId, b2_nullId, b2_nullId});
 }
 
+void World::NoteSensorEdit(b2Body& body) noexcept {
+    NoteToiFilterEdit();
+    for (b2ContactEdge* ce = body.m_contactList; ce; ce = ce->next) {
+        b2Contact* c = ce->contact;
+        c->m_sensor = c->m_fixtureA->IsSensor() || c->m_fixtureB->IsSensor();
+    }
+}
+
+void World::NoteToiBodiesEdit(b2Body& body) noexcept {
+    NoteToiFilterEdit();
+    for (b2ContactEdge* ce = body.m_contactList; ce; ce = ce->next)
+        ce->contact->m_toiBodies = b2Contact::ToiBodies(body, *ce->other);
+}
+
 void World::MarkJointStructureChanged(const b2Joint& joint) noexcept {
     m_frames.LogStructureChange({0, joint.m_bodyA->GetId(), joint.m_bodyB->GetId(), joint.GetId()});
 }

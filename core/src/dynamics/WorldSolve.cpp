@@ -11,7 +11,6 @@ namespace lockbox {
 
 using World = core_detail::Engine::World;
 using core_detail::Clock;
-using core_detail::IsSensorContact;
 using core_detail::Nanos;
 
 namespace {
@@ -43,8 +42,8 @@ void World::Solve(const b2TimeStep& step) {
     const bool measure = hasWorkers && OnOwnPool();
     int32 islands = 0;
     int64_t work = 0, largest = 0;
-    for (b2Body* b = m_bodyList; b; b = b->m_next) b->m_flags &= ~(b2Body::e_islandFlag | b2Body::e_fastFlag);
-    for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) c->m_flags &= ~b2Contact::e_islandFlag;
+    m_bodies.ForEachLive([](b2Body& b) { b.m_flags &= ~(b2Body::e_islandFlag | b2Body::e_fastFlag); });
+    m_contactManager.ClearIslandFlags();
 
     m_stack.resize(static_cast<size_t>(m_bodyCount));
     b2Body** stack = m_stack.data();
@@ -71,16 +70,23 @@ void World::Solve(const b2TimeStep& step) {
             b->m_flags |= b2Body::e_scannedFlag;
 
             for (b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) {
+                // The graph lies scattered in memory: request the next edge's line while this
+                // one is looked at (a hint only).
+                if (ce->next != nullptr) __builtin_prefetch(ce->next);
                 b2Contact* contact = ce->contact;
                 if (contact->m_flags & b2Contact::e_islandFlag) continue;
                 if (!contact->IsEnabled() || !contact->IsTouching()) continue;
-                if (IsSensorContact(contact)) continue;
+                LOCKBOX_ASSERT(contact->IsSensorPair() ==
+                                   (contact->GetFixtureA()->IsSensor() || contact->GetFixtureB()->IsSensor()),
+                               "stale sensor mark");
+                if (contact->IsSensorPair()) continue;
                 m_island.Add(contact);
                 contact->m_flags |= b2Contact::e_islandFlag;
                 b2Body* other = ce->other;
                 if (other->m_flags & b2Body::e_islandFlag) continue;
                 stack[stackCount++] = other;
                 other->m_flags |= b2Body::e_islandFlag;
+                if (other->m_contactList != nullptr) __builtin_prefetch(other->m_contactList);
             }
 
             for (b2JointEdge* je = b->m_jointList; je; je = je->next) {

@@ -166,9 +166,21 @@ public:
     /// that a filter rejects only while this count stays put (not state).
     uint32 m_toiFilterEdits = 0;
     void NoteToiFilterEdit() noexcept { ++m_toiFilterEdits; }
+    /// A fixture of `body` became or stopped being a sensor: its contacts' sensor marks
+    /// (b2Contact::IsSensorPair) follow, and the time-of-impact filters are looked at again.
+    void NoteSensorEdit(b2Body& body) noexcept;
+    /// `body` changed type or bullet flag: its contacts' b2Contact::m_toiBodies follow, and the
+    /// time-of-impact filters are looked at again.
+    void NoteToiBodiesEdit(b2Body& body) noexcept;
     /// Every contact with a cached time of impact or a fast body, in list order; with
-    /// `invalidate` (a new step) the cached times of impact are dropped first.
+    /// `invalidate` (a new step) the cached times of impact are dropped first. Walks the
+    /// contacts by slot, on the workers when there are enough, then sorts the few it keeps.
     void CollectToiCandidates(bool invalidate);
+    /// CollectToiCandidates's walk of slots [begin, end) into that block's buffer (a
+    /// b2TaskRange; `self` is the world).
+    static void CollectToiSlots(int32 begin, int32 end, void* self);
+    std::vector<std::vector<b2Contact*>> m_toiBlocks;  ///< CollectToiSlots's output, per block
+    bool m_toiInvalidate = false;                      ///< CollectToiCandidates's argument, for the blocks
     void AddToiCandidate(b2Contact* c) { m_toiCandidates.push_back(c); }
     /// Candidates for the contacts FindNewContacts put before `oldHead`, the list's head before.
     void AddNewToiCandidates(const b2Contact* oldHead);

@@ -2,17 +2,18 @@
 // of candidate contacts.
 #include <algorithm>
 #include <cstddef>
+#include <vector>
 
 #include "dynamics/WorldState.h"
 #include "dynamics/contacts/ContactRules.h"
 #include "lockbox/collision/TimeOfImpact.h"
+#include "lockbox/dynamics/Tasks.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 
 namespace lockbox {
 
 using World = core_detail::Engine::World;
-using core_detail::IsSensorContact;
 
 namespace {
 // A TOI at or beyond 1 - 1 raw leaves a sub-step of (1 raw) * dt, which rounds to zero time:
@@ -70,6 +71,11 @@ bool MayReachToiTarget(const b2Contact& c, const b2Sweep& sweepA, const b2Sweep&
     b2Distance(&output, &cache, &input);
     return Wide(output.distance) - motion < reach;
 }
+
+/// Contact slots per block of CollectToiSlots, and the fewest slots the built-in pool is woken
+/// for (a game's task system gets any walk of more than one block).
+constexpr int32 kToiSlotsPerBlock = 512;
+constexpr int32 kMinPoolToiSlots = 4096;
 }  // namespace
 
 // The event search of SolveTOI visits every contact of the world list in list order, and the
@@ -80,21 +86,48 @@ bool MayReachToiTarget(const b2Contact& c, const b2Sweep& sweepA, const b2Sweep&
 // one of its bodies fast, or when it is created; both are added as they happen. A candidate
 // that a filter rejects for the rest of the step is dropped after its visit, so each event's
 // search reads only contacts that can still take an event.
-void World::CollectToiCandidates(bool invalidate) {
-    m_toiCandidates.clear();
-    m_toiSorted = 0;
-    for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) {
+void World::CollectToiSlots(int32 begin, int32 end, void* self) {
+    World& world = *static_cast<World*>(self);
+    std::vector<b2Contact*>& kept = world.m_toiBlocks[static_cast<size_t>(begin / kToiSlotsPerBlock)];
+    kept.clear();
+    const bool invalidate = world.m_toiInvalidate;
+    const bool collect = !world.m_toiSearchEveryContact;
+    world.m_contactManager.ForEachInSlots(begin, end, [&](b2Contact& c) {
         if (invalidate) {
             // Invalidate TOI.
-            c->m_flags &= ~(b2Contact::e_toiFlag | b2Contact::e_islandFlag);
-            c->m_toiCount = 0;
-            c->m_toi = Fixed(1);
+            c.m_flags &= ~(b2Contact::e_toiFlag | b2Contact::e_islandFlag);
+            c.m_toiCount = 0;
+            c.m_toi = Fixed(1);
         }
-        if (m_toiSearchEveryContact) continue;
-        const uint32 bodyFlags = c->GetFixtureA()->GetBody()->m_flags | c->GetFixtureB()->GetBody()->m_flags;
-        if ((c->m_flags & b2Contact::e_toiFlag) != 0 || (bodyFlags & b2Body::e_fastFlag) != 0) AddToiCandidate(c);
+        if (!collect) return;
+        // The edges' other bodies are the contact's bodies, read without visiting its fixtures.
+        const uint32 bodyFlags = c.m_nodeA.other->m_flags | c.m_nodeB.other->m_flags;
+        if ((c.m_flags & b2Contact::e_toiFlag) != 0 || (bodyFlags & b2Body::e_fastFlag) != 0) kept.push_back(&c);
+    });
+}
+
+void World::CollectToiCandidates(bool invalidate) {
+    m_toiCandidates.clear();
+    m_toiInvalidate = invalidate;
+    // Each contact is written only by its own block, and the bodies' flags are only read.
+    const int32 slots = m_contactManager.SlotCount();
+    const int32 blocks = (slots + kToiSlotsPerBlock - 1) / kToiSlotsPerBlock;
+    if (m_toiBlocks.size() < static_cast<size_t>(blocks)) m_toiBlocks.resize(static_cast<size_t>(blocks));
+    b2TaskSystem* tasks = Tasks();
+    const int32 minSlots = OnOwnPool() ? kMinPoolToiSlots : kToiSlotsPerBlock + 1;
+    if (tasks != nullptr && tasks->GetWorkerCount() > 1 && slots >= minSlots) {
+        tasks->ParallelFor(slots, kToiSlotsPerBlock, &CollectToiSlots, this);
+    } else {
+        for (int32 begin = 0; begin < slots; begin += kToiSlotsPerBlock)
+            CollectToiSlots(begin, b2Min(begin + kToiSlotsPerBlock, slots), this);
     }
-    m_toiSorted = m_toiCandidates.size();
+    for (int32 k = 0; k < blocks; ++k) {
+        const std::vector<b2Contact*>& kept = m_toiBlocks[static_cast<size_t>(k)];
+        m_toiCandidates.insert(m_toiCandidates.end(), kept.begin(), kept.end());
+    }
+    // Slot order; the search takes them in list order, which their list keys give.
+    m_toiSorted = 0;
+    SortToiCandidates();
 }
 
 void World::AddNewToiCandidates(const b2Contact* oldHead) {
@@ -119,27 +152,36 @@ void World::SolveTOI(const b2TimeStep& step) {
     // 2.2.1 then reports an event at the start of its sweep. Flag such a body, so that its
     // contacts are examined as 2.2.1 examines them; every other contact of slow bodies is
     // provably without an event (MayReachToiTarget).
+    // The walk notes whether any body is fast, for the cheap check below.
     const bool pressedToi = (m_flags & e_skipPressedToi) == 0;
+    bool anyFast = false;
     for (b2Body* b = pressedToi ? m_bodyList : nullptr; b; b = b->m_next) {
-        if (b->m_type == b2_staticBody || (b->m_flags & b2Body::e_fastFlag) != 0) continue;
+        if ((b->m_flags & b2Body::e_fastFlag) != 0) {
+            anyFast = true;
+            continue;
+        }
+        if (b->m_type == b2_staticBody) continue;
         const bool bCollidesWithAny = b->IsBullet() || b->m_type != b2_dynamicBody;
         for (b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) {
             const b2Body* other = ce->other;
-            // The query loop's filters, cheapest first: one body a bullet or not dynamic, neither
+            const b2Contact* c = ce->contact;
+            LOCKBOX_ASSERT(c->m_toiBodies == b2Contact::ToiBodies(*b, *other), "stale time-of-impact body mark");
+            // The query loop's filters, cheapest first: one body a bullet or not dynamic (marked
+            // in the contact, so the other body is read only for the pairs that pass), neither
             // examined already, one active.
-            if (!bCollidesWithAny && !other->IsBullet() && other->m_type == b2_dynamicBody) continue;
+            if (!bCollidesWithAny && !c->m_toiBodies) continue;
             if ((other->m_flags & b2Body::e_fastFlag) != 0) continue;
             const bool active = (b->IsAwake()) || (other->IsAwake() && other->m_type != b2_staticBody);
             if (!active) continue;
-            const b2Contact* c = ce->contact;
-            if (!c->IsEnabled() || IsSensorContact(c)) continue;
+            if (!c->IsEnabled() || c->IsSensorPair()) continue;
             const Wide motion =
                 b->SweptDistanceBound() + (other->m_type == b2_staticBody ? Wide() : other->SweptDistanceBound());
-            const bool aFirst = c->GetFixtureA()->GetBody() == b;
+            const bool aFirst = c->m_nodeB.other == b;  // body A is node B's other
             const b2Sweep& sweepA = aFirst ? b->m_sweep : other->m_sweep;
             const b2Sweep& sweepB = aFirst ? other->m_sweep : b->m_sweep;
             if (MayReachToiTarget(*c, sweepA, sweepB, motion)) {
                 b->m_flags |= b2Body::e_fastFlag;
+                anyFast = true;
                 break;
             }
         }
@@ -147,12 +189,9 @@ void World::SolveTOI(const b2TimeStep& step) {
 
     // The cheap check: without a fast or bullet body no contact can need a TOI event (see
     // b2Body::IsFastThisStep and the loop above), so nothing else runs.
-    bool anyFast = false;
-    for (const b2Body* b = m_bodyList; b; b = b->m_next) {
-        if (b->m_flags & b2Body::e_fastFlag) {
-            anyFast = true;
-            break;
-        }
+    if (!pressedToi) {
+        for (const b2Body* b = m_bodyList; b && !anyFast; b = b->m_next)
+            anyFast = (b->m_flags & b2Body::e_fastFlag) != 0;
     }
     if (!anyFast) {
         m_stepComplete = true;
@@ -163,10 +202,10 @@ void World::SolveTOI(const b2TimeStep& step) {
     m_island.m_observer = nullptr;  // the island fenceposts cover the discrete solve only
 
     if (m_stepComplete) {
-        for (b2Body* b = m_bodyList; b; b = b->m_next) {
-            b->m_flags &= ~b2Body::e_islandFlag;
-            b->m_sweep.alpha0 = Fixed();
-        }
+        m_bodies.ForEachLive([](b2Body& b) {
+            b.m_flags &= ~b2Body::e_islandFlag;
+            b.m_sweep.alpha0 = Fixed();
+        });
     }
     CollectToiCandidates(m_stepComplete);
     uint32 filterEdits = m_toiFilterEdits;
@@ -335,7 +374,7 @@ void World::SolveTOI(const b2TimeStep& step) {
                 if (other->m_type == b2_dynamicBody && !body->IsBullet() && !other->IsBullet()) continue;
 
                 // Skip sensors.
-                if (IsSensorContact(contact)) continue;
+                if (contact->IsSensorPair()) continue;
 
                 // Tentatively advance the body to the TOI.
                 const b2Sweep backup = other->m_sweep;

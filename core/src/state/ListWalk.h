@@ -26,7 +26,7 @@ inline void PrefetchBytes(const void* p, size_t bytes) noexcept {
 }
 
 /// A contact: only the part the state walks read (everything before the graph edges, which
-/// b2Contact keeps last), every cache line it touches.
+/// follow the flags in b2Contact), every cache line it touches.
 inline void PrefetchObject(const b2Contact* c) noexcept {
     if (c == nullptr) return;
     const char* first = reinterpret_cast<const char*>(c);

@@ -18,6 +18,7 @@ struct FixtureSlot {
     b2Fixture* fixture = nullptr;
     b2Body* body = nullptr;
     int32 bodyId = -1;
+    bool sensor = false;  ///< fixture->IsSensor(), so that linking a contact need not visit the fixture
 };
 
 /// Where the contact list being rebuilt stands: its last contact, and the last contact edge of
@@ -95,6 +96,8 @@ inline void core_detail::Engine::RestoreLinks::LinkRestoredContact(b2Contact* c,
     c->m_fixtureIdB = fixtureB;
     c->m_indexA = indexA;
     c->m_indexB = indexB;
+    c->m_sensor = a.sensor || b.sensor;
+    c->m_toiBodies = b2Contact::ToiBodies(*a.body, *b.body);
     c->m_nodeA = b2ContactEdge{b.body, c, nullptr, nullptr};
     c->m_nodeB = b2ContactEdge{a.body, c, nullptr, nullptr};
     // Appended at the tail: one more than the contact before it (b2Contact::m_listKey).

@@ -166,7 +166,7 @@ struct core_detail::Engine::SnapshotApply {
                         state_detail::PrefetchBytes(ahead->m_shape.get(), state_detail::kShapePrefetchBytes);
                 }
                 b2Fixture* f = world.m_fixtures.Get(fi.id);
-                img.fixtureSlots[static_cast<size_t>(fi.id)] = {f, body, bi.id};
+                img.fixtureSlots[static_cast<size_t>(fi.id)] = {f, body, bi.id, fi.sensor};
                 f->m_id = fi.id;
                 f->m_body = body;
                 f->m_density = fi.density;

@@ -310,7 +310,7 @@ struct core_detail::Engine::Frames {
             cache.slots.assign(static_cast<size_t>(world.m_fixtures.GetCapacity()), FixtureSlot{});
             for (b2Body* b = world.m_bodyList; b != nullptr; b = b->m_next) {
                 for (b2Fixture* fx = b->m_fixtureList; fx != nullptr; fx = fx->m_next) {
-                    cache.slots[static_cast<size_t>(fx->m_id)] = {fx, b, b->m_id};
+                    cache.slots[static_cast<size_t>(fx->m_id)] = {fx, b, b->m_id, fx->IsSensor()};
                 }
             }
             cache.slotsEpoch = world.m_frames.m_structureEpoch;

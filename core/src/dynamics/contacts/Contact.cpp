@@ -46,17 +46,24 @@ bool core_detail::ShapesNeedSwap(b2Shape::Type typeA, b2Shape::Type typeB) noexc
 }
 
 b2Contact::b2Contact(b2Fixture* fA, int32 indexA, b2Fixture* fB, int32 indexB, int32 id)
-    : m_fixtureA(fA),
-      m_fixtureB(fB),
+    : m_fixtureIdA(fA->GetId()),
       m_indexA(indexA),
-      m_indexB(indexB),
-      m_fixtureIdA(fA->GetId()),
       m_fixtureIdB(fB->GetId()),
-      m_id(id) {
+      m_indexB(indexB),
+      m_id(id),
+      m_sensor(fA->IsSensor() || fB->IsSensor()),
+      m_toiBodies(ToiBodies(*fA->GetBody(), *fB->GetBody())),
+      m_fixtureA(fA),
+      m_fixtureB(fB) {
     m_manifold.pointCount = 0;
     m_friction = b2MixFriction(m_fixtureA->GetFriction(), m_fixtureB->GetFriction());
     m_restitution = b2MixRestitution(m_fixtureA->GetRestitution(), m_fixtureB->GetRestitution());
     m_toi = Fixed();
+}
+
+bool b2Contact::ToiBodies(const b2Body& bodyA, const b2Body& bodyB) noexcept {
+    const auto collidesWithAny = [](const b2Body& b) { return b.IsBullet() || b.GetType() != b2_dynamicBody; };
+    return collidesWithAny(bodyA) || collidesWithAny(bodyB);
 }
 
 void b2Contact::ResetFriction() { m_friction = b2MixFriction(m_fixtureA->GetFriction(), m_fixtureB->GetFriction()); }
@@ -117,8 +124,6 @@ void b2Contact::Evaluate(b2Manifold* manifold, const b2Transform& xfA, const b2T
         default: manifold->pointCount = 0; return;
     }
 }
-
-bool b2Contact::IsSensorPair() const noexcept { return m_fixtureA->IsSensor() || m_fixtureB->IsSensor(); }
 
 void b2Contact::Update(b2ContactListener* listener, b2Profile* profile) {
     const b2Manifold oldManifold = m_manifold;

@@ -15,9 +15,4 @@ bool ShapesCanCollide(b2Shape::Type typeA, b2Shape::Type typeB) noexcept;
 /// (polygon before circle, edge/chain before circle or polygon).
 bool ShapesNeedSwap(b2Shape::Type typeA, b2Shape::Type typeB) noexcept;
 
-/// b2Contact::IsSensorPair inline, for the step's loops over every contact edge.
-inline bool IsSensorContact(const b2Contact* c) noexcept {
-    return c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor();
-}
-
 }  // namespace lockbox::core_detail

@@ -26,14 +26,16 @@ LOCKBOX_API Fixed b2MixFriction(Fixed friction1, Fixed friction2);
 inline Fixed b2MixRestitution(Fixed r1, Fixed r2) noexcept { return r1 > r2 ? r1 : r2; }
 
 /// A contact edge links a body to a contact and to the other body in the contact graph.
+/// (next before prev: a walk of a body's list reads the first three together.)
 struct b2ContactEdge {
     b2Body* other = nullptr;        ///< the other body
     b2Contact* contact = nullptr;   ///< the contact
-    b2ContactEdge* prev = nullptr;  ///< previous edge in the body's contact list
     b2ContactEdge* next = nullptr;  ///< next edge in the body's contact list
+    b2ContactEdge* prev = nullptr;  ///< previous edge in the body's contact list
 };
 
-/// A potential contact between two fixture children. Owned by the contact manager.
+/// A potential contact between two fixture children. Owned by the contact manager. Aligned
+/// to a cache line (its first member is), so that its layout below decides which fields share one.
 class LOCKBOX_API b2Contact {
 public:
     /// The manifold in local coordinates (do not modify).
@@ -107,13 +109,13 @@ private:
     b2Contact(b2Fixture* fixtureA, int32 indexA, b2Fixture* fixtureB, int32 indexB, int32 id);
     /// Rollback frames: a contact whose every field the frame then writes (no fixture is read).
     b2Contact(b2RestoreTag, int32 id) noexcept
-        : m_fixtureA(nullptr),
-          m_fixtureB(nullptr),
+        : m_fixtureIdA(-1),
           m_indexA(0),
-          m_indexB(0),
-          m_fixtureIdA(-1),
           m_fixtureIdB(-1),
-          m_id(id) {}
+          m_indexB(0),
+          m_id(id),
+          m_fixtureA(nullptr),
+          m_fixtureB(nullptr) {}
     ~b2Contact() = default;
 
     /// Computes the manifold for the current transforms (dispatches on the shape types).
@@ -143,27 +145,39 @@ private:
     void FinishUpdate(b2ContactListener* listener, b2Profile* profile, const b2Manifold& oldManifold, bool sensor,
                       bool touching);
     /// True when either fixture is a sensor (then the update tests overlap, with no manifold).
-    bool IsSensorPair() const noexcept;
+    bool IsSensorPair() const noexcept { return m_sensor; }
+    /// m_toiBodies for the bodies' current types and bullet flags.
+    static bool ToiBodies(const b2Body& bodyA, const b2Body& bodyB) noexcept;
 
-    // Layout: what the state walks (hash, save) read comes first and together, so a contact
-    // costs them three cache lines; the graph edges, which they do not read, come last.
-    uint32 m_flags = e_enabledFlag;
-    b2Contact* m_prev = nullptr;
-    b2Contact* m_next = nullptr;
-    b2Fixture* m_fixtureA;
-    b2Fixture* m_fixtureB;
+    // Layout, in 64-byte lines. Lines 0 and 1 hold what the state walks (hash, save) read, apart
+    // from the flags. Line 2 starts with the flags, then the sensor mark and the graph edges:
+    // the island search and the time-of-impact filters read a contact's flags and sensor mark
+    // through an edge, so that costs one line instead of three (flags, and both fixtures), and
+    // the state walks still read three. Line 3 holds the links the walks of the list read.
+    alignas(64) int32 m_fixtureIdA;  ///< m_fixtureA->GetId(), kept here so the state walks need not visit the fixture
     int32 m_indexA;
-    int32 m_indexB;
-    int32 m_fixtureIdA;  ///< m_fixtureA->GetId(), kept here so the state walks need not visit the fixture
     int32 m_fixtureIdB;  ///< m_fixtureB->GetId()
-    b2Manifold m_manifold;
+    int32 m_indexB;
+    int32 m_id;
     int32 m_toiCount = 0;
     Fixed m_toi;  ///< cached time of impact, fraction of the step in [0, 1]
     Fixed m_friction;
     Fixed m_restitution;
-    int32 m_id;
+    b2Manifold m_manifold;
+    alignas(64) uint32 m_flags = e_enabledFlag;
+    /// Either fixture is a sensor: IsSensorPair without visiting the fixtures. Set when the
+    /// contact is made or restored and by b2Fixture::SetSensor; derived, never state.
+    bool m_sensor = false;
+    /// A body of the pair is a bullet or not dynamic: the pair passes the time-of-impact
+    /// search's body filter. Set when the contact is made or restored and by b2Body::SetBullet
+    /// and SetType; derived, never state.
+    bool m_toiBodies = false;
     b2ContactEdge m_nodeA;
     b2ContactEdge m_nodeB;
+    b2Contact* m_prev = nullptr;
+    b2Contact* m_next = nullptr;
+    b2Fixture* m_fixtureA;
+    b2Fixture* m_fixtureB;
     /// Where the contact stands in the world's contact list: smaller is nearer the head, and
     /// no two contacts of a world share one. A contact inserted at the head takes the old
     /// head's key minus one, a restored list numbers its contacts upwards from the head, and
