@@ -173,9 +173,12 @@ public:
     /// time-of-impact filters are looked at again.
     void NoteToiBodiesEdit(b2Body& body) noexcept;
     /// Every contact with a cached time of impact or a fast body, in list order; with
-    /// `invalidate` (a new step) the cached times of impact are dropped first. Walks the
-    /// contacts by slot, on the workers when there are enough, then sorts the few it keeps.
+    /// `invalidate` (a new step) the cached times of impact are dropped first. Many contacts
+    /// are walked by slot, on the workers when there are any, and the few kept are sorted.
     void CollectToiCandidates(bool invalidate);
+    /// One contact of that walk: drops its cached time of impact when `invalidate`, and
+    /// returns whether it is a candidate.
+    static bool RefreshToiContact(b2Contact& c, bool invalidate) noexcept;
     /// CollectToiCandidates's walk of slots [begin, end) into that block's buffer (a
     /// b2TaskRange; `self` is the world).
     static void CollectToiSlots(int32 begin, int32 end, void* self);

@@ -72,8 +72,9 @@ bool MayReachToiTarget(const b2Contact& c, const b2Sweep& sweepA, const b2Sweep&
     return Wide(output.distance) - motion < reach;
 }
 
-/// Contact slots per block of CollectToiSlots, and the fewest slots the built-in pool is woken
-/// for (a game's task system gets any walk of more than one block).
+/// Contact slots per block of CollectToiSlots, and the fewest slots walked by slot rather than
+/// down the list, and for which the built-in pool is woken (a game's task system gets any walk
+/// of more than one block).
 constexpr int32 kToiSlotsPerBlock = 512;
 constexpr int32 kMinPoolToiSlots = 4096;
 }  // namespace
@@ -86,6 +87,18 @@ constexpr int32 kMinPoolToiSlots = 4096;
 // one of its bodies fast, or when it is created; both are added as they happen. A candidate
 // that a filter rejects for the rest of the step is dropped after its visit, so each event's
 // search reads only contacts that can still take an event.
+bool World::RefreshToiContact(b2Contact& c, bool invalidate) noexcept {
+    if (invalidate) {
+        // Invalidate TOI.
+        c.m_flags &= ~(b2Contact::e_toiFlag | b2Contact::e_islandFlag);
+        c.m_toiCount = 0;
+        c.m_toi = Fixed(1);
+    }
+    // The edges' other bodies are the contact's bodies, read without visiting its fixtures.
+    const uint32 bodyFlags = c.m_nodeA.other->m_flags | c.m_nodeB.other->m_flags;
+    return (c.m_flags & b2Contact::e_toiFlag) != 0 || (bodyFlags & b2Body::e_fastFlag) != 0;
+}
+
 void World::CollectToiSlots(int32 begin, int32 end, void* self) {
     World& world = *static_cast<World*>(self);
     std::vector<b2Contact*>& kept = world.m_toiBlocks[static_cast<size_t>(begin / kToiSlotsPerBlock)];
@@ -93,29 +106,32 @@ void World::CollectToiSlots(int32 begin, int32 end, void* self) {
     const bool invalidate = world.m_toiInvalidate;
     const bool collect = !world.m_toiSearchEveryContact;
     world.m_contactManager.ForEachInSlots(begin, end, [&](b2Contact& c) {
-        if (invalidate) {
-            // Invalidate TOI.
-            c.m_flags &= ~(b2Contact::e_toiFlag | b2Contact::e_islandFlag);
-            c.m_toiCount = 0;
-            c.m_toi = Fixed(1);
-        }
-        if (!collect) return;
-        // The edges' other bodies are the contact's bodies, read without visiting its fixtures.
-        const uint32 bodyFlags = c.m_nodeA.other->m_flags | c.m_nodeB.other->m_flags;
-        if ((c.m_flags & b2Contact::e_toiFlag) != 0 || (bodyFlags & b2Body::e_fastFlag) != 0) kept.push_back(&c);
+        if (RefreshToiContact(c, invalidate) && collect) kept.push_back(&c);
     });
 }
 
 void World::CollectToiCandidates(bool invalidate) {
     m_toiCandidates.clear();
-    m_toiInvalidate = invalidate;
-    // Each contact is written only by its own block, and the bodies' flags are only read.
     const int32 slots = m_contactManager.SlotCount();
+    b2TaskSystem* tasks = Tasks();
+    const bool parallel = tasks != nullptr && tasks->GetWorkerCount() > 1 &&
+                          slots >= (OnOwnPool() ? kMinPoolToiSlots : kToiSlotsPerBlock + 1);
+    if (!parallel && slots < kMinPoolToiSlots) {
+        // Few contacts (they stay in the caches): the list walk, which needs no sort.
+        const bool collect = !m_toiSearchEveryContact;
+        for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) {
+            if (RefreshToiContact(*c, invalidate) && collect) AddToiCandidate(c);
+        }
+        m_toiSorted = m_toiCandidates.size();
+        return;
+    }
+
+    // Many: by slot (memory order), in blocks that write only their own contacts and read the
+    // bodies' flags, so the workers can take them.
+    m_toiInvalidate = invalidate;
     const int32 blocks = (slots + kToiSlotsPerBlock - 1) / kToiSlotsPerBlock;
     if (m_toiBlocks.size() < static_cast<size_t>(blocks)) m_toiBlocks.resize(static_cast<size_t>(blocks));
-    b2TaskSystem* tasks = Tasks();
-    const int32 minSlots = OnOwnPool() ? kMinPoolToiSlots : kToiSlotsPerBlock + 1;
-    if (tasks != nullptr && tasks->GetWorkerCount() > 1 && slots >= minSlots) {
+    if (parallel) {
         tasks->ParallelFor(slots, kToiSlotsPerBlock, &CollectToiSlots, this);
     } else {
         for (int32 begin = 0; begin < slots; begin += kToiSlotsPerBlock)
