@@ -41,11 +41,6 @@ public:
     /// listener call) still happens in list order, so the result is the one-worker result.
     void Collide(b2TaskSystem* tasks, int32 minParallelContacts);
 
-    /// Clears every contact's island flag (in slot order, which is memory order).
-    void ClearIslandFlags() {
-        m_contacts.ForEachLive([](b2Contact& c) { c.m_flags &= ~b2Contact::e_islandFlag; });
-    }
-
     /// Calls f(b2Contact&) for every contact in slots [begin, end), in slot order (memory
     /// order); slots are below SlotCount().
     template <class F>

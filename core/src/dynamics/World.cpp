@@ -36,10 +36,8 @@ void World::MarkBodyStructureChanged(int32 bodyId) noexcept {
 
 void World::NoteSensorEdit(b2Body& body) noexcept {
     NoteToiFilterEdit();
-    for (b2ContactEdge* ce = body.m_contactList; ce; ce = ce->next) {
-        b2Contact* c = ce->contact;
-        c->m_sensor = c->m_fixtureA->IsSensor() || c->m_fixtureB->IsSensor();
-    }
+    for (b2ContactEdge* ce = body.m_contactList; ce; ce = ce->next)
+        ce->contact->m_sensor = ce->contact->SensorPairNow();
 }
 
 void World::NoteToiBodiesEdit(b2Body& body) noexcept {

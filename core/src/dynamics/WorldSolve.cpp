@@ -43,7 +43,8 @@ void World::Solve(const b2TimeStep& step) {
     int32 islands = 0;
     int64_t work = 0, largest = 0;
     m_bodies.ForEachLive([](b2Body& b) { b.m_flags &= ~(b2Body::e_islandFlag | b2Body::e_fastFlag); });
-    m_contactManager.ClearIslandFlags();
+    m_contactManager.ForEachInSlots(0, m_contactManager.SlotCount(),
+                                    [](b2Contact& c) { c.m_flags &= ~b2Contact::e_islandFlag; });
 
     m_stack.resize(static_cast<size_t>(m_bodyCount));
     b2Body** stack = m_stack.data();
@@ -76,9 +77,7 @@ void World::Solve(const b2TimeStep& step) {
                 b2Contact* contact = ce->contact;
                 if (contact->m_flags & b2Contact::e_islandFlag) continue;
                 if (!contact->IsEnabled() || !contact->IsTouching()) continue;
-                LOCKBOX_ASSERT(contact->IsSensorPair() ==
-                                   (contact->GetFixtureA()->IsSensor() || contact->GetFixtureB()->IsSensor()),
-                               "stale sensor mark");
+                LOCKBOX_ASSERT(contact->IsSensorPair() == contact->SensorPairNow(), "stale sensor mark");
                 if (contact->IsSensorPair()) continue;
                 m_island.Add(contact);
                 contact->m_flags |= b2Contact::e_islandFlag;

@@ -51,15 +51,17 @@ b2Contact::b2Contact(b2Fixture* fA, int32 indexA, b2Fixture* fB, int32 indexB, i
       m_fixtureIdB(fB->GetId()),
       m_indexB(indexB),
       m_id(id),
-      m_sensor(fA->IsSensor() || fB->IsSensor()),
       m_toiBodies(ToiBodies(*fA->GetBody(), *fB->GetBody())),
       m_fixtureA(fA),
       m_fixtureB(fB) {
+    m_sensor = SensorPairNow();
     m_manifold.pointCount = 0;
     m_friction = b2MixFriction(m_fixtureA->GetFriction(), m_fixtureB->GetFriction());
     m_restitution = b2MixRestitution(m_fixtureA->GetRestitution(), m_fixtureB->GetRestitution());
     m_toi = Fixed();
 }
+
+bool b2Contact::SensorPairNow() const noexcept { return m_fixtureA->IsSensor() || m_fixtureB->IsSensor(); }
 
 bool b2Contact::ToiBodies(const b2Body& bodyA, const b2Body& bodyB) noexcept {
     const auto collidesWithAny = [](const b2Body& b) { return b.IsBullet() || b.GetType() != b2_dynamicBody; };

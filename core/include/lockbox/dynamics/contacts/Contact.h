@@ -146,6 +146,8 @@ private:
                       bool touching);
     /// True when either fixture is a sensor (then the update tests overlap, with no manifold).
     bool IsSensorPair() const noexcept { return m_sensor; }
+    /// m_sensor for the fixtures' current sensor flags.
+    bool SensorPairNow() const noexcept;
     /// m_toiBodies for the bodies' current types and bullet flags.
     static bool ToiBodies(const b2Body& bodyA, const b2Body& bodyB) noexcept;
 
