@@ -342,6 +342,7 @@ void b2Body::SetAngularVelocity(Fixed w) {
 void b2Body::ApplyForce(const b2Vec2& force, const b2Vec2& point) {
     if (m_type != b2_dynamicBody) return;
     if (!IsAwake()) SetAwake(true);
+    Engine::Of(*m_world).m_forcesApplied = true;
     m_force += force;
     m_torque += b2Cross(point - m_sweep.c, force);
 }
@@ -349,12 +350,14 @@ void b2Body::ApplyForce(const b2Vec2& force, const b2Vec2& point) {
 void b2Body::ApplyForceToCenter(const b2Vec2& force) {
     if (m_type != b2_dynamicBody) return;
     if (!IsAwake()) SetAwake(true);
+    Engine::Of(*m_world).m_forcesApplied = true;
     m_force += force;
 }
 
 void b2Body::ApplyTorque(Fixed torque) {
     if (m_type != b2_dynamicBody) return;
     if (!IsAwake()) SetAwake(true);
+    Engine::Of(*m_world).m_forcesApplied = true;
     m_torque += torque;
 }
 

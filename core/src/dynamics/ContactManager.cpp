@@ -95,6 +95,10 @@ void b2ContactManager::AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB) {
     c->m_nodeB.next = bodyB->m_contactList;
     if (bodyB->m_contactList != nullptr) bodyB->m_contactList->prev = &c->m_nodeB;
     bodyB->m_contactList = &c->m_nodeB;
+    if (c->m_toiBodies) {
+        ++bodyA->m_toiContacts;
+        ++bodyB->m_toiContacts;
+    }
 
     // 2.2.1 wakes both bodies when a pair forms.
     bodyA->SetAwake(true);
@@ -131,6 +135,10 @@ void b2ContactManager::Destroy(b2Contact* c) {
     if (c->m_nodeB.prev) c->m_nodeB.prev->next = c->m_nodeB.next;
     if (c->m_nodeB.next) c->m_nodeB.next->prev = c->m_nodeB.prev;
     if (&c->m_nodeB == bodyB->m_contactList) bodyB->m_contactList = c->m_nodeB.next;
+    if (c->m_toiBodies) {
+        --bodyA->m_toiContacts;
+        --bodyB->m_toiContacts;
+    }
 
     // A contact that held the bodies apart no longer does: wake them.
     if (c->m_manifold.pointCount > 0) {

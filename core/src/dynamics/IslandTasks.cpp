@@ -30,6 +30,7 @@ struct World::ParallelIslands {
         int32 body = 0;
         int32 contact = 0;
         int32 joint = 0;
+        int32 statics = 0;
     };
     /// A solver's buffers, taken by one block of islands at a time.
     struct Scratch {
@@ -44,6 +45,7 @@ struct World::ParallelIslands {
     std::vector<b2Body*> bodies;
     std::vector<b2Contact*> contacts;
     std::vector<b2Joint*> joints;
+    std::vector<b2Body*> statics;            ///< each island's static bodies, in island order
     std::vector<uint8> slept;                ///< per island
     std::vector<uint64_t> saturations;       ///< per island, counted while it was solved
     std::vector<b2ContactImpulse> impulses;  ///< per contact, for PostSolve
@@ -166,12 +168,6 @@ void AddIslandCounters(b2Profile& to, b2Profile& from) {
 }
 }  // namespace
 
-void World::SleepStaticBodies(b2Body* const* bodies, int32 count) {
-    for (int32 i = 0; i < count; ++i) {
-        if (bodies[i]->m_type == b2_staticBody) bodies[i]->SetAwake(false);
-    }
-}
-
 void World::RecordIsland() {
     if (!m_parallelIslands) m_parallelIslands.reset(new ParallelIslands);
     ParallelIslands& p = *m_parallelIslands;
@@ -181,8 +177,9 @@ void World::RecordIsland() {
     p.contacts.insert(p.contacts.end(), m_island.m_contacts.begin(),
                       m_island.m_contacts.begin() + n(m_island.m_contactCount));
     p.joints.insert(p.joints.end(), m_island.m_joints.begin(), m_island.m_joints.begin() + n(m_island.m_jointCount));
+    p.statics.insert(p.statics.end(), m_islandStatics.begin(), m_islandStatics.end());
     p.starts.push_back({static_cast<int32>(p.bodies.size()), static_cast<int32>(p.contacts.size()),
-                        static_cast<int32>(p.joints.size())});
+                        static_cast<int32>(p.joints.size()), static_cast<int32>(p.statics.size())});
 }
 
 void World::SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks) {
@@ -194,10 +191,14 @@ void World::SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks) {
         return;
     }
 
-    // Every static body gets its step-long slot; the islands' own bodies go above them.
+    // Every static body of the step's islands gets its step-long slot, numbered as the islands
+    // first reach it (a body shared by islands is listed once per island); the islands' own
+    // bodies go above them. Which slot a static body takes changes no result: each island
+    // copies its static bodies into its own buffers, and the colours leave them out.
+    for (b2Body* b : p.statics) b->m_islandIndex = -1;
     int32 statics = 0;
-    for (b2Body* b = m_bodyList; b; b = b->m_next) {
-        if (b->m_type == b2_staticBody) b->m_islandIndex = statics++;
+    for (b2Body* b : p.statics) {
+        if (b->m_islandIndex < 0) b->m_islandIndex = statics++;
     }
     int32 maxBodies = 0, maxContacts = 0, maxJoints = 0;
     for (int32 i = 0; i < islandCount; ++i) {
@@ -250,9 +251,8 @@ void World::SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks) {
         // The search woke the island's static bodies (in the one-worker loop, after the
         // previous islands had been solved): wake them again, then let them sleep with it.
         const bool slept = p.slept[static_cast<size_t>(i)] != 0;
-        for (int32 k = from.body; k < to.body; ++k) {
-            b2Body* b = p.bodies[static_cast<size_t>(k)];
-            if (b->m_type != b2_staticBody) continue;
+        for (int32 k = from.statics; k < to.statics; ++k) {
+            b2Body* b = p.statics[static_cast<size_t>(k)];
             b->SetAwake(true);
             if (slept) b->SetAwake(false);
         }
@@ -270,6 +270,7 @@ void World::SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks) {
     p.bodies.clear();
     p.contacts.clear();
     p.joints.clear();
+    p.statics.clear();
 }
 
 }  // namespace lockbox

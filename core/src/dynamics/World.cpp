@@ -42,8 +42,15 @@ void World::NoteSensorEdit(b2Body& body) noexcept {
 
 void World::NoteToiBodiesEdit(b2Body& body) noexcept {
     NoteToiFilterEdit();
-    for (b2ContactEdge* ce = body.m_contactList; ce; ce = ce->next)
-        ce->contact->m_toiBodies = b2Contact::ToiBodies(body, *ce->other);
+    for (b2ContactEdge* ce = body.m_contactList; ce; ce = ce->next) {
+        b2Contact* c = ce->contact;
+        const bool marked = b2Contact::ToiBodies(body, *ce->other);
+        if (marked == c->m_toiBodies) continue;
+        c->m_toiBodies = marked;
+        const int32 change = marked ? 1 : -1;
+        body.m_toiContacts += change;
+        ce->other->m_toiContacts += change;
+    }
 }
 
 void World::MarkJointStructureChanged(const b2Joint& joint) noexcept {
@@ -199,10 +206,20 @@ void World::SetAllowSleeping(bool flag) {
 }
 
 void World::ClearForces() {
-    for (b2Body* body = m_bodyList; body; body = body->GetNext()) {
-        body->m_force.SetZero();
-        body->m_torque = Fixed();
+    if (!m_forcesApplied) {
+#ifndef NDEBUG
+        m_bodies.ForEachLive([](const b2Body& b) {
+            LOCKBOX_ASSERT(b.m_force == b2Vec2_zero && b.m_torque == Fixed(), "a force was set unnoticed");
+        });
+#endif
+        return;
     }
+    // By slot: memory order, and the order of zeroing does not matter.
+    m_bodies.ForEachLive([](b2Body& b) {
+        b.m_force.SetZero();
+        b.m_torque = Fixed();
+    });
+    m_forcesApplied = false;
 }
 
 void World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {

@@ -56,6 +56,7 @@ void World::Solve(const b2TimeStep& step) {
         if (seed->GetType() == b2_staticBody) continue;
 
         m_island.Clear();
+        m_islandStatics.clear();
         int32 stackCount = 0;
         stack[stackCount++] = seed;
         seed->m_flags |= b2Body::e_islandFlag;
@@ -66,8 +67,12 @@ void World::Solve(const b2TimeStep& step) {
             m_island.Add(b);
             b->SetAwake(true);
 
-            // Islands do not propagate across static bodies.
-            if (b->GetType() == b2_staticBody) continue;
+            // Islands do not propagate across static bodies. The few an island holds are
+            // noted, so that what is done to them after its solve visits no other body.
+            if (b->GetType() == b2_staticBody) {
+                m_islandStatics.push_back(b);
+                continue;
+            }
             b->m_flags |= b2Body::e_scannedFlag;
 
             for (b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) {
@@ -124,15 +129,16 @@ void World::Solve(const b2TimeStep& step) {
             m_island.m_tasks = hasWorkers ? tasks : nullptr;
             const bool slept = m_island.Solve(&m_profile, step, m_gravity, m_allowSleep);
             m_island.m_tasks = nullptr;
-            if (slept) SleepStaticBodies(m_island.m_bodies.data(), m_island.m_bodyCount);
+            // 2.2.1 sets every body of a sleeping island asleep; the solve leaves static
+            // bodies, which islands share, alone.
+            if (slept) {
+                for (b2Body* b : m_islandStatics) b->SetAwake(false);
+            }
             ++m_profile.islandsSolved;
         }
 
         // Static bodies may take part in other islands.
-        for (int32 i = 0; i < m_island.m_bodyCount; ++i) {
-            b2Body* b = m_island.m_bodies[static_cast<size_t>(i)];
-            if (b->GetType() == b2_staticBody) b->m_flags &= ~b2Body::e_islandFlag;
-        }
+        for (b2Body* b : m_islandStatics) b->m_flags &= ~b2Body::e_islandFlag;
     }
 
     if (parallel) SolveRecordedIslands(step, *tasks);

@@ -104,6 +104,11 @@ public:
     bool m_continuousPhysics = true;
     bool m_subStepping = false;
     bool m_autoClearForces = true;
+    /// Whether a body may hold a force or torque: set by b2Body::ApplyForce and its kin and by
+    /// a restore, cleared by ClearForces. Not state: while it is false every body's force is
+    /// zero, so ClearForces has nothing to do, and a scene driven by gravity alone never walks
+    /// its bodies for it.
+    bool m_forcesApplied = true;
     bool m_stepComplete = true;
     b2AABB m_bounds;
     uint64 m_saturationCount = 0;  ///< saturations inside this world's Steps (state)
@@ -196,9 +201,6 @@ private:
     void RecordIsland();
     /// Solves the recorded islands on `tasks` and finishes them in island order.
     void SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks);
-    /// After an island fell asleep: its static bodies sleep too, as 2.2.1 sets every island
-    /// body asleep (b2Island::Solve leaves static bodies, which islands share, alone).
-    static void SleepStaticBodies(b2Body* const* bodies, int32 count);
     void SolveTOI(const b2TimeStep& step);
     /// Takes bodies whose centre left the bounds out of the simulation and reports them.
     void EnforceBounds();
@@ -208,6 +210,7 @@ private:
     b2Island m_island;
     std::unique_ptr<ParallelIslands, ParallelIslandsDeleter> m_parallelIslands;
     std::vector<b2Body*> m_stack;
+    std::vector<b2Body*> m_islandStatics;  ///< the static bodies of the island just found, in island order
     std::vector<b2Body*> m_outOfBounds;
 };
 

@@ -178,6 +178,13 @@ void World::SolveTOI(const b2TimeStep& step) {
         }
         if (b->m_type == b2_staticBody) continue;
         const bool bCollidesWithAny = b->IsBullet() || b->m_type != b2_dynamicBody;
+#ifndef NDEBUG
+        int32 marked = 0;
+        for (const b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) marked += ce->contact->m_toiBodies ? 1 : 0;
+        LOCKBOX_ASSERT(marked == b->m_toiContacts, "stale count of time-of-impact body marks");
+#endif
+        // Only the marked contacts pass the first filter below: a body with none is done.
+        if (!bCollidesWithAny && b->m_toiContacts == 0) continue;
         for (b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) {
             const b2Body* other = ce->other;
             const b2Contact* c = ce->contact;

@@ -98,6 +98,10 @@ inline void core_detail::Engine::RestoreLinks::LinkRestoredContact(b2Contact* c,
     c->m_indexB = indexB;
     c->m_sensor = a.sensor || b.sensor;
     c->m_toiBodies = b2Contact::ToiBodies(*a.body, *b.body);
+    if (c->m_toiBodies) {
+        ++a.body->m_toiContacts;
+        ++b.body->m_toiContacts;
+    }
     c->m_nodeA = b2ContactEdge{b.body, c, nullptr, nullptr};
     c->m_nodeB = b2ContactEdge{a.body, c, nullptr, nullptr};
     // Appended at the tail: one more than the contact before it (b2Contact::m_listKey).

@@ -88,11 +88,13 @@ struct core_detail::Engine::SnapshotApply {
             b->m_fixtureCount = bi.fixtureCount;
             b->m_fixtureList = nullptr;
             b->m_contactList = nullptr;
+            b->m_toiContacts = 0;
             b->m_jointList = nullptr;
             // World body list in image order.
             state_detail::AppendToWorldList(b, world.m_bodyList, previous);
         }
         world.m_bodyCount = static_cast<int32>(img.bodies.size());
+        world.m_forcesApplied = true;  // the image's forces were not looked at
     }
 
     /// A shape of the image's type holding its fields; reuses `current` when the type matches.

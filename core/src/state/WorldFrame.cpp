@@ -290,6 +290,7 @@ struct core_detail::Engine::Frames {
             b->m_flags = static_cast<uint16>(m.flags);
             b->m_islandIndex = 0;
             b->m_contactList = nullptr;
+            b->m_toiContacts = 0;
             if (force < f.m_forces.size() && f.m_forces[force].body == static_cast<int32>(i)) {
                 b->m_force = f.m_forces[force].force;
                 b->m_torque = f.m_forces[force].torque;
@@ -304,6 +305,7 @@ struct core_detail::Engine::Frames {
             }
             if (b->m_next != nullptr && b->m_next->m_fixtureList != nullptr) PrefetchObject(b->m_next->m_fixtureList);
         }
+        world.m_forcesApplied = !f.m_forces.empty();
 
         // The fixtures by id, once per structure epoch (their addresses hold while it lasts).
         if (cache.slots.empty() || cache.slotsEpoch != world.m_frames.m_structureEpoch) {

@@ -347,6 +347,54 @@ TEST(WorldApi, SwitchesAreWorldState) {
     EXPECT_TRUE(body->IsAwake());
 }
 
+// Auto-clear skips the walk of the bodies while no body can hold a force, so every way a force
+// arrives must be noticed: the three Apply calls and both kinds of restore. In zero gravity a
+// force changes the velocity in the step it was applied before, and in no later one.
+TEST(WorldApi, EveryForceIsClearedAfterTheStepThatUsesIt) {
+    const auto build = [](b2World& w) {
+        b2Body* b = MakeDynamicBox(w, 0, 0, Fixed(0.5), Fixed(0.5));
+        w.Step(kDt, 8, 3);  // a step with no force: the world knows none is held
+        return b;
+    };
+    // Steps twice and expects the first step alone to have moved the body on.
+    const auto expectUsedOnce = [](b2World& w, b2Body* b, const char* how) {
+        const b2Vec2 v0 = b->GetLinearVelocity();
+        const Fixed w0 = b->GetAngularVelocity();
+        w.Step(kDt, 8, 3);
+        const b2Vec2 v1 = b->GetLinearVelocity();
+        const Fixed w1 = b->GetAngularVelocity();
+        EXPECT_TRUE(v1 != v0 || w1 != w0) << how << ": the force did not act";
+        w.Step(kDt, 8, 3);
+        EXPECT_EQ(b->GetLinearVelocity(), v1) << how << ": the force acted again";
+        EXPECT_EQ(b->GetAngularVelocity(), w1) << how << ": the torque acted again";
+    };
+
+    b2World world(b2Vec2(0, 0));
+    b2Body* body = build(world);
+    body->ApplyForce(b2Vec2(0, 3), body->GetWorldPoint(b2Vec2(Fixed(0.5), 0)));
+    expectUsedOnce(world, body, "ApplyForce");
+    body->ApplyForceToCenter(b2Vec2(2, 0));
+    expectUsedOnce(world, body, "ApplyForceToCenter");
+    body->ApplyTorque(Fixed(0.25));
+    expectUsedOnce(world, body, "ApplyTorque");
+
+    // A snapshot taken with a force held, restored into a world that holds none.
+    body->ApplyForceToCenter(b2Vec2(-4, 1));
+    const auto saved = world.Save();
+    b2World restored(b2Vec2(0, 0));
+    build(restored);
+    ASSERT_TRUE(restored.Restore(saved).ok());
+    expectUsedOnce(restored, restored.GetBodyList(), "a restored snapshot");
+
+    // A frame taken with a force held, restored after the step that cleared it.
+    body->ApplyForceToCenter(b2Vec2(1, 5));
+    b2WorldFrame frame;
+    world.SaveFrame(frame);
+    world.Step(kDt, 8, 3);
+    ASSERT_TRUE(world.RestoreFrame(frame).ok());
+    expectUsedOnce(world, body, "a restored frame");
+}
+
 }  // namespace
 }  // namespace lockbox::test
 

@@ -275,6 +275,9 @@ private:
     b2Body* m_next = nullptr;
     b2Fixture* m_fixtureList = nullptr;
     int32 m_fixtureCount = 0;
+    /// How many of its contacts have b2Contact::m_toiBodies set: derived, like that mark, not
+    /// state. The time-of-impact stage skips the contacts of a body without any.
+    int32 m_toiContacts = 0;
     b2JointEdge* m_jointList = nullptr;
     b2ContactEdge* m_contactList = nullptr;
     Wide m_mass, m_invMass;
