@@ -49,17 +49,40 @@ void b2Fixture::DestroyProxies(b2BroadPhase* broadPhase) {
     m_proxyCount = 0;
 }
 
+void b2Fixture::SweepProxy(b2FixtureProxy& proxy, const b2Transform& transform1, const b2Transform& transform2) const {
+    // The swept AABB covers the child at the start and the end of the step.
+    b2AABB aabb1;
+    b2AABB aabb2;
+    m_shape->ComputeAABB(&aabb1, transform1, proxy.childIndex);
+    m_shape->ComputeAABB(&aabb2, transform2, proxy.childIndex);
+    proxy.aabb.Combine(aabb1, aabb2);
+}
+
 void b2Fixture::Synchronize(b2BroadPhase* broadPhase, const b2Transform& transform1, const b2Transform& transform2) {
-    if (m_proxyCount == 0) return;
+    const b2Vec2 displacement = transform2.p - transform1.p;
     for (int32 i = 0; i < m_proxyCount; ++i) {
         b2FixtureProxy& proxy = m_proxies[static_cast<size_t>(i)];
-        // The swept AABB covers the child at the start and the end of the step.
-        b2AABB aabb1;
-        b2AABB aabb2;
-        m_shape->ComputeAABB(&aabb1, transform1, proxy.childIndex);
-        m_shape->ComputeAABB(&aabb2, transform2, proxy.childIndex);
-        proxy.aabb.Combine(aabb1, aabb2);
-        const b2Vec2 displacement = transform2.p - transform1.p;
+        SweepProxy(proxy, transform1, transform2);
+        broadPhase->MoveProxy(proxy.proxyId, proxy.aabb, displacement);
+    }
+}
+
+bool b2Fixture::SweepProxies(const b2BroadPhase& broadPhase, const b2Transform& transform1,
+                             const b2Transform& transform2) {
+    // A proxy's box depends on nothing a move changes (a move rewrites only its own proxy's fat
+    // box), so boxes swept ahead and moved later give Synchronize's moves.
+    bool left = false;
+    for (int32 i = 0; i < m_proxyCount; ++i) {
+        b2FixtureProxy& proxy = m_proxies[static_cast<size_t>(i)];
+        SweepProxy(proxy, transform1, transform2);
+        left = left || !broadPhase.GetFatAABB(proxy.proxyId).Contains(proxy.aabb);
+    }
+    return left;
+}
+
+void b2Fixture::MoveProxies(b2BroadPhase* broadPhase, const b2Vec2& displacement) {
+    for (int32 i = 0; i < m_proxyCount; ++i) {
+        const b2FixtureProxy& proxy = m_proxies[static_cast<size_t>(i)];
         broadPhase->MoveProxy(proxy.proxyId, proxy.aabb, displacement);
     }
 }

@@ -73,6 +73,7 @@ b2Body* World::CreateBody(const b2BodyDef* def) {
     b->m_id = id;
 
     // Newest first, as 2.2.1.
+    b->m_listKey = m_bodyList != nullptr ? m_bodyList->m_listKey - 1 : 0;
     b->m_prev = nullptr;
     b->m_next = m_bodyList;
     if (m_bodyList) m_bodyList->m_prev = b;

@@ -1,11 +1,16 @@
 // b2World::Solve: the island search and the islands' solve (the discrete step).
+#include <algorithm>
 #include <cstddef>
+#include <vector>
 
 #include "dynamics/ProfileTimer.h"
 #include "dynamics/WorldState.h"
 #include "dynamics/contacts/ContactRules.h"
+#include "lockbox/dynamics/Fixture.h"
+#include "lockbox/dynamics/Tasks.h"
 #include "lockbox/dynamics/World.h"
 #include "lockbox/dynamics/contacts/Contact.h"
+#include "lockbox/fixed/Overflow.h"
 
 namespace lockbox {
 
@@ -25,7 +30,71 @@ bool WorthSharing(int32 islands, int64_t work, int64_t largest) {
     return islands >= 2 && work >= kMinSharedWork && 2 * largest <= work;
 }
 
+/// Body slots per block of the bodies' finish on the workers, and the fewest slots for which
+/// the built-in pool is woken for it (a game's task system gets any finish of more than one
+/// block).
+constexpr int32 kFinishSlotsPerBlock = 256;
+constexpr int32 kMinPoolFinishSlots = 1024;
+
 }  // namespace
+
+void World::FinishMotion(b2Body& b) noexcept {
+    if (b.IsBullet() || b.IsFastThisStep()) b.m_flags |= b2Body::e_fastFlag;
+    // Wrapping after the synchronisation keeps this step's swept AABB exact; the next step
+    // starts from the wrapped angle (a and a0 shift by the same whole turns).
+    b.WrapAngle();
+}
+
+void World::FinishBodySlots(int32 begin, int32 end, void* self) {
+    World& world = *static_cast<World*>(self);
+    FinishBlock& block = world.m_finishBlocks[static_cast<size_t>(begin / kFinishSlotsPerBlock)];
+    block.kept.clear();
+    block.saturations = 0;
+    const SaturationCapture capture(&block.saturations);
+    const b2BroadPhase& broadPhase = world.m_contactManager.m_broadPhase;
+    world.m_bodies.ForEachLiveIn(begin, end, [&](b2Body& b) {
+        if ((b.m_flags & b2Body::e_islandFlag) == 0 || b.m_type == b2_staticBody) return;
+        b2Transform xf1;
+        xf1.q.Set(b.m_sweep.a0);
+        xf1.p = b.m_sweep.c0 - b2Mul(xf1.q, b.m_sweep.localCenter);
+        bool moves = false;
+        for (b2Fixture* f = b.m_fixtureList; f; f = f->m_next) {
+            if (f->SweepProxies(broadPhase, xf1, b.m_xf)) moves = true;
+        }
+        const b2Vec2 displacement = b.m_xf.p - xf1.p;
+        FinishMotion(b);
+        const bool outside = world.IsOutside(&b);
+        if (moves || outside) block.kept.push_back({&b, displacement, moves, outside});
+    });
+}
+
+void World::FinishBodiesOnWorkers(b2TaskSystem& tasks) {
+    const int32 slots = m_bodies.GetCapacity();
+    const int32 blocks = (slots + kFinishSlotsPerBlock - 1) / kFinishSlotsPerBlock;
+    if (m_finishBlocks.size() < static_cast<size_t>(blocks)) m_finishBlocks.resize(static_cast<size_t>(blocks));
+    tasks.ParallelFor(slots, kFinishSlotsPerBlock, &FinishBodySlots, this);
+
+    // What touches the world goes on here, in body-list order: the broad phase's moves (the
+    // tree and the move buffer) and the bodies outside the bounds.
+    m_finished.clear();
+    uint64 saturations = 0;
+    for (int32 k = 0; k < blocks; ++k) {
+        const FinishBlock& block = m_finishBlocks[static_cast<size_t>(k)];
+        m_finished.insert(m_finished.end(), block.kept.begin(), block.kept.end());
+        saturations += block.saturations;
+    }
+    AddSaturations(saturations);
+    std::sort(m_finished.begin(), m_finished.end(),
+              [](const FinishedBody& a, const FinishedBody& b) { return a.body->m_listKey < b.body->m_listKey; });
+    b2BroadPhase* broadPhase = &m_contactManager.m_broadPhase;
+    for (const FinishedBody& f : m_finished) {
+        if (f.moves) {
+            for (b2Fixture* fixture = f.body->m_fixtureList; fixture; fixture = fixture->m_next)
+                fixture->MoveProxies(broadPhase, f.displacement);
+        }
+        if (f.outside) m_outOfBounds.push_back(f.body);
+    }
+}
 
 void World::Solve(const b2TimeStep& step) {
     // Size the island for the worst case and clear the graph flags.
@@ -146,17 +215,19 @@ void World::Solve(const b2TimeStep& step) {
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solve, *m_owner);
 
     const Clock::time_point timer = Clock::now();
-    // Synchronise fixtures of bodies that moved, keep angles bounded, flag fast bodies and
-    // collect bodies that left the world.
-    for (b2Body* b = m_bodyList; b; b = b->GetNext()) {
-        if ((b->m_flags & b2Body::e_islandFlag) == 0) continue;
-        if (b->GetType() == b2_staticBody) continue;
-        SynchronizeFixtures(*b);
-        if (b->IsBullet() || b->IsFastThisStep()) b->m_flags |= b2Body::e_fastFlag;
-        // Wrapping after the synchronisation keeps this step's swept AABB exact; the next
-        // step starts from the wrapped angle (a and a0 shift by the same whole turns).
-        b->WrapAngle();
-        if (IsOutside(b)) m_outOfBounds.push_back(b);
+    const int32 slots = m_bodies.GetCapacity();
+    if (hasWorkers && slots >= (OnOwnPool() ? kMinPoolFinishSlots : kFinishSlotsPerBlock + 1)) {
+        FinishBodiesOnWorkers(*tasks);
+    } else {
+        // Synchronise fixtures of bodies that moved, keep angles bounded, flag fast bodies and
+        // collect bodies that left the world.
+        for (b2Body* b = m_bodyList; b; b = b->GetNext()) {
+            if ((b->m_flags & b2Body::e_islandFlag) == 0) continue;
+            if (b->GetType() == b2_staticBody) continue;
+            SynchronizeFixtures(*b);
+            FinishMotion(*b);
+            if (IsOutside(b)) m_outOfBounds.push_back(b);
+        }
     }
     m_contactManager.FindNewContacts();
     m_profile.broadphaseNs += Nanos(timer);

@@ -209,6 +209,28 @@ private:
 
     b2Island m_island;
     std::unique_ptr<ParallelIslands, ParallelIslandsDeleter> m_parallelIslands;
+    /// The end of the discrete step for a body the islands moved, after its fixtures were
+    /// synchronised: the fast flag and the angle's wrap.
+    static void FinishMotion(b2Body& b) noexcept;
+    /// With workers, blocks of body slots sweep the moved bodies' proxies and finish their
+    /// motion (each writes only its bodies and their fixtures, and reads the tree); the few
+    /// bodies whose proxies left their fat boxes or that left the bounds are then taken in
+    /// body-list order, as the one-thread loop takes every body, for the broad phase's moves
+    /// and the bounds. Same results as that loop.
+    struct FinishedBody {
+        b2Body* body;
+        b2Vec2 displacement;  ///< of the transform over the step, for the tree's prediction
+        bool moves;           ///< a proxy left its fat box
+        bool outside;         ///< the centre left the world bounds
+    };
+    struct FinishBlock {
+        std::vector<FinishedBody> kept;
+        uint64 saturations = 0;  ///< counted while the block ran
+    };
+    void FinishBodiesOnWorkers(b2TaskSystem& tasks);
+    static void FinishBodySlots(int32 begin, int32 end, void* self);  ///< a b2TaskRange; `self` is the world
+    std::vector<FinishBlock> m_finishBlocks;
+    std::vector<FinishedBody> m_finished;
     std::vector<b2Body*> m_stack;
     std::vector<b2Body*> m_islandStatics;  ///< the static bodies of the island just found, in island order
     std::vector<b2Body*> m_outOfBounds;

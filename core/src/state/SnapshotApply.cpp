@@ -91,6 +91,7 @@ struct core_detail::Engine::SnapshotApply {
             b->m_toiContacts = 0;
             b->m_jointList = nullptr;
             // World body list in image order.
+            b->m_listKey = previous != nullptr ? previous->m_listKey + 1 : 0;
             state_detail::AppendToWorldList(b, world.m_bodyList, previous);
         }
         world.m_bodyCount = static_cast<int32>(img.bodies.size());

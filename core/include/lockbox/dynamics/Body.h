@@ -290,6 +290,10 @@ private:
     Fixed m_maxExtent;  ///< largest distance of a fixture point from the centre of mass (m)
     uint64 m_userData = 0;
     int32 m_id;
+    /// The body's place in the world's body list: each body's key is below those after it
+    /// (derived where the list is built, not state), so a few bodies gathered out of order are
+    /// put back in list order by a sort without ties.
+    int64_t m_listKey = 0;
 };
 
 }  // namespace lockbox

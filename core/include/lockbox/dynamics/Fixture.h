@@ -137,6 +137,13 @@ private:
     void CreateProxies(b2BroadPhase* broadPhase, const b2Transform& xf);
     void DestroyProxies(b2BroadPhase* broadPhase);
     void Synchronize(b2BroadPhase* broadPhase, const b2Transform& xf1, const b2Transform& xf2);
+    /// One proxy's box swept from xf1 to xf2.
+    void SweepProxy(b2FixtureProxy& proxy, const b2Transform& xf1, const b2Transform& xf2) const;
+    /// Synchronize's first half: each proxy's box swept from xf1 to xf2; returns whether any
+    /// left its fat box in the tree (which it only reads).
+    bool SweepProxies(const b2BroadPhase& broadPhase, const b2Transform& xf1, const b2Transform& xf2);
+    /// Its second half: moves each proxy to its swept box (displacement xf2.p - xf1.p).
+    void MoveProxies(b2BroadPhase* broadPhase, const b2Vec2& displacement);
 
     Fixed m_density;
     b2Fixture* m_next = nullptr;
