@@ -95,10 +95,7 @@ void b2ContactManager::AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB) {
     c->m_nodeB.next = bodyB->m_contactList;
     if (bodyB->m_contactList != nullptr) bodyB->m_contactList->prev = &c->m_nodeB;
     bodyB->m_contactList = &c->m_nodeB;
-    if (c->m_toiBodies) {
-        ++bodyA->m_toiContacts;
-        ++bodyB->m_toiContacts;
-    }
+    CountToiMark(*c, 1);
 
     // 2.2.1 wakes both bodies when a pair forms.
     bodyA->SetAwake(true);
@@ -108,6 +105,13 @@ void b2ContactManager::AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB) {
 }
 
 void b2ContactManager::FindNewContacts() { m_broadPhase.UpdatePairs(this); }
+
+void b2ContactManager::CountToiMark(const b2Contact& c, int32 change) noexcept {
+    if (!c.m_toiBodies) return;
+    // Each edge's other body is the contact's other body: node A's is B, node B's is A.
+    c.m_nodeA.other->m_toiContacts += change;
+    c.m_nodeB.other->m_toiContacts += change;
+}
 
 void b2ContactManager::Destroy(b2Contact* c) {
     b2Fixture* fixtureA = c->GetFixtureA();
@@ -135,10 +139,7 @@ void b2ContactManager::Destroy(b2Contact* c) {
     if (c->m_nodeB.prev) c->m_nodeB.prev->next = c->m_nodeB.next;
     if (c->m_nodeB.next) c->m_nodeB.next->prev = c->m_nodeB.prev;
     if (&c->m_nodeB == bodyB->m_contactList) bodyB->m_contactList = c->m_nodeB.next;
-    if (c->m_toiBodies) {
-        --bodyA->m_toiContacts;
-        --bodyB->m_toiContacts;
-    }
+    CountToiMark(*c, -1);
 
     // A contact that held the bodies apart no longer does: wake them.
     if (c->m_manifold.pointCount > 0) {

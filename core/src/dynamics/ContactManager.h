@@ -34,6 +34,9 @@ public:
     void FindNewContacts();
     /// Destroys a contact (EndContact first when it was touching).
     void Destroy(b2Contact* c);
+    /// Adds `change` to both bodies' b2Body::m_toiContacts when the linked contact `c` carries
+    /// b2Contact::m_toiBodies (made, destroyed or restored: +1, -1, +1).
+    static void CountToiMark(const b2Contact& c, int32 change) noexcept;
     /// Re-filters flagged contacts, drops contacts whose fat AABBs separated, and updates the
     /// manifolds of contacts with an awake, non-static body. With a task system of more than
     /// one worker and at least minParallelContacts contacts, the workers take the contacts'

@@ -46,10 +46,9 @@ void World::NoteToiBodiesEdit(b2Body& body) noexcept {
         b2Contact* c = ce->contact;
         const bool marked = b2Contact::ToiBodies(body, *ce->other);
         if (marked == c->m_toiBodies) continue;
+        b2ContactManager::CountToiMark(*c, -1);  // counted with the old mark, then the new
         c->m_toiBodies = marked;
-        const int32 change = marked ? 1 : -1;
-        body.m_toiContacts += change;
-        ce->other->m_toiContacts += change;
+        b2ContactManager::CountToiMark(*c, 1);
     }
 }
 
@@ -182,12 +181,14 @@ void World::SynchronizeFixtures(b2Body& body, const b2Transform& xf1, const b2Tr
     for (b2Fixture* f = body.m_fixtureList; f; f = f->m_next) f->Synchronize(broadPhase, xf1, xf2);
 }
 
-void World::SynchronizeFixtures(b2Body& body) {
-    b2Transform xf1;
-    xf1.q.Set(body.m_sweep.a0);
-    xf1.p = body.m_sweep.c0 - b2Mul(xf1.q, body.m_sweep.localCenter);
-    SynchronizeFixtures(body, xf1, body.m_xf);
+b2Transform World::SweepStart(const b2Body& body) noexcept {
+    b2Transform xf;
+    xf.q.Set(body.m_sweep.a0);
+    xf.p = body.m_sweep.c0 - b2Mul(xf.q, body.m_sweep.localCenter);
+    return xf;
 }
+
+void World::SynchronizeFixtures(b2Body& body) { SynchronizeFixtures(body, SweepStart(body), body.m_xf); }
 
 void World::CreateProxies(b2Body& body) {
     for (b2Fixture* f = body.m_fixtureList; f; f = f->m_next)

@@ -54,9 +54,7 @@ void World::FinishBodySlots(int32 begin, int32 end, void* self) {
     const b2BroadPhase& broadPhase = world.m_contactManager.m_broadPhase;
     world.m_bodies.ForEachLiveIn(begin, end, [&](b2Body& b) {
         if ((b.m_flags & b2Body::e_islandFlag) == 0 || b.m_type == b2_staticBody) return;
-        b2Transform xf1;
-        xf1.q.Set(b.m_sweep.a0);
-        xf1.p = b.m_sweep.c0 - b2Mul(xf1.q, b.m_sweep.localCenter);
+        const b2Transform xf1 = SweepStart(b);
         bool moves = false;
         for (b2Fixture* f = b.m_fixtureList; f; f = f->m_next) {
             if (f->SweepProxies(broadPhase, xf1, b.m_xf)) moves = true;

@@ -63,6 +63,8 @@ public:
     void SynchronizeFixtures(b2Body& body, const b2Transform& xf1, const b2Transform& xf2);
     /// The same over the body's step: from its sweep's start to its transform.
     void SynchronizeFixtures(b2Body& body);
+    /// The body's transform at its sweep's start (c0, a0).
+    static b2Transform SweepStart(const b2Body& body) noexcept;
     /// Gives a body's fixtures their proxies (the body becomes active), or takes them away.
     void CreateProxies(b2Body& body);
     void DestroyProxies(b2Body& body);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "Engine.h"
+#include "dynamics/ContactManager.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
 #include "lockbox/dynamics/contacts/Contact.h"
@@ -98,12 +99,9 @@ inline void core_detail::Engine::RestoreLinks::LinkRestoredContact(b2Contact* c,
     c->m_indexB = indexB;
     c->m_sensor = a.sensor || b.sensor;
     c->m_toiBodies = b2Contact::ToiBodies(*a.body, *b.body);
-    if (c->m_toiBodies) {
-        ++a.body->m_toiContacts;
-        ++b.body->m_toiContacts;
-    }
     c->m_nodeA = b2ContactEdge{b.body, c, nullptr, nullptr};
     c->m_nodeB = b2ContactEdge{a.body, c, nullptr, nullptr};
+    b2ContactManager::CountToiMark(*c, 1);
     // Appended at the tail: one more than the contact before it (b2Contact::m_listKey).
     c->m_listKey = tail.last != nullptr ? tail.last->m_listKey + 1 : 0;
     AppendToWorldList(c, head, tail.last);
