@@ -8,12 +8,12 @@
 // counters) is kept per island and applied in island order too, so the result is that of the
 // one-worker loop in World::Solve, whatever the workers and their scheduling.
 #include <algorithm>
-#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
 
 #include "dynamics/WorldState.h"
+#include "dynamics/tasks/ScratchSet.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Tasks.h"
 #include "lockbox/dynamics/WorldCallbacks.h"
@@ -36,9 +36,6 @@ struct World::ParallelIslands {
     struct Scratch {
         b2Island island;
         b2Profile profile;  ///< the island counters of the blocks it solved
-        // A word, not a bool: byte-sized compare-exchange needs libatomic on some targets
-        // (riscv64 at -O0).
-        std::atomic<uint32_t> busy{0};
     };
 
     std::vector<Start> starts;
@@ -52,7 +49,7 @@ struct World::ParallelIslands {
     std::vector<int32> order;                ///< islands in the order the blocks take them
     std::vector<int32> staged;               ///< islands solved one by one, each by every worker
     std::vector<int32> sizes;                ///< per island: bodies + contacts + joints
-    std::vector<std::unique_ptr<Scratch>> scratch;
+    b2ScratchSet<Scratch> scratch;
 
     // The step being solved.
     const b2TimeStep* step = nullptr;
@@ -61,17 +58,6 @@ struct World::ParallelIslands {
     bool reportImpulses = false;
 
     int32 IslandCount() const noexcept { return static_cast<int32>(starts.size()) - 1; }
-
-    // Takes a free scratch. A task system runs at most GetWorkerCount() blocks at once and
-    // there are that many, so one is free; a job system that runs more waits here.
-    Scratch& Acquire() noexcept {
-        for (;;) {
-            for (const std::unique_ptr<Scratch>& s : scratch) {
-                uint32_t expected = 0;
-                if (s->busy.compare_exchange_strong(expected, 1, std::memory_order_acquire)) return *s;
-            }
-        }
-    }
 
     void SolveIsland(b2Island& island, b2Profile& profile, int32 i) {
         const Start& from = starts[static_cast<size_t>(i)];
@@ -142,9 +128,9 @@ struct World::ParallelIslands {
     // Solves the islands order[begin..end).
     static void SolveRange(int32 begin, int32 end, void* context) {
         auto* self = static_cast<ParallelIslands*>(context);
-        Scratch& s = self->Acquire();
-        for (int32 i = begin; i < end; ++i) self->SolveIsland(s.island, s.profile, self->order[static_cast<size_t>(i)]);
-        s.busy.store(0, std::memory_order_release);
+        const b2ScratchSet<Scratch>::Lease s = self->scratch.Acquire();
+        for (int32 i = begin; i < end; ++i)
+            self->SolveIsland(s->island, s->profile, self->order[static_cast<size_t>(i)]);
     }
 };
 
@@ -169,15 +155,21 @@ void AddIslandCounters(b2Profile& to, b2Profile& from) {
 }  // namespace
 
 void World::RecordIsland() {
+    const auto n = [](int32 count) { return static_cast<size_t>(count); };
+    RecordIsland({m_island.m_bodies.data(), n(m_island.m_bodyCount)},
+                 {m_island.m_contacts.data(), n(m_island.m_contactCount)},
+                 {m_island.m_joints.data(), n(m_island.m_jointCount)}, m_islandStatics);
+}
+
+void World::RecordIsland(std::span<b2Body* const> bodies, std::span<b2Contact* const> contacts,
+                         std::span<b2Joint* const> joints, std::span<b2Body* const> statics) {
     if (!m_parallelIslands) m_parallelIslands.reset(new ParallelIslands);
     ParallelIslands& p = *m_parallelIslands;
     if (p.starts.empty()) p.starts.push_back({});
-    const auto n = [](int32 count) { return static_cast<size_t>(count); };
-    p.bodies.insert(p.bodies.end(), m_island.m_bodies.begin(), m_island.m_bodies.begin() + n(m_island.m_bodyCount));
-    p.contacts.insert(p.contacts.end(), m_island.m_contacts.begin(),
-                      m_island.m_contacts.begin() + n(m_island.m_contactCount));
-    p.joints.insert(p.joints.end(), m_island.m_joints.begin(), m_island.m_joints.begin() + n(m_island.m_jointCount));
-    p.statics.insert(p.statics.end(), m_islandStatics.begin(), m_islandStatics.end());
+    p.bodies.insert(p.bodies.end(), bodies.begin(), bodies.end());
+    p.contacts.insert(p.contacts.end(), contacts.begin(), contacts.end());
+    p.joints.insert(p.joints.end(), joints.begin(), joints.end());
+    p.statics.insert(p.statics.end(), statics.begin(), statics.end());
     p.starts.push_back({static_cast<int32>(p.bodies.size()), static_cast<int32>(p.contacts.size()),
                         static_cast<int32>(p.joints.size()), static_cast<int32>(p.statics.size())});
 }
@@ -209,10 +201,10 @@ void World::SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks) {
         maxJoints = b2Max(maxJoints, to.joint - from.joint);
     }
     const int32 workers = tasks.GetWorkerCount();
-    while (p.scratch.size() < static_cast<size_t>(workers))
-        p.scratch.push_back(std::make_unique<ParallelIslands::Scratch>());
+    p.scratch.Reserve(workers);
     b2ContactListener* listener = m_contactManager.m_contactListener;
-    for (const auto& s : p.scratch) s->island.Reset(maxBodies, maxContacts, maxJoints, listener, statics);
+    p.scratch.ForEach(
+        [&](ParallelIslands::Scratch& s) { s.island.Reset(maxBodies, maxContacts, maxJoints, listener, statics); });
 
     p.step = &step;
     p.gravity = m_gravity;
@@ -224,7 +216,7 @@ void World::SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks) {
 
     p.OrderLargestFirst(workers);
     for (const int32 i : p.staged) {
-        ParallelIslands::Scratch& s = *p.scratch.front();
+        ParallelIslands::Scratch& s = p.scratch.Front();
         s.island.m_tasks = &tasks;
         p.SolveIsland(s.island, s.profile, i);
         s.island.m_tasks = nullptr;
@@ -264,7 +256,7 @@ void World::SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks) {
         }
         ++m_profile.islandsSolved;
     }
-    for (const auto& s : p.scratch) AddIslandCounters(m_profile, s->profile);
+    p.scratch.ForEach([&](ParallelIslands::Scratch& s) { AddIslandCounters(m_profile, s.profile); });
 
     p.starts.clear();
     p.bodies.clear();

@@ -31,10 +31,10 @@ bool WorthSharing(int32 islands, int64_t work, int64_t largest) {
 }
 
 /// Body slots per block of the bodies' finish on the workers, and the fewest slots for which
-/// the built-in pool is woken for it (a game's task system gets any finish of more than one
-/// block).
+/// the built-in pool is woken for a walk of them (the island search, the finish); a game's task
+/// system gets any walk of more than one block.
 constexpr int32 kFinishSlotsPerBlock = 256;
-constexpr int32 kMinPoolFinishSlots = 1024;
+constexpr int32 kMinPoolBodySlots = 1024;
 
 }  // namespace
 
@@ -95,7 +95,7 @@ void World::FinishBodiesOnWorkers(b2TaskSystem& tasks) {
 }
 
 void World::Solve(const b2TimeStep& step) {
-    // Size the island for the worst case and clear the graph flags.
+    // Size the island for the worst case.
     m_island.Reset(m_bodyCount, m_contactManager.m_contactCount, m_jointCount, m_contactManager.m_contactListener);
     m_island.m_observer = m_stepObserver;
     // With workers the islands are found first and solved together; the island fenceposts of a
@@ -107,8 +107,42 @@ void World::Solve(const b2TimeStep& step) {
     const bool parallel = hasWorkers && (!OnOwnPool() || m_shareIslands);
     // The islands' sizes, for the pool's choice in the next step (not counted with one worker).
     const bool measure = hasWorkers && OnOwnPool();
-    int32 islands = 0;
-    int64_t work = 0, largest = 0;
+    IslandTally tally;
+    // Many body slots are walked by the workers: in the island search when the islands are
+    // solved together, and in the bodies' finish.
+    const int32 bodySlots = m_bodies.GetCapacity();
+    const bool manyBodies = hasWorkers && bodySlots >= (OnOwnPool() ? kMinPoolBodySlots : kFinishSlotsPerBlock + 1);
+    if (parallel && manyBodies) {
+        FindIslandsOnWorkers(*tasks, tally);
+    } else {
+        SearchIslands(step, tasks, hasWorkers, parallel, measure, tally);
+    }
+    if (parallel) SolveRecordedIslands(step, *tasks);
+    if (measure) m_shareIslands = WorthSharing(tally.islands, tally.work, tally.largest);
+    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solve, *m_owner);
+
+    const Clock::time_point timer = Clock::now();
+    if (manyBodies) {
+        FinishBodiesOnWorkers(*tasks);
+    } else {
+        // Synchronise fixtures of bodies that moved, keep angles bounded, flag fast bodies and
+        // collect bodies that left the world.
+        for (b2Body* b = m_bodyList; b; b = b->GetNext()) {
+            if ((b->m_flags & b2Body::e_islandFlag) == 0) continue;
+            if (b->GetType() == b2_staticBody) continue;
+            SynchronizeFixtures(*b);
+            FinishMotion(*b);
+            if (IsOutside(b)) m_outOfBounds.push_back(b);
+        }
+    }
+    m_contactManager.FindNewContacts();
+    m_profile.broadphaseNs += Nanos(timer);
+    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_broadPhase, *m_owner);
+}
+
+void World::SearchIslands(const b2TimeStep& step, b2TaskSystem* tasks, bool hasWorkers, bool parallel, bool measure,
+                          IslandTally& tally) {
+    // Clear the graph flags.
     m_bodies.ForEachLive([](b2Body& b) { b.m_flags &= ~(b2Body::e_islandFlag | b2Body::e_fastFlag); });
     m_contactManager.ForEachInSlots(0, m_contactManager.SlotCount(),
                                     [](b2Contact& c) { c.m_flags &= ~b2Contact::e_islandFlag; });
@@ -183,12 +217,7 @@ void World::Solve(const b2TimeStep& step) {
         for (int32 i = 0; i < m_island.m_bodyCount; ++i)
             m_island.m_bodies[static_cast<size_t>(i)]->m_flags &= ~b2Body::e_scannedFlag;
 
-        if (measure) {
-            const int64_t size = m_island.m_bodyCount + m_island.m_contactCount + m_island.m_jointCount;
-            ++islands;
-            work += size;
-            largest = b2Max(largest, size);
-        }
+        if (measure) tally.Add(m_island.m_bodyCount + m_island.m_contactCount + m_island.m_jointCount);
         if (parallel) {
             RecordIsland();
         } else {
@@ -207,29 +236,6 @@ void World::Solve(const b2TimeStep& step) {
         // Static bodies may take part in other islands.
         for (b2Body* b : m_islandStatics) b->m_flags &= ~b2Body::e_islandFlag;
     }
-
-    if (parallel) SolveRecordedIslands(step, *tasks);
-    if (measure) m_shareIslands = WorthSharing(islands, work, largest);
-    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solve, *m_owner);
-
-    const Clock::time_point timer = Clock::now();
-    const int32 slots = m_bodies.GetCapacity();
-    if (hasWorkers && slots >= (OnOwnPool() ? kMinPoolFinishSlots : kFinishSlotsPerBlock + 1)) {
-        FinishBodiesOnWorkers(*tasks);
-    } else {
-        // Synchronise fixtures of bodies that moved, keep angles bounded, flag fast bodies and
-        // collect bodies that left the world.
-        for (b2Body* b = m_bodyList; b; b = b->GetNext()) {
-            if ((b->m_flags & b2Body::e_islandFlag) == 0) continue;
-            if (b->GetType() == b2_staticBody) continue;
-            SynchronizeFixtures(*b);
-            FinishMotion(*b);
-            if (IsOutside(b)) m_outOfBounds.push_back(b);
-        }
-    }
-    m_contactManager.FindNewContacts();
-    m_profile.broadphaseNs += Nanos(timer);
-    if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_broadPhase, *m_owner);
 }
 
 }  // namespace lockbox

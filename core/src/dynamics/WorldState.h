@@ -2,7 +2,9 @@
 // A world's internal state and the code behind b2World's calls. b2World (World.h) holds one
 // of these and forwards to it; the rest of the engine reaches it through Engine::Of.
 
+#include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "Engine.h"
@@ -150,9 +152,10 @@ public:
     /// solve order, with their colours); for tests.
     const b2Island& LastIsland() const noexcept { return m_island; }
 
-    /// A step's islands solved at the same time (IslandTasks.cpp): found serially, in the
-    /// one-worker order, then solved on the task system, then finished (PostSolve, static
-    /// bodies' sleep, saturation counts) in island order. Buffers kept between steps.
+    /// A step's islands solved at the same time (IslandTasks.cpp): found in the one-worker
+    /// order (by the stepping thread, or by the workers: IslandSearch.cpp), then solved on the
+    /// task system, then finished (PostSolve, static bodies' sleep, saturation counts) in island
+    /// order. Buffers kept between steps.
     struct ParallelIslands;
     struct ParallelIslandsDeleter {
         void operator()(ParallelIslands* p) const noexcept;
@@ -199,8 +202,35 @@ public:
 
 private:
     void Solve(const b2TimeStep& step);
+    /// The sizes of a step's islands, for the built-in pool's choice in the next step.
+    struct IslandTally {
+        int32 islands = 0;
+        int64_t work = 0;  ///< bodies + contacts + joints of every island
+        int64_t largest = 0;
+        void Add(int64_t size) noexcept {
+            ++islands;
+            work += size;
+            largest = size > largest ? size : largest;
+        }
+    };
+    /// The one-worker island search, in body-list order: solves each island as it is found, or
+    /// records it when `parallel`; tallies the islands when `measure`.
+    void SearchIslands(const b2TimeStep& step, b2TaskSystem* tasks, bool hasWorkers, bool parallel, bool measure,
+                       IslandTally& tally);
     /// Keeps the island just found in m_island for SolveRecordedIslands.
     void RecordIsland();
+    /// Keeps an island given by its lists (in its solve order) for SolveRecordedIslands.
+    void RecordIsland(std::span<b2Body* const> bodies, std::span<b2Contact* const> contacts,
+                      std::span<b2Joint* const> joints, std::span<b2Body* const> statics);
+    /// The island search on the workers (IslandSearch.cpp): records the islands the one-worker
+    /// search finds, in its order and each in its order, and tallies them. Buffers kept
+    /// between steps.
+    void FindIslandsOnWorkers(b2TaskSystem& tasks, IslandTally& tally);
+    struct IslandSearch;
+    struct IslandSearchDeleter {
+        void operator()(IslandSearch* p) const noexcept;
+    };
+    std::unique_ptr<IslandSearch, IslandSearchDeleter> m_islandSearch;
     /// Solves the recorded islands on `tasks` and finishes them in island order.
     void SolveRecordedIslands(const b2TimeStep& step, b2TaskSystem& tasks);
     void SolveTOI(const b2TimeStep& step);
