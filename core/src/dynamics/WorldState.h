@@ -167,10 +167,28 @@ public:
     /// the reference the tests compare the short one with.
     bool m_toiSearchEveryContact = false;
 
-    // The time-of-impact event search's candidates (WorldToi.cpp): every contact the search
-    // could take, in contact-list order up to `m_toiSorted`, unsorted additions after it.
+    // The time-of-impact event search's candidates (WorldToi.cpp): the contacts it could take
+    // and has still to examine, in contact-list order up to `m_toiSorted`, unsorted additions
+    // after it; and those examined, with a time of impact before the end of the step, queued
+    // earliest first (the earlier in list order on a tie).
     std::vector<b2Contact*> m_toiCandidates;
     size_t m_toiSorted = 0;
+    struct ToiQueued {
+        Fixed alpha;      ///< the contact's cached time of impact when it was queued
+        int64_t listKey;  ///< the contact's list key
+        b2Contact* contact;
+    };
+    std::vector<ToiQueued> m_toiQueue;  ///< a heap
+    /// What the event search makes of a contact: one it keeps (disabled, or with neither body
+    /// active, for now), one a filter rejects for the rest of the step, or one whose time of
+    /// impact is cached (computed now if it was not).
+    enum class ToiVerdict { e_kept, e_dropped, e_cached };
+    /// 2.2.1's examination of a contact in the event search: its filters, then its time of
+    /// impact, which can advance a body's sweep to the other's start.
+    ToiVerdict ExamineToiContact(b2Contact& contact);
+    /// Examines the candidates in list order and returns the contact of the next event (the
+    /// earliest time of impact, the earlier in list order on a tie), or nullptr.
+    b2Contact* NextToiEvent();
     /// Counts the edits that can turn a filter of the search from reject to accept while the
     /// events are solved (a listener's SetBullet or SetSensor); the search drops a candidate
     /// that a filter rejects only while this count stays put (not state).

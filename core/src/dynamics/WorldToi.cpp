@@ -85,8 +85,11 @@ constexpr int32 kMinPoolToiSlots = 4096;
 // filter), so the search visits only those: the candidates, in the same order, which gives
 // the same events. A contact becomes one while events are solved only when a sub-step makes
 // one of its bodies fast, or when it is created; both are added as they happen. A candidate
-// that a filter rejects for the rest of the step is dropped after its visit, so each event's
-// search reads only contacts that can still take an event.
+// that a filter rejects for the rest of the step is dropped after its visit. Reading a cached
+// time of impact again changes nothing, and only an event clears one (its contact's, and those
+// of the dynamic bodies it moved, which become candidates again): so each candidate with a
+// cached time of impact waits in a queue, earliest first, and an event's search examines only
+// the candidates without one, then takes the queue's first.
 bool World::RefreshToiContact(b2Contact& c, bool invalidate) noexcept {
     if (invalidate) {
         // Invalidate TOI.
@@ -112,6 +115,7 @@ void World::CollectToiSlots(int32 begin, int32 end, void* self) {
 
 void World::CollectToiCandidates(bool invalidate) {
     m_toiCandidates.clear();
+    m_toiQueue.clear();
     const int32 slots = m_contactManager.SlotCount();
     b2TaskSystem* tasks = Tasks();
     const bool parallel = tasks != nullptr && tasks->GetWorkerCount() > 1 &&
@@ -160,6 +164,110 @@ void World::SortToiCandidates() {
     std::inplace_merge(m_toiCandidates.begin(), middle, m_toiCandidates.end(), before);
     m_toiCandidates.erase(std::unique(m_toiCandidates.begin(), m_toiCandidates.end()), m_toiCandidates.end());
     m_toiSorted = m_toiCandidates.size();
+}
+
+World::ToiVerdict World::ExamineToiContact(b2Contact& contact) {
+    b2Contact* c = &contact;
+    if (!c->IsEnabled()) return ToiVerdict::e_kept;
+    // Prevent excessive sub-stepping.
+    if (c->m_toiCount > b2_maxSubSteps) return ToiVerdict::e_dropped;
+    // This contact has a valid cached TOI.
+    if (c->m_flags & b2Contact::e_toiFlag) return ToiVerdict::e_cached;
+
+    b2Fixture* fA = c->GetFixtureA();
+    b2Fixture* fB = c->GetFixtureB();
+    if (fA->IsSensor() || fB->IsSensor()) return ToiVerdict::e_dropped;
+
+    b2Body* bA = fA->GetBody();
+    b2Body* bB = fB->GetBody();
+    const b2BodyType typeA = bA->m_type;
+    const b2BodyType typeB = bB->m_type;
+
+    const bool activeA = bA->IsAwake() && typeA != b2_staticBody;
+    const bool activeB = bB->IsAwake() && typeB != b2_staticBody;
+    // Is at least one body active (awake and dynamic or kinematic)?
+    if (!activeA && !activeB) return ToiVerdict::e_kept;
+
+    const bool collideA = bA->IsBullet() || typeA != b2_dynamicBody;
+    const bool collideB = bB->IsBullet() || typeB != b2_dynamicBody;
+    // Are these two non-bullet dynamic bodies?
+    if (!collideA && !collideB) return ToiVerdict::e_dropped;
+
+    // Neither body moved enough to tunnel: the discrete step handled it.
+    if (((bA->m_flags | bB->m_flags) & b2Body::e_fastFlag) == 0) return ToiVerdict::e_dropped;
+    ++m_profile.toiCandidates;
+
+    // Put the sweeps onto the same time interval.
+    Fixed alpha0 = bA->m_sweep.alpha0;
+    if (bA->m_sweep.alpha0 < bB->m_sweep.alpha0) {
+        alpha0 = bB->m_sweep.alpha0;
+        bA->m_sweep.Advance(alpha0);
+    } else if (bB->m_sweep.alpha0 < bA->m_sweep.alpha0) {
+        alpha0 = bA->m_sweep.alpha0;
+        bB->m_sweep.Advance(alpha0);
+    }
+
+    b2TOIInput input;
+    input.proxyA.Set(fA->m_shape.get(), c->GetChildIndexA());
+    input.proxyB.Set(fB->m_shape.get(), c->GetChildIndexB());
+    input.sweepA = bA->m_sweep;
+    input.sweepB = bB->m_sweep;
+    input.tMax = 1;
+
+    b2TOIOutput output;
+    b2TimeOfImpact(&output, &input);
+    ++m_profile.toiCalls;
+
+    // beta is the fraction of the remaining portion of the step.
+    const Fixed beta = output.t;
+    c->m_toi =
+        output.state == b2TOIOutput::e_touching ? b2Min(alpha0 + (Fixed(1) - alpha0) * beta, Fixed(1)) : Fixed(1);
+    c->m_flags |= b2Contact::e_toiFlag;
+    return ToiVerdict::e_cached;
+}
+
+b2Contact* World::NextToiEvent() {
+    // The candidates still to examine, in list order (their examination can move sweeps, so
+    // the order is 2.2.1's). Those with a time of impact before the end of the step join the
+    // queue; the others stay to be examined again, or are dropped.
+    SortToiCandidates();
+    const auto later = [](const ToiQueued& a, const ToiQueued& b) {
+        return a.alpha != b.alpha ? a.alpha > b.alpha : a.listKey > b.listKey;
+    };
+    size_t kept = 0;
+    for (b2Contact* c : m_toiCandidates) {
+        const ToiVerdict verdict = ExamineToiContact(*c);
+        if (verdict == ToiVerdict::e_dropped) continue;
+        if (verdict == ToiVerdict::e_kept) {
+            m_toiCandidates[kept++] = c;
+        } else if (c->m_toi < Fixed(1)) {
+            m_toiQueue.push_back({c->m_toi, c->m_listKey, c});
+            std::push_heap(m_toiQueue.begin(), m_toiQueue.end(), later);
+        }
+    }
+    m_toiCandidates.resize(kept);
+    m_toiSorted = kept;
+
+    // The earliest time of impact, the earlier contact in list order on a tie: the event the
+    // full search's walk would find. An entry whose contact lost its cached time of impact
+    // since (an event moved a body of it) is gone; a contact disabled since goes back to the
+    // candidates to examine, as the full search keeps visiting it.
+    while (!m_toiQueue.empty()) {
+        const ToiQueued top = m_toiQueue.front();
+        std::pop_heap(m_toiQueue.begin(), m_toiQueue.end(), later);
+        m_toiQueue.pop_back();
+        b2Contact* c = top.contact;
+        if ((c->m_flags & b2Contact::e_toiFlag) == 0 || c->m_toi != top.alpha) continue;
+        if (!c->IsEnabled()) {
+            AddToiCandidate(c);
+            continue;
+        }
+        if (c->m_toiCount > b2_maxSubSteps) continue;
+        // Whatever the event does to it, it is examined again.
+        AddToiCandidate(c);
+        return c;
+    }
+    return nullptr;
 }
 
 void World::SolveTOI(const b2TimeStep& step) {
@@ -239,84 +347,14 @@ void World::SolveTOI(const b2TimeStep& step) {
         b2Contact* minContact = nullptr;
         Fixed minAlpha = 1;
 
-        // Returns false when a filter rejects the contact for the rest of the step: its
-        // sub-step count only grows, a sensor flag or a bullet flag changes only through an
-        // edit the search watches for (m_toiFilterEdits), body types not at all while the world
-        // is locked, and a body made fast brings its contacts back as candidates.
-        auto consider = [&](b2Contact* c) -> bool {
-            if (!c->IsEnabled()) return true;
-            // Prevent excessive sub-stepping.
-            if (c->m_toiCount > b2_maxSubSteps) return false;
-
-            Fixed alpha = 1;
-            if (c->m_flags & b2Contact::e_toiFlag) {
-                // This contact has a valid cached TOI.
-                alpha = c->m_toi;
-            } else {
-                b2Fixture* fA = c->GetFixtureA();
-                b2Fixture* fB = c->GetFixtureB();
-                if (fA->IsSensor() || fB->IsSensor()) return false;
-
-                b2Body* bA = fA->GetBody();
-                b2Body* bB = fB->GetBody();
-                const b2BodyType typeA = bA->m_type;
-                const b2BodyType typeB = bB->m_type;
-
-                const bool activeA = bA->IsAwake() && typeA != b2_staticBody;
-                const bool activeB = bB->IsAwake() && typeB != b2_staticBody;
-                // Is at least one body active (awake and dynamic or kinematic)?
-                if (!activeA && !activeB) return true;
-
-                const bool collideA = bA->IsBullet() || typeA != b2_dynamicBody;
-                const bool collideB = bB->IsBullet() || typeB != b2_dynamicBody;
-                // Are these two non-bullet dynamic bodies?
-                if (!collideA && !collideB) return false;
-
-                // Neither body moved enough to tunnel: the discrete step handled it.
-                if (((bA->m_flags | bB->m_flags) & b2Body::e_fastFlag) == 0) return false;
-                ++m_profile.toiCandidates;
-
-                // Put the sweeps onto the same time interval.
-                Fixed alpha0 = bA->m_sweep.alpha0;
-                if (bA->m_sweep.alpha0 < bB->m_sweep.alpha0) {
-                    alpha0 = bB->m_sweep.alpha0;
-                    bA->m_sweep.Advance(alpha0);
-                } else if (bB->m_sweep.alpha0 < bA->m_sweep.alpha0) {
-                    alpha0 = bA->m_sweep.alpha0;
-                    bB->m_sweep.Advance(alpha0);
-                }
-
-                b2TOIInput input;
-                input.proxyA.Set(fA->m_shape.get(), c->GetChildIndexA());
-                input.proxyB.Set(fB->m_shape.get(), c->GetChildIndexB());
-                input.sweepA = bA->m_sweep;
-                input.sweepB = bB->m_sweep;
-                input.tMax = 1;
-
-                b2TOIOutput output;
-                b2TimeOfImpact(&output, &input);
-                ++m_profile.toiCalls;
-
-                // beta is the fraction of the remaining portion of the step.
-                const Fixed beta = output.t;
-                if (output.state == b2TOIOutput::e_touching) {
-                    alpha = b2Min(alpha0 + (Fixed(1) - alpha0) * beta, Fixed(1));
-                } else {
-                    alpha = 1;
-                }
-                c->m_toi = alpha;
-                c->m_flags |= b2Contact::e_toiFlag;
-            }
-
-            if (alpha < minAlpha) {
-                // This is the minimum TOI found so far (ties keep the earlier contact in list order).
-                minContact = c;
-                minAlpha = alpha;
-            }
-            return true;
-        };
         if (m_toiSearchEveryContact) {
-            for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) consider(c);
+            for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) {
+                // Ties keep the earlier contact in list order.
+                if (ExamineToiContact(*c) == ToiVerdict::e_cached && c->m_toi < minAlpha) {
+                    minContact = c;
+                    minAlpha = c->m_toi;
+                }
+            }
         } else {
             // A listener's edit may have made a dropped candidate acceptable again: take every
             // contact that can pass the last filter, as at the start.
@@ -324,16 +362,9 @@ void World::SolveTOI(const b2TimeStep& step) {
                 CollectToiCandidates(false);
                 filterEdits = m_toiFilterEdits;
             }
-            SortToiCandidates();
-            // Visit in list order and keep, in that order, the candidates not dropped.
-            size_t kept = 0;
-            for (b2Contact* c : m_toiCandidates) {
-                if (consider(c)) m_toiCandidates[kept++] = c;
-            }
-            m_toiCandidates.resize(kept);
-            m_toiSorted = kept;
+            minContact = NextToiEvent();
+            if (minContact != nullptr) minAlpha = minContact->m_toi;
         }
-
         if (minContact == nullptr || minAlpha >= kTOIAlphaComplete) {
             // No more TOI events. Done!
             m_stepComplete = true;

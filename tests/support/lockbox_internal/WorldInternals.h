@@ -34,9 +34,6 @@ inline state_detail::FrameRestoreCounts FrameRestores(const b2World& world) {
 /// instead of its candidates only.
 inline void SetToiSearchEveryContact(b2World& world, bool every) { Internals(world).m_toiSearchEveryContact = every; }
 
-/// The time-of-impact search's candidates as the last search left them.
-inline const std::vector<b2Contact*>& ToiCandidates(b2World& world) { return Internals(world).m_toiCandidates; }
-
 /// Entries in the log of confined structural changes.
 inline size_t StructureLogSize(const b2World& world) { return Internals(world).m_frames.m_structureLog.size(); }
 
