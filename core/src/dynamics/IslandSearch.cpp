@@ -25,6 +25,7 @@
 #include <memory>
 #include <vector>
 
+#include "dynamics/IslandWalk.h"
 #include "dynamics/WorldState.h"
 #include "dynamics/tasks/ScratchSet.h"
 #include "dynamics/tasks/Stages.h"
@@ -50,7 +51,9 @@ enum Stage : int32 { e_clearBodies, e_join, e_findSeeds, e_walk };
 }  // namespace
 
 struct World::IslandSearch {
-    /// One walk's buffers: the islands it found, one after the other, and its marks.
+    /// One walk's buffers: the islands it found, one after the other, and its marks. It is the
+    /// walk's sink (IslandWalk.h): static bodies are neither marked nor woken, only noted in
+    /// its own table.
     struct Walker {
         std::vector<b2Body*> stack;
         std::vector<b2Body*> bodies;
@@ -60,7 +63,10 @@ struct World::IslandSearch {
         std::vector<uint32> met;  ///< per body slot: the number of the last walk that met this static body
         uint32 walk = 0;
 
-        // True the first time the walk reaches `body`, which it then marks.
+        void Body(b2Body* b) { bodies.push_back(b); }
+        void Static(b2Body* b) { statics.push_back(b); }
+        void Contact(b2Contact* c) { contacts.push_back(c); }
+        void Joint(b2Joint* j) { joints.push_back(j); }
         bool Meet(b2Body& body) noexcept {
             if (body.m_type == b2_staticBody) {
                 uint32& last = met[static_cast<size_t>(body.m_id)];
@@ -173,7 +179,7 @@ struct World::IslandSearch {
         found.resize(seeds.size());
     }
 
-    // The one-worker search's walk from `from` (WorldSolve.cpp), into the walker's buffers.
+    // The one-worker search's walk from `from`, into the walker's buffers.
     static void Walk(Walker& w, b2Body* from, Found& out) {
         if (++w.walk == 0) {
             std::fill(w.met.begin(), w.met.end(), 0u);
@@ -184,50 +190,16 @@ struct World::IslandSearch {
         out.contact = static_cast<int32>(w.contacts.size());
         out.joint = static_cast<int32>(w.joints.size());
         out.statics = static_cast<int32>(w.statics.size());
-        w.stack.push_back(from);
-        from->m_flags |= b2Body::e_islandFlag;
-        while (!w.stack.empty()) {
-            b2Body* b = w.stack.back();
-            w.stack.pop_back();
-            w.bodies.push_back(b);
-            if (b->m_type == b2_staticBody) {
-                w.statics.push_back(b);
-                continue;
-            }
-            b->SetAwake(true);
-            b->m_flags |= b2Body::e_scannedFlag;
-            for (b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) {
-                if (ce->next != nullptr) __builtin_prefetch(ce->next);
-                b2Contact* contact = ce->contact;
-                if (contact->m_flags & b2Contact::e_islandFlag) continue;
-                if (!contact->IsEnabled() || !contact->IsTouching()) continue;
-                LOCKBOX_ASSERT(contact->IsSensorPair() == contact->SensorPairNow(), "stale sensor mark");
-                if (contact->IsSensorPair()) continue;
-                w.contacts.push_back(contact);
-                contact->m_flags |= b2Contact::e_islandFlag;
-                b2Body* other = ce->other;
-                if (!w.Meet(*other)) continue;
-                w.stack.push_back(other);
-                if (other->m_contactList != nullptr) __builtin_prefetch(other->m_contactList);
-            }
-            for (b2JointEdge* je = b->m_jointList; je; je = je->next) {
-                b2Body* other = je->other;
-                // The one-worker filters, with the body types first: a joint between two
-                // bodies without mass may lead into another walk's part, whose flags this
-                // walk must not read.
-                if (b->m_type != b2_dynamicBody && other->m_type != b2_dynamicBody) continue;
-                if (other->m_flags & b2Body::e_scannedFlag) continue;
-                if (!other->IsActive()) continue;
-                w.joints.push_back(je->joint);
-                if (w.Meet(*other)) w.stack.push_back(other);
-            }
-        }
+        WalkIsland(from, w.stack, w);
         out.bodyEnd = static_cast<int32>(w.bodies.size());
         out.contactEnd = static_cast<int32>(w.contacts.size());
         out.jointEnd = static_cast<int32>(w.joints.size());
         out.staticsEnd = static_cast<int32>(w.statics.size());
-        for (int32 k = out.body; k < out.bodyEnd; ++k)
-            w.bodies[static_cast<size_t>(k)]->m_flags &= ~b2Body::e_scannedFlag;
+        // Static bodies, which other walks read at the same time, never take the scan mark.
+        for (int32 k = out.body; k < out.bodyEnd; ++k) {
+            b2Body& b = *w.bodies[static_cast<size_t>(k)];
+            if (b.m_type != b2_staticBody) b.m_flags &= ~b2Body::e_scannedFlag;
+        }
     }
 
     void WalkSeeds(int32 block) {

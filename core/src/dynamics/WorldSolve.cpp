@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "dynamics/IslandWalk.h"
 #include "dynamics/ProfileTimer.h"
 #include "dynamics/WorldState.h"
 #include "dynamics/contacts/ContactRules.h"
@@ -147,8 +148,7 @@ void World::SearchIslands(const b2TimeStep& step, b2TaskSystem* tasks, bool hasW
     m_contactManager.ForEachInSlots(0, m_contactManager.SlotCount(),
                                     [](b2Contact& c) { c.m_flags &= ~b2Contact::e_islandFlag; });
 
-    m_stack.resize(static_cast<size_t>(m_bodyCount));
-    b2Body** stack = m_stack.data();
+    m_stack.reserve(static_cast<size_t>(m_bodyCount));
 
     for (b2Body* seed = m_bodyList; seed; seed = seed->m_next) {
         if (seed->m_flags & b2Body::e_islandFlag) continue;
@@ -158,59 +158,26 @@ void World::SearchIslands(const b2TimeStep& step, b2TaskSystem* tasks, bool hasW
 
         m_island.Clear();
         m_islandStatics.clear();
-        int32 stackCount = 0;
-        stack[stackCount++] = seed;
-        seed->m_flags |= b2Body::e_islandFlag;
-
-        // Depth-first search over the constraint graph, in list order.
-        while (stackCount > 0) {
-            b2Body* b = stack[--stackCount];
-            m_island.Add(b);
-            b->SetAwake(true);
-
-            // Islands do not propagate across static bodies. The few an island holds are
-            // noted, so that what is done to them after its solve visits no other body.
-            if (b->GetType() == b2_staticBody) {
-                m_islandStatics.push_back(b);
-                continue;
+        // Static bodies are marked by their island flag too, and woken; the marks are cleared
+        // after the island, since other islands may take them.
+        struct Sink {
+            World& w;
+            void Body(b2Body* b) { w.m_island.Add(b); }
+            void Static(b2Body* b) {
+                b->SetAwake(true);
+                // The few an island holds are noted, so that what is done to them after its
+                // solve visits no other body.
+                w.m_islandStatics.push_back(b);
             }
-            b->m_flags |= b2Body::e_scannedFlag;
-
-            for (b2ContactEdge* ce = b->m_contactList; ce; ce = ce->next) {
-                // The graph lies scattered in memory: request the next edge's line while this
-                // one is looked at (a hint only).
-                if (ce->next != nullptr) __builtin_prefetch(ce->next);
-                b2Contact* contact = ce->contact;
-                if (contact->m_flags & b2Contact::e_islandFlag) continue;
-                if (!contact->IsEnabled() || !contact->IsTouching()) continue;
-                LOCKBOX_ASSERT(contact->IsSensorPair() == contact->SensorPairNow(), "stale sensor mark");
-                if (contact->IsSensorPair()) continue;
-                m_island.Add(contact);
-                contact->m_flags |= b2Contact::e_islandFlag;
-                b2Body* other = ce->other;
-                if (other->m_flags & b2Body::e_islandFlag) continue;
-                stack[stackCount++] = other;
-                other->m_flags |= b2Body::e_islandFlag;
-                if (other->m_contactList != nullptr) __builtin_prefetch(other->m_contactList);
+            void Contact(b2Contact* c) { w.m_island.Add(c); }
+            void Joint(b2Joint* j) { w.m_island.Add(j); }
+            bool Meet(b2Body& b) {
+                if (b.m_flags & b2Body::e_islandFlag) return false;
+                b.m_flags |= b2Body::e_islandFlag;
+                return true;
             }
-
-            for (b2JointEdge* je = b->m_jointList; je; je = je->next) {
-                b2Body* other = je->other;
-                // A joint is taken from the first of its bodies to be scanned (a static body
-                // never is), so one whose other body was scanned is in the island already.
-                // This reads only the other body, which the search reads anyway, not the joint.
-                if (other->m_flags & b2Body::e_scannedFlag) continue;
-                // Don't simulate joints connected to inactive bodies.
-                if (!other->IsActive()) continue;
-                // A joint between two bodies without mass (kinematic-static, kinematic-kinematic)
-                // can change nothing: it costs nothing either.
-                if (b->GetType() != b2_dynamicBody && other->GetType() != b2_dynamicBody) continue;
-                m_island.Add(je->joint);
-                if (other->m_flags & b2Body::e_islandFlag) continue;
-                stack[stackCount++] = other;
-                other->m_flags |= b2Body::e_islandFlag;
-            }
-        }
+        } sink{*this};
+        WalkIsland(seed, m_stack, sink);
 
         // No other island reaches these bodies: the scan marks have served, and the solve (and
         // any observer's view of it) sees the flags as they were.

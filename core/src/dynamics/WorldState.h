@@ -235,6 +235,10 @@ private:
     /// records it when `parallel`; tallies the islands when `measure`.
     void SearchIslands(const b2TimeStep& step, b2TaskSystem* tasks, bool hasWorkers, bool parallel, bool measure,
                        IslandTally& tally);
+    /// 2.2.1's walk of the constraint graph from `seed` that makes an island, into `sink`
+    /// (IslandWalk.h).
+    template <class Sink>
+    static void WalkIsland(b2Body* seed, std::vector<b2Body*>& stack, Sink& sink);
     /// Keeps the island just found in m_island for SolveRecordedIslands.
     void RecordIsland();
     /// Keeps an island given by its lists (in its solve order) for SolveRecordedIslands.
