@@ -90,7 +90,6 @@ struct World::IslandSearch {
     int32 capacity = 0;  ///< body slots the per-slot arrays hold
     std::unique_ptr<std::atomic<int32>[]> parent;
     std::unique_ptr<std::atomic<b2Body*>[]> seed;  ///< per part's root: its first possible seed so far
-    std::vector<int32> root;                       ///< per body slot: its part's root
     std::vector<b2Body*> seeds;                    ///< in list order
     std::vector<Found> found;                      ///< per seed
     b2ScratchSet<Walker> walkers;
@@ -155,7 +154,6 @@ struct World::IslandSearch {
     void FindSeeds(int32 begin, int32 end) {
         world->m_bodies.ForEachLiveIn(begin, end, [&](b2Body& b) {
             const int32 r = Find(b.m_id);
-            root[static_cast<size_t>(b.m_id)] = r;
             if (b.m_type == b2_staticBody || !b.IsAwake() || !b.IsActive()) return;
             std::atomic<b2Body*>& best = seed[static_cast<size_t>(r)];
             b2Body* held = best.load(std::memory_order_relaxed);
@@ -170,7 +168,9 @@ struct World::IslandSearch {
         seeds.clear();
         const int32 slots = world->m_bodies.GetCapacity();
         for (int32 id = 0; id < slots; ++id) {
-            if (!world->m_bodies.IsLive(id) || root[static_cast<size_t>(id)] != id) continue;
+            // A part's root is the one body of it that is its own parent.
+            if (!world->m_bodies.IsLive(id) || parent[static_cast<size_t>(id)].load(std::memory_order_relaxed) != id)
+                continue;
             b2Body* first = seed[static_cast<size_t>(id)].load(std::memory_order_relaxed);
             if (first != nullptr) seeds.push_back(first);
         }
@@ -195,11 +195,7 @@ struct World::IslandSearch {
         out.contactEnd = static_cast<int32>(w.contacts.size());
         out.jointEnd = static_cast<int32>(w.joints.size());
         out.staticsEnd = static_cast<int32>(w.statics.size());
-        // Static bodies, which other walks read at the same time, never take the scan mark.
-        for (int32 k = out.body; k < out.bodyEnd; ++k) {
-            b2Body& b = *w.bodies[static_cast<size_t>(k)];
-            if (b.m_type != b2_staticBody) b.m_flags &= ~b2Body::e_scannedFlag;
-        }
+        ClearScanMarks({w.bodies.data() + out.body, static_cast<size_t>(out.bodyEnd - out.body)});
     }
 
     void WalkSeeds(int32 block) {
@@ -257,7 +253,6 @@ void World::FindIslandsOnWorkers(b2TaskSystem& tasks, IslandTally& tally) {
         s.seed = std::make_unique<std::atomic<b2Body*>[]>(static_cast<size_t>(slots));
         s.capacity = slots;
     }
-    s.root.resize(static_cast<size_t>(slots));
     const int32 workers = tasks.GetWorkerCount();
     s.walkers.Reserve(workers);
     s.walkers.ForEach([&](IslandSearch::Walker& w) {

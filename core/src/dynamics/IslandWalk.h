@@ -11,9 +11,10 @@
 //   void Joint(b2Joint*)        every joint of the island, in walk order
 //   bool Meet(b2Body&)          true the first time the island reaches the body, which it marks
 // Non-static bodies are marked by their island flag (Meet's usual mark), and woken; each is
-// left with its scan mark (b2Body::e_scannedFlag), which the caller clears once the island is
-// complete.
+// left with its scan mark (b2Body::e_scannedFlag), which the caller clears with ClearScanMarks
+// once the island is complete.
 
+#include <span>
 #include <vector>
 
 #include "dynamics/WorldState.h"
@@ -73,6 +74,13 @@ void core_detail::Engine::World::WalkIsland(b2Body* seed, std::vector<b2Body*>& 
             sink.Joint(je->joint);
             if (sink.Meet(*other)) stack.push_back(other);
         }
+    }
+}
+
+inline void core_detail::Engine::World::ClearScanMarks(std::span<b2Body* const> island) noexcept {
+    // Static bodies never take the mark, and other workers' walks read them meanwhile.
+    for (b2Body* b : island) {
+        if (b->m_type != b2_staticBody) b->m_flags &= ~b2Body::e_scannedFlag;
     }
 }
 

@@ -181,8 +181,7 @@ void World::SearchIslands(const b2TimeStep& step, b2TaskSystem* tasks, bool hasW
 
         // No other island reaches these bodies: the scan marks have served, and the solve (and
         // any observer's view of it) sees the flags as they were.
-        for (int32 i = 0; i < m_island.m_bodyCount; ++i)
-            m_island.m_bodies[static_cast<size_t>(i)]->m_flags &= ~b2Body::e_scannedFlag;
+        ClearScanMarks({m_island.m_bodies.data(), static_cast<size_t>(m_island.m_bodyCount)});
 
         if (measure) tally.Add(m_island.m_bodyCount + m_island.m_contactCount + m_island.m_jointCount);
         if (parallel) {

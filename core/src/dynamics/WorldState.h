@@ -175,7 +175,7 @@ public:
     size_t m_toiSorted = 0;
     struct ToiQueued {
         Fixed alpha;      ///< the contact's cached time of impact when it was queued
-        int64_t listKey;  ///< the contact's list key
+        int64_t listKey;  ///< the contact's list key, here so that the heap's comparisons read no contact
         b2Contact* contact;
     };
     std::vector<ToiQueued> m_toiQueue;  ///< a heap
@@ -185,7 +185,7 @@ public:
     enum class ToiVerdict { e_kept, e_dropped, e_cached };
     /// 2.2.1's examination of a contact in the event search: its filters, then its time of
     /// impact, which can advance a body's sweep to the other's start.
-    ToiVerdict ExamineToiContact(b2Contact& contact);
+    ToiVerdict ExamineToiContact(b2Contact* c);
     /// Examines the candidates in list order and returns the contact of the next event (the
     /// earliest time of impact, the earlier in list order on a tie), or nullptr.
     b2Contact* NextToiEvent();
@@ -239,6 +239,8 @@ private:
     /// (IslandWalk.h).
     template <class Sink>
     static void WalkIsland(b2Body* seed, std::vector<b2Body*>& stack, Sink& sink);
+    /// Clears the scan marks the walk left on an island's bodies (IslandWalk.h).
+    static void ClearScanMarks(std::span<b2Body* const> island) noexcept;
     /// Keeps the island just found in m_island for SolveRecordedIslands.
     void RecordIsland();
     /// Keeps an island given by its lists (in its solve order) for SolveRecordedIslands.

@@ -166,8 +166,7 @@ void World::SortToiCandidates() {
     m_toiSorted = m_toiCandidates.size();
 }
 
-World::ToiVerdict World::ExamineToiContact(b2Contact& contact) {
-    b2Contact* c = &contact;
+World::ToiVerdict World::ExamineToiContact(b2Contact* c) {
     if (!c->IsEnabled()) return ToiVerdict::e_kept;
     // Prevent excessive sub-stepping.
     if (c->m_toiCount > b2_maxSubSteps) return ToiVerdict::e_dropped;
@@ -236,7 +235,7 @@ b2Contact* World::NextToiEvent() {
     };
     size_t kept = 0;
     for (b2Contact* c : m_toiCandidates) {
-        const ToiVerdict verdict = ExamineToiContact(*c);
+        const ToiVerdict verdict = ExamineToiContact(c);
         if (verdict == ToiVerdict::e_dropped) continue;
         if (verdict == ToiVerdict::e_kept) {
             m_toiCandidates[kept++] = c;
@@ -251,7 +250,8 @@ b2Contact* World::NextToiEvent() {
     // The earliest time of impact, the earlier contact in list order on a tie: the event the
     // full search's walk would find. An entry whose contact lost its cached time of impact
     // since (an event moved a body of it) is gone; a contact disabled since goes back to the
-    // candidates to examine, as the full search keeps visiting it.
+    // candidates to examine, as the full search keeps visiting it. (The sub-step limit needs no
+    // test here: only an event raises a contact's count, and it clears that contact's cache.)
     while (!m_toiQueue.empty()) {
         const ToiQueued top = m_toiQueue.front();
         std::pop_heap(m_toiQueue.begin(), m_toiQueue.end(), later);
@@ -262,7 +262,6 @@ b2Contact* World::NextToiEvent() {
             AddToiCandidate(c);
             continue;
         }
-        if (c->m_toiCount > b2_maxSubSteps) continue;
         // Whatever the event does to it, it is examined again.
         AddToiCandidate(c);
         return c;
@@ -350,7 +349,7 @@ void World::SolveTOI(const b2TimeStep& step) {
         if (m_toiSearchEveryContact) {
             for (b2Contact* c = m_contactManager.m_contactList; c; c = c->m_next) {
                 // Ties keep the earlier contact in list order.
-                if (ExamineToiContact(*c) == ToiVerdict::e_cached && c->m_toi < minAlpha) {
+                if (ExamineToiContact(c) == ToiVerdict::e_cached && c->m_toi < minAlpha) {
                     minContact = c;
                     minAlpha = c->m_toi;
                 }
