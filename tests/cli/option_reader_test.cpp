@@ -6,7 +6,7 @@
 
 #include "lockbox_cli/OptionReader.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using lockbox::cli::OptionReader;
 
@@ -108,4 +108,4 @@ TEST(OptionReader, FailPrintsTheProgramAndReturnsTwo) {
     EXPECT_EQ(testing::internal::GetCapturedStderr(), "prog: unknown option '--bogus'\nusage: prog\n");
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

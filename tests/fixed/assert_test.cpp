@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct Seen {
     int calls = 0;
@@ -62,5 +62,5 @@ TEST(AssertDeathTest, TheDefaultHandlerPrintsAndAborts) {
 }
 #endif
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

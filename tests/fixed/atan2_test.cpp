@@ -16,7 +16,7 @@
 using lockbox::Fixed;
 using lockbox::detail::Atan2Raw;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr int32_t kMin = std::numeric_limits<int32_t>::min();
 constexpr int32_t kMax = std::numeric_limits<int32_t>::max();
@@ -34,8 +34,6 @@ int32_t LogUniformRaw(std::mt19937_64& rng) {
     if (v > kMax) v = kMax;
     return (rng() & 1) ? static_cast<int32_t>(-v) : static_cast<int32_t>(v);
 }
-
-}  // namespace
 
 TEST(Atan2, AxesAndOrigin) {
     EXPECT_EQ(Atan2Raw(0, 0), 0);
@@ -129,3 +127,5 @@ TEST(Atan2, PublicWrapper) {
     EXPECT_EQ(lockbox::math::Atan2(Fixed(0), Fixed(0)), Fixed(0));
     EXPECT_EQ(lockbox::math::Atan2(Fixed(-5), Fixed(0)), -lockbox::math::kHalfPi);
 }
+
+}  // namespace LOCKBOX_TEST_FILE

@@ -9,7 +9,7 @@
 
 using lockbox::Fixed;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Exact reference: round(n / d) with ties away from zero, on int64 with |n| < 2^62.
 int64_t RoundDivRef(int64_t n, int64_t d) {
@@ -27,8 +27,6 @@ int32_t RandomRaw(std::mt19937_64& rng) {
     const int64_t mag = static_cast<int64_t>(rng() & ((uint64_t{1} << bits) - 1)) | (int64_t{1} << bits) >> 1;
     return static_cast<int32_t>((rng() & 1) ? -mag : mag);
 }
-
-}  // namespace
 
 TEST(FixedArith, AddSubAreExactInRange) {
     std::mt19937_64 rng(1);
@@ -136,3 +134,5 @@ TEST(FixedArith, ComparisonsFollowRaw) {
     EXPECT_EQ(Fixed(0.5), Fixed::FromRaw(32768));
     EXPECT_NE(Fixed(0.5), Fixed::FromRaw(32767));
 }
+
+}  // namespace LOCKBOX_TEST_FILE

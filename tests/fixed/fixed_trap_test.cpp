@@ -9,7 +9,7 @@
 using lockbox::Fixed;
 using lockbox::Wide;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 // Values opaque to the optimiser, so every trap happens at run time.
 Fixed Opaque(Fixed f) {
     volatile int32_t raw = f.Raw();
@@ -19,7 +19,6 @@ Fixed Opaque(Fixed f) {
     volatile int64_t r = raw;
     return Wide::FromRaw(r);
 }
-}  // namespace
 
 #ifdef LOCKBOX_CHECKED
 TEST(FixedTrapDeathTest, EveryOverflowStopsWithTheOperationNamed) {
@@ -58,3 +57,5 @@ TEST(FixedTrapDeathTest, DefaultBuildSaturatesInsteadOfTrapping) {
     EXPECT_EQ((Opaque(Fixed::FromRaw(INT32_MAX)) + Fixed(1)).Raw(), INT32_MAX);
 }
 #endif
+
+}  // namespace LOCKBOX_TEST_FILE

@@ -10,7 +10,7 @@
 
 #include "../cross/FunctionHash.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::function_hash;
 
@@ -22,10 +22,10 @@ using namespace lockbox::function_hash;
     return ::testing::AssertionFailure() << buf;
 }
 
-}  // namespace
-
 TEST(FunctionHash, SqrtRaw) { EXPECT_TRUE(HashIs("SqrtRaw", HashSqrtRaw(), kGoldenSqrtRaw)); }
 TEST(FunctionHash, Isqrt64) { EXPECT_TRUE(HashIs("Isqrt64", HashIsqrt64(), kGoldenIsqrt64)); }
 TEST(FunctionHash, SinCosRaw) { EXPECT_TRUE(HashIs("SinCosRaw", HashSinCos(), kGoldenSinCos)); }
 TEST(FunctionHash, Atan2Raw) { EXPECT_TRUE(HashIs("Atan2Raw", HashAtan2(), kGoldenAtan2)); }
 TEST(FunctionHash, WrapAngleRaw) { EXPECT_TRUE(HashIs("WrapAngleRaw", HashWrapAngle(), kGoldenWrapAngle)); }
+
+}  // namespace LOCKBOX_TEST_FILE

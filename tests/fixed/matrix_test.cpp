@@ -15,7 +15,7 @@ using lockbox::b2Vec2;
 using lockbox::b2Vec3;
 using lockbox::Fixed;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 long double D(Fixed f) { return static_cast<long double>(f.Raw()) / 65536.0L; }
 
 Fixed RandomFixed(std::mt19937_64& rng, double lo, double hi) {
@@ -24,7 +24,6 @@ Fixed RandomFixed(std::mt19937_64& rng, double lo, double hi) {
     const double mag = lo * std::pow(hi / lo, u);
     return Fixed::FromDoubleNondeterministic((rng() & 1) ? mag : -mag);
 }
-}  // namespace
 
 TEST(Mat22, SolveMatchesReferenceWithinHalfUlpOfTheRoundedInputs) {
     std::mt19937_64 rng(21);
@@ -147,3 +146,5 @@ TEST(Int128, PortableLimbsAgreeWithNative) {
     }
 }
 #endif
+
+}  // namespace LOCKBOX_TEST_FILE

@@ -14,7 +14,7 @@
 
 using namespace lockbox;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Run-time integers: the products below must not depend on the compiler folding them.
 int32_t g_three = 3;
@@ -36,8 +36,6 @@ Bits BitsOf(const b2WideVec2& v) { return {{v.x.Raw(), v.y.Raw()}}; }
 Bits BitsOf(const b2Mat22& m) { return {{m.ex.x.Raw(), m.ex.y.Raw(), m.ey.x.Raw(), m.ey.y.Raw()}}; }
 Bits BitsOf(bool b) { return {{b ? 1 : 0}}; }
 Bits BitsOf(int32_t i) { return {{i}}; }
-
-}  // namespace
 
 // The mixed form and the explicit form have the same type and the same bits.
 #define EXPECT_SAME(mixed, explicitForm)                                                                     \
@@ -205,3 +203,5 @@ TEST(MixedArithmetic, ManualScalarFunctionsTakeNumbers) {
     EXPECT_SAME(b2Abs(-n), 3);
     EXPECT_SAME(b2Clamp(n, 0, 2), 2);
 }
+
+}  // namespace LOCKBOX_TEST_FILE

@@ -17,7 +17,7 @@ using lockbox::detail::IsqrtFloor64;
 using lockbox::detail::IsqrtRound64;
 using lockbox::detail::SqrtRaw;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Integer-exact: r = floor(sqrt(n)) iff r^2 <= n and n - r^2 <= 2r ((r+1)^2 > n).
 bool FloorIsExact(uint64_t n, uint64_t r) {
@@ -57,8 +57,6 @@ bool SqrtRawIsExact(int32_t x, int32_t r) {
     const uint64_t lo = rr == 0 ? 0 : (2 * rr - 1) * (2 * rr - 1);
     return r >= 0 && lo <= v4 && v4 < (2 * rr + 1) * (2 * rr + 1);
 }
-
-}  // namespace
 
 static_assert(IsqrtFloor64(0) == 0 && IsqrtFloor64(1) == 1 && IsqrtFloor64(3) == 1);
 static_assert(IsqrtFloor64(4) == 2 && IsqrtFloor64(99) == 9 && IsqrtFloor64(100) == 10);
@@ -157,3 +155,5 @@ TEST(FixedSqrt, WrapsTheKernel) {
         EXPECT_EQ(lockbox::math::Sqrt(Fixed::FromRaw(x)).Raw(), SqrtRaw(x));
     }
 }
+
+}  // namespace LOCKBOX_TEST_FILE

@@ -17,7 +17,7 @@
 using lockbox::Fixed;
 using lockbox::detail::SinCosRaw;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr long double kRawPerUnit = 65536.0L;
 
@@ -43,8 +43,6 @@ void Measure(int32_t x, ErrStats& s_stats, ErrStats& c_stats) {
     s_stats.Add(static_cast<long double>(s) - std::sin(a) * kRawPerUnit);
     c_stats.Add(static_cast<long double>(c) - std::cos(a) * kRawPerUnit);
 }
-
-}  // namespace
 
 TEST(SinCos, ExactSpecialValues) {
     struct Case {
@@ -157,3 +155,5 @@ TEST(AngleConstants, AreCorrectlyRounded) {
     EXPECT_LT(std::fabs(lockbox::math::kTwoPi.Raw() - 2 * pi * 65536.0L), 0.5L);
     EXPECT_LT(std::fabs(lockbox::math::kHalfPi.Raw() - pi / 2 * 65536.0L), 0.5L);
 }
+
+}  // namespace LOCKBOX_TEST_FILE

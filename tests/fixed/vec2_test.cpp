@@ -12,12 +12,11 @@
 using lockbox::b2Vec2;
 using lockbox::Fixed;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 long double ExactLength(const b2Vec2& v) {
     const long double x = v.x.Raw(), y = v.y.Raw();
     return std::sqrt(x * x + y * y);  // in raw units
 }
-}  // namespace
 
 TEST(Vec2, DotAndCrossAreExactThenRoundedOnce) {
     std::mt19937 rng(11);
@@ -122,3 +121,5 @@ TEST(Vec2, HelpersMatchTheManual) {
     EXPECT_EQ(c, b2Vec2(Fixed(-1.5), Fixed(2)));
     EXPECT_TRUE(c.IsValid());
 }
+
+}  // namespace LOCKBOX_TEST_FILE

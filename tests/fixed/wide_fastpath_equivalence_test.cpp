@@ -11,7 +11,7 @@
 
 #include "lockbox/fixed/Wide.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::detail;
 
@@ -252,4 +252,4 @@ TEST_F(WideFastPath, AddAndSubtractSaturateExactlyAsBefore) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

@@ -14,7 +14,7 @@
 #include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using detail::S128;
 using detail::U128;
@@ -238,5 +238,5 @@ TEST(WideMatrixInverse, ProductAppliesTheInverse) {
     EXPECT_EQ(y.y, Wide(0.25));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -14,7 +14,7 @@ using lockbox::Fixed;
 using lockbox::detail::WrapAngleRaw;
 using lockbox::detail::WrapAngleTurnsRaw;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr int32_t kMin = std::numeric_limits<int32_t>::min();
 constexpr int32_t kMax = std::numeric_limits<int32_t>::max();
@@ -37,8 +37,6 @@ constexpr long double kPiL = 3.14159265358979323846264338327950288L;
     if (WrapAngleRaw(a) != w) return ::testing::AssertionFailure() << "a=" << a << " WrapAngleRaw differs";
     return ::testing::AssertionSuccess();
 }
-
-}  // namespace
 
 TEST(WrapAngle, IdempotentOnTheWholeOutputRange) {
     // Every raw value of [-pi, pi) is returned unchanged with zero turns.
@@ -124,3 +122,5 @@ TEST(WrapAngle, PublicWrappers) {
     EXPECT_EQ(lockbox::math::WrapAngle(Fixed(100), turns).Raw(), WrapAngleRaw(100 * 65536));
     EXPECT_EQ(turns, 16);  // 100 rad = 15.9 turns -> 16 turns removed, rest -0.53 rad
 }
+
+}  // namespace LOCKBOX_TEST_FILE

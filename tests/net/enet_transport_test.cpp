@@ -13,7 +13,7 @@
 #include "lockbox/net/UdpTransport.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using Clock = std::chrono::steady_clock;
 constexpr uint32_t kThrottleScale = 32;  // ENET_PEER_PACKET_THROTTLE_SCALE
@@ -289,5 +289,5 @@ TEST(EnetTransportTest, LoopbackRttFigure) {
         static_cast<unsigned long long>(rtts.back()), m.c1->RoundTripMillis(m.c1ToServer));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

@@ -16,7 +16,7 @@
 #include "lockbox/replay/SceneGame.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 /// One delivery: when, and which datagram (its sequence number in the payload).
 using Schedule = std::vector<std::pair<uint64_t, uint32_t>>;
@@ -235,5 +235,5 @@ TEST(LatencyTransport, RollbackMatchThroughItAgrees) {
     EXPECT_GT(sides[1].transport->Impairments().duplicated, 0u);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

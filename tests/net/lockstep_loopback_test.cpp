@@ -17,7 +17,7 @@
 #include "lockbox/replay/SceneGame.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr int32_t kFrames = 240;
 constexpr uint32_t kTickRate = 240;  // a fast tick keeps the wall time short
@@ -107,5 +107,5 @@ TEST(LockstepLoopback, Enet) {
     Play(*serverT, sides);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

@@ -10,7 +10,7 @@
 #include "lockbox/replay/ReplayFile.h"
 
 namespace lockbox::net::testing {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 MatchSpec Cell(uint64_t seed, uint32_t clients, uint32_t rtt, uint32_t lossPpm, bool bursts, uint32_t jitter) {
     MatchSpec s;
@@ -96,5 +96,5 @@ TEST(LockstepMatch, ConfirmedFramesRecordAVerifiableReplay) {
     EXPECT_EQ(v.finalHash, p.game.world().Hash());
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::testing

@@ -10,7 +10,7 @@
 #include "LockstepHarness.h"
 
 namespace lockbox::net::testing {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 MatchSpec Spec(uint64_t seed, uint32_t clients) {
     MatchSpec s;
@@ -351,5 +351,5 @@ TEST(LockstepSession, GracefulLeaveIsImmediate) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::testing

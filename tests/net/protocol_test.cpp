@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 const SessionShape kShape{3, 8};
 
@@ -248,5 +248,5 @@ TEST(Protocol, Names) {
         EXPECT_NE(RejectReasonName(static_cast<RejectReason>(r)), "unknown");
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

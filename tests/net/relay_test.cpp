@@ -12,7 +12,7 @@
 #include "lockbox/net/SimNet.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr uint32_t kMatch = 42;
 
@@ -269,5 +269,5 @@ TEST(RelayedTransport, KeepsJoiningUntilWelcomedOverALossyLink) {
     EXPECT_GE(rig.members[0]->Stats().droppedUnknown, 1u);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

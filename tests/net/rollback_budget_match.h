@@ -38,7 +38,7 @@ inline void ExpectGuardKeepsBudget(uint64_t seed, uint32_t peers) {
     EXPECT_GE(plainWorst, 50);  // without the guard, one tick in twenty or more is over budget
     for (size_t i = 0; i < r.peers.size(); ++i) {
         const RbPeer& p = r.peers[i];
-        SCOPED_TRACE(testing::Message() << "peer " << i);
+        SCOPED_TRACE(::testing::Message() << "peer " << i);
         EXPECT_GE(p.session->InputDelay(), 2u);
         // The 99th percentile tick stays inside the budget.
         EXPECT_LE(overBudget(r, p), 10);

@@ -17,7 +17,7 @@
 #include "rollback_harness.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 std::vector<uint8_t> In(uint8_t v) { return std::vector<uint8_t>(2, v); }
 
@@ -298,5 +298,5 @@ TEST(RollbackBudgetGuard, LowersWhenTheSeenCostRoundsToZeroMicroseconds) {
 // One seed here; more seeds and 4 peers in heavy/rollback_budget_matrix_test.cpp.
 TEST(RollbackBudgetGuard, KeepsASlowLinkMatchInsideTheBudget) { ExpectGuardKeepsBudget(5, 2); }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

@@ -15,7 +15,7 @@
 #include "rollback_leave.h"
 
 namespace lockbox::net::rbtest {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // ---- Session level: three sessions of a 3-player game wired by hand --------------------
 
@@ -271,5 +271,5 @@ TEST(RollbackLeaveMore, HalfBrokenLinkGossip) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::rbtest

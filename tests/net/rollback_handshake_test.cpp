@@ -17,7 +17,7 @@
 #include "lockbox/net/SimNet.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr uint64_t kTick = 16666;
 constexpr uint32_t kInputBytes = 2;
@@ -305,5 +305,5 @@ TEST(RollbackHandshakeWire, HelloOutOfRangeIsRefused) {
     EXPECT_EQ(DecodeRollbackDatagram(bad, shape, h, out), DecodeError::e_truncated);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

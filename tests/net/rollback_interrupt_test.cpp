@@ -11,7 +11,7 @@
 #include "rollback_join_harness.h"
 
 namespace lockbox::net::rbtest {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // A clean 50 ms RTT link (no loss, no jitter), so event times are exact.
 JoinSpec QuietSpec(uint64_t seed, int32_t frames, int64_t joinTick) {
@@ -139,5 +139,5 @@ TEST(SpectatorInterrupt, AHostThatLeavesIsLostAtOnce) {
     EXPECT_FALSE(r.hostAliveAtEnd);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::rbtest

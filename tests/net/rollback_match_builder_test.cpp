@@ -15,7 +15,7 @@
 #include "lockbox/replay/SceneGame.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 WorldStepSettings StepOf(const replay::SceneGame& game) {
     const auto& info = game.info();
@@ -321,5 +321,5 @@ TEST(MatchEnd, TwoPeersOnLoopbackUdpEndAtFrameNAndAgree) {
     EXPECT_EQ(ends[0].hash, ends[1].hash);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

@@ -13,7 +13,7 @@
 #include "rollback_harness.h"
 
 namespace lockbox::net::rbtest {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct Cell {
     uint32_t peers, rtt, loss, jitter;
@@ -163,5 +163,5 @@ TEST(RollbackMatch, SilentPeerIsDisconnectedAndTheOthersGoOn) {
     EXPECT_EQ(mismatch, -1);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::rbtest

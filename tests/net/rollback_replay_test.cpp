@@ -20,7 +20,7 @@
 #include "lockbox/replay/SceneGame.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr uint64_t kTick = 16666;
 
@@ -272,5 +272,5 @@ TEST(RollbackReplay, FinishRecordingEndsAtTheNewestFinalFrame) {
     EXPECT_TRUE(player.Verify().ok);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

@@ -13,7 +13,7 @@
 #include "lockbox/net/RollbackSession.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 std::vector<uint8_t> In(uint8_t v) { return std::vector<uint8_t>(2, v); }
 
@@ -251,5 +251,5 @@ TEST(RollbackSession, ForcedDivergenceReportedOnceAtTheRightFrame) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

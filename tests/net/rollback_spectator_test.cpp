@@ -20,7 +20,7 @@
 #include "rollback_join_harness.h"
 
 namespace lockbox::net::rbtest {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 class RollbackSpectatorSeeds : public ::testing::TestWithParam<uint64_t> {};
 
@@ -222,5 +222,5 @@ TEST(RollbackSpectator, BadSnapshotStreamsAreRefused) {
     EXPECT_FALSE(WorldGameAdapter::RestoreSnapshot(game.world(), game, std::vector<uint8_t>{1, 2}));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::rbtest

@@ -12,7 +12,7 @@
 #include "rollback_harness.h"
 
 namespace lockbox::net::rbtest {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr int64_t kTicksPerSecond = 60;
 
@@ -134,5 +134,5 @@ TEST(RollbackStart, NoDisconnectTimerBeforeTheMatch) {
     for (const RbPeer& p : r.peers) EXPECT_EQ(Count(p, RollbackEvent::Kind::e_interrupted), 0);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::rbtest

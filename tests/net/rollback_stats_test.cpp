@@ -9,7 +9,7 @@
 #include "rollback_harness.h"
 
 namespace lockbox::net::rbtest {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(RollbackStats, OneCallPerRemoteMatchesTheNetwork) {
     RbSpec spec;
@@ -87,5 +87,5 @@ TEST(RollbackStats, LossEstimateFollowsTheLink) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::rbtest

@@ -10,7 +10,7 @@
 #include "lockbox/replay/SceneGame.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 SyncTestSessionConfig ConfigFor(const replay::SceneGame& g, bool mispredict) {
     SyncTestSessionConfig c;
@@ -255,5 +255,5 @@ TEST(RollbackSyncTest, TheGamesOwnExecutorIsWhatRuns) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

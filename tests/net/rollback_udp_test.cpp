@@ -16,7 +16,7 @@
 #include "rollback_udp_start.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(RollbackUdp, TwoPeersOnLoopbackAgree) {
     SCOPED_TRACE("seed=31");
@@ -94,5 +94,5 @@ TEST(RollbackUdp, PeersStartedApartOnLoopbackAgree) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

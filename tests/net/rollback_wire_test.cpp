@@ -10,7 +10,7 @@
 #include "lockbox/net/Transport.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 const RollbackShape kShape{3, 4};
 
@@ -253,5 +253,5 @@ TEST(RollbackWire, RandomBytesNeverCrash) {
     EXPECT_LT(accepted, 20000u);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

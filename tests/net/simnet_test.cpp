@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 std::string SeedTrace(uint64_t seed) { return "SimNet seed=" + std::to_string(seed); }
 
@@ -448,5 +448,5 @@ TEST(SimNetTest, ThroughputFigure) {
     EXPECT_GT(b.Stats().datagramsReceived, 0u);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

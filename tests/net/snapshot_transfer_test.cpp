@@ -17,7 +17,7 @@
 #include "session/SnapshotTransfer.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr uint64_t kTick = 16666;
 
@@ -282,5 +282,5 @@ TEST(SnapshotTransfer, SharedCompressionSendsTheSameChunks) {
     EXPECT_EQ(std::vector<uint8_t>(receiver.Blob().begin(), receiver.Blob().end()), compressible);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

@@ -18,7 +18,7 @@
 #include "lockbox/replay/SceneGame.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // A scene game with state beyond the world: a running sum of every input byte applied, four
 // bytes little-endian, so the fold has user state to take in.
@@ -132,5 +132,5 @@ TEST(StateHash, OwnExecutorAgreesWithTheAdapter) {
     EXPECT_NE(adapter.StateHash(), sceneA.world().Hash());
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

@@ -15,7 +15,7 @@
 #include "lockbox/net/UdpTransport.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using Clock = std::chrono::steady_clock;
 
@@ -249,5 +249,5 @@ TEST(UdpTransportTest, LoopbackRttFigure) {
                 static_cast<unsigned long long>(rtts.back()));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

@@ -7,7 +7,7 @@
 #include "lockbox/replay/Diff.h"
 
 namespace lockbox::replay::testing {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(ReplayDiff, IdenticalRunsAreSame) {
     RecordOptions o;
@@ -183,5 +183,5 @@ TEST(ReplayBisect, WithoutStageHashesFindsTheFrame) {
     EXPECT_NE(r.Describe().find("stage unknown"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::replay::testing

@@ -7,7 +7,7 @@
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox::replay::testing {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 std::string GoldenDir() {
     std::string here = __FILE__;
@@ -35,5 +35,5 @@ INSTANTIATE_TEST_SUITE_P(Corpus, GoldenReplay,
                          ::testing::Values("hello.lbr", "car.lbr", "rain.lbr", "bullet_stack_bullet.lbr",
                                            "ragdolls_raw.lbr", "vertical_stack_raw.lbr"));
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::replay::testing

@@ -10,7 +10,7 @@
 #include "lockbox/common/Bytes.h"
 
 namespace lockbox::replay::testing {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 std::vector<uint8> SmallReplay() {
     RecordOptions o;
@@ -183,5 +183,5 @@ TEST(ReplayReject, WrongStoredHashGivesItsFrame) {
     EXPECT_EQ(p.player->Verify().firstBadFrame, 49);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::replay::testing

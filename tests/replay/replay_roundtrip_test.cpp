@@ -7,7 +7,7 @@
 #include "ReplayTestUtil.h"
 
 namespace lockbox::replay::testing {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 class RecordVerify : public ::testing::TestWithParam<const char*> {};
 
@@ -193,5 +193,5 @@ TEST(Replay, StageHashesRecordedAndReplayed) {
     EXPECT_EQ(p.game->world().Hash(), p.file.finalHash);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::replay::testing

@@ -15,7 +15,7 @@
 #include "lockbox/replay/Tool.h"
 
 namespace lockbox::replay {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // A small game of its own: a floor and a row of boxes that inputs push; its user state counts
 // the pushes (state beyond the world, saved with every keyframe).
@@ -181,5 +181,5 @@ TEST(ReplayToolRegistry, ExactNamesComeBeforePrefixesAndTheLongestPrefixWins) {
     EXPECT_EQ(made, 1);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::replay

@@ -12,7 +12,7 @@
 #include "lockbox/replay/SceneGame.h"
 
 namespace lockbox::replay {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 std::string HandmadeFile(const char* name) {
     return std::string(LOCKBOX_SOURCE_DIR) + "/scenes/files/handmade/" + name + ".json";
@@ -92,5 +92,5 @@ TEST(SceneFileReplay, LibraryScenesCarryNoParameters) {
     EXPECT_FALSE(SceneFileHashOf(file, hash));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::replay

@@ -16,7 +16,7 @@
 #include "lockbox/replay/VerifyDir.h"
 
 namespace lockbox::replay {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 namespace fs = std::filesystem;
 
@@ -145,5 +145,5 @@ TEST(VerifyDir, RefusesAMissingDirectoryAndBadOptions) {
     EXPECT_EQ(RunVerifyDir(2, argv, games), 2);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::replay

@@ -7,7 +7,7 @@
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox::scenefile::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct BadFile {
     const char* file;     ///< in tests/scenefile/bad/
@@ -174,5 +174,5 @@ TEST(SceneFile, MissingFileAndLockedWorld) {
     EXPECT_EQ(built->engine.world().GetBodyCount(), bodies);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::scenefile::test

@@ -6,7 +6,7 @@
 #include "SceneFileTestUtil.h"
 
 namespace lockbox::scenefile::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 class CommittedSceneFiles : public ::testing::TestWithParam<std::string> {};
 
@@ -15,5 +15,5 @@ TEST_P(CommittedSceneFiles, LoadToTheBuiltHashAndMatchTheSaver) { CheckCommitted
 INSTANTIATE_TEST_SUITE_P(LightScenes, CommittedSceneFiles, ::testing::ValuesIn(LibraryNames(false)),
                          [](const auto& p) { return p.param; });
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::scenefile::test

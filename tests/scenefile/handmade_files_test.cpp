@@ -8,7 +8,7 @@
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox::scenefile::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 class HandmadeFiles : public ::testing::TestWithParam<std::string> {};
 
@@ -95,5 +95,5 @@ TEST(HandmadeFiles, JointsInFileOrderWithTheGearLast) {
     EXPECT_EQ(meta.FindJoint(*meta.GetJointByName(*w, "shoulder"))->path, "robot/arm/");
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::scenefile::test

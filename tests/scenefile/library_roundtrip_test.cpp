@@ -4,7 +4,7 @@
 #include "SceneFileTestUtil.h"
 
 namespace lockbox::scenefile::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 class LibraryRoundTrip : public ::testing::TestWithParam<std::string> {};
 
@@ -13,5 +13,5 @@ TEST_P(LibraryRoundTrip, SameHashAndSameText) { CheckLibraryRoundTrip(GetParam()
 INSTANTIATE_TEST_SUITE_P(LightScenes, LibraryRoundTrip, ::testing::ValuesIn(LibraryNames(false)),
                          [](const auto& p) { return p.param; });
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::scenefile::test

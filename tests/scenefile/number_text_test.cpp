@@ -13,7 +13,7 @@
 #include "lockbox/scenefile/NumberText.h"
 
 namespace lockbox::scenefile {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 Fixed ParsedFixed(const std::string& text) {
     Fixed v = Fixed::FromRaw(123456789);
@@ -180,5 +180,5 @@ TEST(NumberText, FormatIsShortestAndReadsBack) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::scenefile

@@ -9,7 +9,7 @@
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox::scenefile {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using lockbox::literals::operator""_fx;
 
@@ -274,5 +274,5 @@ TEST(WorldRoundTrip, LoadingAddsToAWorldThatHasBodies) {
     EXPECT_EQ(m.GetBodyByName(w, "hero")->GetPosition(), b2Vec2(-3, 4));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::scenefile

@@ -11,7 +11,7 @@
 #include "../cross/GoldenScenes.h"
 
 namespace lockbox::golden {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Optimised builds check every recorded step; debug and sanitizer builds (about 10x slower)
 // check steps 1 and 60 only.
@@ -63,5 +63,5 @@ TEST(GoldenHash, RunIsRepeatable) {
     EXPECT_EQ(RunSceneHashes("pyramid20", steps), RunSceneHashes("pyramid20", steps));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::golden

@@ -10,7 +10,7 @@
 #include "lockbox/scenes/Box2DFloatEngine.h"
 
 namespace lockbox::scenes {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 int g_asserts = 0;
 
@@ -179,11 +179,11 @@ TEST(FloatAdapter, OwnScenesBuildAndRun) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::scenes
 
 namespace lockbox::scenes {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 double MetricOf(const std::vector<Metric>& m, const char* name) {
     for (const Metric& x : m)
@@ -218,11 +218,11 @@ TEST(AnalyticScenes, PendulumPeriodMatchesFloatAndTheory) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::scenes
 
 namespace lockbox::scenes {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(Adapters, DegreesConvertOnceToRadians) {
     // 25 deg = 0.436332 rad = raw 28595.5 -> 28596 (ties away from zero is not reached here).
@@ -233,5 +233,5 @@ TEST(Adapters, DegreesConvertOnceToRadians) {
     EXPECT_EQ(LockboxEngine::R(752 + 1540 * 3, 1000).Raw(), Fixed::FromRatio(5372, 1000).Raw());
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::scenes

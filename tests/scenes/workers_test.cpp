@@ -13,7 +13,7 @@
 #include "lockbox/dynamics/Tasks.h"
 
 namespace lockbox::golden {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 const std::string& GoldenFile() {
     static const std::string path = GoldenPathFrom(__FILE__, "/../golden/hashes.txt");
@@ -115,5 +115,5 @@ TEST(Workers, PoolRunsEveryItemOnce) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::golden

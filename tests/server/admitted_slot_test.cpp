@@ -14,7 +14,7 @@
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Sends a Hello from `from` asking for `requested`, and returns the server's answer.
 Message HelloAnswer(SimNet& simnet, LockstepServer& server, SimEndpoint& from, PeerId serverId, uint8_t requested,
@@ -67,5 +67,5 @@ TEST(AdmittedSlot, TheAdmissionDecidesTheSlot) {
     EXPECT_EQ(server.Slot(0).state, SlotInfo::State::e_free);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

@@ -17,7 +17,7 @@
 #include "server_harness.h"
 
 namespace lockbox::server {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing::kNow;
 using testing::Mint;
@@ -233,11 +233,11 @@ TEST(MatchHost, WritesTheReplayOfAClosedMatchAndItAgreesWithTheClients) {
     std::filesystem::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::server
 
 namespace lockbox::server {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Two matches play while sixteen source ports of the same address flood the port with junk,
 // forged, expired and copied tokens: the matches finish and agree, nothing is answered, every
@@ -306,5 +306,5 @@ TEST(MatchHost, MatchesPlayOnThroughAFloodAndEveryDropIsCounted) {
     EXPECT_EQ(h.host->Socket().PeerCount(), 4u);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::server

@@ -29,7 +29,7 @@
 #include "server_harness.h"
 
 namespace lockbox::server {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 namespace fs = std::filesystem;
 using testing::kNow;
@@ -481,5 +481,5 @@ TEST(MatchKinds, TheSpectatorsHostBudgetCanBeSetApart) {
     EXPECT_GE(Dropped(*h.host, Drop::e_peerBandwidth), 20u);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::server

@@ -10,7 +10,7 @@
 #include "lockbox/net/RelayWire.h"
 
 namespace lockbox::server {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 int Read(std::vector<std::string> args, ServerOptions& out) {
     args.insert(args.begin(), {"lockbox_server", "--token-key-file", "key"});
@@ -45,5 +45,5 @@ TEST(ServerOptions, TheSpectatorsHostBudgetIsAnOptionOfItsOwn) {
     EXPECT_EQ(Read({"--spectator-host-bandwidth", "lots"}, o), 2);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::server

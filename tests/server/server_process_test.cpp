@@ -28,7 +28,7 @@
 #include "server_harness.h"
 
 namespace lockbox::server {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 namespace fs = std::filesystem;
 using testing::TestClient;
@@ -247,5 +247,5 @@ TEST(ServerProcess, PlaysServesMetricsAndDrainsOnSigterm) {
     fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::server

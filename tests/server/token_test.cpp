@@ -14,7 +14,7 @@
 #include "lockbox_admission/TokenAuthority.h"
 
 namespace lockbox::admission {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr uint64_t kNow = 1'800'000'000;
 
@@ -230,5 +230,5 @@ TEST(AdmissionEnvelope, RefusesWrongMagicVersionAndEmptyPayload) {
     EXPECT_FALSE(net::admission::ParseEnvelope(bad, env));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::admission

@@ -7,7 +7,7 @@
 
 #include "lockbox/lockbox.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox;
 using C = b2HeadroomClass;
@@ -113,4 +113,4 @@ TEST(Headroom, StepCountsSaturations) {
     EXPECT_EQ(static_cast<int64_t>(world.GetSaturationCount()), world.GetProfile().headroom.saturations);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

@@ -8,7 +8,7 @@
 
 #include "lockbox/stability/Cases.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using lockbox::stability::AllCases;
 using lockbox::stability::Budget;
@@ -54,4 +54,4 @@ TEST(StabilitySuite, LineFormat) {
     EXPECT_EQ(FormatLine(r), "case=tall_stack metric=sleep_step value=185 limit=600 FAIL (limitation)");
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

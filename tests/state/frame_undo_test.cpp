@@ -14,7 +14,7 @@
 #include "lockbox_internal/WorldInternals.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing_state::AddBox;
 using testing_state::FirstDynamic;
@@ -223,5 +223,5 @@ TEST(FrameUndo, WorldsWithoutFramesKeepNoLog) {
     EXPECT_EQ(test::StructureLogSize(w), 3u);  // the body, its fixture, its mass
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

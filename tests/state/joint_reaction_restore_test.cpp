@@ -14,7 +14,7 @@
 #include "lockbox/dynamics/joints/Joints.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 b2Body* Box(b2World& world, Fixed x, Fixed y) {
     b2BodyDef bd;
@@ -204,5 +204,5 @@ TEST(JointReactionRestore, OtherFormatsAreRefusedByName) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

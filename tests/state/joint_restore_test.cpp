@@ -9,7 +9,7 @@
 #include "StateTestUtil.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing_state::DescribeDifference;
 using testing_state::EdgesFollowWorldLists;
@@ -125,5 +125,5 @@ TEST(JointRestore, ChangedTypesAreMadeAfreshAndGearsFollow) {
     EXPECT_EQ(world.Hash(), reference.Hash()) << DescribeDifference(world, reference);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

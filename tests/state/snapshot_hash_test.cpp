@@ -8,7 +8,7 @@
 #include "StateTestUtil.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing_state::SceneRun;
 using testing_state::SectionBytes;
@@ -123,5 +123,5 @@ TEST(SnapshotHash, BadFramingIsRefusedWithAMessage) {
     EXPECT_FALSE(grown.message.empty());
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

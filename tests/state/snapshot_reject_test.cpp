@@ -9,7 +9,7 @@
 #include "StateTestUtil.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing_state::SceneRun;
 
@@ -160,5 +160,5 @@ TEST(SnapshotReject, RestoreInsideStepIsRefused) {
     b2SetAssertHandler(previous);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -7,7 +7,7 @@
 #include "StateTestUtil.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing_state::DescribeDifference;
 using testing_state::SceneRun;
@@ -74,5 +74,5 @@ TEST_P(SnapshotRoundTrip, InPlaceRollbackKeepsAddressesAndBits) {
 INSTANTIATE_TEST_SUITE_P(Scenes, SnapshotRoundTrip, ::testing::ValuesIn(testing_state::SceneNames(/*large=*/false)),
                          [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -6,7 +6,7 @@
 #include "SceneSyncGame.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing_state::RunSceneSyncTest;
 
@@ -208,5 +208,5 @@ TEST(SyncTestTool, StepsWithTheConfiguredSettings) {
     EXPECT_EQ(run(true), run(false));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -9,7 +9,7 @@
 #include "lockbox/dynamics/Tasks.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing_state::SceneRun;
 using testing_state::SceneSyncGame;
@@ -60,5 +60,5 @@ INSTANTIATE_TEST_SUITE_P(Scenes, SyncWorkers, ::testing::Values("pyramid20", "ra
                              return std::string(param.param);
                          });
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -14,7 +14,7 @@
 #include "lockbox_internal/WorldInternals.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing_state::AddBox;
 using testing_state::FirstDynamic;
@@ -234,5 +234,5 @@ TEST(WorldFrame, RestoreInsideStepIsRefused) {
     b2SetAssertHandler(previous);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -15,7 +15,7 @@
 #include "lockbox/collision/BroadPhase.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::literals;
 
@@ -238,5 +238,5 @@ TEST(BroadPhasePairs, NoAllocationOnceWarm) {
     EXPECT_GT(bp.GetTreeQuality(), Wide(1));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -10,7 +10,7 @@
 #include "lockbox/collision/Distance.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::literals;
 
@@ -229,5 +229,5 @@ TEST(DistanceAnalytic, ProxyCopyKeepsOwnBuffer) {
     EXPECT_EQ(copy.GetSupportVertex(b2Vec2(-1, 0)), b2Vec2(1, 2));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -41,7 +41,7 @@ inline constexpr double kLinearSlopFloat = 0.005;
 #endif
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr int kPairs = LOCKBOX_DISTANCE_DIFF_PAIRS;
 constexpr double kDistanceTol = 1e-3;  // m, distance and witness points
@@ -428,5 +428,5 @@ TEST(LOCKBOX_TOI_DIFF_SUITE, AgainstFloatBox2D) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -10,7 +10,7 @@
 #include "lockbox/collision/PolygonShape.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::literals;
 
@@ -96,5 +96,5 @@ TEST(DistanceShapes, TestOverlapCountsTouchingAsOverlap) {
     EXPECT_FALSE(b2TestOverlap(&edge, 0, &circle, 0, Place(0, 0), Place(1, 1.02_fx)));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -14,7 +14,7 @@
 #include "lockbox/collision/TimeOfImpact.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct Cloud {
     std::array<b2Vec2, 8> v;
@@ -136,5 +136,5 @@ TEST(DistanceTranslation, ToiIsBitIdenticalUnderWholeMetreShifts) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -12,7 +12,7 @@
 #include "lockbox/collision/PolygonShape.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::literals;
 
@@ -192,5 +192,5 @@ TEST(ManifoldPolygonCircle, CentreOnAVertexGetsAUnitNormal) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -9,7 +9,7 @@
 
 #include "manifold_diff_common.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using manifold_diff::Pair;
 
@@ -46,4 +46,4 @@ INSTANTIATE_TEST_SUITE_P(AllPairs, ManifoldDiff,
                                            Pair::edgePolygonGhost),
                          PairTestName);
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

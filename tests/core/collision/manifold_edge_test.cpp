@@ -14,7 +14,7 @@
 #include "lockbox/collision/PolygonShape.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::literals;
 
@@ -336,5 +336,5 @@ TEST(ManifoldEdgePolygon, OneSidedGhostFlagsAreHonoured) {
     EXPECT_NEAR(wm.normal.y.ToDouble(), 1, 1e-4);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

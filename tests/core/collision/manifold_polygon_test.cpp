@@ -11,7 +11,7 @@
 #include "lockbox/collision/PolygonShape.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::literals;
 
@@ -211,5 +211,5 @@ TEST(ManifoldPolygons, HysteresisKeepsFaceAForNearlyEqualSeparations) {
     ExpectFeature(m.points[0].id.cf, Cf(2, 0, kFace, kVertex));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -12,7 +12,7 @@
 #include "manifold_diff_common.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using manifold_diff::Rng;
 
@@ -146,5 +146,5 @@ INSTANTIATE_TEST_SUITE_P(AllPairs, ManifoldTranslation,
                                            Kind::edgePolygon, Kind::ghostEdgeCircle, Kind::ghostEdgePolygon),
                          KindName);
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

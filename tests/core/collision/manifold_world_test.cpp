@@ -7,7 +7,7 @@
 #include "lockbox/collision/Collision.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::literals;
 
@@ -211,5 +211,5 @@ TEST(ManifoldClip, IntersectionStaysOnTheSegmentForTinyDistances) {
     EXPECT_NEAR(out[1].v.y.ToDouble(), 5.0, 2e-4);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

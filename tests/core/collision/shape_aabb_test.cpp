@@ -12,10 +12,9 @@
 using namespace lockbox;
 using namespace lockbox::literals;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 Fixed F(double v) { return Fixed::FromDoubleNondeterministic(v); }
 b2Vec2 V(double x, double y) { return {F(x), F(y)}; }
-}  // namespace
 
 TEST(ShapeAABB, RayCastCases) {
     const b2AABB box{V(-1, -2), V(3, 2)};
@@ -94,3 +93,5 @@ TEST(ShapeAABB, RayCastMatchesDoubleReference) {
     }
     EXPECT_GT(hits, 500);
 }
+
+}  // namespace LOCKBOX_TEST_FILE

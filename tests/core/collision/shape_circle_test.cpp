@@ -16,11 +16,10 @@ namespace lockbox {
 
 using namespace lockbox::literals;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 Fixed F(double v) { return Fixed::FromDoubleNondeterministic(v); }
 b2Vec2 V(double x, double y) { return {F(x), F(y)}; }
 double UnitError(const b2Vec2& n) { return std::fabs(std::hypot(n.x.ToDouble(), n.y.ToDouble()) - 1.0); }
-}  // namespace
 
 TEST(ShapeCircle, ConstructionAndSetRejectInvalidRadius) {
     b2ShapeError error = b2ShapeError::ok;
@@ -205,5 +204,7 @@ TEST(ShapeCircle, ComputeAABBRotatedIncludesRadius) {
     EXPECT_EQ(aabb.lowerBound, V(0.5, -0.5));
     EXPECT_EQ(aabb.upperBound, V(1.5, 0.5));
 }
+
+}  // namespace LOCKBOX_TEST_FILE
 
 }  // namespace lockbox

@@ -13,7 +13,7 @@
 using namespace lockbox;
 using namespace lockbox::literals;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 Fixed F(double v) { return Fixed::FromDoubleNondeterministic(v); }
 b2Vec2 V(double x, double y) { return {F(x), F(y)}; }
 
@@ -25,7 +25,6 @@ void ExpectSameChain(const b2ChainShape& a, const b2ChainShape& b) {
     EXPECT_EQ(a.m_hasPrevVertex, b.m_hasPrevVertex);
     EXPECT_EQ(a.m_hasNextVertex, b.m_hasNextVertex);
 }
-}  // namespace
 
 TEST(ShapeEdge, SetValidatesAndClearsGhosts) {
     b2EdgeShape e;
@@ -249,3 +248,5 @@ TEST(ShapeChain, ChildRayCastAABBAndNoMass) {
     EXPECT_EQ(md.I, Wide());
     EXPECT_EQ(md.center, b2Vec2());
 }
+
+}  // namespace LOCKBOX_TEST_FILE

@@ -19,7 +19,7 @@
 
 using namespace lockbox;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using ld = long double;
 
@@ -94,8 +94,6 @@ struct Stats {
     }
 };
 
-}  // namespace
-
 TEST(ShapeMass, BoxesOverTheEnvelope) {
     Stats stats{"box"};
     Stats rotated{"box+xf"};
@@ -150,7 +148,6 @@ TEST(ShapeMass, CirclesOverTheEnvelope) {
     offset.Print();
 }
 
-namespace {
 // A regular n-gon of side `side` centred at `center`, first vertex at angle `phase`.
 std::vector<b2Vec2> RegularPolygon(int n, ld side, ld cx, ld cy, ld phase) {
     const ld radius = side / (2 * std::sin(kPiL / n));
@@ -177,7 +174,6 @@ Exact IdealRegular(int n, ld side, ld cx, ld cy, ld phase, ld density) {
     }
     return {density * area2 / 2, sx / (3 * area2), sy / (3 * area2), density * j / 12};
 }
-}  // namespace
 
 TEST(ShapeMass, TrianglesAndRegularPolygonsOverTheEnvelope) {
     for (int n = 3; n <= 8; ++n) {
@@ -241,3 +237,5 @@ TEST(ShapeMass, ZeroDensityAndUnsetShapes) {
     EXPECT_EQ(md.mass, Wide());
     EXPECT_EQ(md.I, Wide());
 }
+
+}  // namespace LOCKBOX_TEST_FILE

@@ -14,7 +14,7 @@
 using namespace lockbox;
 using namespace lockbox::literals;
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 Fixed F(double v) { return Fixed::FromDoubleNondeterministic(v); }
 b2Vec2 V(double x, double y) { return {F(x), F(y)}; }
@@ -45,8 +45,6 @@ void ExpectSetRejects(const std::vector<b2Vec2>& pts, b2ShapeError error) {
 }
 
 double UnitError(const b2Vec2& n) { return std::fabs(std::hypot(n.x.ToDouble(), n.y.ToDouble()) - 1.0); }
-
-}  // namespace
 
 TEST(ShapePolygon, SetAcceptsConvexCounterClockwise) {
     const std::vector<b2Vec2> tri = {V(0, 0), V(1, 0), V(0, 1)};
@@ -354,3 +352,5 @@ TEST(ShapePolygon, CloneKeepsTypeAndValue) {
     ExpectSamePolygon(*static_cast<const b2PolygonShape*>(clone.get()), box);
     EXPECT_EQ(clone->GetChildCount(), 1);
 }
+
+}  // namespace LOCKBOX_TEST_FILE

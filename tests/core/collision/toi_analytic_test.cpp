@@ -10,7 +10,7 @@
 #include "lockbox/collision/TimeOfImpact.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::literals;
 
@@ -233,5 +233,5 @@ TEST(ToiAnalytic, IterationCountsStayWithinCaps) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

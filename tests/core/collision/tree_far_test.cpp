@@ -13,7 +13,7 @@
 #include "lockbox/fixed/Overflow.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Draw from it only in sequenced contexts (braced initialisers, separate statements): the
 // evaluation order of function arguments differs between compilers.
@@ -215,5 +215,5 @@ TEST(TreeFar, RayLineTestIsExactAtEveryScale) {
     EXPECT_LT(misses, 19000);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

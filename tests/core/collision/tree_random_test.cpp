@@ -13,7 +13,7 @@
 #include "lockbox/collision/DynamicTree.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::literals;
 
@@ -328,5 +328,5 @@ TEST(TreeRandom, MoveProxyPredictsDisplacement) {
     EXPECT_EQ(tree.GetInsertionCount(), 2);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

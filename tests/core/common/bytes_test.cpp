@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 namespace lockbox::bytes {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(Bytes, FixedWidthFieldsAreLittleEndian) {
     std::vector<uint8_t> out;
@@ -163,5 +163,5 @@ TEST(Bytes, StartOffsetAndSkip) {
     EXPECT_FALSE(past.Ok());
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::bytes

@@ -7,7 +7,7 @@
 #include "FixedPrint.h"
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct BoundaryRecorder : b2BoundaryListener {
     void Violation(b2Body* body) override { ids.push_back(body->GetId()); }
@@ -82,5 +82,5 @@ TEST(Bounds, AnglesStayWrappedAndRelativeMotionIsExact) {
     EXPECT_GT(wraps, 100);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

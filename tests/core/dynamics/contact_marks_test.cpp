@@ -15,7 +15,7 @@
 #include "DynamicsTestUtil.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using test::kDt;
 
@@ -142,5 +142,5 @@ TEST(ContactMarks, RestoringAFrameUndoesTheEdits) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

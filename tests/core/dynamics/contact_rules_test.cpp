@@ -8,7 +8,7 @@
 #include "FixedPrint.h"
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 int TouchingContacts(b2World& world) {
     int n = 0;
@@ -222,5 +222,5 @@ TEST(ContactRules, FixturesOfOneBodyNeverCollide) {
     EXPECT_EQ(world.GetContactCount(), 0);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

@@ -8,7 +8,7 @@
 #include "FixedPrint.h"
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct State {
     std::vector<int32> raws;
@@ -49,5 +49,5 @@ TEST(Determinism, WholeMetreTranslationKeepsRelativeMotion) {
     EXPECT_EQ(RunScene(100, 50).raws, RunScene(1000, 3000).raws);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

@@ -10,7 +10,7 @@
 #include "Box2DFloat.h"  // float Box2D without its constant macros
 #include "DynamicsTestUtil.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // One scene description, built in both engines from plain doubles (exactly representable in
 // Q16.16 or rounded once at compile time on the lockbox side).
@@ -60,10 +60,10 @@ Trace RunFloat(const std::vector<BoxSpec>& scene) {
     return trace;
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Scene values are given in milli-units so both engines see the same decimal numbers; the
 // lockbox side converts with an exact rational (one rounding, like the float literal).
@@ -143,5 +143,5 @@ TEST(Differential, SmallStack) {
                       {true, -0.1, 3.0, 0.5, 0.5, 0, 0.6, false}});
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

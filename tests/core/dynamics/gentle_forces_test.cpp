@@ -9,7 +9,7 @@
 
 #include "DynamicsTestUtil.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox;
 using lockbox::test::kDt;
@@ -127,4 +127,4 @@ TEST(GentleForce, SlowTurntableKeepsTheBoxInsideTheClosedFormRadius) {
     EXPECT_GT(outside, 2.2) << "the box at 2.1 m must slide off (it drifts outward, ever faster)";
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

@@ -9,7 +9,7 @@
 #include "Box2DFloat.h"  // float Box2D without its constant macros
 #include "DynamicsTestUtil.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct Pose {
     double x, y, angle;
@@ -45,10 +45,10 @@ std::vector<Pose> RunFloatHelloWorld() {
     return out;
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 std::vector<Pose> RunLockboxHelloWorld() {
     b2World world(b2Vec2(0, -10));
@@ -109,5 +109,5 @@ TEST(HelloWorld, IsBitReproducible) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

@@ -10,7 +10,7 @@
 #include "FixedPrint.h"
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Symplectic Euler with exact arithmetic: v_n = v0 + n h g, p_n = p0 + h sum_{k=1..n} v_k.
 double ClosedFormPosition(double p0, double v0, double g, double h, int n) {
@@ -130,5 +130,5 @@ TEST(Motion, BounceHeightFollowsRestitutionSquared) {
     EXPECT_NEAR(BounceHeight(Fixed(1)), h0, 0.05 * h0);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

@@ -14,7 +14,7 @@
 #include "../../cross/ScrambledTasks.h"
 #include "DynamicsTestUtil.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox;
 using lockbox::test::kDt;
@@ -121,4 +121,4 @@ TEST(ParallelFinish, MovesWrapsAndBoundsMatchOneWorker) {
     EXPECT_GT(scrambled.Blocks(), scrambled.Loops());
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

@@ -16,7 +16,7 @@
 #include "../../cross/ScrambledTasks.h"
 #include "DynamicsTestUtil.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox;
 using lockbox::test::kDt;
@@ -205,4 +205,4 @@ TEST(ParallelIslandSearch, EveryEdgeOfTheSearchMatchesOneWorker) {
     EXPECT_GT(scrambled.Blocks(), scrambled.Loops());
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

@@ -13,7 +13,7 @@
 #include "../../cross/ScrambledTasks.h"
 #include "DynamicsTestUtil.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox;
 using lockbox::test::kDt;
@@ -141,4 +141,4 @@ TEST(ParallelIslands, ColouredPileBesideSmallIslandsMatchesOneWorker) {
     ExpectSame(one, Simulate(0, &scrambled, true), "scrambled blocks");
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

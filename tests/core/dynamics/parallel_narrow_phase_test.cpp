@@ -12,7 +12,7 @@
 #include "../../cross/ScrambledTasks.h"
 #include "DynamicsTestUtil.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox;
 using lockbox::test::kDt;
@@ -146,4 +146,4 @@ TEST(ParallelNarrowPhase, ListenerThatRefiltersWakesAndDisablesMatchesOneWorker)
     EXPECT_GT(scrambled.Loops(), 100u);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

@@ -6,7 +6,7 @@
 #include "FixedPrint.h"
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // A resting stack of three boxes on the ground.
 void BuildStack(b2World& world) {
@@ -115,5 +115,5 @@ TEST(Profile, EmptyStepIsFree) {
     EXPECT_EQ(p.islandsSolved + p.bodiesIntegrated + p.contactsUpdated + p.toiCalls + p.pairsFound, 0);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

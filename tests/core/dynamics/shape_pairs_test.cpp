@@ -9,7 +9,7 @@
 #include "FixedPrint.h"
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Attaches a shape of the given type, about 1 m across, centred at the body origin.
 void AddShape(b2Body* body, b2Shape::Type type) {
@@ -131,5 +131,5 @@ TEST(ShapePairs, SubSteppingStopsAfterOneTOIEventPerStep) {
     for (b2Body* s : shots) EXPECT_LT(s->GetPosition().x, Fixed(10));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

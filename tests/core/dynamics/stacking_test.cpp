@@ -10,7 +10,7 @@
 #include "FixedPrint.h"
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(Stacking, TenBoxStackSettlesAndSleeps) {
     b2World world(b2Vec2(0, -10));
@@ -156,5 +156,5 @@ TEST(Stacking, BulletDoesNotTunnelThroughThinDynamicBody) {
     EXPECT_LT(maxX, 0.0);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

@@ -14,7 +14,7 @@
 #include "lockbox/state/WorldHash.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox::literals;
 
@@ -227,5 +227,5 @@ TEST(StateHash, CategoryNames) {
     EXPECT_EQ(b2HashCategoryName(b2HashCategory::e_count), "none");
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -13,7 +13,7 @@
 #include "Box2DFloat.h"  // float Box2D without its constant macros
 #include "DynamicsTestUtil.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr int kSteps = 45;
 
@@ -49,10 +49,10 @@ std::vector<double> CircleHeightsFloat() {
     return y;
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // The pressed-circle scene, stepped kSteps times; `toiSteps` counts the steps with a TOI call.
 struct LockboxRun {
@@ -157,5 +157,5 @@ TEST(PressedContactToi, IsWorldStateInSnapshotsAndFrames) {
     EXPECT_EQ(world.Hash(), hashOn);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

@@ -10,7 +10,7 @@
 #include "FixedPrint.h"
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(WorldApi, QueryAABBReportsOverlapsAndStopsOnFalse) {
     b2World world(b2Vec2(0, 0));
@@ -395,11 +395,11 @@ TEST(WorldApi, EveryForceIsClearedAfterTheStepThatUsesIt) {
     expectUsedOnce(world, body, "a restored frame");
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct CountingDraw : b2Draw {
     void DrawPolygon(const b2Vec2*, int32, const b2Color&) override { ++polygons; }
@@ -434,5 +434,5 @@ TEST(WorldApi, DebugDrawFollowsFlags) {
     EXPECT_EQ(draw.segments, world.GetContactCount());
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

@@ -18,7 +18,7 @@
 #include "lockbox_internal/WorldInternals.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // A pyramid of boxes on a static ground: one island of well over b2_minColouredConstraints
 // contacts.
@@ -167,5 +167,5 @@ TEST(Colours, SameBitsWithAnyWorkers) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -16,7 +16,7 @@
 #include "lockbox/fixed/Overflow.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Restores the lanes when a test ends, whatever it switched.
 struct LanesAllowed {
@@ -246,5 +246,5 @@ TEST(ContactLanes, ColouredIslandGivesTheSameHashes) {
     EXPECT_EQ(Hashes(true), Hashes(false));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

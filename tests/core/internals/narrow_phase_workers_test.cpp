@@ -16,7 +16,7 @@
 #include "lockbox_internal/WorldInternals.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using test::kDt;
 
@@ -119,5 +119,5 @@ TEST(NarrowPhaseOnWorkers, WakesInTheWalkMatchOneWorker) {
     EXPECT_GT(scrambled.Loops(), 300u);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

@@ -12,7 +12,7 @@
 #include "lockbox_internal/WorldInternals.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using test::kDt;
 using test::MakeDynamicBox;
@@ -91,5 +91,5 @@ TEST(PoolSharing, AnIslandHoldingMostOfTheWorkStaysOnTheSteppingThread) {
     EXPECT_FALSE(two.shared);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

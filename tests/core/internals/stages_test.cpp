@@ -18,7 +18,7 @@
 #include "lockbox/fixed/Overflow.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Records, for every block, the number of stages finished when it started, and counts the
 // runs of each block.
@@ -132,5 +132,5 @@ TEST(Stages, WorkersSaturationsAreCountedOnTheCallingThread) {
     ResetSaturationCount();
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

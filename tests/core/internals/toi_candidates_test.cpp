@@ -12,7 +12,7 @@
 #include "lockbox_internal/WorldInternals.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing_state::DescribeDifference;
 using testing_state::SceneRun;
@@ -347,5 +347,5 @@ TEST(ToiCandidates, ListenerEditBringsBackADroppedCandidate) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

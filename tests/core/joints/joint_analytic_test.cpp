@@ -11,7 +11,7 @@
 #include "JointTestUtil.h"
 
 namespace lockbox::jt {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Times (s) at which a sampled signal crosses `level` upward, linearly interpolated.
 std::vector<double> UpCrossings(const std::vector<double>& s, double level) {
@@ -293,5 +293,5 @@ TEST(JointAnalytic, FrictionStoppingDistance) {
     EXPECT_EQ(box->GetLinearVelocity().x, Fixed());
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::jt

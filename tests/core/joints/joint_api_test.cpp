@@ -7,7 +7,7 @@
 #include "JointTestUtil.h"
 
 namespace lockbox::jt {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct Listener : b2DestructionListener {
     std::vector<b2Joint*> joints;
@@ -211,5 +211,5 @@ TEST(JointApi, SettersAndGetters) {
     EXPECT_EQ(r->GetAnchorA(), b2Vec2(0, 5));
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::jt

@@ -13,7 +13,7 @@
 #include "JointTestUtil.h"
 
 namespace lockbox::jt {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // Box of half-extent 0.25 m (area 0.25 m^2): density 0.4 -> 0.1 kg, 400 -> 100 kg.
 struct Mass {
@@ -235,5 +235,5 @@ INSTANTIATE_TEST_SUITE_P(LightAndHeavy, JointError, ::testing::Values(kLight, kH
                              return std::string(p.param.density > Fixed(1) ? "Heavy100kg" : "Light100g");
                          });
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::jt

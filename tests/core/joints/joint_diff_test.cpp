@@ -17,7 +17,7 @@
 #include "Box2DFloat.h"  // float Box2D without its constant macros
 #include "JointTestUtil.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 namespace lb = lockbox;
 using Trace = std::vector<std::vector<double>>;  // per step: x, y, angle of each tracked body
@@ -79,10 +79,10 @@ Trace ChainFloat(int links, bool box) {
     return t;
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 
 namespace lockbox::jt {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 using Trace = std::vector<std::vector<double>>;
 
 void Record(std::vector<double>& row, double x, double y, double a) {
@@ -123,10 +123,10 @@ Trace ChainFixed(int links, bool box) {
     return t;
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::jt
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(JointDifferential, Pendulum) {
     double angle = 0;
@@ -196,10 +196,10 @@ Trace CarFloat() {
     return t;
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 
 namespace lockbox::jt {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 Trace CarFixed() {
     b2World world(b2Vec2(0, -10));
@@ -249,10 +249,10 @@ Trace CarFixed() {
     return t;
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::jt
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(JointDifferential, CarOnWheelJoints) {
     const Trace f = CarFloat();
@@ -266,4 +266,4 @@ TEST(JointDifferential, CarOnWheelJoints) {
     EXPECT_LT(dev, 0.05);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

@@ -15,7 +15,7 @@
 #include "JointTestUtil.h"
 
 namespace lockbox::jt {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr Fixed kHalf = Fixed(0.25);
 
@@ -102,5 +102,5 @@ TEST(JointSolverBits, JointZooKeepsItsBits) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::jt

@@ -11,7 +11,7 @@
 #include "JointTestUtil.h"
 
 namespace lockbox::jt {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 // The testbed's Chain: 0.6 x 0.125 half-extent links, density 20, hinged at x = i, y = 25.
 std::vector<b2RevoluteJoint*> MakeChain(b2World& world, b2Body* ground, int links, Fixed density,
@@ -210,5 +210,5 @@ TEST(JointStress, RevoluteLimitTenTurns) {
     EXPECT_NEAR(D(j->GetJointAngle()), -D(tenTurns), 0.05);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::jt

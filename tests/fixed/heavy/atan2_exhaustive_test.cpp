@@ -12,7 +12,7 @@
 
 #include "lockbox/fixed/detail/Trig.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr long double kPiL = 3.14159265358979323846264338327950288L;
 
@@ -63,8 +63,6 @@ Stats RunOnTwoThreads(Body body) {
     return parts[0];
 }
 
-}  // namespace
-
 TEST(Atan2Exhaustive, CirclesFromOneMillimetreToTwentyKilometres) {
     const long double radii[] = {1e-3L, 3e-3L, 1e-2L, 0.1L, 1.0L, 10.0L, 100.0L, 1000.0L, 2e4L};
     constexpr int kAngles = 1 << 20;
@@ -105,3 +103,5 @@ TEST(Atan2Exhaustive, TenMillionLogUniformPairs) {
     EXPECT_EQ(st.count, static_cast<uint64_t>(kPairs));
     EXPECT_LE(st.max_err, 1.0L);
 }
+
+}  // namespace LOCKBOX_TEST_FILE

@@ -10,7 +10,7 @@
 
 #include "lockbox/fixed/detail/Sqrt.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct Result {
     uint64_t failures = 0;
@@ -31,8 +31,6 @@ Result CheckRange(int64_t begin, int64_t end) {
     }
     return res;
 }
-
-}  // namespace
 
 TEST(SqrtExhaustive, AllNonNegativeRawInputsAreCorrectlyRounded) {
     constexpr int64_t kEnd = int64_t{1} << 31;
@@ -62,3 +60,5 @@ TEST(SqrtExhaustive, AllNonNegativeRawInputsAreCorrectlyRounded) {
     EXPECT_EQ(lockbox::detail::SqrtRaw(-1), 0);
     EXPECT_EQ(lockbox::detail::SqrtRaw(-2147483647 - 1), 0);
 }
+
+}  // namespace LOCKBOX_TEST_FILE

@@ -14,7 +14,7 @@
 
 #include "lockbox/fixed/detail/Trig.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct Stats {
     long double max_sin = 0, max_cos = 0;
@@ -79,8 +79,6 @@ void Report(const char* name, const Stats& st) {
     ::testing::Test::RecordProperty(std::string(name) + "_cos_not_cr", std::to_string(st.not_cr_cos));
 }
 
-}  // namespace
-
 TEST(TrigExhaustive, EveryRawInputWithinFourPi) {
     const int64_t four_pi = 823550;  // 4 pi * 2^16 = 823549.7
     const Stats st = Sweep(-four_pi, four_pi, 1);
@@ -96,3 +94,5 @@ TEST(TrigExhaustive, WholeInt32RangeEvery61st) {
     EXPECT_LE(st.max_sin, 1.0L);
     EXPECT_LE(st.max_cos, 1.0L);
 }
+
+}  // namespace LOCKBOX_TEST_FILE

@@ -10,7 +10,7 @@
 #include "../LockstepHarness.h"
 
 namespace lockbox::net::testing {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(LockstepFigures, BandwidthPerPeer) {
     for (uint32_t loss : {0u, 100'000u}) {
@@ -118,5 +118,5 @@ TEST(LockstepFigures, LateJoinTime) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::testing

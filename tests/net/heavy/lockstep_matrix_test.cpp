@@ -11,7 +11,7 @@
 #include "../LockstepHarness.h"
 
 namespace lockbox::net::testing {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 enum Loss { e_none, e_five, e_twenty, e_bursts };
 using Cell = std::tuple<uint32_t, Loss, uint32_t, uint32_t>;  // rtt ms, loss, jitter ms, clients
@@ -58,5 +58,5 @@ TEST(LockstepBudget, TenPercentLossStaysWithinTwiceTheBudget) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::testing

@@ -7,7 +7,7 @@
 #include "../rollback_budget_match.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(RollbackBudgetLong, KeepsASlowLinkMatchInsideTheBudget) {
     for (uint64_t seed : {6u, 7u}) ExpectGuardKeepsBudget(seed, 2);
@@ -15,5 +15,5 @@ TEST(RollbackBudgetLong, KeepsASlowLinkMatchInsideTheBudget) {
 
 TEST(RollbackBudgetLong, KeepsAFourPeerMatchInsideTheBudget) { ExpectGuardKeepsBudget(8, 4); }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

@@ -12,7 +12,7 @@
 #include "../rollback_leave.h"
 
 namespace lockbox::net::rbtest {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 class RollbackLeaveMatrix : public ::testing::TestWithParam<Leave> {};
 
@@ -33,5 +33,5 @@ std::vector<Leave> AllLeaveCells() {
 
 INSTANTIATE_TEST_SUITE_P(Cells, RollbackLeaveMatrix, ::testing::ValuesIn(AllLeaveCells()));
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::rbtest

@@ -10,7 +10,7 @@
 #include "../rollback_harness.h"
 
 namespace lockbox::net::rbtest {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 struct Cell {
     uint32_t peers, rtt, loss, jitter;
@@ -93,7 +93,7 @@ TEST(RollbackLong, BudgetGuardFollowsAChangingLink) {
         CheckAndPrint(spec, r);
         for (size_t i = 0; i < r.peers.size(); ++i) {
             const RbPeer& p = r.peers[i];
-            SCOPED_TRACE(testing::Message() << spec.Describe() << " peer " << i);
+            SCOPED_TRACE(::testing::Message() << spec.Describe() << " peer " << i);
             EXPECT_GE(p.maxDelay, 6u);                           // 125 ms one way is 7.5 frames
             EXPECT_LE(p.session->InputDelay() + 3, p.maxDelay);  // and most of it given back
             EXPECT_GE(p.guard->Lowerings(), 3u);
@@ -108,5 +108,5 @@ TEST(RollbackLong, BudgetGuardFollowsAChangingLink) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::rbtest

@@ -9,7 +9,7 @@
 #include "../rollback_udp_start.h"
 
 namespace lockbox::net::rbtest {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(RollbackUdpStart, PeersStartedSecondsApartAgree) {
     using std::chrono::seconds;
@@ -21,5 +21,5 @@ TEST(RollbackUdpStart, PeersStartedSecondsApartAgree) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net::rbtest

@@ -15,7 +15,7 @@
 #include "lockbox/scenes/Registry.h"
 
 namespace lockbox::net {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 class SyncTestScenes : public ::testing::TestWithParam<std::string> {};
 
@@ -75,5 +75,5 @@ INSTANTIATE_TEST_SUITE_P(AllScenes, SyncTestScenes, ::testing::ValuesIn(Scenes()
                              return name;
                          });
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::net

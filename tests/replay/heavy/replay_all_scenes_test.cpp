@@ -5,7 +5,7 @@
 #include "lockbox/scenes/Registry.h"
 
 namespace lockbox::replay::testing {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 class EveryScene : public ::testing::TestWithParam<std::string_view> {};
 
@@ -35,5 +35,5 @@ TEST_P(EveryScene, RecordVerifySeek) {
 INSTANTIATE_TEST_SUITE_P(Library, EveryScene, ::testing::ValuesIn(scenes::AllSceneNames()),
                          [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::replay::testing

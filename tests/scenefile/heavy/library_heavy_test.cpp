@@ -3,7 +3,7 @@
 #include "../SceneFileTestUtil.h"
 
 namespace lockbox::scenefile::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 class HeavyScenes : public ::testing::TestWithParam<std::string> {};
 
@@ -14,5 +14,5 @@ TEST_P(HeavyScenes, CommittedFileLoadsToTheBuiltHashAndMatchesTheSaver) { CheckC
 INSTANTIATE_TEST_SUITE_P(Library, HeavyScenes, ::testing::ValuesIn(LibraryNames(true)),
                          [](const auto& p) { return p.param; });
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::scenefile::test

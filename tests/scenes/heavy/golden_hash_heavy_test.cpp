@@ -8,7 +8,7 @@
 #include "../../cross/GoldenScenes.h"
 
 namespace lockbox::golden {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(GoldenHashHeavy, HeavyScenesMatchTheGoldenFile) {
     const std::string path = GoldenPathFrom(__FILE__, "/../../golden/hashes.txt");
@@ -28,5 +28,5 @@ TEST(GoldenHashHeavy, HeavyScenesMatchTheGoldenFile) {
     EXPECT_EQ(checked, 4);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::golden

@@ -8,7 +8,7 @@
 #include "lockbox/scenes/LockboxScenes.h"
 
 namespace lockbox::scenes {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 int g_asserts = 0;
 
@@ -86,5 +86,5 @@ TEST(FullSceneChecks, RainStaysInItsContainer) {
     EXPECT_EQ(Get(m, "escaped"), 0);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::scenes

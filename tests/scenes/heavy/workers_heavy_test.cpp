@@ -13,7 +13,7 @@
 #include "../../cross/ScrambledTasks.h"
 
 namespace lockbox::golden {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 void ExpectGoldenHeavyScenes(const WorldSetup& setup) {
     const std::string path = GoldenPathFrom(__FILE__, "/../../golden/hashes.txt");
@@ -61,5 +61,5 @@ TEST(WorkersFullLength, EverySceneMatchesTheGoldenFileToItsLastStep) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::golden

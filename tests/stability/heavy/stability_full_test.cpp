@@ -9,7 +9,7 @@
 
 #include "lockbox/stability/Cases.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using lockbox::stability::AllCases;
 using lockbox::stability::Budget;
@@ -34,4 +34,4 @@ TEST_P(StabilityCaseFull, MeetsEveryLimit) {
 INSTANTIATE_TEST_SUITE_P(Full, StabilityCaseFull, ::testing::ValuesIn(LongCaseNames()),
                          [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

@@ -6,7 +6,7 @@
 #include "../SceneSyncGame.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing_state::SceneRun;
 
@@ -32,5 +32,5 @@ TEST_P(SnapshotLarge, FreshWorldMatches) {
 INSTANTIATE_TEST_SUITE_P(Large, SnapshotLarge, ::testing::ValuesIn(testing_state::SceneNames(/*large=*/true)),
                          [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

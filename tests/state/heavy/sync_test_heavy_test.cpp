@@ -10,7 +10,7 @@
 #include "../SceneSyncGame.h"
 
 namespace lockbox {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using testing_state::RunSceneSyncTest;
 
@@ -69,5 +69,5 @@ TEST_P(SceneSyncFull, MispredictThroughFrames) {
 INSTANTIATE_TEST_SUITE_P(AllScenes, SceneSyncFull, ::testing::ValuesIn(scenes::AllSceneNames()),
                          [](const ::testing::TestParamInfo<std::string_view>& p) { return std::string(p.param); });
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox

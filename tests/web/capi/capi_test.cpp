@@ -41,7 +41,7 @@ int32_t lb_joint_state(WebWorld* w, int32_t id, int32_t invDt, int32_t* out);
 int32_t lb_joint_set(WebWorld* w, int32_t id, int32_t kind, int32_t a, int32_t b);
 }
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 constexpr int32_t kOne = 65536;
 
@@ -251,4 +251,4 @@ TEST(WebCapi, QueriesEventsAndDrawing) {
     lb_world_destroy(w);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

@@ -16,7 +16,7 @@
 #include "lockbox/fixed/detail/Decimal.h"
 
 namespace lockbox::web {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 uint64_t Bits(double d) { return std::bit_cast<uint64_t>(d); }
 
@@ -188,5 +188,5 @@ TEST(NumberConversion, AgreesWithParseOnExactExpansions) {
     }
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::web

@@ -10,7 +10,7 @@
 
 #include "../manifold_diff_common.h"
 
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 using manifold_diff::Pair;
 
@@ -45,4 +45,4 @@ INSTANTIATE_TEST_SUITE_P(AllPairs, ManifoldDiffHeavy,
                                            Pair::edgePolygonGhost),
                          PairTestName);
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE

@@ -9,7 +9,7 @@
 #include "FixedPrint.h"
 
 namespace lockbox::test {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 void RunCreep(Fixed x0, Fixed angle) {
     b2World world(b2Vec2(0, -10));
@@ -37,5 +37,5 @@ TEST(Creep, RestingBoxDriftsLessThanOneUlpPerMinute) { RunCreep(0, 0); }
 
 TEST(Creep, OffCentreRestingBoxDriftsLessThanOneUlpPerMinute) { RunCreep(Fixed(3.3), 0); }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::test

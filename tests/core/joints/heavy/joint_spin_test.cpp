@@ -11,7 +11,7 @@
 #include "../JointTestUtil.h"
 
 namespace lockbox::jt {
-namespace {
+namespace LOCKBOX_TEST_FILE {
 
 TEST(JointSpin, ThirtyMinutesAt94RadPerSecond) {
     TrapCounter traps;
@@ -68,5 +68,5 @@ TEST(JointSpin, ThirtyMinutesAt94RadPerSecond) {
     EXPECT_EQ(TrapCounter::Events(), 0u);
 }
 
-}  // namespace
+}  // namespace LOCKBOX_TEST_FILE
 }  // namespace lockbox::jt
