@@ -38,8 +38,17 @@ public:
         bool colourable = true;
     };
 
-    /// Reorders items[0, count) into colour order. `written(item)` gives a Written whose slots
-    /// lie below slotCount.
+    /// Room for a table of what items [0, count) write, entry i for item i. Filling it reads
+    /// each item's bodies, which blocks of items may do at the same time, while the colours
+    /// themselves must be given in order: with workers, the caller fills it first and Order
+    /// reads it.
+    Written* Table(int32 count) {
+        if (m_written.size() < static_cast<size_t>(count)) m_written.resize(static_cast<size_t>(count));
+        return m_written.data();
+    }
+
+    /// Reorders items[0, count) into colour order. `written(i)` gives what item i writes: a
+    /// Written whose slots lie below slotCount.
     template <class WrittenOf>
     void Order(Item** items, int32 count, int32 slotCount, WrittenOf written) {
         const auto n = static_cast<size_t>(count);
@@ -50,7 +59,7 @@ public:
         }
         std::array<int32, b2_colourCount + 1> sizes{};
         for (size_t i = 0; i < n; ++i) {
-            const Written w = written(items[i]);
+            const Written w = written(i);
             uint32 taken = 0;
             if (w.a >= 0) taken |= m_masks[static_cast<size_t>(w.a)];
             if (w.b >= 0) taken |= m_masks[static_cast<size_t>(w.b)];
@@ -78,9 +87,10 @@ public:
     int32 Start(int32 colour) const noexcept { return m_starts[static_cast<size_t>(colour)]; }
 
 private:
-    std::vector<uint32> m_masks;   ///< per body slot: the colours its constraints took
-    std::vector<uint8> m_colours;  ///< per item, in island order
-    std::vector<Item*> m_ordered;  ///< the items in colour order, before copying back
+    std::vector<Written> m_written;  ///< per item, in island order: the slots it writes
+    std::vector<uint32> m_masks;     ///< per body slot: the colours its constraints took
+    std::vector<uint8> m_colours;    ///< per item, in island order
+    std::vector<Item*> m_ordered;    ///< the items in colour order, before copying back
     std::array<int32, b2_colourCount + 2> m_starts{};
 };
 

@@ -7,6 +7,7 @@
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
 #include "lockbox/dynamics/StepObserver.h"
+#include "lockbox/dynamics/Tasks.h"
 #include "lockbox/dynamics/WorldCallbacks.h"
 #include "lockbox/dynamics/contacts/Contact.h"
 #include "lockbox/dynamics/joints/Joint.h"
@@ -169,31 +170,60 @@ void b2Island::StoreBodies(int32 begin, int32 end) {
     }
 }
 
+// A contact's solve writes its dynamic bodies.
+b2Colours<b2Contact>::Written b2Island::WrittenBy(const b2Contact* c) {
+    const b2Body* a = c->m_fixtureA->m_body;
+    const b2Body* b = c->m_fixtureB->m_body;
+    return {a->m_type == b2_dynamicBody ? a->m_islandIndex : -1, b->m_type == b2_dynamicBody ? b->m_islandIndex : -1,
+            true};
+}
+
+// A joint solver writes both its bodies, with or without mass, so only a joint between two
+// dynamic bodies may share a colour; and only the joints that touch no other body or joint (a
+// gear reads two joints, a mouse joint has one body).
+b2Colours<b2Joint>::Written b2Island::WrittenBy(const b2Joint* j) {
+    const bool twoBodies = j->m_type == e_revoluteJoint || j->m_type == e_prismaticJoint ||
+                           j->m_type == e_distanceJoint || j->m_type == e_weldJoint || j->m_type == e_wheelJoint ||
+                           j->m_type == e_frictionJoint || j->m_type == e_ropeJoint;
+    const bool dynamic = j->m_bodyA->m_type == b2_dynamicBody && j->m_bodyB->m_type == b2_dynamicBody;
+    return {j->m_bodyA->m_islandIndex, j->m_bodyB->m_islandIndex, twoBodies && dynamic};
+}
+
+namespace {
+
+// Fills the colouring's table of what each item writes, with workers. These reads of every
+// item's bodies are most of the colouring's time, and blocks of items may do them at the same
+// time; one thread reads them as the colouring goes, without the table.
+template <class Item>
+struct TableFill {
+    Item* const* items;
+    typename b2Colours<Item>::Written* table;
+
+    static void Range(int32 begin, int32 end, void* self) {
+        const TableFill& fill = *static_cast<const TableFill*>(self);
+        for (int32 i = begin; i < end; ++i) fill.table[i] = b2Island::WrittenBy(fill.items[i]);
+    }
+};
+
+template <class Item>
+void ColourInOrder(b2Colours<Item>& colours, Item** items, int32 count, int32 slots, b2TaskSystem* tasks) {
+    constexpr int32 kItemsPerBlock = 1024;
+    if (tasks != nullptr && count > kItemsPerBlock) {
+        TableFill<Item> fill{items, colours.Table(count)};
+        tasks->ParallelFor(count, kItemsPerBlock, &TableFill<Item>::Range, &fill);
+        colours.Order(items, count, slots, [table = fill.table](size_t i) { return table[i]; });
+    } else {
+        colours.Order(items, count, slots, [items](size_t i) { return b2Island::WrittenBy(items[i]); });
+    }
+}
+
+}  // namespace
+
 bool b2Island::Colour() {
     const int32 slots = m_slotBase + m_bodyCount;
     const bool contacts = ColoursContacts(), joints = ColoursJoints();
-    if (contacts) {
-        m_contactColours.Order(m_contacts.data(), m_contactCount, slots, [](const b2Contact* c) {
-            const b2Body* a = c->m_fixtureA->m_body;
-            const b2Body* b = c->m_fixtureB->m_body;
-            return b2Colours<b2Contact>::Written{a->m_type == b2_dynamicBody ? a->m_islandIndex : -1,
-                                                 b->m_type == b2_dynamicBody ? b->m_islandIndex : -1, true};
-        });
-    }
-    if (joints) {
-        m_jointColours.Order(m_joints.data(), m_jointCount, slots, [](const b2Joint* j) {
-            // A joint solver writes both its bodies, with or without mass, so only a joint between
-            // two dynamic bodies may share a colour; and only the joints that touch no other
-            // body or joint (a gear reads two joints, a mouse joint has one body).
-            const bool twoBodies = j->m_type == e_revoluteJoint || j->m_type == e_prismaticJoint ||
-                                   j->m_type == e_distanceJoint || j->m_type == e_weldJoint ||
-                                   j->m_type == e_wheelJoint || j->m_type == e_frictionJoint ||
-                                   j->m_type == e_ropeJoint;
-            const bool dynamic = j->m_bodyA->m_type == b2_dynamicBody && j->m_bodyB->m_type == b2_dynamicBody;
-            return b2Colours<b2Joint>::Written{j->m_bodyA->m_islandIndex, j->m_bodyB->m_islandIndex,
-                                               twoBodies && dynamic};
-        });
-    }
+    if (contacts) ColourInOrder(m_contactColours, m_contacts.data(), m_contactCount, slots, m_tasks);
+    if (joints) ColourInOrder(m_jointColours, m_joints.data(), m_jointCount, slots, m_tasks);
     return contacts || joints;
 }
 
@@ -247,8 +277,11 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     }
     profile->velocityIterations += step.velocityIterations * m_contactCount;
     profile->jointVelocityIterations += step.velocityIterations * m_jointCount;
-    contactSolver.StoreImpulses();
-    if (m_jointCount > 0) m_jointSolver.StoreImpulses();
+    if (!shared) {
+        // The shared solve stored them in its last stages.
+        contactSolver.StoreImpulses();
+        if (m_jointCount > 0) m_jointSolver.StoreImpulses();
+    }
     profile->solveVelocityNs += Nanos(timer);
     Observe(b2IslandPhase::e_velocity);
 

@@ -70,6 +70,10 @@ public:
     /// Puts the contacts and the joints that are many enough in colour order; returns whether
     /// either was.
     bool Colour();
+    /// The solver slots a contact's solve writes (Colours.h).
+    static b2Colours<b2Contact>::Written WrittenBy(const b2Contact* c);
+    /// The same for a joint's, and whether it may share a colour at all.
+    static b2Colours<b2Joint>::Written WrittenBy(const b2Joint* j);
 
     /// One velocity iteration over the contacts: in island order, or colour by colour (each
     /// colour's contacts write no body in common), then the overflow in order.

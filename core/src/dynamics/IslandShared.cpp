@@ -120,6 +120,8 @@ void Shared::RunBlock(int32 stage, int32 block, void* context) {
                 s.contacts->SolveVelocityConstraints(begin, end);
             }
             break;
+        case Kind::e_storeImpulses: s.contacts->StoreImpulses(begin, end); break;
+        case Kind::e_jointStoreImpulses: island.m_jointSolver.StoreImpulses(begin, end); break;
         case Kind::e_integratePositions: island.IntegratePositions(begin, end, data.step.dt); break;
         case Kind::e_position: {
             const int32 raw = s.contacts->SolvePositionConstraints(begin, end).Raw();
@@ -170,6 +172,9 @@ void b2Island::SolveVelocitiesShared(b2ContactSolver& contacts, const b2SolverDa
         AddConstraintStages(s, Kind::e_jointVelocity, m_jointColours, m_jointCount, workers);
         AddConstraintStages(s, Kind::e_velocity, m_contactColours, m_contactCount, workers);
     }
+    // The impulses kept for the next step's warm start: each item writes only its own.
+    AddStage(s, Kind::e_storeImpulses, 0, m_contactCount, workers);
+    AddStage(s, Kind::e_jointStoreImpulses, 0, m_jointCount, workers);
     s.stages.Run(*m_tasks, &Shared::RunBlock, nullptr, &s);
 }
 

@@ -20,6 +20,8 @@ struct core_detail::Engine::Island::Shared {
         e_jointInit,            ///< a joint colour's set-up (or every joint's, in one block)
         e_jointVelocity,        ///< a joint colour's velocity iteration (or every joint's)
         e_velocity,             ///< a colour's velocity iteration
+        e_storeImpulses,        ///< the contacts' impulses back to their manifolds (any split)
+        e_jointStoreImpulses,   ///< the joints' impulses back to the joints (any split)
         e_integratePositions,   ///< bodies' position integration (any split)
         e_position,             ///< a colour's position pass
         e_jointPosition,        ///< a joint colour's position pass (or every joint's)

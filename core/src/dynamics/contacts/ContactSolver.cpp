@@ -315,8 +315,8 @@ void b2ContactSolver::SolveVelocityConstraints(int32 begin, int32 end) {
     }
 }
 
-void b2ContactSolver::StoreImpulses() {
-    for (int32 i = 0; i < m_count; ++i) {
+void b2ContactSolver::StoreImpulses(int32 begin, int32 end) {
+    for (int32 i = begin; i < end; ++i) {
         const b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
         b2Manifold* manifold = m_contacts[vc->contactIndex]->GetManifold();
         for (int32 j = 0; j < vc->pointCount; ++j) {

@@ -143,7 +143,9 @@ public:
     /// Lets the lanes run (the default) or not. Both paths give the same bits; tests compare them.
     static void AllowLanes(bool allow) noexcept;
     /// Copies the accumulated impulses back to the manifolds for warm starting.
-    void StoreImpulses();
+    void StoreImpulses() { StoreImpulses(0, m_count); }
+    /// The same for constraints [begin, end) (each writes its own contact's manifold).
+    void StoreImpulses(int32 begin, int32 end);
     /// One position iteration; true when the largest overlap is within 3 linearSlop.
     bool SolvePositionConstraints() { return PositionAccepted(SolvePositionConstraints(0, m_count)); }
     /// One position pass over constraints [begin, end), in order; returns the smallest

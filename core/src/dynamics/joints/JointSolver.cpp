@@ -149,8 +149,8 @@ void JointSolver::SolveVelocityConstraints(const b2SolverData& data, int32 begin
     }
 }
 
-void JointSolver::StoreImpulses() const {
-    for (int32 i = 0; i < m_count; ++i) {
+void JointSolver::StoreImpulses(int32 begin, int32 end) const {
+    for (int32 i = begin; i < end; ++i) {
         const Row& row = m_rows[static_cast<size_t>(i)];
         if (row.revolute == nullptr) continue;
         row.revolute->m_impulse.x = row.impulse.x;

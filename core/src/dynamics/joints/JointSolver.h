@@ -41,7 +41,9 @@ public:
     void SolveVelocityConstraints(const b2SolverData& data, int32 begin, int32 end);
     /// Copies the rows' accumulated impulses back to their joints (for warm starting and the
     /// reaction forces). Call once after the velocity iterations.
-    void StoreImpulses() const;
+    void StoreImpulses() const { StoreImpulses(0, m_count); }
+    /// The same for joints [begin, end) (each writes its own joint).
+    void StoreImpulses(int32 begin, int32 end) const;
     /// One position iteration over the joints, in island order; true when every joint is
     /// within tolerance (every joint is solved either way).
     bool SolvePositionConstraints(const b2SolverData& data) const { return SolvePositionConstraints(data, 0, m_count); }
