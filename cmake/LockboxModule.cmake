@@ -76,17 +76,21 @@ function(lockbox_add_test_suite)
     # of one unity source cannot collide) and which is anonymous otherwise.
     set_target_properties(${ARG_NAME} PROPERTIES UNITY_BUILD ${LOCKBOX_TEST_UNITY_BUILD}
                                                  UNITY_BUILD_UNIQUE_ID LOCKBOX_TEST_FILE)
-    # Float Box2D's b2 names are global, so a file that includes it (the differential tests)
-    # cannot share a unity source with files that write `using namespace lockbox;`: it is
-    # compiled on its own, as is any file marked so beforehand.
-    foreach(_source IN LISTS _sources)
-        file(STRINGS "${_source}" _float_includes REGEX "#include \"[^\"]*(Box2DFloat|diff_common)\\.h\"")
-        get_source_file_property(_alone "${_source}" SKIP_UNITY_BUILD_INCLUSION)
-        if(_float_includes OR _alone OR NOT LOCKBOX_TEST_UNITY_BUILD)
-            set_source_files_properties("${_source}" PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON
-                                                                COMPILE_DEFINITIONS LOCKBOX_TEST_FILE=)
-        endif()
-    endforeach()
+    if(LOCKBOX_TEST_UNITY_BUILD)
+        # Float Box2D's b2 names are global, so a file that includes it (the differential tests)
+        # cannot share a unity source with files that write `using namespace lockbox;`: it is
+        # compiled on its own, as is any file marked so beforehand.
+        foreach(_source IN LISTS _sources)
+            file(STRINGS "${_source}" _float_includes REGEX "#include \"[^\"]*(Box2DFloat|diff_common)\\.h\"")
+            get_source_file_property(_alone "${_source}" SKIP_UNITY_BUILD_INCLUSION)
+            if(_float_includes OR _alone)
+                set_source_files_properties("${_source}" PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON
+                                                                    COMPILE_DEFINITIONS LOCKBOX_TEST_FILE=)
+            endif()
+        endforeach()
+    else()
+        target_compile_definitions(${ARG_NAME} PRIVATE LOCKBOX_TEST_FILE=)
+    endif()
     target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gmock GTest::gtest_main lockbox_compile_options)
     target_include_directories(${ARG_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests/support")
     # GoogleTest, the standard headers most tests use and, for suites over the engine, its public

@@ -355,9 +355,8 @@ a=0
 for arch in $arches; do
     fams=$(families "$arch")
     if [ "$mode" != full ] && [ "$arch" != x86_64 ]; then
-        set -- $fams
-        shift $(( (day + a) % $# ))
-        fams=$1
+        read -r -a listed <<< "$fams"
+        fams=${listed[$(( (day + a) % ${#listed[@]} ))]}
     fi
     for fam in $fams; do
         if [ "$mode" = full ]; then
