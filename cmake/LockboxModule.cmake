@@ -59,8 +59,9 @@ endfunction()
 
 # lockbox_add_test_suite(NAME <exe> DIR <folder> LIBS <targets>... [LABELS <labels>...])
 # One GoogleTest executable from every *.cpp directly in DIR, registered with
-# gtest_discover_tests and the given ctest labels, with precompiled common headers. A suite
-# labelled heavy is left out when LOCKBOX_BUILD_HEAVY_TESTS is OFF.
+# gtest_discover_tests and the given ctest labels, as unity sources (or with precompiled common
+# headers when LOCKBOX_TEST_UNITY_BUILD is OFF). A suite labelled heavy is left out when
+# LOCKBOX_BUILD_HEAVY_TESTS is OFF.
 function(lockbox_add_test_suite)
     cmake_parse_arguments(ARG "" "NAME;DIR" "LIBS;LABELS" ${ARGN})
     if("heavy" IN_LIST ARG_LABELS AND NOT LOCKBOX_BUILD_HEAVY_TESTS)
@@ -94,12 +95,16 @@ function(lockbox_add_test_suite)
     target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gmock GTest::gtest_main lockbox_compile_options)
     target_include_directories(${ARG_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests/support")
     # GoogleTest, the standard headers most tests use and, for suites over the engine, its public
-    # header take more than half of a test's compile time: each suite parses them once.
-    set(_pch <gtest/gtest.h> <algorithm> <array> <cstdint> <functional> <memory> <string> <vector>)
-    if(NOT ARG_LIBS MATCHES "^lockbox::(fixed|cli)$")
-        list(APPEND _pch <lockbox/lockbox.h>)
+    # header take more than half of a lone test file's compile time: without a unity build each
+    # suite parses them once, as a precompiled header. A unity source already parses them once
+    # for all its files, and building the precompiled header then costs more than it saves.
+    if(NOT LOCKBOX_TEST_UNITY_BUILD)
+        set(_pch <gtest/gtest.h> <algorithm> <array> <cstdint> <functional> <memory> <string> <vector>)
+        if(NOT ARG_LIBS MATCHES "^lockbox::(fixed|cli)$")
+            list(APPEND _pch <lockbox/lockbox.h>)
+        endif()
+        target_precompile_headers(${ARG_NAME} PRIVATE ${_pch})
     endif()
-    target_precompile_headers(${ARG_NAME} PRIVATE ${_pch})
     set(_props)
     if(ARG_LABELS)
         set(_props PROPERTIES LABELS "${ARG_LABELS}")
