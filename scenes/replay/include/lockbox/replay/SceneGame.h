@@ -10,6 +10,7 @@
 /// holds the world, and a scene file has no pre-step action.
 
 #include <algorithm>
+#include <iterator>
 #include <memory>
 #include <span>
 #include <string>
@@ -70,9 +71,8 @@ inline constexpr uint8 kSceneFileParamsTag[4] = {'S', 'F', 'H', '1'};
 /// META game parameters of a replay recorded on a scene file: the tag "SFH1", then the file's
 /// scenefile::SceneFileHash as 8 bytes, least significant first (12 bytes).
 inline std::vector<uint8> SceneFileParams(uint64 fileHash) {
-    std::vector<uint8> out;
+    std::vector<uint8> out(std::begin(kSceneFileParamsTag), std::end(kSceneFileParamsTag));
     bytes::Writer w(out);
-    w.Bytes(kSceneFileParamsTag);
     w.U64(fileHash);
     return out;
 }
