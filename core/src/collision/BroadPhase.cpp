@@ -1,5 +1,7 @@
 #include "lockbox/collision/BroadPhase.h"
 
+#include <algorithm>
+
 #include "lockbox/fixed/Assert.h"
 
 namespace lockbox {
@@ -55,6 +57,36 @@ void b2BroadPhase::MarkMoved(bool moved) {
     for (const int32 proxyId : m_moveBuffer) {
         if (proxyId != e_nullProxy) m_moved[static_cast<size_t>(proxyId)] = flag;
     }
+}
+
+const std::vector<b2Pair>& b2BroadPhase::CollectPairs() {
+    m_pairBuffer.clear();
+
+    // Query the tree with every moved proxy's fat AABB, in buffer order. Two moved proxies that
+    // overlap find each other; only the query of the larger id records the pair (the overlap
+    // test is symmetric), which halves the pairs to sort without changing the distinct set.
+    MarkMoved(true);
+    PairCollector collector{this};
+    for (const int32 proxyId : m_moveBuffer) {
+        m_queryProxyId = proxyId;
+        if (proxyId == e_nullProxy) continue;
+        m_tree.Query(&collector, m_tree.GetFatAABB(proxyId));
+    }
+    m_queryProxyId = e_nullProxy;
+    MarkMoved(false);
+    m_moveBuffer.clear();
+
+    // Total order on (A, B): equal elements are identical, so any sort gives the same sequence.
+    // Proxy ids are never negative here, so (A, B) packed into one unsigned key orders exactly
+    // as b2PairLessThan does, in one comparison the sort can inline.
+    std::sort(m_pairBuffer.begin(), m_pairBuffer.end(),
+              [](const b2Pair& p1, const b2Pair& p2) noexcept { return PairKey(p1) < PairKey(p2); });
+    // Each distinct pair once.
+    const auto last =
+        std::unique(m_pairBuffer.begin(), m_pairBuffer.end(),
+                    [](const b2Pair& p1, const b2Pair& p2) noexcept { return PairKey(p1) == PairKey(p2); });
+    m_pairBuffer.erase(last, m_pairBuffer.end());
+    return m_pairBuffer;
 }
 
 bool b2BroadPhase::QueryCallback(int32 proxyId) {

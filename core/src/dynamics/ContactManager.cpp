@@ -25,38 +25,61 @@ bool b2ContactManager::ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB) {
     return filter->ShouldCollide(fixtureA, fixtureB);
 }
 
-void b2ContactManager::AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB) {
-    if (m_profile) ++m_profile->pairsFound;
-    b2Fixture* fixtureA = m_fixtures->Get(b2FixtureProxy::KeyFixture(proxyUserDataA));
-    b2Fixture* fixtureB = m_fixtures->Get(b2FixtureProxy::KeyFixture(proxyUserDataB));
-    if (fixtureA == nullptr || fixtureB == nullptr) return;
-    int32 indexA = b2FixtureProxy::KeyChild(proxyUserDataA);
-    int32 indexB = b2FixtureProxy::KeyChild(proxyUserDataB);
-    b2Body* bodyA = fixtureA->GetBody();
-    b2Body* bodyB = fixtureB->GetBody();
+b2ContactManager::NewPair b2ContactManager::Resolve(uint64 proxyUserDataA, uint64 proxyUserDataB) const {
+    NewPair pair;
+    pair.fixtureA = m_fixtures->Get(b2FixtureProxy::KeyFixture(proxyUserDataA));
+    pair.fixtureB = m_fixtures->Get(b2FixtureProxy::KeyFixture(proxyUserDataB));
+    pair.indexA = b2FixtureProxy::KeyChild(proxyUserDataA);
+    pair.indexB = b2FixtureProxy::KeyChild(proxyUserDataB);
+    return pair;
+}
+
+bool b2ContactManager::Screen(const NewPair& pair) const {
+    b2Fixture* fixtureA = pair.fixtureA;
+    b2Fixture* fixtureB = pair.fixtureB;
+    if (fixtureA == nullptr || fixtureB == nullptr) return false;
+    const b2Body* bodyA = fixtureA->GetBody();
+    const b2Body* bodyB = fixtureB->GetBody();
 
     // Fixtures on the same body never collide.
-    if (bodyA == bodyB) return;
+    if (bodyA == bodyB) return false;
 
     // The default filter is a pure test of data already loaded: without a user filter it goes
     // first, before the walks of the contact and joint lists (a jointed grid reports thousands
     // of pairs a step that it rejects). The outcome is the same as in 2.2.1's order.
-    if (m_contactFilter == nullptr && !g_defaultFilter.ShouldCollide(fixtureA, fixtureB)) return;
+    if (m_contactFilter == nullptr && !g_defaultFilter.ShouldCollide(fixtureA, fixtureB)) return false;
 
     // Does a contact already exist? (Walk B's edges, newest first, as 2.2.1.)
-    for (b2ContactEdge* edge = bodyB->GetContactList(); edge; edge = edge->next) {
+    for (const b2ContactEdge* edge = bodyB->m_contactList; edge; edge = edge->next) {
         if (edge->other != bodyA) continue;
         const b2Contact* c = edge->contact;
         const b2Fixture* fA = c->GetFixtureA();
         const b2Fixture* fB = c->GetFixtureB();
         const int32 iA = c->GetChildIndexA();
         const int32 iB = c->GetChildIndexB();
-        if (fA == fixtureA && fB == fixtureB && iA == indexA && iB == indexB) return;
-        if (fA == fixtureB && fB == fixtureA && iA == indexB && iB == indexA) return;
+        if (fA == fixtureA && fB == fixtureB && iA == pair.indexA && iB == pair.indexB) return false;
+        if (fA == fixtureB && fB == fixtureA && iA == pair.indexB && iB == pair.indexA) return false;
     }
 
-    // Body type rule and joints, then user filtering.
-    if (!bodyB->ShouldCollide(bodyA)) return;
+    // Body type rule and joints.
+    return bodyB->ShouldCollide(bodyA);
+}
+
+void b2ContactManager::AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB) {
+    if (m_profile) ++m_profile->pairsFound;
+    const NewPair pair = Resolve(proxyUserDataA, proxyUserDataB);
+    if (Screen(pair)) Take(pair);
+}
+
+void b2ContactManager::Take(const NewPair& pair) {
+    b2Fixture* fixtureA = pair.fixtureA;
+    b2Fixture* fixtureB = pair.fixtureB;
+    int32 indexA = pair.indexA;
+    int32 indexB = pair.indexB;
+    b2Body* bodyA = fixtureA->GetBody();
+    b2Body* bodyB = fixtureB->GetBody();
+
+    // User filtering, after the rules Screen applies, as 2.2.1 orders them.
     if (m_contactFilter != nullptr && !m_contactFilter->ShouldCollide(fixtureA, fixtureB)) return;
 
     const b2Shape::Type typeA = fixtureA->GetType();
@@ -104,7 +127,48 @@ void b2ContactManager::AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB) {
     ++m_contactCount;
 }
 
-void b2ContactManager::FindNewContacts() { m_broadPhase.UpdatePairs(this); }
+namespace {
+// Pairs per block of the workers' screening.
+constexpr int32 kPairsPerBlock = 128;
+}  // namespace
+
+void b2ContactManager::ScreenRange(int32 begin, int32 end, void* self) {
+    auto* manager = static_cast<b2ContactManager*>(self);
+    const b2DynamicTree& tree = manager->m_broadPhase.GetTree();
+    const std::vector<b2Pair>& pairs = *manager->m_screenPairs;
+    for (int32 i = begin; i < end; ++i) {
+        const b2Pair& pair = pairs[static_cast<size_t>(i)];
+        const NewPair resolved = manager->Resolve(tree.GetUserData(pair.proxyIdA), tree.GetUserData(pair.proxyIdB));
+        manager->m_screened[static_cast<size_t>(i)] = manager->Screen(resolved) ? 1 : 0;
+    }
+}
+
+void b2ContactManager::FindNewContacts(b2TaskSystem* tasks, int32 minParallelPairs) {
+    if (tasks == nullptr || tasks->GetWorkerCount() <= 1) {
+        m_broadPhase.UpdatePairs(this);
+        return;
+    }
+    const std::vector<b2Pair>& pairs = m_broadPhase.CollectPairs();
+    const b2DynamicTree& tree = m_broadPhase.GetTree();
+    const auto count = static_cast<int32>(pairs.size());
+    if (count < b2Max(minParallelPairs, 1)) {
+        for (const b2Pair& pair : pairs) AddPair(tree.GetUserData(pair.proxyIdA), tree.GetUserData(pair.proxyIdB));
+        return;
+    }
+    // Distinct pairs are distinct fixture-and-child pairs, so making one pair's contact cannot
+    // change another's screening: screening them all first decides what the one-worker order
+    // decides. The user's filter and the contacts stay in pair order.
+    m_screenPairs = &pairs;
+    m_screened.resize(pairs.size());
+    tasks->ParallelFor(count, kPairsPerBlock, &ScreenRange, this);
+    m_screenPairs = nullptr;
+    if (m_profile) m_profile->pairsFound += count;
+    for (int32 i = 0; i < count; ++i) {
+        if (m_screened[static_cast<size_t>(i)] == 0) continue;
+        const b2Pair& pair = pairs[static_cast<size_t>(i)];
+        Take(Resolve(tree.GetUserData(pair.proxyIdA), tree.GetUserData(pair.proxyIdB)));
+    }
+}
 
 void b2ContactManager::CountToiMark(const b2Contact& c, int32 change) noexcept {
     if (!c.m_toiBodies) return;

@@ -30,8 +30,11 @@ public:
     /// Broad-phase callback: creates a contact for a new overlapping pair (after the body,
     /// joint and filter checks). Keys are b2FixtureProxy::MakeKey values.
     void AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB);
-    /// Reports new pairs of moved proxies to AddPair.
-    void FindNewContacts();
+    /// Reports new pairs of moved proxies to AddPair. With a task system of more than one
+    /// worker and at least minParallelPairs pairs, the workers screen the pairs (every rule
+    /// before the user's filter reads only the world as it is); the contacts are then made in
+    /// pair order on the calling thread, so the result is the one-worker result.
+    void FindNewContacts(b2TaskSystem* tasks = nullptr, int32 minParallelPairs = 0);
     /// Destroys a contact (EndContact first when it was touching).
     void Destroy(b2Contact* c);
     /// Adds `change` to both bodies' b2Body::m_toiContacts when the linked contact `c` carries
@@ -105,6 +108,25 @@ private:
     };
 
     bool ShouldCollide(b2Fixture* fixtureA, b2Fixture* fixtureB);
+
+    /// A broad-phase pair as fixtures and child indices (a fixture is nullptr when its key names
+    /// none).
+    struct NewPair {
+        b2Fixture* fixtureA = nullptr;
+        b2Fixture* fixtureB = nullptr;
+        int32 indexA = 0;
+        int32 indexB = 0;
+    };
+    NewPair Resolve(uint64 proxyUserDataA, uint64 proxyUserDataB) const;
+    /// AddPair's rules before the user's filter: both fixtures exist on different bodies, the
+    /// default filter (when no user filter is set) lets them meet, no contact of theirs exists
+    /// and the bodies may collide (types and joints). Reads the world only, so workers may run
+    /// it for distinct pairs at once.
+    bool Screen(const NewPair& pair) const;
+    /// AddPair's rest for a screened pair: the user's filter, the shape rule, the new contact.
+    void Take(const NewPair& pair);
+    /// One block of FindNewContacts's screening (a b2TaskRange; `self` is the manager).
+    static void ScreenRange(int32 begin, int32 end, void* self);
     /// The walk's keep test: the fat AABBs of the contact's two proxies still overlap.
     bool FatAABBsOverlap(const b2Contact& c) const;
     /// The list walk's work on one contact (2.2.1's loop body): re-filter it when flagged, skip
@@ -133,6 +155,9 @@ private:
     std::vector<Pending> m_pending;
     std::vector<BlockTally> m_tallies;
     std::vector<b2Contact*> m_inOrder;  ///< min-heap on list key
+    // Pair-screening scratch of the parallel path (grown, never shrunk; not state).
+    const std::vector<b2Pair>* m_screenPairs = nullptr;  ///< the broad-phase's pairs being screened
+    std::vector<uint8> m_screened;                       ///< per pair: 1 when Screen passed it
 
     b2Pool<b2Fixture>* m_fixtures;
     b2Pool<b2Contact> m_contacts;

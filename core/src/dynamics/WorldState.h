@@ -145,6 +145,10 @@ public:
         if (!OnOwnPool()) return 64;
         return m_contactManager.m_contactListener == nullptr ? 2048 : 32768;
     }
+    /// The fewest broad-phase pairs of a step whose screening goes to the workers: a game's
+    /// task system gets any count of more than one block, the built-in pool (whose threads
+    /// must be woken) only a count worth it.
+    int32 MinParallelPairs() const noexcept { return OnOwnPool() ? 1024 : 129; }
     /// The last step's islands were worth the built-in pool (WorldSolve.cpp). Not state: only
     /// the speed of a step depends on it.
     bool m_shareIslands = false;
@@ -210,8 +214,15 @@ public:
     /// CollectToiCandidates's walk of slots [begin, end) into that block's buffer (a
     /// b2TaskRange; `self` is the world).
     static void CollectToiSlots(int32 begin, int32 end, void* self);
-    std::vector<std::vector<b2Contact*>> m_toiBlocks;  ///< CollectToiSlots's output, per block
-    bool m_toiInvalidate = false;                      ///< CollectToiCandidates's argument, for the blocks
+    /// A candidate of the slot walk with its list key, read while the walk has the contact at
+    /// hand, so that putting them in list order compares keys and reads no contact.
+    struct ToiKeyed {
+        int64_t listKey;
+        b2Contact* contact;
+    };
+    std::vector<std::vector<ToiKeyed>> m_toiBlocks;  ///< CollectToiSlots's output, per block
+    std::vector<ToiKeyed> m_toiKeyed;                ///< the blocks together, to sort (scratch)
+    bool m_toiInvalidate = false;                    ///< CollectToiCandidates's argument, for the blocks
     void AddToiCandidate(b2Contact* c) { m_toiCandidates.push_back(c); }
     /// Candidates for the contacts FindNewContacts put before `oldHead`, the list's head before.
     void AddNewToiCandidates(const b2Contact* oldHead);

@@ -104,12 +104,12 @@ bool World::RefreshToiContact(b2Contact& c, bool invalidate) noexcept {
 
 void World::CollectToiSlots(int32 begin, int32 end, void* self) {
     World& world = *static_cast<World*>(self);
-    std::vector<b2Contact*>& kept = world.m_toiBlocks[static_cast<size_t>(begin / kToiSlotsPerBlock)];
+    std::vector<ToiKeyed>& kept = world.m_toiBlocks[static_cast<size_t>(begin / kToiSlotsPerBlock)];
     kept.clear();
     const bool invalidate = world.m_toiInvalidate;
     const bool collect = !world.m_toiSearchEveryContact;
     world.m_contactManager.ForEachInSlots(begin, end, [&](b2Contact& c) {
-        if (RefreshToiContact(c, invalidate) && collect) kept.push_back(&c);
+        if (RefreshToiContact(c, invalidate) && collect) kept.push_back(ToiKeyed{c.m_listKey, &c});
     });
 }
 
@@ -141,13 +141,18 @@ void World::CollectToiCandidates(bool invalidate) {
         for (int32 begin = 0; begin < slots; begin += kToiSlotsPerBlock)
             CollectToiSlots(begin, b2Min(begin + kToiSlotsPerBlock, slots), this);
     }
+    m_toiKeyed.clear();
     for (int32 k = 0; k < blocks; ++k) {
-        const std::vector<b2Contact*>& kept = m_toiBlocks[static_cast<size_t>(k)];
-        m_toiCandidates.insert(m_toiCandidates.end(), kept.begin(), kept.end());
+        const std::vector<ToiKeyed>& kept = m_toiBlocks[static_cast<size_t>(k)];
+        m_toiKeyed.insert(m_toiKeyed.end(), kept.begin(), kept.end());
     }
-    // Slot order; the search takes them in list order, which their list keys give.
-    m_toiSorted = 0;
-    SortToiCandidates();
+    // Slot order; the search takes them in list order, which their list keys give. Each slot
+    // holds one contact and list keys are distinct, so the order has no ties.
+    std::sort(m_toiKeyed.begin(), m_toiKeyed.end(),
+              [](const ToiKeyed& a, const ToiKeyed& b) { return a.listKey < b.listKey; });
+    m_toiCandidates.reserve(m_toiKeyed.size());
+    for (const ToiKeyed& k : m_toiKeyed) m_toiCandidates.push_back(k.contact);
+    m_toiSorted = m_toiCandidates.size();
 }
 
 void World::AddNewToiCandidates(const b2Contact* oldHead) {

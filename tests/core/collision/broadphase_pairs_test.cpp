@@ -66,9 +66,9 @@ uint64 Fnv1a(const PairList& list) {
 b2AABB Shifted(const b2AABB& b, const b2Vec2& s) { return b2AABB{b.lowerBound + s, b.upperBound + s}; }
 
 /// A seeded scene of boxes drifting in a 120 m square, with creations, destructions and
-/// touches. Every step's UpdatePairs output is checked against a brute-force scan and appended
-/// (followed by a step mark) to the returned sequence.
-PairList RunScenario(const b2Vec2& shift) {
+/// touches. Every step's UpdatePairs output (or CollectPairs's, as user data) is checked against
+/// a brute-force scan and appended (followed by a step mark) to the returned sequence.
+PairList RunScenario(const b2Vec2& shift, bool collect = false) {
     Rng rng(0xB0A0D5EEDull);
     b2BroadPhase bp;
     std::map<int32, b2AABB> live;  // proxy id -> unshifted tight box
@@ -124,7 +124,12 @@ PairList RunScenario(const b2Vec2& shift) {
         for (const auto& [a, b] : expectedIds) expected.emplace_back(bp.GetUserData(a), bp.GetUserData(b));
 
         Recorder rec;
-        bp.UpdatePairs(&rec);
+        if (collect) {
+            for (const b2Pair& pair : bp.CollectPairs())
+                rec.AddPair(bp.GetUserData(pair.proxyIdA), bp.GetUserData(pair.proxyIdB));
+        } else {
+            bp.UpdatePairs(&rec);
+        }
         EXPECT_EQ(rec.pairs, expected) << "step " << step;
         EXPECT_TRUE(bp.GetMoveBuffer().empty());
         EXPECT_EQ(bp.GetProxyCount(), static_cast<int32>(live.size()));
@@ -150,6 +155,13 @@ TEST(BroadPhasePairs, MatchesBruteForceAndIsReproducible) {
                 static_cast<unsigned long long>(hash));
     EXPECT_GT(pairs, 1000u);
     EXPECT_EQ(hash, kGoldenPairHash);
+}
+
+// CollectPairs hands over what UpdatePairs reports, in the same order, each pair once.
+TEST(BroadPhasePairs, CollectedPairsAreTheReportedOnes) {
+    const PairList collected = RunScenario(b2Vec2(), true);
+    EXPECT_EQ(Fnv1a(collected), kGoldenPairHash);
+    EXPECT_EQ(collected, RunScenario(b2Vec2()));
 }
 
 TEST(BroadPhasePairs, ShiftedByWholeMetresGivesTheSamePairs) {

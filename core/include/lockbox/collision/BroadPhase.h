@@ -22,7 +22,6 @@
 /// the start of UpdatePairs). Buffers are std::vectors that keep their capacity, so a warm
 /// broad-phase does not allocate.
 
-#include <algorithm>
 #include <vector>
 
 #include "lockbox/Export.h"
@@ -90,6 +89,11 @@ public:
     template <typename T>
     void UpdatePairs(T* callback);
 
+    /// The pairs UpdatePairs reports, in its order and each once, as proxy ids, without
+    /// reporting them; empties the move buffer. For a client that examines the pairs before it
+    /// takes them. Valid until the next call of CollectPairs or UpdatePairs.
+    const std::vector<b2Pair>& CollectPairs();
+
     /// Forwards to b2DynamicTree::Query.
     template <typename T>
     void Query(T* callback, const b2AABB& aabb) const {
@@ -152,39 +156,10 @@ private:
 
 template <typename T>
 void b2BroadPhase::UpdatePairs(T* callback) {
-    m_pairBuffer.clear();
-
-    // Query the tree with every moved proxy's fat AABB, in buffer order. Two moved proxies that
-    // overlap find each other; only the query of the larger id records the pair (the overlap
-    // test is symmetric), which halves the pairs to sort without changing the distinct set.
-    MarkMoved(true);
-    PairCollector collector{this};
-    for (const int32 proxyId : m_moveBuffer) {
-        m_queryProxyId = proxyId;
-        if (proxyId == e_nullProxy) continue;
-        m_tree.Query(&collector, m_tree.GetFatAABB(proxyId));
-    }
-    m_queryProxyId = e_nullProxy;
-    MarkMoved(false);
-    m_moveBuffer.clear();
-
-    // Total order on (A, B): equal elements are identical, so any sort gives the same sequence.
-    // Proxy ids are never negative here, so (A, B) packed into one unsigned key orders exactly
-    // as b2PairLessThan does, in one comparison the sort can inline.
-    std::sort(m_pairBuffer.begin(), m_pairBuffer.end(),
-              [](const b2Pair& p1, const b2Pair& p2) noexcept { return PairKey(p1) < PairKey(p2); });
-
-    // Report each distinct pair once.
-    const size_t count = m_pairBuffer.size();
-    size_t i = 0;
-    while (i < count) {
-        const b2Pair primary = m_pairBuffer[i];
-        callback->AddPair(m_tree.GetUserData(primary.proxyIdA), m_tree.GetUserData(primary.proxyIdB));
-        ++i;
-        while (i < count && m_pairBuffer[i].proxyIdA == primary.proxyIdA &&
-               m_pairBuffer[i].proxyIdB == primary.proxyIdB) {
-            ++i;
-        }
+    // By index: a callback may buffer moves, never pairs, so the buffer stays as it is.
+    const std::vector<b2Pair>& pairs = CollectPairs();
+    for (size_t i = 0; i < pairs.size(); ++i) {
+        callback->AddPair(m_tree.GetUserData(pairs[i].proxyIdA), m_tree.GetUserData(pairs[i].proxyIdB));
     }
 }
 
