@@ -61,18 +61,32 @@ void b2BroadPhase::MarkMoved(bool moved) {
 
 const std::vector<b2Pair>& b2BroadPhase::CollectPairs() {
     m_pairBuffer.clear();
+    MarkMoved(true);
+    QueryMoves(0, static_cast<int32>(m_moveBuffer.size()), &m_pairBuffer);
+    return FinishPairs();
+}
 
+void b2BroadPhase::QueryMoves(int32 begin, int32 end, std::vector<b2Pair>* out) const {
     // Query the tree with every moved proxy's fat AABB, in buffer order. Two moved proxies that
     // overlap find each other; only the query of the larger id records the pair (the overlap
     // test is symmetric), which halves the pairs to sort without changing the distinct set.
-    MarkMoved(true);
-    PairCollector collector{this};
-    for (const int32 proxyId : m_moveBuffer) {
-        m_queryProxyId = proxyId;
+    PairCollector collector{this, e_nullProxy, out};
+    for (int32 i = begin; i < end; ++i) {
+        const int32 proxyId = m_moveBuffer[static_cast<size_t>(i)];
         if (proxyId == e_nullProxy) continue;
+        collector.queryProxyId = proxyId;
         m_tree.Query(&collector, m_tree.GetFatAABB(proxyId));
     }
-    m_queryProxyId = e_nullProxy;
+}
+
+void b2BroadPhase::QueryBlock(int32 begin, int32 end, void* self) {
+    auto* broadPhase = static_cast<b2BroadPhase*>(self);
+    std::vector<b2Pair>& found = broadPhase->m_blockPairs[static_cast<size_t>(begin / kMovesPerBlock)];
+    found.clear();
+    broadPhase->QueryMoves(begin, end, &found);
+}
+
+const std::vector<b2Pair>& b2BroadPhase::FinishPairs() {
     MarkMoved(false);
     m_moveBuffer.clear();
 
@@ -89,14 +103,14 @@ const std::vector<b2Pair>& b2BroadPhase::CollectPairs() {
     return m_pairBuffer;
 }
 
-bool b2BroadPhase::QueryCallback(int32 proxyId) {
+bool b2BroadPhase::PairCollector::QueryCallback(int32 proxyId) {
     // A proxy cannot form a pair with itself.
-    if (proxyId == m_queryProxyId) return true;
+    if (proxyId == queryProxyId) return true;
     // A moved proxy with a larger id records this pair in its own query.
-    if (proxyId > m_queryProxyId && m_moved[static_cast<size_t>(proxyId)] != 0) return true;
-    const int32 a = proxyId < m_queryProxyId ? proxyId : m_queryProxyId;
-    const int32 b = proxyId < m_queryProxyId ? m_queryProxyId : proxyId;
-    m_pairBuffer.push_back(b2Pair{a, b});
+    if (proxyId > queryProxyId && broadPhase->m_moved[static_cast<size_t>(proxyId)] != 0) return true;
+    const int32 a = proxyId < queryProxyId ? proxyId : queryProxyId;
+    const int32 b = proxyId < queryProxyId ? queryProxyId : proxyId;
+    out->push_back(b2Pair{a, b});
     return true;
 }
 

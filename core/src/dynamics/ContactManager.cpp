@@ -143,15 +143,20 @@ void b2ContactManager::ScreenRange(int32 begin, int32 end, void* self) {
     }
 }
 
-void b2ContactManager::FindNewContacts(b2TaskSystem* tasks, int32 minParallelPairs) {
+void b2ContactManager::FindNewContacts(b2TaskSystem* tasks, int32 minParallel) {
     if (tasks == nullptr || tasks->GetWorkerCount() <= 1) {
         m_broadPhase.UpdatePairs(this);
         return;
     }
-    const std::vector<b2Pair>& pairs = m_broadPhase.CollectPairs();
+    const bool manyMoves = static_cast<int32>(m_broadPhase.GetMoveBuffer().size()) >= minParallel;
+    const std::vector<b2Pair>& pairs =
+        manyMoves ? m_broadPhase.CollectPairs([tasks](int32 count, int32 blockSize, b2TaskRange range, void* context) {
+            tasks->ParallelFor(count, blockSize, range, context);
+        })
+                  : m_broadPhase.CollectPairs();
     const b2DynamicTree& tree = m_broadPhase.GetTree();
     const auto count = static_cast<int32>(pairs.size());
-    if (count < b2Max(minParallelPairs, 1)) {
+    if (count < b2Max(minParallel, 1)) {
         for (const b2Pair& pair : pairs) AddPair(tree.GetUserData(pair.proxyIdA), tree.GetUserData(pair.proxyIdB));
         return;
     }

@@ -31,10 +31,11 @@ public:
     /// joint and filter checks). Keys are b2FixtureProxy::MakeKey values.
     void AddPair(uint64 proxyUserDataA, uint64 proxyUserDataB);
     /// Reports new pairs of moved proxies to AddPair. With a task system of more than one
-    /// worker and at least minParallelPairs pairs, the workers screen the pairs (every rule
-    /// before the user's filter reads only the world as it is); the contacts are then made in
-    /// pair order on the calling thread, so the result is the one-worker result.
-    void FindNewContacts(b2TaskSystem* tasks = nullptr, int32 minParallelPairs = 0);
+    /// worker, the workers run the broad-phase's tree queries when at least minParallel
+    /// proxies moved, and screen the pairs when there are at least minParallel of them (every
+    /// rule before the user's filter reads only the world as it is); the contacts are then made
+    /// in pair order on the calling thread, so the result is the one-worker result.
+    void FindNewContacts(b2TaskSystem* tasks = nullptr, int32 minParallel = 0);
     /// Destroys a contact (EndContact first when it was touching).
     void Destroy(b2Contact* c);
     /// Adds `change` to both bodies' b2Body::m_toiContacts when the linked contact `c` carries

@@ -145,9 +145,9 @@ public:
         if (!OnOwnPool()) return 64;
         return m_contactManager.m_contactListener == nullptr ? 2048 : 32768;
     }
-    /// The fewest broad-phase pairs of a step whose screening goes to the workers: a game's
-    /// task system gets any count of more than one block, the built-in pool (whose threads
-    /// must be woken) only a count worth it.
+    /// The fewest moved proxies (or broad-phase pairs) of a step whose tree queries (or
+    /// screening) go to the workers: a game's task system gets any count of more than one
+    /// block, the built-in pool (whose threads must be woken) only a count worth it.
     int32 MinParallelPairs() const noexcept { return OnOwnPool() ? 1024 : 129; }
     /// The last step's islands were worth the built-in pool (WorldSolve.cpp). Not state: only
     /// the speed of a step depends on it.

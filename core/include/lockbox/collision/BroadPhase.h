@@ -94,6 +94,17 @@ public:
     /// takes them. Valid until the next call of CollectPairs or UpdatePairs.
     const std::vector<b2Pair>& CollectPairs();
 
+    /// CollectPairs with the tree queries of the moved proxies spread over a parallel loop;
+    /// the result is the same. parallelFor(count, blockSize, range, context) must call
+    /// range(begin, end, context) exactly once for every block [k * blockSize, min((k + 1) *
+    /// blockSize, count)), in any order and on any threads, and return when all have run (the
+    /// contract of b2TaskSystem::ParallelFor). It is called at most once, with count >= 1.
+    template <typename ParallelFor>
+    const std::vector<b2Pair>& CollectPairs(ParallelFor&& parallelFor);
+
+    /// Moved proxies per block of the parallel CollectPairs.
+    static constexpr int32 kMovesPerBlock = 64;
+
     /// Forwards to b2DynamicTree::Query.
     template <typename T>
     void Query(T* callback, const b2AABB& aabb) const {
@@ -133,26 +144,52 @@ public:
     }
 
 private:
-    /// The tree's query callback during UpdatePairs (a nested type reaches the private state
-    /// without befriending the tree).
+    /// The tree's query callback while pairs are collected: records the pairs of one moved
+    /// proxy into one buffer (a nested type reaches the private state without befriending the
+    /// tree).
     struct PairCollector {
-        b2BroadPhase* broadPhase;
-        bool QueryCallback(int32 proxyId) { return broadPhase->QueryCallback(proxyId); }
+        const b2BroadPhase* broadPhase;
+        int32 queryProxyId;
+        std::vector<b2Pair>* out;
+        bool QueryCallback(int32 proxyId);
     };
 
     void BufferMove(int32 proxyId);
     void UnBufferMove(int32 proxyId);
     /// Sets (or clears) m_moved for every live proxy of the move buffer.
     void MarkMoved(bool moved);
-    bool QueryCallback(int32 proxyId);
+    /// The pairs found by the queries of move-buffer entries [begin, end), appended to out in
+    /// buffer order. Reads the broad-phase only, so threads may run it on disjoint ranges.
+    void QueryMoves(int32 begin, int32 end, std::vector<b2Pair>* out) const;
+    /// One block of the parallel CollectPairs (`self` is the broad-phase).
+    static void QueryBlock(int32 begin, int32 end, void* self);
+    /// Collection's end: clears the marks and the move buffer, sorts the pairs, keeps each once.
+    const std::vector<b2Pair>& FinishPairs();
 
     b2DynamicTree m_tree;
     int32 m_proxyCount = 0;
     std::vector<int32> m_moveBuffer;
     std::vector<b2Pair> m_pairBuffer;
-    std::vector<uint8> m_moved;  ///< per tree node, 1 while UpdatePairs runs for a buffered proxy (scratch)
-    int32 m_queryProxyId = e_nullProxy;
+    std::vector<uint8> m_moved;  ///< per tree node, 1 while pairs are collected for a buffered proxy (scratch)
+    std::vector<std::vector<b2Pair>> m_blockPairs;  ///< per block of the parallel collection (scratch)
 };
+
+template <typename ParallelFor>
+const std::vector<b2Pair>& b2BroadPhase::CollectPairs(ParallelFor&& parallelFor) {
+    const auto moves = static_cast<int32>(m_moveBuffer.size());
+    if (moves <= kMovesPerBlock) return CollectPairs();
+    m_pairBuffer.clear();
+    MarkMoved(true);
+    const int32 blocks = 1 + (moves - 1) / kMovesPerBlock;
+    if (m_blockPairs.size() < static_cast<size_t>(blocks)) m_blockPairs.resize(static_cast<size_t>(blocks));
+    parallelFor(moves, kMovesPerBlock, &QueryBlock, static_cast<void*>(this));
+    // Blocks in buffer order: the very pairs of the one-thread queries, in their order.
+    for (int32 k = 0; k < blocks; ++k) {
+        const std::vector<b2Pair>& found = m_blockPairs[static_cast<size_t>(k)];
+        m_pairBuffer.insert(m_pairBuffer.end(), found.begin(), found.end());
+    }
+    return FinishPairs();
+}
 
 template <typename T>
 void b2BroadPhase::UpdatePairs(T* callback) {
