@@ -222,6 +222,7 @@ public:
     };
     std::vector<std::vector<ToiKeyed>> m_toiBlocks;  ///< CollectToiSlots's output, per block
     std::vector<ToiKeyed> m_toiKeyed;                ///< the blocks together, to sort (scratch)
+    std::vector<ToiKeyed> m_toiKeyedScratch;         ///< the sort's second buffer (scratch)
     bool m_toiInvalidate = false;                    ///< CollectToiCandidates's argument, for the blocks
     void AddToiCandidate(b2Contact* c) { m_toiCandidates.push_back(c); }
     /// Candidates for the contacts FindNewContacts put before `oldHead`, the list's head before.

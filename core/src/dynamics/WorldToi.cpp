@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "dynamics/KeySort.h"
 #include "dynamics/WorldState.h"
 #include "dynamics/contacts/ContactRules.h"
 #include "lockbox/collision/TimeOfImpact.h"
@@ -148,8 +149,7 @@ void World::CollectToiCandidates(bool invalidate) {
     }
     // Slot order; the search takes them in list order, which their list keys give. Each slot
     // holds one contact and list keys are distinct, so the order has no ties.
-    std::sort(m_toiKeyed.begin(), m_toiKeyed.end(),
-              [](const ToiKeyed& a, const ToiKeyed& b) { return a.listKey < b.listKey; });
+    core_detail::SortByKey(m_toiKeyed, m_toiKeyedScratch, [](const ToiKeyed& k) { return k.listKey; });
     m_toiCandidates.reserve(m_toiKeyed.size());
     for (const ToiKeyed& k : m_toiKeyed) m_toiCandidates.push_back(k.contact);
     m_toiSorted = m_toiCandidates.size();
