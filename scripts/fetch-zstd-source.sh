@@ -17,9 +17,32 @@ for d in zstd-src; do
     fi
 done
 version=$(dpkg-query -W -f='${Version}' libzstd-dev 2> /dev/null || true)
-spec=libzstd${version:+=$version}
-echo "fetch-zstd-source: apt-get source $spec" >&2
-apt-get source --download-only "$spec" >&2
+# The installed version first. A mirror may list a source it no longer serves (a security
+# update's, say): then the other versions apt lists, then whatever it picks. The decoder of any
+# zstd release reads every frame, so another Debian revision only changes which patches it has.
+specs=()
+if [ -n "$version" ]; then specs+=("libzstd=$version"); fi
+while read -r listed; do
+    if [ -n "$listed" ] && [ "$listed" != "$version" ]; then specs+=("libzstd=$listed"); fi
+done < <(apt-cache showsrc libzstd 2> /dev/null | sed -n 's/^Version: //p' | sort -r -V)
+specs+=(libzstd)
+fetched=""
+for spec in "${specs[@]}"; do
+    echo "fetch-zstd-source: apt-get source $spec" >&2
+    rm -f libzstd_*
+    if apt-get source --download-only "$spec" >&2; then
+        fetched=$spec
+        break
+    fi
+    echo "fetch-zstd-source: $spec could not be fetched" >&2
+done
+if [ -z "$fetched" ]; then
+    echo "fetch-zstd-source: no libzstd source package could be fetched" >&2
+    exit 1
+fi
+if [ -n "$version" ] && [ "$fetched" != "libzstd=$version" ]; then
+    echo "fetch-zstd-source: note: the decoder is built from $fetched, the installed libzstd-dev is $version" >&2
+fi
 dsc=$(ls -1 libzstd_*.dsc | head -n 1)
 rm -rf zstd-src
 dpkg-source -x "$dsc" zstd-src >&2
