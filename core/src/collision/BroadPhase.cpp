@@ -59,9 +59,13 @@ void b2BroadPhase::MarkMoved(bool moved) {
     }
 }
 
-const std::vector<b2Pair>& b2BroadPhase::CollectPairs() {
+void b2BroadPhase::BeginPairs() {
     m_pairBuffer.clear();
     MarkMoved(true);
+}
+
+const std::vector<b2Pair>& b2BroadPhase::CollectPairs() {
+    BeginPairs();
     QueryMoves(0, static_cast<int32>(m_moveBuffer.size()), &m_pairBuffer);
     return FinishPairs();
 }

@@ -132,13 +132,16 @@ namespace {
 constexpr int32 kPairsPerBlock = 128;
 }  // namespace
 
+b2ContactManager::NewPair b2ContactManager::Resolve(const b2Pair& pair) const {
+    const b2DynamicTree& tree = m_broadPhase.GetTree();
+    return Resolve(tree.GetUserData(pair.proxyIdA), tree.GetUserData(pair.proxyIdB));
+}
+
 void b2ContactManager::ScreenRange(int32 begin, int32 end, void* self) {
     auto* manager = static_cast<b2ContactManager*>(self);
-    const b2DynamicTree& tree = manager->m_broadPhase.GetTree();
     const std::vector<b2Pair>& pairs = *manager->m_screenPairs;
     for (int32 i = begin; i < end; ++i) {
-        const b2Pair& pair = pairs[static_cast<size_t>(i)];
-        const NewPair resolved = manager->Resolve(tree.GetUserData(pair.proxyIdA), tree.GetUserData(pair.proxyIdB));
+        const NewPair resolved = manager->Resolve(pairs[static_cast<size_t>(i)]);
         manager->m_screened[static_cast<size_t>(i)] = manager->Screen(resolved) ? 1 : 0;
     }
 }
@@ -154,24 +157,22 @@ void b2ContactManager::FindNewContacts(b2TaskSystem* tasks, int32 minParallel) {
             tasks->ParallelFor(count, blockSize, range, context);
         })
                   : m_broadPhase.CollectPairs();
-    const b2DynamicTree& tree = m_broadPhase.GetTree();
     const auto count = static_cast<int32>(pairs.size());
-    if (count < b2Max(minParallel, 1)) {
-        for (const b2Pair& pair : pairs) AddPair(tree.GetUserData(pair.proxyIdA), tree.GetUserData(pair.proxyIdB));
-        return;
-    }
+    if (m_profile) m_profile->pairsFound += count;
     // Distinct pairs are distinct fixture-and-child pairs, so making one pair's contact cannot
     // change another's screening: screening them all first decides what the one-worker order
     // decides. The user's filter and the contacts stay in pair order.
-    m_screenPairs = &pairs;
-    m_screened.resize(pairs.size());
-    tasks->ParallelFor(count, kPairsPerBlock, &ScreenRange, this);
-    m_screenPairs = nullptr;
-    if (m_profile) m_profile->pairsFound += count;
+    const bool screenedAhead = count >= b2Max(minParallel, 1);
+    if (screenedAhead) {
+        m_screenPairs = &pairs;
+        m_screened.resize(pairs.size());
+        tasks->ParallelFor(count, kPairsPerBlock, &ScreenRange, this);
+        m_screenPairs = nullptr;
+    }
     for (int32 i = 0; i < count; ++i) {
-        if (m_screened[static_cast<size_t>(i)] == 0) continue;
-        const b2Pair& pair = pairs[static_cast<size_t>(i)];
-        Take(Resolve(tree.GetUserData(pair.proxyIdA), tree.GetUserData(pair.proxyIdB)));
+        if (screenedAhead && m_screened[static_cast<size_t>(i)] == 0) continue;
+        const NewPair pair = Resolve(pairs[static_cast<size_t>(i)]);
+        if (screenedAhead || Screen(pair)) Take(pair);
     }
 }
 

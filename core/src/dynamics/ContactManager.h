@@ -119,6 +119,8 @@ private:
         int32 indexB = 0;
     };
     NewPair Resolve(uint64 proxyUserDataA, uint64 proxyUserDataB) const;
+    /// The same for a pair of broad-phase proxy ids.
+    NewPair Resolve(const b2Pair& pair) const;
     /// AddPair's rules before the user's filter: both fixtures exist on different bodies, the
     /// default filter (when no user filter is set) lets them meet, no contact of theirs exists
     /// and the bodies may collide (types and joints). Reads the world only, so workers may run

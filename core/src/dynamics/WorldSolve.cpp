@@ -136,7 +136,7 @@ void World::Solve(const b2TimeStep& step) {
             if (IsOutside(b)) m_outOfBounds.push_back(b);
         }
     }
-    m_contactManager.FindNewContacts(tasks, MinParallelPairs());
+    m_contactManager.FindNewContacts(tasks, MinParallelBroadPhase());
     m_profile.broadphaseNs += Nanos(timer);
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_broadPhase, *m_owner);
 }

@@ -148,7 +148,7 @@ public:
     /// The fewest moved proxies (or broad-phase pairs) of a step whose tree queries (or
     /// screening) go to the workers: a game's task system gets any count of more than one
     /// block, the built-in pool (whose threads must be woken) only a count worth it.
-    int32 MinParallelPairs() const noexcept { return OnOwnPool() ? 1024 : 129; }
+    int32 MinParallelBroadPhase() const noexcept { return OnOwnPool() ? 1024 : 129; }
     /// The last step's islands were worth the built-in pool (WorldSolve.cpp). Not state: only
     /// the speed of a step depends on it.
     bool m_shareIslands = false;

@@ -158,6 +158,8 @@ private:
     void UnBufferMove(int32 proxyId);
     /// Sets (or clears) m_moved for every live proxy of the move buffer.
     void MarkMoved(bool moved);
+    /// Collection's start: empties the pair buffer and marks the moved proxies.
+    void BeginPairs();
     /// The pairs found by the queries of move-buffer entries [begin, end), appended to out in
     /// buffer order. Reads the broad-phase only, so threads may run it on disjoint ranges.
     void QueryMoves(int32 begin, int32 end, std::vector<b2Pair>* out) const;
@@ -178,8 +180,7 @@ template <typename ParallelFor>
 const std::vector<b2Pair>& b2BroadPhase::CollectPairs(ParallelFor&& parallelFor) {
     const auto moves = static_cast<int32>(m_moveBuffer.size());
     if (moves <= kMovesPerBlock) return CollectPairs();
-    m_pairBuffer.clear();
-    MarkMoved(true);
+    BeginPairs();
     const int32 blocks = 1 + (moves - 1) / kMovesPerBlock;
     if (m_blockPairs.size() < static_cast<size_t>(blocks)) m_blockPairs.resize(static_cast<size_t>(blocks));
     parallelFor(moves, kMovesPerBlock, &QueryBlock, static_cast<void*>(this));
