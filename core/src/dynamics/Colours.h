@@ -9,7 +9,11 @@
 // none of the bodies it writes has yet (the solvers write dynamic bodies only). A constraint
 // that finds every colour taken, or that must be solved in sequence with others (see the
 // island's rules), goes to the overflow set, solved after the colours, one after the other.
-// Within a colour, constraints keep island order. Every choice depends on the island alone.
+// Within a colour, constraints keep island order, except that each run of kRun of them puts its
+// items of the first kind (say, contacts of one point) before those of the second: the contact
+// lanes then find quads of one kind, and a worker's share of a colour still holds constraints
+// near one another in the island. The overflow keeps island order. Every choice depends on the
+// island alone.
 
 #include <algorithm>
 #include <array>
@@ -36,7 +40,11 @@ public:
     struct Written {
         int32 a = -1, b = -1;
         bool colourable = true;
+        bool secondKind = false;  ///< within its run of a colour, placed after the first kind
     };
+
+    /// The runs of a colour within which the first kind goes first.
+    static constexpr int32 kRun = 128;
 
     /// Room for a table of what items [0, count) write, entry i for item i. Filling it reads
     /// each item's bodies, which blocks of items may do at the same time, while the colours
@@ -55,7 +63,9 @@ public:
         m_masks.assign(static_cast<size_t>(slotCount), 0u);
         if (m_colours.size() < n) {
             m_colours.resize(n);
+            m_secondKind.resize(n);
             m_ordered.resize(n);
+            m_orderedKind.resize(n);
         }
         std::array<int32, b2_colourCount + 1> sizes{};
         for (size_t i = 0; i < n; ++i) {
@@ -73,24 +83,44 @@ public:
             } else {
                 m_colours[i] = static_cast<uint8>(b2_colourCount);
             }
+            m_secondKind[i] = w.secondKind ? 1 : 0;
             ++sizes[m_colours[i]];
         }
         m_starts[0] = 0;
         for (size_t c = 0; c <= b2_colourCount; ++c) m_starts[c + 1] = m_starts[c] + sizes[c];
         std::array<int32, b2_colourCount + 1> next{};
         std::copy_n(m_starts.begin(), b2_colourCount + 1, next.begin());
-        for (size_t i = 0; i < n; ++i) m_ordered[static_cast<size_t>(next[m_colours[i]]++)] = items[i];
-        std::copy_n(m_ordered.begin(), n, items);
+        for (size_t i = 0; i < n; ++i) {
+            const auto at = static_cast<size_t>(next[m_colours[i]]++);
+            m_ordered[at] = items[i];
+            m_orderedKind[at] = m_secondKind[i];
+        }
+        // Each run of a colour: the first kind, then the second, each in island order.
+        for (int32 c = 0; c < b2_colourCount; ++c) {
+            for (int32 run = m_starts[c]; run < m_starts[c + 1]; run += kRun) {
+                const int32 end = std::min(run + kRun, m_starts[c + 1]);
+                int32 out = run;
+                for (int32 k = run; k < end; ++k)
+                    if (!m_orderedKind[static_cast<size_t>(k)]) items[out++] = m_ordered[static_cast<size_t>(k)];
+                for (int32 k = run; k < end; ++k)
+                    if (m_orderedKind[static_cast<size_t>(k)]) items[out++] = m_ordered[static_cast<size_t>(k)];
+            }
+        }
+        const auto overflow = static_cast<size_t>(m_starts[b2_colourCount]);
+        std::copy(m_ordered.begin() + static_cast<std::ptrdiff_t>(overflow),
+                  m_ordered.begin() + static_cast<std::ptrdiff_t>(n), items + overflow);
     }
 
     /// Colour c holds items [Start(c), Start(c + 1)); colour b2_colourCount is the overflow.
     int32 Start(int32 colour) const noexcept { return m_starts[static_cast<size_t>(colour)]; }
 
 private:
-    std::vector<Written> m_written;  ///< per item, in island order: the slots it writes
-    std::vector<uint32> m_masks;     ///< per body slot: the colours its constraints took
-    std::vector<uint8> m_colours;    ///< per item, in island order
-    std::vector<Item*> m_ordered;    ///< the items in colour order, before copying back
+    std::vector<Written> m_written;    ///< per item, in island order: the slots it writes
+    std::vector<uint32> m_masks;       ///< per body slot: the colours its constraints took
+    std::vector<uint8> m_colours;      ///< per item, in island order
+    std::vector<uint8> m_secondKind;   ///< per item, in island order
+    std::vector<Item*> m_ordered;      ///< the items in colour order, before copying back
+    std::vector<uint8> m_orderedKind;  ///< m_secondKind in colour order
     std::array<int32, b2_colourCount + 2> m_starts{};
 };
 

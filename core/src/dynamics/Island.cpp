@@ -170,12 +170,13 @@ void b2Island::StoreBodies(int32 begin, int32 end) {
     }
 }
 
-// A contact's solve writes its dynamic bodies.
+// A contact's solve writes its dynamic bodies. Within a colour, the contacts of two points go
+// after those of one, so that the lanes find quads of one point count.
 b2Colours<b2Contact>::Written b2Island::WrittenBy(const b2Contact* c) {
     const b2Body* a = c->m_fixtureA->m_body;
     const b2Body* b = c->m_fixtureB->m_body;
     return {a->m_type == b2_dynamicBody ? a->m_islandIndex : -1, b->m_type == b2_dynamicBody ? b->m_islandIndex : -1,
-            true};
+            true, c->m_manifold.pointCount == 2};
 }
 
 // A joint solver writes both its bodies, with or without mass, so only a joint between two

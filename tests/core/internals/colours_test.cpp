@@ -2,9 +2,11 @@
 // constraints share no dynamic body (so workers may solve them at the same time), each has the
 // lowest colour its bodies left free (the greedy rule, which makes the order a function of the
 // island alone), and one that found every colour taken, or a joint that touches a body without
-// mass, goes to the overflow, solved last. Then the order's promise: the same bits with one
-// worker, with several, and with a task system that runs its items one after the other.
+// mass, goes to the overflow, solved last. Within each run of a colour, contacts of one point
+// come before those of two (for the contact lanes), each kind in island order. Then the order's promise: the same bits
+// with one worker, with several, and with a task system that runs its items one after the other.
 
+#include <algorithm>
 #include <cstdint>
 #include <set>
 #include <type_traits>
@@ -136,6 +138,74 @@ TEST(Colours, JointsShareNoDynamicBodyWithinAColourAndThoseOnTheBarComeLast) {
     EXPECT_LE(used, 8);
     // The 40 joints to the static bar are the overflow.
     EXPECT_EQ(island.m_jointColours.Start(b2_colourCount + 1) - island.m_jointColours.Start(b2_colourCount), 40);
+}
+
+// Items of the greedy order alone: what each writes, of which kind, and its island position.
+struct Item {
+    int32 id = 0;
+    int32 a = -1, b = -1;
+    bool colourable = true, secondKind = false;
+};
+
+TEST(Colours, EachRunOfAColourPutsTheFirstKindFirstAndKeepsIslandOrderWithinAKind) {
+    // A chain of 3,000 items over 600 slots, item i writing slots i and i + 1 (mod 600), of
+    // pseudo-random kinds, and every 97th item bound to the overflow.
+    constexpr int32 kCount = 3000, kSlots = 600;
+    std::vector<Item> storage(kCount);
+    std::vector<Item*> items;
+    uint32 seed = 12345;
+    for (int32 i = 0; i < kCount; ++i) {
+        seed = seed * 1664525u + 1013904223u;
+        storage[static_cast<size_t>(i)] = {i, i % kSlots, (i + 1) % kSlots, i % 97 != 0, (seed >> 16) % 3 == 0};
+        items.push_back(&storage[static_cast<size_t>(i)]);
+    }
+    b2Colours<Item> colours;
+    colours.Order(items.data(), kCount, kSlots, [&](size_t i) {
+        const Item& item = storage[i];
+        return b2Colours<Item>::Written{item.a, item.b, item.colourable, item.secondKind};
+    });
+
+    int32 runs = 0, mixedRuns = 0;
+    for (int32 c = 0; c < b2_colourCount; ++c) {
+        for (int32 run = colours.Start(c); run < colours.Start(c + 1); run += b2Colours<Item>::kRun) {
+            const int32 end = std::min(run + b2Colours<Item>::kRun, colours.Start(c + 1));
+            ++runs;
+            bool seenSecond = false, seenFirst = false;
+            int32 lastId[2] = {-1, -1};
+            for (int32 k = run; k < end; ++k) {
+                const Item& item = *items[static_cast<size_t>(k)];
+                EXPECT_FALSE(seenSecond && !item.secondKind) << "colour " << c << ", position " << k;
+                seenSecond = seenSecond || item.secondKind;
+                seenFirst = seenFirst || !item.secondKind;
+                int32& last = lastId[item.secondKind ? 1 : 0];
+                EXPECT_GT(item.id, last) << "colour " << c << ", position " << k;
+                last = item.id;
+            }
+            if (seenFirst && seenSecond) ++mixedRuns;
+        }
+    }
+    EXPECT_GE(runs, 24);
+    EXPECT_GE(mixedRuns, 12);  // the rule was exercised
+    // Runs follow one another in island order: every item of a run comes after every item of
+    // the run before it in the same colour.
+    for (int32 c = 0; c < b2_colourCount; ++c) {
+        int32 previousMax = -1;
+        for (int32 run = colours.Start(c); run < colours.Start(c + 1); run += b2Colours<Item>::kRun) {
+            const int32 end = std::min(run + b2Colours<Item>::kRun, colours.Start(c + 1));
+            int32 runMin = kCount, runMax = -1;
+            for (int32 k = run; k < end; ++k) {
+                runMin = std::min(runMin, items[static_cast<size_t>(k)]->id);
+                runMax = std::max(runMax, items[static_cast<size_t>(k)]->id);
+            }
+            EXPECT_GT(runMin, previousMax) << "colour " << c;
+            previousMax = runMax;
+        }
+    }
+    // The overflow keeps island order, whatever the kinds.
+    const int32 overflow = colours.Start(b2_colourCount);
+    EXPECT_EQ(colours.Start(b2_colourCount + 1) - overflow, (kCount + 96) / 97);
+    for (int32 k = overflow + 1; k < kCount; ++k)
+        EXPECT_LT(items[static_cast<size_t>(k) - 1]->id, items[static_cast<size_t>(k)]->id);
 }
 
 std::vector<uint64_t> Hashes(void (*build)(b2World&), b2TaskSystem* tasks, int workers) {
