@@ -140,8 +140,45 @@ bool b2PolygonShape::RayCast(b2RayCastOutput* output, const b2RayCastInput& inpu
     return true;
 }
 
+namespace {
+
+// The box of a SetAsBox(hx, hy) polygon (centred on its body, edges along its axes; the
+// commonest shape) without rotating its four corners. A corner (+-hx, +-hy) turns to
+// round(+-c hx -+ s hy) and round(+-s hx +- c hy), each one exact sum of products rounded once;
+// the rounding is monotonic and odd, so the least and greatest of the four are
+// -+round(|c hx| + |s hy|) and -+round(|s hx| + |c hy|): the loop's very values. Taken only
+// where no corner can saturate (so the overflow reports are the loop's too, none), and only for
+// a rotation's range of c and s, where the sums cannot leave 64 bits.
+bool CentredBoxAABB(const b2Vec2* v, int32 count, Fixed radius, const b2Transform& xf, b2AABB* aabb) noexcept {
+    if (count != 4) return false;
+    const int64_t hx = v[2].x.Raw(), hy = v[2].y.Raw();
+    constexpr int64_t kMaxHalf = int64_t{1} << 30;
+    if (hx <= 0 || hy <= 0 || hx >= kMaxHalf || hy >= kMaxHalf) return false;
+    if (v[0] != b2Vec2(-v[2].x, -v[2].y) || v[1] != b2Vec2(v[2].x, -v[2].y) || v[3] != b2Vec2(-v[2].x, v[2].y))
+        return false;
+    const int64_t c = xf.q.c.Raw(), s = xf.q.s.Raw();
+    constexpr int64_t kMaxRot = int64_t{1} << 17;
+    if (c > kMaxRot || c < -kMaxRot || s > kMaxRot || s < -kMaxRot) return false;
+    const auto magnitude = [](int64_t x) { return x < 0 ? -x : x; };
+    // Q32.32 sums below 2^49, rounded to Q16.16 as Wide::ToFixed rounds.
+    const int64_t ex = detail::ShiftRound(magnitude(c * hx) + magnitude(s * hy), 16);
+    const int64_t ey = detail::ShiftRound(magnitude(s * hx) + magnitude(c * hy), 16);
+    const int64_t r = radius.Raw();
+    const int64_t px = xf.p.x.Raw(), py = xf.p.y.Raw();
+    constexpr int64_t kMax = Fixed::kMaxRaw;
+    if (r < 0 || magnitude(px) + ex + r > kMax || magnitude(py) + ey + r > kMax) return false;
+    aabb->lowerBound =
+        b2Vec2(Fixed::FromRaw(static_cast<int32>(px - ex - r)), Fixed::FromRaw(static_cast<int32>(py - ey - r)));
+    aabb->upperBound =
+        b2Vec2(Fixed::FromRaw(static_cast<int32>(px + ex + r)), Fixed::FromRaw(static_cast<int32>(py + ey + r)));
+    return true;
+}
+
+}  // namespace
+
 void b2PolygonShape::ComputeAABB(b2AABB* aabb, const b2Transform& xf, int32 childIndex) const {
     (void)childIndex;
+    if (CentredBoxAABB(m_vertices, m_vertexCount, m_radius, xf, aabb)) return;
     b2Vec2 lower = b2Mul(xf, m_vertices[0]);
     b2Vec2 upper = lower;
     for (int32 i = 1; i < m_vertexCount; ++i) {
