@@ -14,14 +14,16 @@
 #include "ReferenceFace.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/PolygonShape.h"
+#include "shapes/CentredBox.h"
 
 namespace lockbox {
 
 namespace {
 
 /// Separation of poly2 from edge `edge1` of poly1 (both in poly1's frame; xf maps poly2's
-/// frame into poly1's). Box2D's b2EdgeSeparation.
-Wide b2EdgeSeparation(const b2PolygonShape* poly1, int32 edge1, const b2PolygonShape* poly2, const b2Transform& xf) {
+/// frame into poly1's). Box2D's b2EdgeSeparation. `box2` says whether poly2 is a centred box.
+Wide b2EdgeSeparation(const b2PolygonShape* poly1, int32 edge1, const b2PolygonShape* poly2, bool box2,
+                      const b2Transform& xf) {
     const b2Vec2* vertices1 = poly1->m_vertices;
     const b2Vec2* normals1 = poly1->m_normals;
     const int32 count2 = poly2->m_vertexCount;
@@ -30,14 +32,20 @@ Wide b2EdgeSeparation(const b2PolygonShape* poly1, int32 edge1, const b2PolygonS
     // Convert normal from poly1's frame into poly2's frame.
     const b2Vec2 normal1 = b2MulT(xf.q, normals1[edge1]);
 
-    // Find support vertex on poly2 for -normal (first minimum on ties, as Box2D).
+    // Find support vertex on poly2 for -normal (first minimum on ties, as Box2D). A centred
+    // box's is the corner opposite the normal's signs; its dot products are exact and cannot
+    // saturate for a normal of unit range, so skipping them changes nothing.
     int32 index = 0;
-    Wide minDot = Wide::FromRaw(Wide::kMaxRaw);
-    for (int32 i = 0; i < count2; ++i) {
-        const Wide dot = b2DotWide(vertices2[i], normal1);
-        if (dot < minDot) {
-            minDot = dot;
-            index = i;
+    if (box2 && shape_detail::InUnitRange(normal1.x) && shape_detail::InUnitRange(normal1.y)) {
+        index = shape_detail::CentredBoxSupport(normal1);
+    } else {
+        Wide minDot = Wide::FromRaw(Wide::kMaxRaw);
+        for (int32 i = 0; i < count2; ++i) {
+            const Wide dot = b2DotWide(vertices2[i], normal1);
+            if (dot < minDot) {
+                minDot = dot;
+                index = i;
+            }
         }
     }
 
@@ -58,10 +66,12 @@ Wide b2EdgeSeparation(const b2PolygonShape* poly1, int32 edge1, const b2PolygonS
 Wide b2FindMaxSeparation(int32* edgeIndex, const b2PolygonShape* poly1, const b2PolygonShape* poly2,
                          const b2Transform& xf) {
     const int32 count1 = poly1->m_vertexCount;
+    shape_detail::CentredBox box;
+    const bool box2 = shape_detail::AsCentredBox(poly2->m_vertices, poly2->m_vertexCount, &box);
     int32 bestEdge = 0;
     Wide maxSeparation = Wide::FromRaw(-Wide::kMaxRaw);
     for (int32 i = 0; i < count1; ++i) {
-        const Wide s = b2EdgeSeparation(poly1, i, poly2, xf);
+        const Wide s = b2EdgeSeparation(poly1, i, poly2, box2, xf);
         if (s > maxSeparation) {
             maxSeparation = s;
             bestEdge = i;

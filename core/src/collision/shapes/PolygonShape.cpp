@@ -3,6 +3,7 @@
 
 #include "lockbox/collision/PolygonShape.h"
 
+#include "CentredBox.h"
 #include "ShapeInternal.h"
 
 namespace lockbox {
@@ -150,15 +151,11 @@ namespace {
 // where no corner can saturate (so the overflow reports are the loop's too, none), and only for
 // a rotation's range of c and s, where the sums cannot leave 64 bits.
 bool CentredBoxAABB(const b2Vec2* v, int32 count, Fixed radius, const b2Transform& xf, b2AABB* aabb) noexcept {
-    if (count != 4) return false;
-    const int64_t hx = v[2].x.Raw(), hy = v[2].y.Raw();
-    constexpr int64_t kMaxHalf = int64_t{1} << 30;
-    if (hx <= 0 || hy <= 0 || hx >= kMaxHalf || hy >= kMaxHalf) return false;
-    if (v[0] != b2Vec2(-v[2].x, -v[2].y) || v[1] != b2Vec2(v[2].x, -v[2].y) || v[3] != b2Vec2(-v[2].x, v[2].y))
-        return false;
+    shape_detail::CentredBox box;
+    if (!shape_detail::AsCentredBox(v, count, &box)) return false;
+    if (!shape_detail::InUnitRange(xf.q.c) || !shape_detail::InUnitRange(xf.q.s)) return false;
+    const int64_t hx = box.hx, hy = box.hy;
     const int64_t c = xf.q.c.Raw(), s = xf.q.s.Raw();
-    constexpr int64_t kMaxRot = int64_t{1} << 17;
-    if (c > kMaxRot || c < -kMaxRot || s > kMaxRot || s < -kMaxRot) return false;
     const auto magnitude = [](int64_t x) { return x < 0 ? -x : x; };
     // Q32.32 sums below 2^49, rounded to Q16.16 as Wide::ToFixed rounds.
     const int64_t ex = detail::ShiftRound(magnitude(c * hx) + magnitude(s * hy), 16);
