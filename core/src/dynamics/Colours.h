@@ -63,7 +63,6 @@ public:
         m_masks.assign(static_cast<size_t>(slotCount), 0u);
         if (m_colours.size() < n) {
             m_colours.resize(n);
-            m_secondKind.resize(n);
             m_ordered.resize(n);
             m_orderedKind.resize(n);
         }
@@ -83,17 +82,18 @@ public:
             } else {
                 m_colours[i] = static_cast<uint8>(b2_colourCount);
             }
-            m_secondKind[i] = w.secondKind ? 1 : 0;
             ++sizes[m_colours[i]];
+            if (w.secondKind) m_colours[i] |= kSecondKind;
         }
         m_starts[0] = 0;
         for (size_t c = 0; c <= b2_colourCount; ++c) m_starts[c + 1] = m_starts[c] + sizes[c];
         std::array<int32, b2_colourCount + 1> next{};
         std::copy_n(m_starts.begin(), b2_colourCount + 1, next.begin());
         for (size_t i = 0; i < n; ++i) {
-            const auto at = static_cast<size_t>(next[m_colours[i]]++);
+            const uint8 entry = m_colours[i];
+            const auto at = static_cast<size_t>(next[static_cast<size_t>(entry & ~kSecondKind)]++);
             m_ordered[at] = items[i];
-            m_orderedKind[at] = m_secondKind[i];
+            m_orderedKind[at] = static_cast<uint8>(entry & kSecondKind);
         }
         // Each run of a colour: the first kind, then the second, each in island order.
         for (int32 c = 0; c < b2_colourCount; ++c) {
@@ -115,12 +115,15 @@ public:
     int32 Start(int32 colour) const noexcept { return m_starts[static_cast<size_t>(colour)]; }
 
 private:
-    std::vector<Written> m_written;    ///< per item, in island order: the slots it writes
-    std::vector<uint32> m_masks;       ///< per body slot: the colours its constraints took
-    std::vector<uint8> m_colours;      ///< per item, in island order
-    std::vector<uint8> m_secondKind;   ///< per item, in island order
+    std::vector<Written> m_written;  ///< per item, in island order: the slots it writes
+    std::vector<uint32> m_masks;     ///< per body slot: the colours its constraints took
+    /// Marks an item of the second kind in its m_colours entry (colours take the low bits).
+    static constexpr uint8 kSecondKind = 0x80;
+    static_assert(b2_colourCount < kSecondKind);
+
+    std::vector<uint8> m_colours;      ///< per item, in island order: colour | kSecondKind
     std::vector<Item*> m_ordered;      ///< the items in colour order, before copying back
-    std::vector<uint8> m_orderedKind;  ///< m_secondKind in colour order
+    std::vector<uint8> m_orderedKind;  ///< per item in colour order: its kSecondKind bit
     std::array<int32, b2_colourCount + 2> m_starts{};
 };
 

@@ -3,6 +3,8 @@
 
 #include "lockbox/collision/PolygonShape.h"
 
+#include <cstdlib>
+
 #include "CentredBox.h"
 #include "ShapeInternal.h"
 
@@ -156,14 +158,13 @@ bool CentredBoxAABB(const b2Vec2* v, int32 count, Fixed radius, const b2Transfor
     if (!shape_detail::InUnitRange(xf.q.c) || !shape_detail::InUnitRange(xf.q.s)) return false;
     const int64_t hx = box.hx, hy = box.hy;
     const int64_t c = xf.q.c.Raw(), s = xf.q.s.Raw();
-    const auto magnitude = [](int64_t x) { return x < 0 ? -x : x; };
     // Q32.32 sums below 2^49, rounded to Q16.16 as Wide::ToFixed rounds.
-    const int64_t ex = detail::ShiftRound(magnitude(c * hx) + magnitude(s * hy), 16);
-    const int64_t ey = detail::ShiftRound(magnitude(s * hx) + magnitude(c * hy), 16);
+    const int64_t ex = detail::ShiftRound(std::abs(c * hx) + std::abs(s * hy), 16);
+    const int64_t ey = detail::ShiftRound(std::abs(s * hx) + std::abs(c * hy), 16);
     const int64_t r = radius.Raw();
     const int64_t px = xf.p.x.Raw(), py = xf.p.y.Raw();
     constexpr int64_t kMax = Fixed::kMaxRaw;
-    if (r < 0 || magnitude(px) + ex + r > kMax || magnitude(py) + ey + r > kMax) return false;
+    if (r < 0 || std::abs(px) + ex + r > kMax || std::abs(py) + ey + r > kMax) return false;
     aabb->lowerBound =
         b2Vec2(Fixed::FromRaw(static_cast<int32>(px - ex - r)), Fixed::FromRaw(static_cast<int32>(py - ey - r)));
     aabb->upperBound =
