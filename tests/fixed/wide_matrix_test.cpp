@@ -147,6 +147,48 @@ TEST_F(NativeWide, Prepared3x3SolveMatchesThePortableLimbs) {
     EXPECT_GT(native, 150000);
 }
 
+// The inverse shares one division between the two off-diagonal entries of a symmetric K. It
+// must give the bits and the overflow reports of two full solves, on symmetric and general
+// matrices from tiny to extreme (where entries saturate), and SolveY those of Solve's y.
+TEST_F(NativeWide, InverseMatchesTwoSolves) {
+    int symmetric = 0, saturated = 0;
+    for (int i = 0; i < 300000; ++i) {
+        const int bits = static_cast<int>(rng_() % 64);
+        const Wide a11 = Wide::FromRaw(Raw(bits)), a22 = Wide::FromRaw(Raw(bits));
+        const Wide a21 = Wide::FromRaw(Raw(bits));
+        const Wide a12 = i % 4 == 0 ? Wide::FromRaw(Raw(bits)) : a21;
+        const b2WideSolver22 k({a11, a21}, {a12, a22});
+        symmetric += k.a12 == k.a21 ? 1 : 0;
+
+        uint64_t before = Reports();
+        const b2WideMat22 got = math::Inverse(k);
+        const uint64_t gotReports = Reports() - before;
+        before = Reports();
+        const b2WideVec2 ex = k.SolvePortable(b2WideVec2(Wide(1), Wide()));
+        const b2WideVec2 ey = k.SolvePortable(b2WideVec2(Wide(), Wide(1)));
+        const uint64_t wantReports = Reports() - before;
+        ASSERT_EQ(got.ex.x.Raw(), ex.x.Raw()) << i;
+        ASSERT_EQ(got.ex.y.Raw(), ex.y.Raw()) << i;
+        ASSERT_EQ(got.ey.x.Raw(), ey.x.Raw()) << i;
+        ASSERT_EQ(got.ey.y.Raw(), ey.y.Raw()) << i;
+        ASSERT_EQ(gotReports, wantReports) << i;
+        saturated += wantReports > 0 ? 1 : 0;
+
+        const b2WideVec2 b(Wide::FromRaw(Raw(63)), Wide::FromRaw(Raw(63)));
+        before = Reports();
+        const Wide y = k.SolveY(b);
+        const uint64_t yReports = Reports() - before;
+        before = Reports();
+        const b2WideVec2 full = k.SolvePortable(b);
+        const uint64_t fullReports = Reports() - before;
+        ASSERT_EQ(y.Raw(), full.y.Raw()) << i;
+        // The full solve reports for x as well; SolveY never reports more than it.
+        ASSERT_LE(yReports, fullReports) << i;
+    }
+    EXPECT_GT(symmetric, 200000);
+    EXPECT_GT(saturated, 1000);
+}
+
 TEST_F(NativeWide, NormalisingScaleRoundsLikeThe128BitShift) {
     for (int i = 0; i < 300000; ++i) {
         const int64_t raw = i % 1000 == 0 ? (i % 2000 == 0 ? INT64_MAX : -INT64_MAX) : Raw(63);

@@ -102,6 +102,16 @@ inline b2WideVec2 PointGapImpulse(const b2Vec2& C, const b2Vec2& rA, const b2Vec
     return -K.Solve(C);
 }
 
+// v.Length() <= limit without the square root, for a limit >= 0. Length rounds sqrt(s) to nearest
+// (s the exact squared length), and rounds up exactly when s exceeds r^2 + r for r = floor(sqrt(s));
+// so the rounded length is at most L exactly when s <= L^2 + L. The squared length is formed by
+// the same call as in Length, so an overflow is reported the same way.
+inline bool LengthWithin(const b2Vec2& v, Fixed limit) noexcept {
+    const auto s = static_cast<uint64_t>(v.LengthSquaredWide().Raw());
+    const auto l = static_cast<uint64_t>(limit.Raw());
+    return s <= l * l + l;
+}
+
 // 1/k, or 0 for k <= 0 (a constraint between bodies that cannot move).
 inline Wide Invert(Wide k) noexcept { return k > Wide() ? Wide(1) / k : Wide(); }
 

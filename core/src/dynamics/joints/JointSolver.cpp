@@ -62,7 +62,7 @@ bool SolvePointPositionRow(const JointSolver::PositionRow& row, const b2SolverDa
     const b2Vec2 rA = b2Mul(qA, row.localAnchorA - row.localCenterA);
     const b2Vec2 rB = b2Mul(qB, row.localAnchorB - row.localCenterB);
     const b2Vec2 C = cB + rB - cA - rA;
-    const Fixed positionError = C.Length();
+    const bool closed = LengthWithin(C, b2_linearSlop);
 
     const b2WideVec2 impulse = PointGapImpulse(C, rA, rB, mA, mB, iA, iB);
 
@@ -76,7 +76,7 @@ bool SolvePointPositionRow(const JointSolver::PositionRow& row, const b2SolverDa
     posB.c = cB;
     posB.a = aB;
 
-    return positionError <= b2_linearSlop;
+    return closed;
 }
 }  // namespace
 

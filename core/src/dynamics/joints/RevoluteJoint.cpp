@@ -255,7 +255,7 @@ bool b2RevoluteJoint::SolvePositionConstraints(const b2SolverData& data) {
     const b2Vec2 rA = b2Mul(qA, m_localAnchorA - m_localCenterA);
     const b2Vec2 rB = b2Mul(qB, m_localAnchorB - m_localCenterB);
     const b2Vec2 C = cB + rB - cA - rA;
-    const Fixed positionError = C.Length();
+    const bool closed = LengthWithin(C, b2_linearSlop);
 
     const b2WideVec2 impulse = PointGapImpulse(C, rA, rB, mA, mB, iA, iB);
 
@@ -269,7 +269,7 @@ bool b2RevoluteJoint::SolvePositionConstraints(const b2SolverData& data) {
     data.positions[m_indexB].c = cB;
     data.positions[m_indexB].a = aB;
 
-    return positionError <= b2_linearSlop && angularError <= b2_angularSlop;
+    return closed && angularError <= b2_angularSlop;
 }
 
 b2Vec2 b2RevoluteJoint::GetAnchorA() const { return m_bodyA->GetWorldPoint(m_localAnchorA); }

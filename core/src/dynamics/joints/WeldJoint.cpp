@@ -143,7 +143,7 @@ bool b2WeldJoint::SolvePositionConstraints(const b2SolverData& data) {
     const b2WideMat33 K = WeldK(mA, mB, iA, iB, rA, rB);
 
     const b2Vec2 C1 = cB + rB - cA - rA;
-    const Fixed positionError = C1.Length();
+    const bool closed = LengthWithin(C1, b2_linearSlop);
     Fixed angularError;
 
     if (m_frequencyHz > Fixed()) {
@@ -161,7 +161,7 @@ bool b2WeldJoint::SolvePositionConstraints(const b2SolverData& data) {
     data.positions[m_indexB].c = cB;
     data.positions[m_indexB].a = aB;
 
-    return positionError <= b2_linearSlop && angularError <= b2_angularSlop;
+    return closed && angularError <= b2_angularSlop;
 }
 
 b2Vec2 b2WeldJoint::GetAnchorA() const { return m_bodyA->GetWorldPoint(m_localAnchorA); }

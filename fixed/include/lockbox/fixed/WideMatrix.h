@@ -11,6 +11,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 
 #include "lockbox/fixed/Math.h"
@@ -231,6 +232,18 @@ struct b2WideSolver22 {
     }
     /// Solves K x = b for a Q16.16 right-hand side.
     constexpr b2WideVec2 Solve(const b2Vec2& b) const noexcept { return Solve(b2WideVec2(b)); }
+    /// Solve(b).y alone (the same bits and the same overflow report, one division).
+    constexpr Wide SolveY(const b2WideVec2& b) const noexcept {
+        using namespace detail;
+#ifdef LOCKBOX_NATIVE_INT128
+        if (!std::is_constant_evaluated()) {
+            const NativeI128 ny = static_cast<NativeI128>(a11) * b.y.Raw() - static_cast<NativeI128>(a21) * b.x.Raw();
+            return Wide::FromRaw(DivShiftNative(ny, NativeDet(), 32 - s, "b2WideMat22::Solve"));
+        }
+#endif
+        const S128 ny = SubS128(MulS64(a11, b.y.Raw()), MulS64(a21, b.x.Raw()));
+        return Wide::FromRaw(DivShiftS128(ny, det, 32 - s, "b2WideMat22::Solve"));
+    }
 
 private:
 #ifdef LOCKBOX_NATIVE_INT128
@@ -349,7 +362,15 @@ namespace math {
 /// zero matrix). For a K applied many times per step: a product per iteration instead of a
 /// solve with its two 128-bit divisions.
 constexpr b2WideMat22 Inverse(const b2WideSolver22& k) noexcept {
-    return {k.Solve(b2WideVec2(Wide(1), Wide())), k.Solve(b2WideVec2(Wide(), Wide(1)))};
+    const b2WideVec2 ex = k.Solve(b2WideVec2(Wide(1), Wide()));
+    // The inverse of a symmetric K is symmetric: its (1, 2) entry has the same numerator and
+    // determinant as its (2, 1) entry, so one division serves both. A saturated entry is
+    // divided again, so that its overflow is reported as often as by two solves.
+    constexpr int64_t kMax = std::numeric_limits<int64_t>::max();
+    if (k.a12 == k.a21 && ex.y.Raw() != kMax && ex.y.Raw() != -kMax) {
+        return {ex, b2WideVec2(ex.y, k.SolveY(b2WideVec2(Wide(), Wide(1))))};
+    }
+    return {ex, k.Solve(b2WideVec2(Wide(), Wide(1)))};
 }
 
 /// M v for a Q16.16 (b2Vec2) or Q32.32 (b2WideVec2) vector, each component two rounded
