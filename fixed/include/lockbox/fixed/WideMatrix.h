@@ -11,7 +11,6 @@
 
 #include <bit>
 #include <cstdint>
-#include <limits>
 #include <type_traits>
 
 #include "lockbox/fixed/Math.h"
@@ -207,42 +206,21 @@ struct b2WideSolver22 {
 
     /// Solves K x = b for a Q32.32 right-hand side (m/s); x is an impulse (N*s). A singular K
     /// gives x = 0.
-    constexpr b2WideVec2 Solve(const b2WideVec2& b) const noexcept {
-#ifdef LOCKBOX_NATIVE_INT128
-        if (!std::is_constant_evaluated()) {
-            using namespace detail;
-            // |a| < 2^36 (normalised) and |b| < 2^63: products below 2^99, exact.
-            const NativeI128 nx = static_cast<NativeI128>(a22) * b.x.Raw() - static_cast<NativeI128>(a12) * b.y.Raw();
-            const NativeI128 ny = static_cast<NativeI128>(a11) * b.y.Raw() - static_cast<NativeI128>(a21) * b.x.Raw();
-            const NativeI128 d = NativeDet();
-            return {Wide::FromRaw(DivShiftNative(nx, d, 32 - s, "b2WideMat22::Solve")),
-                    Wide::FromRaw(DivShiftNative(ny, d, 32 - s, "b2WideMat22::Solve"))};
-        }
-#endif
-        return SolvePortable(b);
-    }
+    constexpr b2WideVec2 Solve(const b2WideVec2& b) const noexcept { return {SolveX(b), SolveY(b)}; }
     /// Solve through the portable 128-bit limbs only (the same bits; for the tests).
     constexpr b2WideVec2 SolvePortable(const b2WideVec2& b) const noexcept {
-        using namespace detail;
-        const S128 nx = SubS128(MulS64(a22, b.x.Raw()), MulS64(a12, b.y.Raw()));
-        const S128 ny = SubS128(MulS64(a11, b.y.Raw()), MulS64(a21, b.x.Raw()));
-        // Raw bookkeeping: x_raw = (n / det) * 2^(32 - s), see WideMatrix.h's header.
-        return {Wide::FromRaw(DivShiftS128(nx, det, 32 - s, "b2WideMat22::Solve")),
-                Wide::FromRaw(DivShiftS128(ny, det, 32 - s, "b2WideMat22::Solve"))};
+        return {Wide::FromRaw(QuotientPortable(a22, b.x.Raw(), a12, b.y.Raw())),
+                Wide::FromRaw(QuotientPortable(a11, b.y.Raw(), a21, b.x.Raw()))};
     }
     /// Solves K x = b for a Q16.16 right-hand side.
     constexpr b2WideVec2 Solve(const b2Vec2& b) const noexcept { return Solve(b2WideVec2(b)); }
+    /// Solve(b).x alone (the same bits and the same overflow report, one division).
+    constexpr Wide SolveX(const b2WideVec2& b) const noexcept {
+        return Wide::FromRaw(Quotient(a22, b.x.Raw(), a12, b.y.Raw()));
+    }
     /// Solve(b).y alone (the same bits and the same overflow report, one division).
     constexpr Wide SolveY(const b2WideVec2& b) const noexcept {
-        using namespace detail;
-#ifdef LOCKBOX_NATIVE_INT128
-        if (!std::is_constant_evaluated()) {
-            const NativeI128 ny = static_cast<NativeI128>(a11) * b.y.Raw() - static_cast<NativeI128>(a21) * b.x.Raw();
-            return Wide::FromRaw(DivShiftNative(ny, NativeDet(), 32 - s, "b2WideMat22::Solve"));
-        }
-#endif
-        const S128 ny = SubS128(MulS64(a11, b.y.Raw()), MulS64(a21, b.x.Raw()));
-        return Wide::FromRaw(DivShiftS128(ny, det, 32 - s, "b2WideMat22::Solve"));
+        return Wide::FromRaw(Quotient(a11, b.y.Raw(), a21, b.x.Raw()));
     }
 
 private:
@@ -254,6 +232,24 @@ private:
         return det.negative ? -m : m;
     }
 #endif
+    /// One component of the solution by Cramer's rule: (p bp - q bq) / det as a Q32.32 raw.
+    constexpr int64_t Quotient(int64_t p, int64_t bp, int64_t q, int64_t bq) const noexcept {
+#ifdef LOCKBOX_NATIVE_INT128
+        if (!std::is_constant_evaluated()) {
+            using detail::NativeI128;
+            // |a| < 2^36 (normalised) and |b| < 2^63: products below 2^99, exact.
+            const NativeI128 n = static_cast<NativeI128>(p) * bp - static_cast<NativeI128>(q) * bq;
+            return detail::DivShiftNative(n, NativeDet(), 32 - s, "b2WideMat22::Solve");
+        }
+#endif
+        return QuotientPortable(p, bp, q, bq);
+    }
+    /// Quotient through the portable limbs.
+    constexpr int64_t QuotientPortable(int64_t p, int64_t bp, int64_t q, int64_t bq) const noexcept {
+        using namespace detail;
+        // Raw bookkeeping: x_raw = (n / det) * 2^(32 - s), see WideMatrix.h's header.
+        return DivShiftS128(SubS128(MulS64(p, bp), MulS64(q, bq)), det, 32 - s, "b2WideMat22::Solve");
+    }
 };
 
 /// A 3x3 K made ready for many solves (see b2WideSolver22): Solve33 gives the bits of
@@ -366,8 +362,7 @@ constexpr b2WideMat22 Inverse(const b2WideSolver22& k) noexcept {
     // The inverse of a symmetric K is symmetric: its (1, 2) entry has the same numerator and
     // determinant as its (2, 1) entry, so one division serves both. A saturated entry is
     // divided again, so that its overflow is reported as often as by two solves.
-    constexpr int64_t kMax = std::numeric_limits<int64_t>::max();
-    if (k.a12 == k.a21 && ex.y.Raw() != kMax && ex.y.Raw() != -kMax) {
+    if (k.a12 == k.a21 && ex.y.Raw() != Wide::kMaxRaw && ex.y.Raw() != -Wide::kMaxRaw) {
         return {ex, b2WideVec2(ex.y, k.SolveY(b2WideVec2(Wide(), Wide(1))))};
     }
     return {ex, k.Solve(b2WideVec2(Wide(), Wide(1)))};
