@@ -1,7 +1,12 @@
 // b2ContactSolver: setup, warm starting and the velocity iterations.
 #include "dynamics/contacts/ContactSolver.h"
 
+#include <atomic>
+
+#include "ContactRow.h"
+#include "ContactRowBound.h"
 #include "SolverMath.h"
+#include "UncheckedWide.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
 #include "lockbox/dynamics/contacts/Contact.h"
@@ -10,6 +15,9 @@
 namespace lockbox {
 
 namespace {
+
+// Tests switch the unchecked rows off to compare the two paths; the choice never changes a result.
+std::atomic<bool> g_uncheckedAllowed{true};
 
 // Box2D's k_maxConditionNumber: the block solver is used only while the 2x2 K is well
 // conditioned, k11^2 < 1000 (k11 k22 - k12^2). Dimensionless; the comparison is exact.
@@ -192,6 +200,11 @@ void b2ContactSolver::InitializeVelocityConstraints(int32 begin, int32 end) {
                 vc->useBlock = false;
             }
         }
+#ifdef LOCKBOX_UNCHECKED_ROWS
+        vc->unchecked = solver::UncheckedLimits(*vc);
+#else
+        vc->unchecked = b2UncheckedLimits();
+#endif
     }
     if (m_laneRows != nullptr) StoreLaneRows(begin, end);
 }
@@ -227,91 +240,37 @@ void b2ContactSolver::WarmStart(int32 begin, int32 end) {
     }
 }
 
+void b2ContactSolver::AllowUncheckedRows(bool allow) noexcept {
+    g_uncheckedAllowed.store(allow, std::memory_order_relaxed);
+}
+
 void b2ContactSolver::SolveVelocityConstraints(int32 begin, int32 end) {
+#ifdef LOCKBOX_UNCHECKED_ROWS
+    const bool uncheckedAllowed = g_uncheckedAllowed.load(std::memory_order_relaxed);
+#endif
     for (int32 i = begin; i < end; ++i) {
-        b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
-        b2WideVec2 vA = m_velocities[vc->indexA].v;
-        Wide wA = m_velocities[vc->indexA].w;
-        b2WideVec2 vB = m_velocities[vc->indexB].v;
-        Wide wB = m_velocities[vc->indexB].w;
-        const b2Vec2 normal = vc->normal;
-        const b2Vec2 tangent = vc->tangent;
-        const b2WideVec2 pushNA = vc->pushA, pushNB = vc->pushB;
-        const b2WideVec2 pushTA(pushNA.y, -pushNA.x), pushTB(pushNB.y, -pushNB.x);
-        const bool same = vc->samePush;
-
-        // Friction first: non-penetration matters more, so it gets the last word.
-        for (int32 j = 0; j < vc->pointCount; ++j) {
-            b2VelocityConstraintPoint* vcp = vc->points + j;
-            const Wide vt = solver::SpeedAlong(vA, wA, vcp->rtA, vB, wB, vcp->rtB, tangent);
-            Wide lambda = -(vcp->tangentMass * vt);
-            const Wide maxFriction = vcp->normalImpulse * vc->friction;
-            const Wide newImpulse = b2Clamp(vcp->tangentImpulse + lambda, -maxFriction, maxFriction);
-            lambda = newImpulse - vcp->tangentImpulse;
-            vcp->tangentImpulse = newImpulse;
-            solver::ApplyAlong(vA, wA, vB, wB, lambda, pushTA, pushTB, same, vcp->turnTA, vcp->turnTB);
+        b2ContactVelocityConstraint& vc = m_velocityConstraints[static_cast<size_t>(i)];
+        b2Velocity& bodyA = m_velocities[vc.indexA];
+        b2Velocity& bodyB = m_velocities[vc.indexB];
+#ifdef LOCKBOX_UNCHECKED_ROWS
+        if (uncheckedAllowed && solver::UncheckedRowFits(vc, bodyA.v, bodyA.w, bodyB.v, bodyB.w)) {
+            solver::UncheckedVec2 vA{bodyA.v.x, bodyA.v.y};
+            solver::UncheckedWide wA = bodyA.w;
+            solver::UncheckedVec2 vB{bodyB.v.x, bodyB.v.y};
+            solver::UncheckedWide wB = bodyB.w;
+            solver::SolveContactRow(vc, vA, wA, vB, wB);
+            solver::Store(bodyA, b2WideVec2(vA.x.ToWide(), vA.y.ToWide()), wA.ToWide(), vc.invMassA, vc.invIA);
+            solver::Store(bodyB, b2WideVec2(vB.x.ToWide(), vB.y.ToWide()), wB.ToWide(), vc.invMassB, vc.invIB);
+            continue;
         }
-
-        if (vc->pointCount == 1) {
-            b2VelocityConstraintPoint* vcp = vc->points;
-            const Wide vn = solver::SpeedAlong(vA, wA, vcp->rnA, vB, wB, vcp->rnB, normal);
-            Wide lambda = -(vcp->normalMass * (vn - Wide(vcp->velocityBias)));
-            const Wide newImpulse = b2Max(vcp->normalImpulse + lambda, Wide());
-            lambda = newImpulse - vcp->normalImpulse;
-            vcp->normalImpulse = newImpulse;
-            solver::ApplyAlong(vA, wA, vB, wB, lambda, pushNA, pushNB, same, vcp->turnNA, vcp->turnNB);
-        } else {
-            // Block solver (Box2D's total enumeration of the 2-point LCP):
-            //   vn = K x + b', x >= 0, vn >= 0, x_i vn_i = 0, with b' = vn0 - bias - K a.
-            b2VelocityConstraintPoint* cp1 = vc->points + 0;
-            b2VelocityConstraintPoint* cp2 = vc->points + 1;
-            const Wide a1 = cp1->normalImpulse, a2 = cp2->normalImpulse;
-            const Wide vn1 = solver::SpeedAlong(vA, wA, cp1->rnA, vB, wB, cp1->rnB, normal);
-            const Wide vn2 = solver::SpeedAlong(vA, wA, cp2->rnA, vB, wB, cp2->rnB, normal);
-            const b2WideSym22& K = vc->K;
-            const Wide b1 = (vn1 - Wide(cp1->velocityBias)) - (K.k11 * a1 + K.k12 * a2);
-            const Wide b2 = (vn2 - Wide(cp2->velocityBias)) - (K.k12 * a1 + K.k22 * a2);
-
-            Wide x1, x2;
-            bool solved = false;
-            // Case 1: both points active, vn = 0.
-            x1 = -(vc->normalMass.k11 * b1 + vc->normalMass.k12 * b2);
-            x2 = -(vc->normalMass.k12 * b1 + vc->normalMass.k22 * b2);
-            if (x1 >= Wide() && x2 >= Wide()) solved = true;
-            // Case 2: point 1 active, x2 = 0.
-            if (!solved) {
-                x1 = -(cp1->normalMass * b1);
-                x2 = Wide();
-                const Wide v2 = K.k12 * x1 + b2;
-                if (x1 >= Wide() && v2 >= Wide()) solved = true;
-            }
-            // Case 3: point 2 active, x1 = 0.
-            if (!solved) {
-                x1 = Wide();
-                x2 = -(cp2->normalMass * b2);
-                const Wide v1 = K.k12 * x2 + b1;
-                if (x2 >= Wide() && v1 >= Wide()) solved = true;
-            }
-            // Case 4: both separating.
-            if (!solved) {
-                x1 = Wide();
-                x2 = Wide();
-                if (b1 >= Wide() && b2 >= Wide()) solved = true;
-            }
-            // No solution: give up this iteration (as Box2D; rare and harmless).
-            if (solved) {
-                // Both impulses act along the normal: one linear impulse, two lever arms.
-                const Wide d1 = x1 - a1, d2 = x2 - a2;
-                solver::PushPair(vA, vB, d1 + d2, pushNA, pushNB, same);
-                wA -= d1 * cp1->turnNA + d2 * cp2->turnNA;
-                wB += d1 * cp1->turnNB + d2 * cp2->turnNB;
-                cp1->normalImpulse = x1;
-                cp2->normalImpulse = x2;
-            }
-        }
-
-        solver::Store(m_velocities[vc->indexA], vA, wA, vc->invMassA, vc->invIA);
-        solver::Store(m_velocities[vc->indexB], vB, wB, vc->invMassB, vc->invIB);
+#endif
+        b2WideVec2 vA = bodyA.v;
+        Wide wA = bodyA.w;
+        b2WideVec2 vB = bodyB.v;
+        Wide wB = bodyB.w;
+        solver::SolveContactRow(vc, vA, wA, vB, wB);
+        solver::Store(bodyA, vA, wA, vc.invMassA, vc.invIA);
+        solver::Store(bodyB, vB, wB, vc.invMassB, vc.invIB);
     }
 }
 

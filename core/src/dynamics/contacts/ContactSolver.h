@@ -24,6 +24,14 @@ struct b2WideSym22 {
     Wide k11, k12, k22;
 };
 
+/// When a velocity row may run without range tests (ContactRowBound.h): while the OR of the folded
+/// raws of the pair's velocities and that of the row's accumulated impulses are below these. Zero
+/// keeps every test.
+struct b2UncheckedLimits {
+    uint64_t velocitiesBelow = 0;
+    uint64_t impulsesBelow = 0;
+};
+
 /// Per-point velocity data. The iterations never need the anchors themselves: a point's
 /// speed along a direction d is d . (vB - vA) + wB (rB x d) - wA (rA x d), and an impulse
 /// lambda d moves body A by mA lambda d and turns it by iA lambda (rA x d); so the lever arms
@@ -58,7 +66,8 @@ struct b2ContactVelocityConstraint {
     Fixed restitution;
     int32 pointCount = 0;
     int32 contactIndex = 0;
-    bool useBlock = false;  ///< two points and a well-conditioned K
+    bool useBlock = false;        ///< two points and a well-conditioned K
+    b2UncheckedLimits unchecked;  ///< when the row may run without range tests
 };
 
 /// One contact's position constraint (copied from the manifold).
@@ -142,6 +151,9 @@ public:
     void StoreLaneRows(int32 begin, int32 end);
     /// Lets the lanes run (the default) or not. Both paths give the same bits; tests compare them.
     static void AllowLanes(bool allow) noexcept;
+    /// Lets rows proven to stay in range run without range tests (the default) or not. Both paths
+    /// give the same bits; tests compare them.
+    static void AllowUncheckedRows(bool allow) noexcept;
     /// Copies the accumulated impulses back to the manifolds for warm starting.
     void StoreImpulses() { StoreImpulses(0, m_count); }
     /// The same for constraints [begin, end) (each writes its own contact's manifold).

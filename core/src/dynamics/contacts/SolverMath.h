@@ -23,11 +23,13 @@ template <class State, class Linear, class Angular>
 
 // The impulse lambda d on the pair's linear velocities: vA -= lambda pushA, vB += lambda pushB,
 // with pushA = mA d and pushB = mB d, added in Q32.32. With equal pushes B's change is A's
-// (computed, and reported on saturation, once).
-[[gnu::always_inline]] inline void PushPair(b2WideVec2& vA, b2WideVec2& vB, Wide lambda, const b2WideVec2& pushA,
-                                            const b2WideVec2& pushB, bool samePush) noexcept {
-    const Wide dxA = lambda * pushA.x;
-    const Wide dyA = lambda * pushA.y;
+// (computed, and reported on saturation, once). V is a pair of N: b2WideVec2 and Wide, or the
+// proven row's unchecked types (UncheckedWide.h), which give the same bits.
+template <class V, class N>
+[[gnu::always_inline]] inline void PushPair(V& vA, V& vB, N lambda, const V& pushA, const V& pushB,
+                                            bool samePush) noexcept {
+    const N dxA = lambda * pushA.x;
+    const N dyA = lambda * pushA.y;
     vA.x -= dxA;
     vA.y -= dyA;
     if (samePush) {
@@ -41,19 +43,21 @@ template <class State, class Linear, class Angular>
 
 // The speed of B's contact point relative to A's along the unit direction d, in Q32.32:
 // d . (vB - vA) + wB (rB x d) - wA (rA x d), where armA = rA x d and armB = rB x d. Each
-// product is rounded once at 2^-32; the sums are checked (saturate and report, never wrap).
-[[gnu::always_inline]] inline Wide SpeedAlong(const b2WideVec2& vA, Wide wA, Fixed armA, const b2WideVec2& vB, Wide wB,
-                                              Fixed armB, const b2Vec2& d) noexcept {
-    const b2WideVec2 dv = vB - vA;
-    const Wide linear = dv.x * d.x + dv.y * d.y;
+// product is rounded once at 2^-32; on Wide the sums are checked (saturate and report, never wrap).
+template <class V, class N>
+[[gnu::always_inline]] inline N SpeedAlong(const V& vA, N wA, Fixed armA, const V& vB, N wB, Fixed armB,
+                                           const b2Vec2& d) noexcept {
+    const N dx = vB.x - vA.x;
+    const N dy = vB.y - vA.y;
+    const N linear = dx * d.x + dy * d.y;
     return linear + wB * armB - wA * armA;
 }
 
 // The impulse lambda d on the pair: PushPair, then wA -= lambda turnA and wB += lambda turnB,
 // where turnA = iA (rA x d) and turnB = iB (rB x d).
-[[gnu::always_inline]] inline void ApplyAlong(b2WideVec2& vA, Wide& wA, b2WideVec2& vB, Wide& wB, Wide lambda,
-                                              const b2WideVec2& pushA, const b2WideVec2& pushB, bool samePush,
-                                              Wide turnA, Wide turnB) noexcept {
+template <class V, class N>
+[[gnu::always_inline]] inline void ApplyAlong(V& vA, N& wA, V& vB, N& wB, N lambda, const V& pushA, const V& pushB,
+                                              bool samePush, N turnA, N turnB) noexcept {
     PushPair(vA, vB, lambda, pushA, pushB, samePush);
     wA -= lambda * turnA;
     wB += lambda * turnB;

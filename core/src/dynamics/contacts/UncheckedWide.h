@@ -1,0 +1,89 @@
+#pragma once
+// Q32.32 arithmetic with Wide's rounding and no range tests, for a contact row whose every
+// result is proven to stay in range before it runs (ContactRowBound.h). Where Wide's result
+// is in range it is exactly this type's, so a proven row gives Wide's bits; out of range these
+// operations wrap where Wide saturates, which is why nothing may use them without the proof.
+//
+// Products by a Q32.32 value are formed in 128 bits, so they never overflow before their
+// rounding; only the rounded result must fit. That needs a native 128-bit integer: elsewhere the
+// row always runs on Wide.
+
+#include <cstdint>
+
+#include "lockbox/fixed/Fixed.h"
+#include "lockbox/fixed/Wide.h"
+#include "lockbox/fixed/detail/Int128.h"
+
+#ifdef LOCKBOX_NATIVE_INT128
+#define LOCKBOX_UNCHECKED_ROWS 1
+
+namespace lockbox::solver {
+
+class UncheckedWide {
+public:
+    constexpr UncheckedWide() noexcept = default;
+    constexpr UncheckedWide(Wide w) noexcept : m_raw(w.Raw()) {}  // NOLINT: the same number
+    // Exact widening, as Wide(Fixed).
+    constexpr explicit UncheckedWide(Fixed f) noexcept : m_raw(int64_t{f.Raw()} * (int64_t{1} << 16)) {}
+
+    constexpr Wide ToWide() const noexcept { return Wide::FromRaw(m_raw); }
+
+    constexpr auto operator<=>(const UncheckedWide&) const noexcept = default;
+    constexpr bool operator==(const UncheckedWide&) const noexcept = default;
+
+    // Sums and differences through unsigned integers: they wrap instead of being undefined.
+    [[gnu::always_inline]] friend constexpr UncheckedWide operator+(UncheckedWide a, UncheckedWide b) noexcept {
+        return FromRaw(static_cast<int64_t>(static_cast<uint64_t>(a.m_raw) + static_cast<uint64_t>(b.m_raw)));
+    }
+    [[gnu::always_inline]] friend constexpr UncheckedWide operator-(UncheckedWide a, UncheckedWide b) noexcept {
+        return FromRaw(static_cast<int64_t>(static_cast<uint64_t>(a.m_raw) - static_cast<uint64_t>(b.m_raw)));
+    }
+    [[gnu::always_inline]] constexpr UncheckedWide operator-() const noexcept {
+        return FromRaw(static_cast<int64_t>(uint64_t{0} - static_cast<uint64_t>(m_raw)));
+    }
+    constexpr UncheckedWide& operator+=(UncheckedWide b) noexcept { return *this = *this + b; }
+    constexpr UncheckedWide& operator-=(UncheckedWide b) noexcept { return *this = *this - b; }
+
+    // Wide * Wide and Wide * Fixed, rounded to 2^-32 with ties away from zero, as Wide's.
+    [[gnu::always_inline]] friend constexpr UncheckedWide operator*(UncheckedWide a, UncheckedWide b) noexcept {
+        return FromRaw(MulShiftRound(a.m_raw, b.m_raw, Wide::kFractionBits));
+    }
+    // By a Fixed the product is formed in 64 bits (which the row's bound also covers), through
+    // unsigned integers so that an unproven use wraps instead of being undefined.
+    [[gnu::always_inline]] friend constexpr UncheckedWide operator*(UncheckedWide a, Fixed b) noexcept {
+        const uint64_t p = static_cast<uint64_t>(a.m_raw) * static_cast<uint64_t>(int64_t{b.Raw()});
+        const uint64_t biased = p + (uint64_t{1} << 15) + static_cast<uint64_t>(static_cast<int64_t>(p) >> 63);
+        return FromRaw(static_cast<int64_t>(biased) >> Fixed::kFractionBits);
+    }
+
+private:
+    static constexpr UncheckedWide FromRaw(int64_t raw) noexcept {
+        UncheckedWide w;
+        w.m_raw = raw;
+        return w;
+    }
+    // floor((p + 2^(shift-1) - [p < 0]) / 2^shift) of the exact product p: round half away from
+    // zero. With p = q 2^shift + f (0 <= f < 2^shift) that is q plus the carry of f + 2^(shift-1)
+    // - [p < 0] into bit `shift`, which keeps every step in 64-bit registers; of q only the low
+    // 64 bits are kept, which are the result when it fits.
+    [[gnu::always_inline]] static constexpr int64_t MulShiftRound(int64_t a, int64_t b, int shift) noexcept {
+        using U128 = detail::NativeU128;
+        const auto p = static_cast<U128>(static_cast<detail::NativeI128>(a) * b);
+        const auto negative = static_cast<uint64_t>(static_cast<int64_t>(static_cast<uint64_t>(p >> 64)) >> 63);
+        const auto q = static_cast<uint64_t>(p >> shift);
+        const uint64_t f = static_cast<uint64_t>(p) & ((uint64_t{1} << shift) - 1);
+        const uint64_t carry = (f + (uint64_t{1} << (shift - 1)) + negative) >> shift;
+        return static_cast<int64_t>(q + carry);
+    }
+
+    int64_t m_raw = 0;
+};
+
+// A pair of components, as b2WideVec2 is for Wide.
+struct UncheckedVec2 {
+    UncheckedWide x, y;
+};
+
+}  // namespace lockbox::solver
+
+#endif

@@ -1,0 +1,232 @@
+// A contact row whose inputs are within the bound its set-up computed runs without range tests
+// (dynamics/contacts/ContactRowBound.h). That must give the tested row's bits: the same
+// velocities, impulses and saturation count. Rows are drawn with constants of every scale and
+// inputs driven to just inside and just outside their bound; within it, the tested row must never
+// saturate (the bound is sound). And the inputs must reach the bound's edge: with the bound
+// loosened by a few bits the unchecked row must go wrong somewhere, or this test could not fail.
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cstdio>
+#include <map>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../dynamics/DynamicsTestUtil.h"
+#include "dynamics/contacts/ContactRowBound.h"
+#include "dynamics/contacts/ContactSolver.h"
+#include "dynamics/contacts/UncheckedWide.h"
+#include "lockbox/fixed/Overflow.h"
+
+namespace lockbox {
+namespace LOCKBOX_TEST_FILE {
+
+// Restores the unchecked rows when a test ends, whatever it switched.
+struct UncheckedAllowed {
+    ~UncheckedAllowed() { b2ContactSolver::AllowUncheckedRows(true); }
+};
+
+class RowDrawer {
+public:
+    explicit RowDrawer(uint64_t seed) : m_rng(seed) {}
+
+    int Pick(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(m_rng); }
+    bool Chance(int oneIn) { return Pick(1, oneIn) == 1; }
+
+    // A raw of width at most `width` (|raw| < 2^width), often at the top of that range, either sign.
+    int64_t Raw(int width) {
+        width = std::clamp(width, 0, 63);
+        if (width == 0) return 0;
+        const uint64_t top = (uint64_t{1} << width) - 1;
+        uint64_t mag = m_rng() & top;
+        if (Chance(2)) mag |= uint64_t{1} << (width - 1);  // exactly this width
+        if (Chance(4)) mag = top;                          // the widest
+        const auto v = static_cast<int64_t>(mag);
+        return Chance(2) ? -v : v;
+    }
+    Wide WideOf(int width) { return Wide::FromRaw(Raw(width)); }
+    Fixed FixedOf(int width) { return Fixed::FromRaw(static_cast<int32_t>(Raw(std::min(width, 31)))); }
+
+    // Constants of every scale: effective masses around 2^massScale kg, responses (pushes, turns,
+    // K) around their inverse, with the spread a row of mismatched bodies has.
+    void Fill(b2ContactVelocityConstraint& vc) {
+        vc = b2ContactVelocityConstraint();
+        vc.pointCount = Pick(1, 2);
+        vc.useBlock = vc.pointCount == 2;
+        vc.indexA = 0;
+        vc.indexB = 1;
+        const int mass = 32 + Pick(-14, 14);
+        const int resp = 64 - mass + Pick(-3, 9);
+        const int arm = Chance(3) ? Pick(1, 31) : Pick(12, 19);
+        const double angle = Pick(0, 6283) / 1000.0;
+        vc.normal = Chance(8) ? b2Vec2(FixedOf(Pick(1, 31)), FixedOf(Pick(1, 31)))
+                              : b2Vec2(Fixed::FromRaw(static_cast<int32_t>(std::cos(angle) * 65536)),
+                                       Fixed::FromRaw(static_cast<int32_t>(std::sin(angle) * 65536)));
+        vc.tangent = b2Cross(vc.normal, Fixed(1));
+        const bool staticA = Chance(5);
+        vc.invMassA = staticA ? Wide() : WideOf(resp);
+        vc.invIA = staticA ? Wide() : WideOf(resp);
+        vc.invMassB = WideOf(resp);
+        vc.invIB = WideOf(resp);
+        vc.pushA = staticA ? b2WideVec2() : b2WideVec2(WideOf(resp), WideOf(resp));
+        vc.pushB = b2WideVec2(WideOf(resp), WideOf(resp));
+        if (Chance(4)) vc.pushB = vc.pushA;
+        vc.samePush = vc.pushA.x == vc.pushB.x && vc.pushA.y == vc.pushB.y;
+        vc.friction = Chance(6) ? FixedOf(Pick(1, 31)) : FixedOf(17);
+        vc.K = {WideOf(resp + 1), WideOf(resp + 1), WideOf(resp + 1)};
+        vc.normalMass = {WideOf(mass + Pick(0, 4)), WideOf(mass + Pick(0, 4)), WideOf(mass + Pick(0, 4))};
+        for (int32 j = 0; j < vc.pointCount; ++j) {
+            b2VelocityConstraintPoint& p = vc.points[j];
+            p.normalMass = WideOf(mass);
+            p.tangentMass = WideOf(mass);
+            p.rnA = FixedOf(arm);
+            p.rnB = FixedOf(arm);
+            p.rtA = FixedOf(arm);
+            p.rtB = FixedOf(arm);
+            p.turnNA = staticA ? Wide() : WideOf(resp);
+            p.turnNB = WideOf(resp);
+            p.turnTA = staticA ? Wide() : WideOf(resp);
+            p.turnTB = WideOf(resp);
+            p.velocityBias = Chance(3) ? FixedOf(Pick(1, 31)) : Fixed();
+        }
+    }
+
+    // Inputs of width at most the given ones (velocities, impulses).
+    void Inputs(b2ContactVelocityConstraint& vc, std::vector<b2Velocity>& bodies, int velocities, int impulses) {
+        for (b2Velocity& b : bodies) {
+            b.v = b2WideVec2(WideOf(velocities - Pick(0, 1)), WideOf(velocities - Pick(0, 1)));
+            b.w = WideOf(velocities - Pick(0, 1));
+        }
+        if (vc.invMassA == Wide()) bodies[0] = b2Velocity();  // a static body does not move
+        for (int32 j = 0; j < vc.pointCount; ++j) {
+            vc.points[j].normalImpulse = WideOf(impulses - Pick(0, 1));
+            vc.points[j].tangentImpulse = WideOf(impulses - Pick(0, 1));
+        }
+    }
+
+private:
+    std::mt19937_64 m_rng;
+};
+
+struct Solved {
+    std::vector<b2Velocity> bodies;
+    b2ContactVelocityConstraint vc;
+    uint64_t saturations = 0;
+};
+
+Solved SolveOnce(b2ContactVelocityConstraint vc, std::vector<b2Velocity> bodies, bool unchecked) {
+    b2ContactSolver::AllowUncheckedRows(unchecked);
+    b2ContactSolverDef def;
+    def.count = 1;
+    def.velocities = bodies.data();
+    def.velocityConstraints = &vc;
+    b2ContactSolver solver(&def);
+    Solved out;
+    {
+        const SaturationCapture capture(&out.saturations);
+        solver.SolveVelocityConstraints(0, 1);
+    }
+    out.bodies = std::move(bodies);
+    out.vc = vc;
+    return out;
+}
+
+bool SameBits(const Solved& a, const Solved& b) {
+    if (a.saturations != b.saturations) return false;
+    for (size_t i = 0; i < a.bodies.size(); ++i) {
+        if (a.bodies[i].v.x != b.bodies[i].v.x || a.bodies[i].v.y != b.bodies[i].v.y || a.bodies[i].w != b.bodies[i].w)
+            return false;
+    }
+    for (int32 j = 0; j < a.vc.pointCount; ++j) {
+        if (a.vc.points[j].normalImpulse != b.vc.points[j].normalImpulse ||
+            a.vc.points[j].tangentImpulse != b.vc.points[j].tangentImpulse)
+            return false;
+    }
+    return true;
+}
+
+// The width a limit allows (a folded input below 2^w - 1 has |raw| < 2^w).
+int WidthAllowed(uint64_t below) { return static_cast<int>(std::bit_width(below)); }
+uint64_t Loosened(uint64_t below, int bits) {
+    const int width = std::min(WidthAllowed(below) + bits, 63);
+    return below == 0 ? 0 : (uint64_t{1} << width) - 1;
+}
+
+TEST(ContactRowBound, RowsWithinTheBoundGiveTheTestedRowsBits) {
+#ifndef LOCKBOX_UNCHECKED_ROWS
+    GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
+#else
+    if (kOverflowTraps) GTEST_SKIP() << "the rows saturate on purpose, which a checked build traps";
+    const UncheckedAllowed restore;
+    RowDrawer draw(20261130);
+    constexpr int kMaxLoosening = 12;
+    int64_t unchecked = 0, tested = 0, bounded = 0;
+    std::map<int, int64_t> wrongWhenLoosened;  // bits of loosening -> rows that went wrong
+    for (int trial = 0; trial < 60000; ++trial) {
+        b2ContactVelocityConstraint vc;
+        draw.Fill(vc);
+        const b2UncheckedLimits limits = solver::UncheckedLimits(vc);
+        // Half the rows keep the computed bound; the rest loosen it to see that it matters.
+        const int loosen = draw.Chance(2) ? 0 : draw.Pick(1, kMaxLoosening);
+        vc.unchecked = {Loosened(limits.velocitiesBelow, loosen), Loosened(limits.impulsesBelow, loosen)};
+        const bool none = limits.velocitiesBelow == 0;
+        if (!none) ++bounded;
+        const int velocityWidth =
+            none ? draw.Pick(16, 48) : WidthAllowed(vc.unchecked.velocitiesBelow) + draw.Pick(-3, 1);
+        const int impulseWidth = none ? draw.Pick(16, 48) : WidthAllowed(vc.unchecked.impulsesBelow) + draw.Pick(-3, 1);
+        std::vector<b2Velocity> bodies(2);
+        draw.Inputs(vc, bodies, velocityWidth, impulseWidth);
+
+        const bool fits = solver::UncheckedRowFits(vc, bodies[0].v, bodies[0].w, bodies[1].v, bodies[1].w);
+        const Solved fast = SolveOnce(vc, bodies, true);
+        const Solved reference = SolveOnce(vc, bodies, false);
+        if (loosen == 0) {
+            (fits ? unchecked : tested) += 1;
+            if (fits) {
+                ASSERT_EQ(reference.saturations, 0u) << "trial " << trial << ": the bound let a saturating row run";
+            }
+            ASSERT_TRUE(SameBits(fast, reference)) << "trial " << trial;
+        } else if (fits && !SameBits(fast, reference)) {
+            ++wrongWhenLoosened[loosen];
+        }
+    }
+    // Both paths ran, and most rows with a bound fit it.
+    EXPECT_GT(unchecked, 5000);
+    EXPECT_GT(tested, 5000);
+    EXPECT_GT(bounded, 50000);
+    // The inputs reach the edge: a bound a few bits looser lets wrong rows through.
+    ASSERT_FALSE(wrongWhenLoosened.empty());
+    const int tightest = wrongWhenLoosened.begin()->first;
+    std::printf("[ bound    ] rows unchecked %lld, tested %lld; wrong with the bound loosened by",
+                static_cast<long long>(unchecked), static_cast<long long>(tested));
+    for (const auto& [bits, rows] : wrongWhenLoosened)
+        std::printf(" %d bits: %lld,", bits, static_cast<long long>(rows));
+    std::printf("\n");
+    EXPECT_LE(tightest, 8);
+#endif
+}
+
+// The hashes of a pyramid dropped from a height: while it lands, some rows are beyond their
+// bound and keep their tests.
+std::vector<uint64_t> Hashes(bool unchecked) {
+    b2ContactSolver::AllowUncheckedRows(unchecked);
+    b2World world(b2Vec2(0, -10));
+    test::MakeBoxPyramid(world, 12, 150, 101);
+    std::vector<uint64_t> hashes;
+    for (int i = 0; i < 120; ++i) {
+        world.Step(test::kDt, 8, 3);
+        hashes.push_back(world.Hash());
+    }
+    return hashes;
+}
+
+TEST(ContactRowBound, WorldGivesTheSameHashesWithAndWithoutUncheckedRows) {
+    const UncheckedAllowed restore;
+    EXPECT_EQ(Hashes(true), Hashes(false));
+}
+
+}  // namespace LOCKBOX_TEST_FILE
+}  // namespace lockbox
