@@ -8,8 +8,8 @@
 // text is what makes the two give the same bits.
 
 #include "SolverMath.h"
-#include "UncheckedWide.h"
 #include "dynamics/contacts/ContactSolver.h"
+#include "dynamics/unchecked/UncheckedWide.h"
 
 namespace lockbox::solver {
 

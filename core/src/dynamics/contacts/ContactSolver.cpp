@@ -1,12 +1,10 @@
 // b2ContactSolver: setup, warm starting and the velocity iterations.
 #include "dynamics/contacts/ContactSolver.h"
 
-#include <atomic>
-
 #include "ContactRow.h"
 #include "ContactRowBound.h"
 #include "SolverMath.h"
-#include "UncheckedWide.h"
+#include "dynamics/unchecked/UncheckedWide.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/Fixture.h"
 #include "lockbox/dynamics/contacts/Contact.h"
@@ -15,9 +13,6 @@
 namespace lockbox {
 
 namespace {
-
-// Tests switch the unchecked rows off to compare the two paths; the choice never changes a result.
-std::atomic<bool> g_uncheckedAllowed{true};
 
 // Box2D's k_maxConditionNumber: the block solver is used only while the 2x2 K is well
 // conditioned, k11^2 < 1000 (k11 k22 - k12^2). Dimensionless; the comparison is exact.
@@ -201,9 +196,9 @@ void b2ContactSolver::InitializeVelocityConstraints(int32 begin, int32 end) {
             }
         }
 #ifdef LOCKBOX_UNCHECKED_ROWS
-        vc->unchecked = solver::UncheckedLimits(*vc);
+        vc->unchecked = solver::UncheckedWidths(*vc);
 #else
-        vc->unchecked = b2UncheckedLimits();
+        vc->unchecked = solver::InputWidths();
 #endif
     }
     if (m_laneRows != nullptr) StoreLaneRows(begin, end);
@@ -240,13 +235,9 @@ void b2ContactSolver::WarmStart(int32 begin, int32 end) {
     }
 }
 
-void b2ContactSolver::AllowUncheckedRows(bool allow) noexcept {
-    g_uncheckedAllowed.store(allow, std::memory_order_relaxed);
-}
-
 void b2ContactSolver::SolveVelocityConstraints(int32 begin, int32 end) {
 #ifdef LOCKBOX_UNCHECKED_ROWS
-    const bool uncheckedAllowed = g_uncheckedAllowed.load(std::memory_order_relaxed);
+    const bool uncheckedAllowed = solver::UncheckedRowsAllowed();
 #endif
     for (int32 i = begin; i < end; ++i) {
         b2ContactVelocityConstraint& vc = m_velocityConstraints[static_cast<size_t>(i)];

@@ -10,6 +10,7 @@
 
 #include "Engine.h"
 #include "dynamics/TimeStep.h"
+#include "dynamics/unchecked/Widths.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/common/Settings.h"
 #include "lockbox/fixed/Math.h"
@@ -22,14 +23,6 @@ class b2Contact;
 /// A symmetric 2x2 matrix of Wide entries (the block solver's K and its inverse).
 struct b2WideSym22 {
     Wide k11, k12, k22;
-};
-
-/// When a velocity row may run without range tests (ContactRowBound.h): while the OR of the folded
-/// raws of the pair's velocities and that of the row's accumulated impulses are below these. Zero
-/// keeps every test.
-struct b2UncheckedLimits {
-    uint64_t velocitiesBelow = 0;
-    uint64_t impulsesBelow = 0;
 };
 
 /// Per-point velocity data. The iterations never need the anchors themselves: a point's
@@ -66,8 +59,8 @@ struct b2ContactVelocityConstraint {
     Fixed restitution;
     int32 pointCount = 0;
     int32 contactIndex = 0;
-    bool useBlock = false;        ///< two points and a well-conditioned K
-    b2UncheckedLimits unchecked;  ///< when the row may run without range tests
+    bool useBlock = false;          ///< two points and a well-conditioned K
+    solver::InputWidths unchecked;  ///< when the row may run without range tests (ContactRowBound.h)
 };
 
 /// One contact's position constraint (copied from the manifold).
@@ -151,9 +144,6 @@ public:
     void StoreLaneRows(int32 begin, int32 end);
     /// Lets the lanes run (the default) or not. Both paths give the same bits; tests compare them.
     static void AllowLanes(bool allow) noexcept;
-    /// Lets rows proven to stay in range run without range tests (the default) or not. Both paths
-    /// give the same bits; tests compare them.
-    static void AllowUncheckedRows(bool allow) noexcept;
     /// Copies the accumulated impulses back to the manifolds for warm starting.
     void StoreImpulses() { StoreImpulses(0, m_count); }
     /// The same for constraints [begin, end) (each writes its own contact's manifold).

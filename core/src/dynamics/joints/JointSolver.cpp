@@ -1,6 +1,7 @@
 #include "dynamics/joints/JointSolver.h"
 
 #include "JointMath.h"
+#include "dynamics/unchecked/UncheckedWide.h"
 #include "lockbox/dynamics/joints/RevoluteJoint.h"
 
 namespace lockbox {
@@ -22,30 +23,74 @@ void Prefetch(const b2Joint* joint) noexcept {
 #endif
 }
 
+// r x P for the point row, on either number type.
+inline Wide ArmCross(const b2Vec2& r, Wide px, Wide py) noexcept { return b2Cross(r, b2WideVec2(px, py)); }
+#ifdef LOCKBOX_UNCHECKED_ROWS
+inline solver::UncheckedWide ArmCross(const b2Vec2& r, solver::UncheckedWide px, solver::UncheckedWide py) noexcept {
+    return solver::UncheckedWide::Cross(r, px, py);
+}
+#endif
+
 // One iteration of a revolute joint whose motor and limit are idle: the point-to-point branch
-// of b2RevoluteJoint::SolveVelocityConstraints, the same operations in the same order.
-void SolvePointRow(JointSolver::Row& row, const b2SolverData& data) noexcept {
+// of b2RevoluteJoint::SolveVelocityConstraints, the same operations in the same order (its
+// PointVelocity, math::Mul, ApplyNeg and ApplyPos written out), on Wide or, for a row proven to
+// stay in range, on UncheckedWide.
+template <class N, class V>
+[[gnu::always_inline]] inline void PointRow(const JointSolver::Row& row, V& vA, N& wA, V& vB, N& wB,
+                                            V& accumulated) noexcept {
+    const N cx = (vB.x - wB * row.rB.y) - (vA.x - wA * row.rA.y);
+    const N cy = (vB.y + wB * row.rB.x) - (vA.y + wA * row.rA.x);
+    const b2WideMat22& m = row.pointMass;
+    const N px = -(N(m.ex.x) * cx + N(m.ey.x) * cy);
+    const N py = -(N(m.ex.y) * cx + N(m.ey.y) * cy);
+    accumulated.x += px;
+    accumulated.y += py;
+    vA.x -= N(row.mA) * px;
+    vA.y -= N(row.mA) * py;
+    wA -= N(row.iA) * ArmCross(row.rA, px, py);
+    vB.x += N(row.mB) * px;
+    vB.y += N(row.mB) * py;
+    wB += N(row.iB) * ArmCross(row.rB, px, py);
+}
+
+}  // namespace
+
+void JointSolver::SolvePointRow(Row& row, const b2SolverData& data, bool uncheckedAllowed) noexcept {
     b2Velocity& velA = data.velocities[row.indexA];
     b2Velocity& velB = data.velocities[row.indexB];
+#ifdef LOCKBOX_UNCHECKED_ROWS
+    const uint64_t velocities = solver::Folded(velA.v.x) | solver::Folded(velA.v.y) | solver::Folded(velA.w) |
+                                solver::Folded(velB.v.x) | solver::Folded(velB.v.y) | solver::Folded(velB.w);
+    const uint64_t impulse = solver::Folded(row.impulse.x) | solver::Folded(row.impulse.y);
+    if (uncheckedAllowed && solver::Within(velocities, row.unchecked.velocities) &&
+        solver::Within(impulse, row.unchecked.impulses)) {
+        using solver::UncheckedVec2, solver::UncheckedWide;
+        UncheckedVec2 vA{velA.v.x, velA.v.y}, vB{velB.v.x, velB.v.y};
+        UncheckedWide wA = velA.w, wB = velB.w;
+        UncheckedVec2 accumulated{row.impulse.x, row.impulse.y};
+        PointRow(row, vA, wA, vB, wB, accumulated);
+        velA.v = b2WideVec2(vA.x.ToWide(), vA.y.ToWide());
+        velA.w = wA.ToWide();
+        velB.v = b2WideVec2(vB.x.ToWide(), vB.y.ToWide());
+        velB.w = wB.ToWide();
+        row.impulse = b2WideVec2(accumulated.x.ToWide(), accumulated.y.ToWide());
+        return;
+    }
+#else
+    (void)uncheckedAllowed;
+#endif
     b2WideVec2 vA = velA.v;
     Wide wA = velA.w;
     b2WideVec2 vB = velB.v;
     Wide wB = velB.w;
-
-    const b2WideVec2 Cdot = PointVelocity(vB, wB, row.rB) - PointVelocity(vA, wA, row.rA);
-    const b2WideVec2 impulse = -math::Mul(row.pointMass, Cdot);
-    row.impulse.x += impulse.x;
-    row.impulse.y += impulse.y;
-    const BodyData A{row.indexA, b2Vec2(), row.mA, row.iA};
-    const BodyData B{row.indexB, b2Vec2(), row.mB, row.iB};
-    ApplyNeg(vA, wA, A, row.rA, impulse);
-    ApplyPos(vB, wB, B, row.rB, impulse);
-
+    PointRow(row, vA, wA, vB, wB, row.impulse);
     velA.v = vA;
     velA.w = wA;
     velB.v = vB;
     velB.w = wB;
 }
+
+namespace {
 
 // One position iteration of a revolute joint whose limit is idle: the point-to-point part of
 // b2RevoluteJoint::SolvePositionConstraints (the angular error is then zero).
@@ -122,6 +167,7 @@ void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 begin, i
         row.pointMass = s.pointMass;
         row.impulse = b2WideVec2(revolute->m_impulse.x, revolute->m_impulse.y);
         row.revolute = revolute;
+        row.unchecked = PointRowWidths(row);
 
         PositionRow& position = m_positionRows[static_cast<size_t>(i)];
         position.indexA = s.indexA;
@@ -137,12 +183,34 @@ void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 begin, i
     }
 }
 
+solver::InputWidths JointSolver::PointRowWidths(const Row& row) noexcept {
+    using namespace solver;
+    constexpr int kWideShift = Wide::kFractionBits;
+    constexpr int kFixedShift = Fixed::kFractionBits;
+    const int arm = WidthOf(Folded(row.rA.x) | Folded(row.rA.y) | Folded(row.rB.x) | Folded(row.rB.y));
+    const b2WideMat22& m = row.pointMass;
+    const int mass = WidthOf(Folded(m.ex.x) | Folded(m.ex.y) | Folded(m.ey.x) | Folded(m.ey.y));
+    const int resp = WidthOf(Folded(row.mA) | Folded(row.mB) | Folded(row.iA) | Folded(row.iB));
+    // The point's relative velocity: v - w r (w r in 64 bits), B's less A's.
+    const Slopes point = Sum(kVelocity, Times(kVelocity, arm, kFixedShift));
+    const Slopes cdot = Sum(point, point);
+    // The impulse -(M Cdot), added to the accumulated one.
+    const Slopes impulse = Sum(Times(cdot, mass, kWideShift), Times(cdot, mass, kWideShift));
+    // r x P: two products exact in 128 bits, their difference rounded once.
+    const Slopes cross = Plus(Times(impulse, arm, kFixedShift), 1);
+    Slopes widest = Max(Max(cdot, Product64(kVelocity, arm)), Sum(kImpulse, impulse));
+    widest = Max(widest, Max(cross, Sum(kVelocity, Times(impulse, resp, kWideShift))));
+    widest = Max(widest, Sum(kVelocity, Times(cross, resp, kWideShift)));
+    return WidthsFor(widest);
+}
+
 void JointSolver::SolveVelocityConstraints(const b2SolverData& data, int32 begin, int32 end) {
     Row* rows = m_rows.data();
+    const bool uncheckedAllowed = solver::UncheckedRowsAllowed();
     for (int32 i = begin; i < end; ++i) {
         Row& row = rows[i];
         if (row.revolute != nullptr) {
-            SolvePointRow(row, data);
+            SolvePointRow(row, data, uncheckedAllowed);
         } else {
             row.joint->SolveVelocityConstraints(data);
         }

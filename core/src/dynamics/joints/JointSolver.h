@@ -16,6 +16,7 @@
 
 #include "dynamics/TimeStep.h"
 #include "dynamics/joints/JointAccess.h"
+#include "dynamics/unchecked/Widths.h"
 #include "lockbox/fixed/WideMatrix.h"
 
 namespace lockbox {
@@ -51,7 +52,7 @@ public:
     bool SolvePositionConstraints(const b2SolverData& data, int32 begin, int32 end) const;
 
     /// One joint in the iterations: a revolute point row, or a joint solved by itself (joint set,
-    /// revolute null). 120 bytes, read front to back by an iteration.
+    /// revolute null). 128 bytes, read front to back by an iteration.
     struct Row {
         int32 indexA = 0;  ///< island body indices
         int32 indexB = 0;
@@ -63,7 +64,14 @@ public:
         b2WideVec2 impulse;                   ///< accumulated point impulse (N*s)
         b2Joint* joint = nullptr;             ///< solved by itself when revolute is null
         b2RevoluteJoint* revolute = nullptr;  ///< the joint this row writes its impulse back to
+        solver::InputWidths unchecked;        ///< when the row may run without range tests
     };
+
+    /// One iteration of a point row; unchecked when allowed and its inputs are within its widths.
+    static void SolvePointRow(Row& row, const b2SolverData& data, bool uncheckedAllowed) noexcept;
+    /// The widest velocities and accumulated impulse for which no value of a point row can leave
+    /// Q32.32 (dynamics/unchecked/Widths.h), from the widths of the row's constants.
+    static solver::InputWidths PointRowWidths(const Row& row) noexcept;
 
     /// What a position iteration of a row's joint reads (72 bytes). The anchors and centres are
     /// kept apart and subtracted in each iteration, as the joint does.

@@ -1,6 +1,6 @@
 #pragma once
 // Q32.32 arithmetic with Wide's rounding and no range tests, for a contact row whose every
-// result is proven to stay in range before it runs (ContactRowBound.h). Where Wide's result
+// result is proven to stay in range before it runs (Widths.h). Where Wide's result
 // is in range it is exactly this type's, so a proven row gives Wide's bits; out of range these
 // operations wrap where Wide saturates, which is why nothing may use them without the proof.
 //
@@ -11,8 +11,18 @@
 #include <cstdint>
 
 #include "lockbox/fixed/Fixed.h"
+#include "lockbox/fixed/Vec2.h"
 #include "lockbox/fixed/Wide.h"
 #include "lockbox/fixed/detail/Int128.h"
+
+namespace lockbox::solver {
+
+// Whether rows proven to stay in range may run unchecked (the default). Both paths give the same
+// bits; tests switch it to compare them.
+bool UncheckedRowsAllowed() noexcept;
+void AllowUncheckedRows(bool allow) noexcept;
+
+}  // namespace lockbox::solver
 
 #ifdef LOCKBOX_NATIVE_INT128
 #define LOCKBOX_UNCHECKED_ROWS 1
@@ -27,6 +37,7 @@ public:
     constexpr explicit UncheckedWide(Fixed f) noexcept : m_raw(int64_t{f.Raw()} * (int64_t{1} << 16)) {}
 
     constexpr Wide ToWide() const noexcept { return Wide::FromRaw(m_raw); }
+    constexpr int64_t Raw() const noexcept { return m_raw; }
 
     constexpr auto operator<=>(const UncheckedWide&) const noexcept = default;
     constexpr bool operator==(const UncheckedWide&) const noexcept = default;
@@ -46,7 +57,15 @@ public:
 
     // Wide * Wide and Wide * Fixed, rounded to 2^-32 with ties away from zero, as Wide's.
     [[gnu::always_inline]] friend constexpr UncheckedWide operator*(UncheckedWide a, UncheckedWide b) noexcept {
-        return FromRaw(MulShiftRound(a.m_raw, b.m_raw, Wide::kFractionBits));
+        return FromRaw(RoundShift(static_cast<detail::NativeI128>(a.m_raw) * b.m_raw, Wide::kFractionBits));
+    }
+    // r x P of a Q16.16 arm and a Q32.32 impulse, exact in 128 bits and rounded once, as
+    // b2Cross(b2Vec2, b2WideVec2).
+    [[gnu::always_inline]] static constexpr UncheckedWide Cross(const b2Vec2& r, UncheckedWide px,
+                                                                UncheckedWide py) noexcept {
+        using I128 = detail::NativeI128;
+        const I128 e = static_cast<I128>(r.x.Raw()) * py.m_raw - static_cast<I128>(r.y.Raw()) * px.m_raw;
+        return FromRaw(RoundShift(e, Fixed::kFractionBits));
     }
     // By a Fixed the product is formed in 64 bits (which the row's bound also covers), through
     // unsigned integers so that an unproven use wraps instead of being undefined.
@@ -62,13 +81,12 @@ private:
         w.m_raw = raw;
         return w;
     }
-    // floor((p + 2^(shift-1) - [p < 0]) / 2^shift) of the exact product p: round half away from
-    // zero. With p = q 2^shift + f (0 <= f < 2^shift) that is q plus the carry of f + 2^(shift-1)
-    // - [p < 0] into bit `shift`, which keeps every step in 64-bit registers; of q only the low
-    // 64 bits are kept, which are the result when it fits.
-    [[gnu::always_inline]] static constexpr int64_t MulShiftRound(int64_t a, int64_t b, int shift) noexcept {
-        using U128 = detail::NativeU128;
-        const auto p = static_cast<U128>(static_cast<detail::NativeI128>(a) * b);
+    // floor((p + 2^(shift-1) - [p < 0]) / 2^shift) of an exact product p (|p| < 2^126): round half
+    // away from zero. With p = q 2^shift + f (0 <= f < 2^shift) that is q plus the carry of
+    // f + 2^(shift-1) - [p < 0] into bit `shift`, which keeps every step in 64-bit registers; of
+    // q only the low 64 bits are kept, which are the result when it fits.
+    [[gnu::always_inline]] static constexpr int64_t RoundShift(detail::NativeI128 product, int shift) noexcept {
+        const auto p = static_cast<detail::NativeU128>(product);
         const auto negative = static_cast<uint64_t>(static_cast<int64_t>(static_cast<uint64_t>(p >> 64)) >> 63);
         const auto q = static_cast<uint64_t>(p >> shift);
         const uint64_t f = static_cast<uint64_t>(p) & ((uint64_t{1} << shift) - 1);

@@ -1,9 +1,10 @@
-// A contact row whose inputs are within the bound its set-up computed runs without range tests
-// (dynamics/contacts/ContactRowBound.h). That must give the tested row's bits: the same
-// velocities, impulses and saturation count. Rows are drawn with constants of every scale and
-// inputs driven to just inside and just outside their bound; within it, the tested row must never
-// saturate (the bound is sound). And the inputs must reach the bound's edge: with the bound
-// loosened by a few bits the unchecked row must go wrong somewhere, or this test could not fail.
+// A solver row whose inputs are within the widths its set-up computed runs without range tests
+// (dynamics/unchecked/Widths.h): a contact row (ContactRowBound.h) or a joint's point row
+// (JointSolver.h). That must give the tested row's bits: the same velocities, impulses and
+// saturation count. Rows are drawn with constants of every scale and inputs driven to just inside
+// and just outside their bound; within it, the tested row must never saturate (the bound is
+// sound). And the inputs must reach the bound's edge: with the bound loosened by a few bits the
+// unchecked row must go wrong somewhere, or these tests could not fail.
 
 #include <algorithm>
 #include <bit>
@@ -18,15 +19,19 @@
 #include "../dynamics/DynamicsTestUtil.h"
 #include "dynamics/contacts/ContactRowBound.h"
 #include "dynamics/contacts/ContactSolver.h"
-#include "dynamics/contacts/UncheckedWide.h"
+#include "dynamics/joints/JointSolver.h"
+#include "dynamics/unchecked/UncheckedWide.h"
+#include "lockbox/dynamics/joints/RevoluteJoint.h"
 #include "lockbox/fixed/Overflow.h"
 
 namespace lockbox {
 namespace LOCKBOX_TEST_FILE {
 
+using JointSolver = core_detail::Engine::Joints::Solver;
+
 // Restores the unchecked rows when a test ends, whatever it switched.
 struct UncheckedAllowed {
-    ~UncheckedAllowed() { b2ContactSolver::AllowUncheckedRows(true); }
+    ~UncheckedAllowed() { solver::AllowUncheckedRows(true); }
 };
 
 class RowDrawer {
@@ -118,7 +123,7 @@ struct Solved {
 };
 
 Solved SolveOnce(b2ContactVelocityConstraint vc, std::vector<b2Velocity> bodies, bool unchecked) {
-    b2ContactSolver::AllowUncheckedRows(unchecked);
+    solver::AllowUncheckedRows(unchecked);
     b2ContactSolverDef def;
     def.count = 1;
     def.velocities = bodies.data();
@@ -148,14 +153,10 @@ bool SameBits(const Solved& a, const Solved& b) {
     return true;
 }
 
-// The width a limit allows (a folded input below 2^w - 1 has |raw| < 2^w).
-int WidthAllowed(uint64_t below) { return static_cast<int>(std::bit_width(below)); }
-uint64_t Loosened(uint64_t below, int bits) {
-    const int width = std::min(WidthAllowed(below) + bits, 63);
-    return below == 0 ? 0 : (uint64_t{1} << width) - 1;
-}
+// A width `bits` looser (a row with no width stays without).
+uint8_t Loosened(uint8_t width, int bits) { return width == 0 ? 0 : static_cast<uint8_t>(std::min(width + bits, 63)); }
 
-TEST(ContactRowBound, RowsWithinTheBoundGiveTheTestedRowsBits) {
+TEST(UncheckedRows, ContactRowsWithinTheBoundGiveTheTestedRowsBits) {
 #ifndef LOCKBOX_UNCHECKED_ROWS
     GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
 #else
@@ -168,15 +169,14 @@ TEST(ContactRowBound, RowsWithinTheBoundGiveTheTestedRowsBits) {
     for (int trial = 0; trial < 60000; ++trial) {
         b2ContactVelocityConstraint vc;
         draw.Fill(vc);
-        const b2UncheckedLimits limits = solver::UncheckedLimits(vc);
+        const solver::InputWidths widths = solver::UncheckedWidths(vc);
         // Half the rows keep the computed bound; the rest loosen it to see that it matters.
         const int loosen = draw.Chance(2) ? 0 : draw.Pick(1, kMaxLoosening);
-        vc.unchecked = {Loosened(limits.velocitiesBelow, loosen), Loosened(limits.impulsesBelow, loosen)};
-        const bool none = limits.velocitiesBelow == 0;
+        vc.unchecked = {Loosened(widths.velocities, loosen), Loosened(widths.impulses, loosen)};
+        const bool none = widths.velocities == 0 || widths.impulses == 0;
         if (!none) ++bounded;
-        const int velocityWidth =
-            none ? draw.Pick(16, 48) : WidthAllowed(vc.unchecked.velocitiesBelow) + draw.Pick(-3, 1);
-        const int impulseWidth = none ? draw.Pick(16, 48) : WidthAllowed(vc.unchecked.impulsesBelow) + draw.Pick(-3, 1);
+        const int velocityWidth = none ? draw.Pick(16, 48) : vc.unchecked.velocities + draw.Pick(-3, 1);
+        const int impulseWidth = none ? draw.Pick(16, 48) : vc.unchecked.impulses + draw.Pick(-3, 1);
         std::vector<b2Velocity> bodies(2);
         draw.Inputs(vc, bodies, velocityWidth, impulseWidth);
 
@@ -200,7 +200,7 @@ TEST(ContactRowBound, RowsWithinTheBoundGiveTheTestedRowsBits) {
     // The inputs reach the edge: a bound a few bits looser lets wrong rows through.
     ASSERT_FALSE(wrongWhenLoosened.empty());
     const int tightest = wrongWhenLoosened.begin()->first;
-    std::printf("[ bound    ] rows unchecked %lld, tested %lld; wrong with the bound loosened by",
+    std::printf("[ bound    ] contact rows unchecked %lld, tested %lld; wrong with the bound loosened by",
                 static_cast<long long>(unchecked), static_cast<long long>(tested));
     for (const auto& [bits, rows] : wrongWhenLoosened)
         std::printf(" %d bits: %lld,", bits, static_cast<long long>(rows));
@@ -209,12 +209,131 @@ TEST(ContactRowBound, RowsWithinTheBoundGiveTheTestedRowsBits) {
 #endif
 }
 
-// The hashes of a pyramid dropped from a height: while it lands, some rows are beyond their
-// bound and keep their tests.
+// Point rows of a revolute joint: arms of any length, a point block around 2^mass kg and
+// responses around its inverse.
+void FillPointRow(RowDrawer& draw, JointSolver::Row& row) {
+    row = JointSolver::Row();
+    row.indexA = 0;
+    row.indexB = 1;
+    const int mass = 32 + draw.Pick(-14, 14);
+    const int resp = 64 - mass + draw.Pick(-3, 9);
+    const int arm = draw.Chance(3) ? draw.Pick(1, 31) : draw.Pick(12, 19);
+    row.rA = b2Vec2(draw.FixedOf(arm), draw.FixedOf(arm));
+    row.rB = b2Vec2(draw.FixedOf(arm), draw.FixedOf(arm));
+    const bool staticA = draw.Chance(5);
+    row.mA = staticA ? Wide() : draw.WideOf(resp);
+    row.iA = staticA ? Wide() : draw.WideOf(resp);
+    row.mB = draw.WideOf(resp);
+    row.iB = draw.WideOf(resp);
+    row.pointMass =
+        b2WideMat22(b2WideVec2(draw.WideOf(mass), draw.WideOf(mass)), b2WideVec2(draw.WideOf(mass), draw.WideOf(mass)));
+}
+
+struct PointSolved {
+    std::vector<b2Velocity> bodies;
+    b2WideVec2 impulse;
+    uint64_t saturations = 0;
+    bool operator==(const PointSolved& o) const {
+        for (size_t i = 0; i < bodies.size(); ++i) {
+            if (bodies[i].v.x != o.bodies[i].v.x || bodies[i].v.y != o.bodies[i].v.y || bodies[i].w != o.bodies[i].w)
+                return false;
+        }
+        return impulse.x == o.impulse.x && impulse.y == o.impulse.y && saturations == o.saturations;
+    }
+};
+
+PointSolved SolvePoint(JointSolver::Row row, std::vector<b2Velocity> bodies, bool unchecked) {
+    b2SolverData data;
+    data.velocities = bodies.data();
+    PointSolved out;
+    {
+        const SaturationCapture capture(&out.saturations);
+        JointSolver::SolvePointRow(row, data, unchecked);
+    }
+    out.bodies = std::move(bodies);
+    out.impulse = row.impulse;
+    return out;
+}
+
+TEST(UncheckedRows, PointRowsWithinTheBoundGiveTheTestedRowsBits) {
+#ifndef LOCKBOX_UNCHECKED_ROWS
+    GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
+#else
+    if (kOverflowTraps) GTEST_SKIP() << "the rows saturate on purpose, which a checked build traps";
+    RowDrawer draw(1130);
+    constexpr int kMaxLoosening = 12;
+    int64_t unchecked = 0, tested = 0;
+    std::map<int, int64_t> wrongWhenLoosened;
+    for (int trial = 0; trial < 60000; ++trial) {
+        JointSolver::Row row;
+        FillPointRow(draw, row);
+        const solver::InputWidths widths = JointSolver::PointRowWidths(row);
+        const int loosen = draw.Chance(2) ? 0 : draw.Pick(1, kMaxLoosening);
+        row.unchecked = {Loosened(widths.velocities, loosen), Loosened(widths.impulses, loosen)};
+        const bool none = widths.velocities == 0 || widths.impulses == 0;
+        const int velocityWidth = none ? draw.Pick(16, 48) : row.unchecked.velocities + draw.Pick(-3, 1);
+        const int impulseWidth = none ? draw.Pick(16, 48) : row.unchecked.impulses + draw.Pick(-3, 1);
+        std::vector<b2Velocity> bodies(2);
+        for (b2Velocity& b : bodies) {
+            b.v =
+                b2WideVec2(draw.WideOf(velocityWidth - draw.Pick(0, 1)), draw.WideOf(velocityWidth - draw.Pick(0, 1)));
+            b.w = draw.WideOf(velocityWidth - draw.Pick(0, 1));
+        }
+        if (row.mA == Wide()) bodies[0] = b2Velocity();
+        row.impulse = b2WideVec2(draw.WideOf(impulseWidth), draw.WideOf(impulseWidth));
+
+        uint64_t velocities = 0;
+        for (const b2Velocity& b : bodies)
+            velocities |= solver::Folded(b.v.x) | solver::Folded(b.v.y) | solver::Folded(b.w);
+        const bool fits =
+            solver::Within(velocities, row.unchecked.velocities) &&
+            solver::Within(solver::Folded(row.impulse.x) | solver::Folded(row.impulse.y), row.unchecked.impulses);
+        const PointSolved fast = SolvePoint(row, bodies, true);
+        const PointSolved reference = SolvePoint(row, bodies, false);
+        if (loosen == 0) {
+            (fits ? unchecked : tested) += 1;
+            if (fits) {
+                ASSERT_EQ(reference.saturations, 0u) << "trial " << trial << ": the bound let a saturating row run";
+            }
+            ASSERT_TRUE(fast == reference) << "trial " << trial;
+        } else if (fits && !(fast == reference)) {
+            ++wrongWhenLoosened[loosen];
+        }
+    }
+    EXPECT_GT(unchecked, 5000);
+    EXPECT_GT(tested, 5000);
+    ASSERT_FALSE(wrongWhenLoosened.empty());
+    std::printf("[ bound    ] point rows unchecked %lld, tested %lld; wrong with the bound loosened by",
+                static_cast<long long>(unchecked), static_cast<long long>(tested));
+    for (const auto& [bits, rows] : wrongWhenLoosened)
+        std::printf(" %d bits: %lld,", bits, static_cast<long long>(rows));
+    std::printf("\n");
+    EXPECT_LE(wrongWhenLoosened.begin()->first, 8);
+#endif
+}
+
+// The hashes of a pyramid dropped from a height beside a chain swinging from a pin: while the
+// pyramid lands, some rows are beyond their bound and keep their tests.
 std::vector<uint64_t> Hashes(bool unchecked) {
-    b2ContactSolver::AllowUncheckedRows(unchecked);
+    solver::AllowUncheckedRows(unchecked);
     b2World world(b2Vec2(0, -10));
     test::MakeBoxPyramid(world, 12, 150, 101);
+    b2BodyDef pinDef;
+    pinDef.position.Set(-20, 30);
+    b2Body* previous = world.CreateBody(&pinDef);
+    b2PolygonShape link;
+    link.SetAsBox(Fixed(0.5), Fixed(0.125));
+    for (int i = 0; i < 20; ++i) {
+        b2BodyDef def;
+        def.type = b2_dynamicBody;
+        def.position.Set(Fixed(-19.5) + Fixed(i), 30);
+        b2Body* body = world.CreateBody(&def);
+        body->CreateFixture(&link, 1);
+        b2RevoluteJointDef joint;
+        joint.Initialize(previous, body, b2Vec2(Fixed(-20) + Fixed(i), 30));
+        world.CreateJoint(&joint);
+        previous = body;
+    }
     std::vector<uint64_t> hashes;
     for (int i = 0; i < 120; ++i) {
         world.Step(test::kDt, 8, 3);
@@ -223,7 +342,7 @@ std::vector<uint64_t> Hashes(bool unchecked) {
     return hashes;
 }
 
-TEST(ContactRowBound, WorldGivesTheSameHashesWithAndWithoutUncheckedRows) {
+TEST(UncheckedRows, WorldsGiveTheSameHashesWithAndWithoutUncheckedRows) {
     const UncheckedAllowed restore;
     EXPECT_EQ(Hashes(true), Hashes(false));
 }
