@@ -163,6 +163,42 @@ bool SameBits(const Solved& a, const Solved& b) {
 // A width `bits` looser (a row with no width stays without).
 uint8_t Loosened(uint8_t width, int bits) { return width == 0 ? 0 : static_cast<uint8_t>(std::min(width + bits, 63)); }
 
+// What the trials of one kind of row found. A trial keeps the row's widths (loosen 0) or loosens
+// them by a few bits on purpose.
+class Tally {
+public:
+    static constexpr int kMaxLoosening = 12;
+
+    // Judges one trial; false when it breaks the bound's promise (the caller stops there).
+    bool Judge(int loosen, bool fits, bool same, uint64_t referenceSaturations) {
+        if (loosen == 0) {
+            (fits ? m_unchecked : m_tested) += 1;
+            // Within the widths the tested row never saturates, and both paths agree.
+            return same && (!fits || referenceSaturations == 0);
+        }
+        if (fits && !same) ++m_wrongWhenLoosened[loosen];
+        return true;
+    }
+
+    // Both paths ran, and the inputs reached the bound's edge: widths a few bits looser let wrong
+    // rows through.
+    void Check(const char* rows) const {
+        EXPECT_GT(m_unchecked, 5000);
+        EXPECT_GT(m_tested, 5000);
+        ASSERT_FALSE(m_wrongWhenLoosened.empty());
+        std::printf("[ bound    ] %s unchecked %lld, tested %lld; wrong with the bound loosened by", rows,
+                    static_cast<long long>(m_unchecked), static_cast<long long>(m_tested));
+        for (const auto& [bits, count] : m_wrongWhenLoosened)
+            std::printf(" %d bits: %lld,", bits, static_cast<long long>(count));
+        std::printf("\n");
+        EXPECT_LE(m_wrongWhenLoosened.begin()->first, 8);
+    }
+
+private:
+    int64_t m_unchecked = 0, m_tested = 0;
+    std::map<int, int64_t> m_wrongWhenLoosened;  // bits of loosening -> rows that went wrong
+};
+
 TEST(UncheckedRows, ContactRowsWithinTheBoundGiveTheTestedRowsBits) {
 #ifndef LOCKBOX_UNCHECKED_ROWS
     GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
@@ -170,15 +206,14 @@ TEST(UncheckedRows, ContactRowsWithinTheBoundGiveTheTestedRowsBits) {
     const QuietTraps quiet;
     const UncheckedAllowed restore;
     RowDrawer draw(20261130);
-    constexpr int kMaxLoosening = 12;
-    int64_t unchecked = 0, tested = 0, bounded = 0;
-    std::map<int, int64_t> wrongWhenLoosened;  // bits of loosening -> rows that went wrong
+    Tally tally;
+    int64_t bounded = 0;
     for (int trial = 0; trial < 60000; ++trial) {
         b2ContactVelocityConstraint vc;
         draw.Fill(vc);
         const solver::InputWidths widths = solver::UncheckedWidths(vc);
         // Half the rows keep the computed bound; the rest loosen it to see that it matters.
-        const int loosen = draw.Chance(2) ? 0 : draw.Pick(1, kMaxLoosening);
+        const int loosen = draw.Chance(2) ? 0 : draw.Pick(1, Tally::kMaxLoosening);
         vc.unchecked = {Loosened(widths.velocities, loosen), Loosened(widths.impulses, loosen)};
         const bool none = widths.velocities == 0 || widths.impulses == 0;
         if (!none) ++bounded;
@@ -190,29 +225,11 @@ TEST(UncheckedRows, ContactRowsWithinTheBoundGiveTheTestedRowsBits) {
         const bool fits = solver::UncheckedRowFits(vc, bodies[0].v, bodies[0].w, bodies[1].v, bodies[1].w);
         const Solved fast = SolveOnce(vc, bodies, true);
         const Solved reference = SolveOnce(vc, bodies, false);
-        if (loosen == 0) {
-            (fits ? unchecked : tested) += 1;
-            if (fits) {
-                ASSERT_EQ(reference.saturations, 0u) << "trial " << trial << ": the bound let a saturating row run";
-            }
-            ASSERT_TRUE(SameBits(fast, reference)) << "trial " << trial;
-        } else if (fits && !SameBits(fast, reference)) {
-            ++wrongWhenLoosened[loosen];
-        }
+        ASSERT_TRUE(tally.Judge(loosen, fits, SameBits(fast, reference), reference.saturations)) << "trial " << trial;
     }
     // Both paths ran, and most rows with a bound fit it.
-    EXPECT_GT(unchecked, 5000);
-    EXPECT_GT(tested, 5000);
     EXPECT_GT(bounded, 50000);
-    // The inputs reach the edge: a bound a few bits looser lets wrong rows through.
-    ASSERT_FALSE(wrongWhenLoosened.empty());
-    const int tightest = wrongWhenLoosened.begin()->first;
-    std::printf("[ bound    ] contact rows unchecked %lld, tested %lld; wrong with the bound loosened by",
-                static_cast<long long>(unchecked), static_cast<long long>(tested));
-    for (const auto& [bits, rows] : wrongWhenLoosened)
-        std::printf(" %d bits: %lld,", bits, static_cast<long long>(rows));
-    std::printf("\n");
-    EXPECT_LE(tightest, 8);
+    tally.Check("contact rows");
 #endif
 }
 
@@ -268,14 +285,12 @@ TEST(UncheckedRows, PointRowsWithinTheBoundGiveTheTestedRowsBits) {
 #else
     const QuietTraps quiet;
     RowDrawer draw(1130);
-    constexpr int kMaxLoosening = 12;
-    int64_t unchecked = 0, tested = 0;
-    std::map<int, int64_t> wrongWhenLoosened;
+    Tally tally;
     for (int trial = 0; trial < 60000; ++trial) {
         JointSolver::Row row;
         FillPointRow(draw, row);
         const solver::InputWidths widths = JointSolver::PointRowWidths(row);
-        const int loosen = draw.Chance(2) ? 0 : draw.Pick(1, kMaxLoosening);
+        const int loosen = draw.Chance(2) ? 0 : draw.Pick(1, Tally::kMaxLoosening);
         row.unchecked = {Loosened(widths.velocities, loosen), Loosened(widths.impulses, loosen)};
         const bool none = widths.velocities == 0 || widths.impulses == 0;
         const int velocityWidth = none ? draw.Pick(16, 48) : row.unchecked.velocities + draw.Pick(-3, 1);
@@ -297,25 +312,9 @@ TEST(UncheckedRows, PointRowsWithinTheBoundGiveTheTestedRowsBits) {
             solver::Within(solver::Folded(row.impulse.x) | solver::Folded(row.impulse.y), row.unchecked.impulses);
         const PointSolved fast = SolvePoint(row, bodies, true);
         const PointSolved reference = SolvePoint(row, bodies, false);
-        if (loosen == 0) {
-            (fits ? unchecked : tested) += 1;
-            if (fits) {
-                ASSERT_EQ(reference.saturations, 0u) << "trial " << trial << ": the bound let a saturating row run";
-            }
-            ASSERT_TRUE(fast == reference) << "trial " << trial;
-        } else if (fits && !(fast == reference)) {
-            ++wrongWhenLoosened[loosen];
-        }
+        ASSERT_TRUE(tally.Judge(loosen, fits, fast == reference, reference.saturations)) << "trial " << trial;
     }
-    EXPECT_GT(unchecked, 5000);
-    EXPECT_GT(tested, 5000);
-    ASSERT_FALSE(wrongWhenLoosened.empty());
-    std::printf("[ bound    ] point rows unchecked %lld, tested %lld; wrong with the bound loosened by",
-                static_cast<long long>(unchecked), static_cast<long long>(tested));
-    for (const auto& [bits, rows] : wrongWhenLoosened)
-        std::printf(" %d bits: %lld,", bits, static_cast<long long>(rows));
-    std::printf("\n");
-    EXPECT_LE(wrongWhenLoosened.begin()->first, 8);
+    tally.Check("point rows");
 #endif
 }
 
