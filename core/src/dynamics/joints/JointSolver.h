@@ -9,6 +9,8 @@
 // to the joint only its state. Every other joint is solved through its own
 // SolveVelocityConstraints, in the same place of the order.
 // The arithmetic of a row is the joint's own, operation for operation: the bits are the same.
+// While a row's inputs are within the widths its set-up derived, it runs without range tests
+// (dynamics/unchecked/Widths.h), which gives the same bits again.
 //
 // The rows are scratch of one island's solve, never state: snapshots and frames do not see them.
 
