@@ -1,8 +1,9 @@
 #pragma once
-// Q32.32 arithmetic with Wide's rounding and no range tests, for a contact row whose every
-// result is proven to stay in range before it runs (Widths.h). Where Wide's result
-// is in range it is exactly this type's, so a proven row gives Wide's bits; out of range these
-// operations wrap where Wide saturates, which is why nothing may use them without the proof.
+// Q32.32 arithmetic with Wide's rounding and no range tests, for a solver row (a contact's, a
+// revolute joint's point row) whose every result is proven to stay in range before it runs
+// (Widths.h). Where Wide's result is in range it is exactly this type's, so a proven row gives
+// Wide's bits; out of range these operations wrap where Wide saturates, which is why nothing may
+// use them without the proof.
 //
 // Products by a Q32.32 value are formed in 128 bits, so they never overflow before their
 // rounding; only the rounded result must fit. That needs a native 128-bit integer: elsewhere the
@@ -55,7 +56,7 @@ public:
     constexpr UncheckedWide& operator+=(UncheckedWide b) noexcept { return *this = *this + b; }
     constexpr UncheckedWide& operator-=(UncheckedWide b) noexcept { return *this = *this - b; }
 
-    // Wide * Wide and Wide * Fixed, rounded to 2^-32 with ties away from zero, as Wide's.
+    // Wide * Wide, rounded to 2^-32 with ties away from zero, as Wide's.
     [[gnu::always_inline]] friend constexpr UncheckedWide operator*(UncheckedWide a, UncheckedWide b) noexcept {
         return FromRaw(RoundShift(static_cast<detail::NativeI128>(a.m_raw) * b.m_raw, Wide::kFractionBits));
     }
