@@ -304,9 +304,7 @@ TEST(UncheckedRows, PointRowsWithinTheBoundGiveTheTestedRowsBits) {
         if (row.mA == Wide()) bodies[0] = b2Velocity();
         row.impulse = b2WideVec2(draw.WideOf(impulseWidth), draw.WideOf(impulseWidth));
 
-        uint64_t velocities = 0;
-        for (const b2Velocity& b : bodies)
-            velocities |= solver::Folded(b.v.x) | solver::Folded(b.v.y) | solver::Folded(b.w);
+        const uint64_t velocities = solver::FoldedPair(bodies[0].v, bodies[0].w, bodies[1].v, bodies[1].w);
         const bool fits =
             solver::Within(velocities, row.unchecked.velocities) &&
             solver::Within(solver::Folded(row.impulse.x) | solver::Folded(row.impulse.y), row.unchecked.impulses);

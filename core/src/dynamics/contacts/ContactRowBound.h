@@ -15,7 +15,7 @@ InputWidths UncheckedWidths(const b2ContactVelocityConstraint& vc) noexcept;
 template <class V, class N>
 [[gnu::always_inline]] inline bool UncheckedRowFits(const b2ContactVelocityConstraint& vc, const V& vA, N wA,
                                                     const V& vB, N wB) noexcept {
-    const uint64_t velocities = Folded(vA.x) | Folded(vA.y) | Folded(wA) | Folded(vB.x) | Folded(vB.y) | Folded(wB);
+    const uint64_t velocities = FoldedPair(vA, wA, vB, wB);
     uint64_t impulses = 0;
     for (int32 j = 0; j < vc.pointCount; ++j)
         impulses |= Folded(vc.points[j].normalImpulse) | Folded(vc.points[j].tangentImpulse);

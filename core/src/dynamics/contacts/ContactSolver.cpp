@@ -245,13 +245,11 @@ void b2ContactSolver::SolveVelocityConstraints(int32 begin, int32 end) {
         b2Velocity& bodyB = m_velocities[vc.indexB];
 #ifdef LOCKBOX_UNCHECKED_ROWS
         if (uncheckedAllowed && solver::UncheckedRowFits(vc, bodyA.v, bodyA.w, bodyB.v, bodyB.w)) {
-            solver::UncheckedVec2 vA{bodyA.v.x, bodyA.v.y};
-            solver::UncheckedWide wA = bodyA.w;
-            solver::UncheckedVec2 vB{bodyB.v.x, bodyB.v.y};
-            solver::UncheckedWide wB = bodyB.w;
+            auto vA = solver::UncheckedVec2::From(bodyA.v), vB = solver::UncheckedVec2::From(bodyB.v);
+            solver::UncheckedWide wA = bodyA.w, wB = bodyB.w;
             solver::SolveContactRow(vc, vA, wA, vB, wB);
-            solver::Store(bodyA, b2WideVec2(vA.x.ToWide(), vA.y.ToWide()), wA.ToWide(), vc.invMassA, vc.invIA);
-            solver::Store(bodyB, b2WideVec2(vB.x.ToWide(), vB.y.ToWide()), wB.ToWide(), vc.invMassB, vc.invIB);
+            solver::Store(bodyA, vA.ToWide(), wA.ToWide(), vc.invMassA, vc.invIA);
+            solver::Store(bodyB, vB.ToWide(), wB.ToWide(), vc.invMassB, vc.invIB);
             continue;
         }
 #endif

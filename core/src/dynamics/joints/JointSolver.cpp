@@ -59,21 +59,20 @@ void JointSolver::SolvePointRow(Row& row, const b2SolverData& data, bool uncheck
     b2Velocity& velA = data.velocities[row.indexA];
     b2Velocity& velB = data.velocities[row.indexB];
 #ifdef LOCKBOX_UNCHECKED_ROWS
-    const uint64_t velocities = solver::Folded(velA.v.x) | solver::Folded(velA.v.y) | solver::Folded(velA.w) |
-                                solver::Folded(velB.v.x) | solver::Folded(velB.v.y) | solver::Folded(velB.w);
+    const uint64_t velocities = solver::FoldedPair(velA.v, velA.w, velB.v, velB.w);
     const uint64_t impulse = solver::Folded(row.impulse.x) | solver::Folded(row.impulse.y);
     if (uncheckedAllowed && solver::Within(velocities, row.unchecked.velocities) &&
         solver::Within(impulse, row.unchecked.impulses)) {
         using solver::UncheckedVec2, solver::UncheckedWide;
-        UncheckedVec2 vA{velA.v.x, velA.v.y}, vB{velB.v.x, velB.v.y};
+        auto vA = UncheckedVec2::From(velA.v), vB = UncheckedVec2::From(velB.v);
         UncheckedWide wA = velA.w, wB = velB.w;
-        UncheckedVec2 accumulated{row.impulse.x, row.impulse.y};
+        auto accumulated = UncheckedVec2::From(row.impulse);
         PointRow(row, vA, wA, vB, wB, accumulated);
-        velA.v = b2WideVec2(vA.x.ToWide(), vA.y.ToWide());
+        velA.v = vA.ToWide();
         velA.w = wA.ToWide();
-        velB.v = b2WideVec2(vB.x.ToWide(), vB.y.ToWide());
+        velB.v = vB.ToWide();
         velB.w = wB.ToWide();
-        row.impulse = b2WideVec2(accumulated.x.ToWide(), accumulated.y.ToWide());
+        row.impulse = accumulated.ToWide();
         return;
     }
 #else

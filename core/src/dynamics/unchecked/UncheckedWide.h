@@ -14,6 +14,7 @@
 #include "lockbox/fixed/Fixed.h"
 #include "lockbox/fixed/Vec2.h"
 #include "lockbox/fixed/Wide.h"
+#include "lockbox/fixed/WideVec.h"
 #include "lockbox/fixed/detail/Int128.h"
 
 namespace lockbox::solver {
@@ -101,6 +102,9 @@ private:
 // A pair of components, as b2WideVec2 is for Wide.
 struct UncheckedVec2 {
     UncheckedWide x, y;
+
+    static constexpr UncheckedVec2 From(const b2WideVec2& v) noexcept { return {v.x, v.y}; }
+    constexpr b2WideVec2 ToWide() const noexcept { return {x.ToWide(), y.ToWide()}; }
 };
 
 }  // namespace lockbox::solver
