@@ -1,15 +1,16 @@
 // A solver row whose inputs are within the widths its set-up computed runs without range tests
-// (dynamics/unchecked/Widths.h): a contact row (ContactRowBound.h) or a joint's point row
-// (JointSolver.h). That must give the tested row's bits: the same velocities, impulses and
-// saturation count. Rows are drawn with constants of every scale and inputs driven to just inside
-// and just outside their bound; within it, the tested row must never saturate (the bound is
-// sound). And the inputs must reach the bound's edge: with the bound loosened by a few bits the
-// unchecked row must go wrong somewhere, or these tests could not fail.
+// (dynamics/unchecked/Widths.h): a contact row (ContactRowBound.h), a joint's point row or its
+// position row (JointSolver.h). That must give the tested row's bits: the same velocities (or
+// positions), impulses and saturation count. Rows are drawn with constants of every scale and inputs driven to just
+// inside and just outside their bound; within it, the tested row must never saturate (the bound is sound). And the
+// inputs must reach the bound's edge: with the bound loosened by a few bits the unchecked row must go wrong somewhere,
+// or these tests could not fail.
 
 #include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <random>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "../dynamics/DynamicsTestUtil.h"
 #include "dynamics/contacts/ContactRowBound.h"
 #include "dynamics/contacts/ContactSolver.h"
+#include "dynamics/joints/JointMath.h"
 #include "dynamics/joints/JointSolver.h"
 #include "dynamics/unchecked/UncheckedWide.h"
 #include "lockbox/dynamics/joints/RevoluteJoint.h"
@@ -314,6 +316,119 @@ TEST(UncheckedRows, PointRowsWithinTheBoundGiveTheTestedRowsBits) {
     }
     tally.Check("point rows");
 #endif
+}
+
+// Position rows of a revolute joint: anchors and centres of any size, masses and inertias of
+// every scale (a row's K is formed from them, so its correction impulse is whatever they give).
+void FillPositionRow(RowDrawer& draw, JointSolver::PositionRow& row) {
+    row = JointSolver::PositionRow();
+    row.indexA = 0;
+    row.indexB = 1;
+    const int arm = draw.Chance(3) ? draw.Pick(1, 31) : draw.Pick(12, 19);
+    row.localAnchorA = b2Vec2(draw.FixedOf(arm), draw.FixedOf(arm));
+    row.localCenterA = b2Vec2(draw.FixedOf(arm - draw.Pick(0, 8)), draw.FixedOf(arm - draw.Pick(0, 8)));
+    row.localAnchorB = b2Vec2(draw.FixedOf(arm), draw.FixedOf(arm));
+    row.localCenterB = b2Vec2(draw.FixedOf(arm - draw.Pick(0, 8)), draw.FixedOf(arm - draw.Pick(0, 8)));
+    const int resp = 32 + draw.Pick(-14, 14);
+    const bool staticA = draw.Chance(5);
+    row.mA = staticA ? Wide() : draw.WideOf(resp + draw.Pick(-4, 4));
+    row.iA = staticA ? Wide() : draw.WideOf(resp + draw.Pick(-4, 4));
+    row.mB = draw.WideOf(resp + draw.Pick(-4, 4));
+    row.iB = draw.WideOf(resp + draw.Pick(-4, 4));
+}
+
+struct PositionSolved {
+    std::vector<b2Position> bodies;
+    bool closed = false;
+    uint64_t saturations = 0;
+    bool operator==(const PositionSolved& o) const {
+        for (size_t i = 0; i < bodies.size(); ++i) {
+            if (bodies[i].c.x != o.bodies[i].c.x || bodies[i].c.y != o.bodies[i].c.y || bodies[i].a != o.bodies[i].a)
+                return false;
+        }
+        return closed == o.closed && saturations == o.saturations;
+    }
+};
+
+PositionSolved SolvePosition(const JointSolver::PositionRow& row, std::vector<b2Position> bodies, bool unchecked) {
+    std::vector<b2CachedRot> rotations(bodies.size());
+    b2SolverData data;
+    data.positions = bodies.data();
+    data.rotations = rotations.data();
+    PositionSolved out;
+    {
+        const SaturationCapture capture(&out.saturations);
+        out.closed = JointSolver::SolvePointPositionRow(row, data, unchecked);
+    }
+    out.bodies = std::move(bodies);
+    return out;
+}
+
+// The correction impulse of a position row, as the joint computes it.
+b2WideVec2 RowImpulse(const JointSolver::PositionRow& row, const std::vector<b2Position>& bodies) {
+    const b2Vec2 rA = b2Mul(b2Rot(bodies[0].a), row.localAnchorA - row.localCenterA);
+    const b2Vec2 rB = b2Mul(b2Rot(bodies[1].a), row.localAnchorB - row.localCenterB);
+    const b2Vec2 C = bodies[1].c + rB - bodies[0].c - rA;
+    return jointmath::PointGapImpulse(C, rA, rB, row.mA, row.mB, row.iA, row.iB);
+}
+
+TEST(UncheckedRows, PositionRowsWithinTheBoundGiveTheTestedRowsBits) {
+#ifndef LOCKBOX_UNCHECKED_ROWS
+    GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
+#else
+    const QuietTraps quiet;
+    RowDrawer draw(2611);
+    Tally tally;
+    for (int trial = 0; trial < 60000; ++trial) {
+        JointSolver::PositionRow row;
+        FillPositionRow(draw, row);
+        const JointSolver::PositionWidths widths = JointSolver::PositionRowWidths(row);
+        const int loosen = draw.Chance(2) ? 0 : draw.Pick(1, Tally::kMaxLoosening);
+        // Loosen the poses, the impulses or both.
+        const int which = draw.Pick(0, 2);
+        row.unchecked = {Loosened(widths.poses, which != 1 ? loosen : 0),
+                         Loosened(widths.impulses, which != 0 ? loosen : 0)};
+        const int poseWidth = (widths.poses == 0 ? JointSolver::kPoseWidth : row.unchecked.poses) + draw.Pick(-4, 1);
+        std::vector<b2Position> bodies(2);
+        for (b2Position& b : bodies) {
+            b.c = b2Vec2(draw.FixedOf(poseWidth - draw.Pick(0, 1)), draw.FixedOf(poseWidth - draw.Pick(0, 1)));
+            b.a = draw.Chance(3) ? draw.FixedOf(draw.Pick(0, 3)) : draw.FixedOf(poseWidth - draw.Pick(0, 1));
+        }
+
+        const PositionSolved fast = SolvePosition(row, bodies, true);
+        const PositionSolved reference = SolvePosition(row, bodies, false);
+        // The row ran wholly unchecked when the poses and its impulse fit. A solve that saturates
+        // reports on both paths alike (it is always Wide's); only such a row may saturate.
+        using solver::Folded;
+        const uint64_t poses = Folded(bodies[0].c.x) | Folded(bodies[0].c.y) | Folded(bodies[0].a) |
+                               Folded(bodies[1].c.x) | Folded(bodies[1].c.y) | Folded(bodies[1].a);
+        const b2WideVec2 impulse = RowImpulse(row, bodies);
+        const bool fits = solver::Within(poses, row.unchecked.poses) &&
+                          solver::Within(Folded(impulse.x) | Folded(impulse.y), row.unchecked.impulses);
+        const bool solveSaturated = impulse.x.Raw() == Wide::kMaxRaw || impulse.x.Raw() == -Wide::kMaxRaw ||
+                                    impulse.y.Raw() == Wide::kMaxRaw || impulse.y.Raw() == -Wide::kMaxRaw;
+        ASSERT_TRUE(tally.Judge(loosen, fits, fast == reference, solveSaturated ? 0 : reference.saturations))
+            << "trial " << trial;
+    }
+    tally.Check("position rows");
+#endif
+}
+
+// The rotations the rows take have |c|, |s| <= 1 (raw 2^16), as their bound assumes: every
+// angle of four turns either way, and angles out to the end of the Q16.16 range.
+TEST(UncheckedRows, RotationsStayWithinOne) {
+    const auto within = [](int32_t raw) {
+        b2Rot q;
+        q.Set(Fixed::FromRaw(raw));
+        return std::abs(q.c.Raw()) <= 65536 && std::abs(q.s.Raw()) <= 65536;
+    };
+    constexpr int32_t kFourTurns = 1647099;  // 8 pi in raw units, rounded up
+    for (int32_t raw = -kFourTurns; raw <= kFourTurns; ++raw) ASSERT_TRUE(within(raw)) << raw;
+    std::mt19937 rng(26);
+    for (int i = 0; i < 1000000; ++i) ASSERT_TRUE(within(static_cast<int32_t>(rng()))) << i;
+    ASSERT_TRUE(within(INT32_MAX));
+    ASSERT_TRUE(within(INT32_MIN));
+    ASSERT_TRUE(within(-INT32_MAX));
 }
 
 // The hashes of a pyramid dropped from a height beside a chain swinging from a pin: while the

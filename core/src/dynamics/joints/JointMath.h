@@ -91,14 +91,20 @@ inline Wide CrossW(const b2Vec2& r, const b2Vec2& d) noexcept { return b2CrossWi
 inline Wide InvMassTerm(Wide invMass, Wide invI, Wide armSq) noexcept { return invMass + invI * armSq; }
 
 // The point-to-point position correction (2.2.1's revolute K solve): the impulse that closes
-// the gap C between two anchors at arms rA and rB.
-inline b2WideVec2 PointGapImpulse(const b2Vec2& C, const b2Vec2& rA, const b2Vec2& rB, Wide mA, Wide mB, Wide iA,
-                                  Wide iB) noexcept {
+// the gap C between two anchors at arms rA and rB. K is formed on Wide, or on
+// solver::UncheckedWide for a position row proven to stay in range (the same bits); the solve is
+// always Wide's.
+template <class N>
+inline b2WideVec2 PointGapImpulse(const b2Vec2& C, const b2Vec2& rA, const b2Vec2& rB, N mA, N mB, N iA,
+                                  N iB) noexcept {
+    const N exx = mA + mB + iA * N(MulWide(rA.y, rA.y)) + iB * N(MulWide(rB.y, rB.y));
+    const N exy = -(iA * N(MulWide(rA.x, rA.y))) - iB * N(MulWide(rB.x, rB.y));
+    const N eyy = mA + mB + iA * N(MulWide(rA.x, rA.x)) + iB * N(MulWide(rB.x, rB.x));
     b2WideMat22 K;
-    K.ex.x = mA + mB + iA * MulWide(rA.y, rA.y) + iB * MulWide(rB.y, rB.y);
-    K.ex.y = -(iA * MulWide(rA.x, rA.y)) - iB * MulWide(rB.x, rB.y);
+    K.ex.x = Wide(exx);
+    K.ex.y = Wide(exy);
     K.ey.x = K.ex.y;
-    K.ey.y = mA + mB + iA * MulWide(rA.x, rA.x) + iB * MulWide(rB.x, rB.x);
+    K.ey.y = Wide(eyy);
     return -K.Solve(C);
 }
 

@@ -1,5 +1,7 @@
 #include "dynamics/joints/JointSolver.h"
 
+#include <algorithm>
+
 #include "JointMath.h"
 #include "dynamics/unchecked/UncheckedWide.h"
 #include "lockbox/dynamics/joints/RevoluteJoint.h"
@@ -91,38 +93,118 @@ void JointSolver::SolvePointRow(Row& row, const b2SolverData& data, bool uncheck
 
 namespace {
 
-// One position iteration of a revolute joint whose limit is idle: the point-to-point part of
-// b2RevoluteJoint::SolvePositionConstraints (the angular error is then zero).
-bool SolvePointPositionRow(const JointSolver::PositionRow& row, const b2SolverData& data) noexcept {
+// q v on Fixed, as the joint computes its arms (the unchecked row has solver::Rotate).
+inline b2Vec2 Rotate(const b2Rot& q, Fixed x, Fixed y) noexcept { return b2Mul(q, b2Vec2(x, y)); }
+
+// A body's centre and angle in a position row, on Fixed or solver::UncheckedFixed.
+template <class F>
+struct Pose {
+    F x, y, a;
+
+    static Pose Load(const b2Position& p) noexcept { return {F(p.c.x), F(p.c.y), F(p.a)}; }
+    void Store(b2Position& p) const noexcept {
+        p.c = b2Vec2(Fixed(x), Fixed(y));
+        p.a = Fixed(a);
+    }
+};
+
+// The anchors' arms, and the impulse that closes the gap between the anchors.
+struct Gap {
+    b2Vec2 rA, rB;
+    b2WideVec2 impulse;
+    bool closed = false;  ///< the gap is within the linear slop
+};
+
+// The point-to-point part of b2RevoluteJoint::SolvePositionConstraints, the same operations in
+// the same order, in two halves: the gap between the anchors and the impulse that closes it,
+// then that impulse applied to both bodies (its ApplyNeg and ApplyPos written out). Each half
+// runs on Fixed and Wide or, where it is proven to stay in range, on their unchecked twins.
+template <class F, class N>
+[[gnu::always_inline]] inline Gap PointGap(const JointSolver::PositionRow& row, const b2Rot& qA, const b2Rot& qB,
+                                           const Pose<F>& A, const Pose<F>& B) noexcept {
+    Gap g;
+    g.rA = Rotate(qA, F(row.localAnchorA.x) - F(row.localCenterA.x), F(row.localAnchorA.y) - F(row.localCenterA.y));
+    g.rB = Rotate(qB, F(row.localAnchorB.x) - F(row.localCenterB.x), F(row.localAnchorB.y) - F(row.localCenterB.y));
+    const b2Vec2 C(Fixed(B.x + F(g.rB.x) - A.x - F(g.rA.x)), Fixed(B.y + F(g.rB.y) - A.y - F(g.rA.y)));
+    g.closed = LengthWithin(C, b2_linearSlop);
+    g.impulse = PointGapImpulse(C, g.rA, g.rB, N(row.mA), N(row.mB), N(row.iA), N(row.iB));
+    return g;
+}
+
+template <class F, class N>
+[[gnu::always_inline]] inline void ApplyGapImpulse(const JointSolver::PositionRow& row, const Gap& g, Pose<F>& A,
+                                                   Pose<F>& B) noexcept {
+    const N px = g.impulse.x, py = g.impulse.y;
+    A.x -= MulToFixed(N(row.mA), px);
+    A.y -= MulToFixed(N(row.mA), py);
+    A.a -= MulToFixed(N(row.iA), ArmCross(g.rA, px, py));
+    B.x += MulToFixed(N(row.mB), px);
+    B.y += MulToFixed(N(row.mB), py);
+    B.a += MulToFixed(N(row.iB), ArmCross(g.rB, px, py));
+}
+
+// The tested correction, applied to the bodies where they are stored.
+void ApplyGap(const JointSolver::PositionRow& row, const Gap& g, b2Position& posA, b2Position& posB) noexcept {
+    auto A = Pose<Fixed>::Load(posA), B = Pose<Fixed>::Load(posB);
+    ApplyGapImpulse<Fixed, Wide>(row, g, A, B);
+    A.Store(posA);
+    B.Store(posB);
+}
+
+}  // namespace
+
+bool JointSolver::SolvePointPositionRow(const PositionRow& row, const b2SolverData& data,
+                                        bool uncheckedAllowed) noexcept {
     b2Position& posA = data.positions[row.indexA];
     b2Position& posB = data.positions[row.indexB];
-    b2Vec2 cA = posA.c;
-    Fixed aA = posA.a;
-    b2Vec2 cB = posB.c;
-    Fixed aB = posB.a;
-
-    const Wide mA = row.mA, mB = row.mB, iA = row.iA, iB = row.iB;
-    const b2Rot qA = data.Rotation(row.indexA, aA), qB = data.Rotation(row.indexB, aB);
-    const b2Vec2 rA = b2Mul(qA, row.localAnchorA - row.localCenterA);
-    const b2Vec2 rB = b2Mul(qB, row.localAnchorB - row.localCenterB);
-    const b2Vec2 C = cB + rB - cA - rA;
-    const bool closed = LengthWithin(C, b2_linearSlop);
-
-    const b2WideVec2 impulse = PointGapImpulse(C, rA, rB, mA, mB, iA, iB);
-
-    const BodyData A{row.indexA, row.localCenterA, mA, iA};
-    const BodyData B{row.indexB, row.localCenterB, mB, iB};
-    ApplyNeg(cA, aA, A, rA, impulse);
-    ApplyPos(cB, aB, B, rB, impulse);
-
-    posA.c = cA;
-    posA.a = aA;
-    posB.c = cB;
-    posB.a = aB;
-
-    return closed;
+    const b2Rot qA = data.Rotation(row.indexA, posA.a), qB = data.Rotation(row.indexB, posB.a);
+#ifdef LOCKBOX_UNCHECKED_ROWS
+    using solver::Folded;
+    const uint64_t poses =
+        Folded(posA.c.x) | Folded(posA.c.y) | Folded(posA.a) | Folded(posB.c.x) | Folded(posB.c.y) | Folded(posB.a);
+    if (uncheckedAllowed && solver::Within(poses, row.unchecked.poses)) {
+        using solver::UncheckedFixed, solver::UncheckedWide;
+        auto A = Pose<UncheckedFixed>::Load(posA), B = Pose<UncheckedFixed>::Load(posB);
+        const Gap g = PointGap<UncheckedFixed, UncheckedWide>(row, qA, qB, A, B);
+        if (solver::Within(Folded(g.impulse.x) | Folded(g.impulse.y), row.unchecked.impulses)) {
+            ApplyGapImpulse<UncheckedFixed, UncheckedWide>(row, g, A, B);
+            A.Store(posA);
+            B.Store(posB);
+        } else {
+            ApplyGap(row, g, posA, posB);
+        }
+        return g.closed;
+    }
+#else
+    (void)uncheckedAllowed;
+#endif
+    const Gap g = PointGap<Fixed, Wide>(row, qA, qB, Pose<Fixed>::Load(posA), Pose<Fixed>::Load(posB));
+    ApplyGap(row, g, posA, posB);
+    return g.closed;
 }
-}  // namespace
+
+JointSolver::PositionWidths JointSolver::PositionRowWidths(const PositionRow& row) noexcept {
+    using namespace solver;
+    // The arms' local vectors, exact in 64 bits (the row subtracts them without a test when the
+    // difference fits).
+    const auto local = [](const b2Vec2& anchor, const b2Vec2& centre) {
+        return Folded(int64_t{anchor.x.Raw()} - centre.x.Raw()) | Folded(int64_t{anchor.y.Raw()} - centre.y.Raw());
+    };
+    // A rotation has |c|, |s| <= 1 (raw 2^16), so |q v| <= 2 max(|v.x|, |v.y|): two bits wider.
+    const int arm = WidthOf(local(row.localAnchorA, row.localCenterA) | local(row.localAnchorB, row.localCenterB)) + 2;
+    // The gap B + rB - A - rA of bodies and arms within kPoseWidth stays below 2^31.
+    if (arm > kPoseWidth) return {};
+    const int mass = WidthOf(Folded(row.mA) | Folded(row.mB));
+    const int turn = WidthOf(Folded(row.iA) | Folded(row.iB));
+    // K: sums of four terms, inverse masses and i r^2 (an exact r^2 times i, rounded by 2^32).
+    if (std::max(mass, turn + 2 * arm - 31) + 2 > kWidestResult) return {};
+    // An impulse of width w changes a centre by m p (rounded by 2^48: mass + w - 47 bits) and an
+    // angle by i (r x p) (r x p rounded by 2^16 to a Wide of arm + w - 14 bits, then by 2^48:
+    // turn + arm + w - 61 bits). Changes within kPoseWidth keep the bodies below 2^30.
+    const int impulses =
+        std::min({kPoseWidth + 47 - mass, kWidestResult + 14 - arm, kPoseWidth + 61 - turn - arm, kWidestResult});
+    return {static_cast<uint8_t>(kPoseWidth), static_cast<uint8_t>(std::max(impulses, 0))};
+}
 
 void JointSolver::Begin(int32 count) {
     if (m_rows.size() < static_cast<size_t>(count)) {
@@ -179,6 +261,9 @@ void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 begin, i
         position.mB = s.mB;
         position.iA = s.iA;
         position.iB = s.iB;
+#ifdef LOCKBOX_UNCHECKED_ROWS
+        position.unchecked = PositionRowWidths(position);
+#endif
     }
 }
 
@@ -230,12 +315,13 @@ void JointSolver::StoreImpulses(int32 begin, int32 end) const {
 namespace lockbox {
 
 bool JointSolver::SolvePositionConstraints(const b2SolverData& data, int32 begin, int32 end) const {
+    const bool uncheckedAllowed = solver::UncheckedRowsAllowed();
     bool okay = true;
     for (int32 i = begin; i < end; ++i) {
         const Row& row = m_rows[static_cast<size_t>(i)];
-        const bool jointOkay = row.revolute != nullptr
-                                   ? SolvePointPositionRow(m_positionRows[static_cast<size_t>(i)], data)
-                                   : row.joint->SolvePositionConstraints(data);
+        const bool jointOkay = row.revolute != nullptr ? SolvePointPositionRow(m_positionRows[static_cast<size_t>(i)],
+                                                                               data, uncheckedAllowed)
+                                                       : row.joint->SolvePositionConstraints(data);
         okay = okay && jointOkay;
     }
     return okay;

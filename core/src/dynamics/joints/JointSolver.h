@@ -10,7 +10,7 @@
 // SolveVelocityConstraints, in the same place of the order.
 // The arithmetic of a row is the joint's own, operation for operation: the bits are the same.
 // While a row's inputs are within the widths its set-up derived, it runs without range tests
-// (dynamics/unchecked/Widths.h), which gives the same bits again.
+// (dynamics/unchecked/Widths.h), which gives the same bits again; so does its position row.
 //
 // The rows are scratch of one island's solve, never state: snapshots and frames do not see them.
 
@@ -75,7 +75,14 @@ public:
     /// Q32.32 (dynamics/unchecked/Widths.h), from the widths of the row's constants.
     static solver::InputWidths PointRowWidths(const Row& row) noexcept;
 
-    /// What a position iteration of a row's joint reads (72 bytes). The anchors and centres are
+    /// The widest bodies' centres and angles (poses) and correction impulses for which a
+    /// position row may run without range tests (0: none).
+    struct PositionWidths {
+        uint8_t poses = 0;
+        uint8_t impulses = 0;
+    };
+
+    /// What a position iteration of a row's joint reads (80 bytes). The anchors and centres are
     /// kept apart and subtracted in each iteration, as the joint does.
     struct PositionRow {
         int32 indexA = 0;
@@ -83,7 +90,20 @@ public:
         b2Vec2 localAnchorA, localCenterA;
         b2Vec2 localAnchorB, localCenterB;
         Wide mA, mB, iA, iB;
+        PositionWidths unchecked;  ///< when the row may run without range tests
     };
+
+    /// The bodies' centres and angles within which a position row forms its gap and K without
+    /// range tests (|raw| < 2^29: 8192 m, or rad).
+    static constexpr int kPoseWidth = 29;
+    /// One position iteration of a row's joint: the point-to-point part of 2.2.1's revolute
+    /// SolvePositionConstraints. The gap and K are formed unchecked when allowed and the bodies
+    /// are within the row's pose width, and the correction is applied unchecked when its impulse
+    /// is within the row's impulse width. True when the gap is within the linear slop.
+    static bool SolvePointPositionRow(const PositionRow& row, const b2SolverData& data, bool uncheckedAllowed) noexcept;
+    /// The widest poses and correction impulses for which no value of a position row can leave
+    /// its type, from the widths of the row's constants (zeros when its arms or K are too wide).
+    static PositionWidths PositionRowWidths(const PositionRow& row) noexcept;
 
 private:
     std::vector<Row> m_rows;

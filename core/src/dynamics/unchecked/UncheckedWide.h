@@ -1,9 +1,9 @@
 #pragma once
-// Q32.32 arithmetic with Wide's rounding and no range tests, for a solver row (a contact's, a
-// revolute joint's point row) whose every result is proven to stay in range before it runs
-// (Widths.h). Where Wide's result is in range it is exactly this type's, so a proven row gives
-// Wide's bits; out of range these operations wrap where Wide saturates, which is why nothing may
-// use them without the proof.
+// Q32.32 and Q16.16 arithmetic with Wide's and Fixed's rounding and no range tests, for a solver
+// row (a contact's, a revolute joint's point row and its position row) whose every result is
+// proven to stay in range before it runs (Widths.h). Where Wide's or Fixed's result is in range
+// it is exactly these types', so a proven row gives their bits; out of range these operations
+// wrap where Wide and Fixed saturate, which is why nothing may use them without the proof.
 //
 // Products by a Q32.32 value are formed in 128 bits, so they never overflow before their
 // rounding; only the rounded result must fit. That needs a native 128-bit integer: elsewhere the
@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "lockbox/fixed/Fixed.h"
+#include "lockbox/fixed/Rot.h"
 #include "lockbox/fixed/Vec2.h"
 #include "lockbox/fixed/Wide.h"
 #include "lockbox/fixed/WideVec.h"
@@ -31,6 +32,19 @@ void AllowUncheckedRows(bool allow) noexcept;
 
 namespace lockbox::solver {
 
+// floor((p + 2^(shift-1) - [p < 0]) / 2^shift) of an exact product p (|p| < 2^126, 0 < shift <
+// 64): round half away from zero. With p = q 2^shift + f (0 <= f < 2^shift) that is q plus the
+// carry of f + 2^(shift-1) - [p < 0] into bit `shift`, which keeps every step in 64-bit
+// registers; of q only the low 64 bits are kept, which are the result when it fits.
+[[gnu::always_inline]] constexpr int64_t RoundShift(detail::NativeI128 product, int shift) noexcept {
+    const auto p = static_cast<detail::NativeU128>(product);
+    const auto negative = static_cast<uint64_t>(static_cast<int64_t>(static_cast<uint64_t>(p >> 64)) >> 63);
+    const auto q = static_cast<uint64_t>(p >> shift);
+    const uint64_t f = static_cast<uint64_t>(p) & ((uint64_t{1} << shift) - 1);
+    const uint64_t carry = (f + (uint64_t{1} << (shift - 1)) + negative) >> shift;
+    return static_cast<int64_t>(q + carry);
+}
+
 class UncheckedWide {
 public:
     constexpr UncheckedWide() noexcept = default;
@@ -39,6 +53,7 @@ public:
     constexpr explicit UncheckedWide(Fixed f) noexcept : m_raw(int64_t{f.Raw()} * (int64_t{1} << 16)) {}
 
     constexpr Wide ToWide() const noexcept { return Wide::FromRaw(m_raw); }
+    constexpr explicit operator Wide() const noexcept { return ToWide(); }
     constexpr int64_t Raw() const noexcept { return m_raw; }
 
     constexpr auto operator<=>(const UncheckedWide&) const noexcept = default;
@@ -59,7 +74,7 @@ public:
 
     // Wide * Wide, rounded to 2^-32 with ties away from zero, as Wide's.
     [[gnu::always_inline]] friend constexpr UncheckedWide operator*(UncheckedWide a, UncheckedWide b) noexcept {
-        return FromRaw(RoundShift(static_cast<detail::NativeI128>(a.m_raw) * b.m_raw, Wide::kFractionBits));
+        return FromRaw(solver::RoundShift(static_cast<detail::NativeI128>(a.m_raw) * b.m_raw, Wide::kFractionBits));
     }
     // r x P of a Q16.16 arm and a Q32.32 impulse, exact in 128 bits and rounded once, as
     // b2Cross(b2Vec2, b2WideVec2).
@@ -67,7 +82,7 @@ public:
                                                                 UncheckedWide py) noexcept {
         using I128 = detail::NativeI128;
         const I128 e = static_cast<I128>(r.x.Raw()) * py.m_raw - static_cast<I128>(r.y.Raw()) * px.m_raw;
-        return FromRaw(RoundShift(e, Fixed::kFractionBits));
+        return FromRaw(solver::RoundShift(e, Fixed::kFractionBits));
     }
     // By a Fixed the product is formed in 64 bits (which the row's bound also covers), through
     // unsigned integers so that an unproven use wraps instead of being undefined.
@@ -83,19 +98,6 @@ private:
         w.m_raw = raw;
         return w;
     }
-    // floor((p + 2^(shift-1) - [p < 0]) / 2^shift) of an exact product p (|p| < 2^126): round half
-    // away from zero. With p = q 2^shift + f (0 <= f < 2^shift) that is q plus the carry of
-    // f + 2^(shift-1) - [p < 0] into bit `shift`, which keeps every step in 64-bit registers; of
-    // q only the low 64 bits are kept, which are the result when it fits.
-    [[gnu::always_inline]] static constexpr int64_t RoundShift(detail::NativeI128 product, int shift) noexcept {
-        const auto p = static_cast<detail::NativeU128>(product);
-        const auto negative = static_cast<uint64_t>(static_cast<int64_t>(static_cast<uint64_t>(p >> 64)) >> 63);
-        const auto q = static_cast<uint64_t>(p >> shift);
-        const uint64_t f = static_cast<uint64_t>(p) & ((uint64_t{1} << shift) - 1);
-        const uint64_t carry = (f + (uint64_t{1} << (shift - 1)) + negative) >> shift;
-        return static_cast<int64_t>(q + carry);
-    }
-
     int64_t m_raw = 0;
 };
 
@@ -106,6 +108,55 @@ struct UncheckedVec2 {
     static constexpr UncheckedVec2 From(const b2WideVec2& v) noexcept { return {v.x, v.y}; }
     constexpr b2WideVec2 ToWide() const noexcept { return {x.ToWide(), y.ToWide()}; }
 };
+
+// Q16.16 with Fixed's rounding and no range tests: positions in a proven position row. Sums and
+// differences go through unsigned integers, so they wrap instead of being undefined.
+class UncheckedFixed {
+public:
+    constexpr UncheckedFixed() noexcept = default;
+    constexpr UncheckedFixed(Fixed f) noexcept : m_raw(f.Raw()) {}  // NOLINT: the same number
+
+    static constexpr UncheckedFixed FromRaw(int32_t raw) noexcept {
+        UncheckedFixed f;
+        f.m_raw = raw;
+        return f;
+    }
+    constexpr Fixed ToFixed() const noexcept { return Fixed::FromRaw(m_raw); }
+    constexpr explicit operator Fixed() const noexcept { return ToFixed(); }
+    constexpr int32_t Raw() const noexcept { return m_raw; }
+
+    [[gnu::always_inline]] friend constexpr UncheckedFixed operator+(UncheckedFixed a, UncheckedFixed b) noexcept {
+        return FromRaw(static_cast<int32_t>(static_cast<uint32_t>(a.m_raw) + static_cast<uint32_t>(b.m_raw)));
+    }
+    [[gnu::always_inline]] friend constexpr UncheckedFixed operator-(UncheckedFixed a, UncheckedFixed b) noexcept {
+        return FromRaw(static_cast<int32_t>(static_cast<uint32_t>(a.m_raw) - static_cast<uint32_t>(b.m_raw)));
+    }
+    constexpr UncheckedFixed& operator+=(UncheckedFixed b) noexcept { return *this = *this + b; }
+    constexpr UncheckedFixed& operator-=(UncheckedFixed b) noexcept { return *this = *this - b; }
+
+private:
+    int32_t m_raw = 0;
+};
+
+// Wide * Wide rounded once to Q16.16, as MulToFixed(Wide, Wide).
+[[gnu::always_inline]] constexpr UncheckedFixed MulToFixed(UncheckedWide a, UncheckedWide b) noexcept {
+    const int64_t r = RoundShift(static_cast<detail::NativeI128>(a.Raw()) * b.Raw(), Wide::kFractionBits + 16);
+    return UncheckedFixed::FromRaw(static_cast<int32_t>(r));
+}
+
+// q v for v = (x, y), as b2Mul(b2Rot, b2Vec2): each component an exact sum of two products
+// (below 2^48 for a rotation's |c|, |s| <= 1), rounded once.
+[[gnu::always_inline]] constexpr b2Vec2 Rotate(const b2Rot& q, UncheckedFixed x, UncheckedFixed y) noexcept {
+    // Through unsigned integers, so that an unproven use wraps instead of being undefined.
+    const auto product = [](Fixed a, UncheckedFixed b) {
+        return static_cast<uint64_t>(int64_t{a.Raw()} * b.Raw());  // below 2^62 for any raws
+    };
+    const auto round = [](uint64_t p) {
+        const uint64_t biased = p + (uint64_t{1} << 15) + static_cast<uint64_t>(static_cast<int64_t>(p) >> 63);
+        return Fixed::FromRaw(static_cast<int32_t>(static_cast<int64_t>(biased) >> Fixed::kFractionBits));
+    };
+    return {round(product(q.c, x) - product(q.s, y)), round(product(q.s, x) + product(q.c, y))};
+}
 
 }  // namespace lockbox::solver
 
