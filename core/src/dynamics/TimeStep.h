@@ -2,6 +2,8 @@
 // The time step and the solver's per-body buffers (Box2D's b2TimeStep.h). The solver copies
 // of positions and velocities (b2Position, b2Velocity) are public: the step observer sees them.
 
+#include <cstdint>
+
 #include "lockbox/common/Settings.h"
 #include "lockbox/dynamics/StepObserver.h"
 #include "lockbox/fixed/Math.h"
@@ -18,6 +20,13 @@ struct b2TimeStep {
     int32 stepsToSleep = 0;  ///< round(b2_timeToSleep / dt): consecutive still steps before sleep
     bool warmStarting = false;
 };
+
+/// An impulse carried over from the last step, scaled by dtRatio for warm starting. A fixed step's
+/// ratio is exactly 1, and x * 1 is x (nothing to round, nothing to saturate) for every raw but
+/// INT64_MIN, which no operation produces; so that product is skipped, with the same bits.
+inline Wide WarmScaled(Wide x, Fixed dtRatio) noexcept {
+    return dtRatio == Fixed(1) && x.Raw() != INT64_MIN ? x : x * dtRatio;
+}
 
 /// A body's rotation with the angle it was built from. b2Rot::Set is a pure function of the
 /// angle, so an entry whose angle matches needs no sine or cosine, whichever body or island

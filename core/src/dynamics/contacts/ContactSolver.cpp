@@ -100,8 +100,8 @@ void b2ContactSolver::Load(int32 begin, int32 end) {
             b2VelocityConstraintPoint* vcp = vc->points + j;
             if (m_step.warmStarting) {
                 // dtRatio is exactly 1 for a fixed step (inv_dt is derived from dt).
-                vcp->normalImpulse = cp->normalImpulse * m_step.dtRatio;
-                vcp->tangentImpulse = cp->tangentImpulse * m_step.dtRatio;
+                vcp->normalImpulse = WarmScaled(cp->normalImpulse, m_step.dtRatio);
+                vcp->tangentImpulse = WarmScaled(cp->tangentImpulse, m_step.dtRatio);
             } else {
                 vcp->normalImpulse = Wide();
                 vcp->tangentImpulse = Wide();

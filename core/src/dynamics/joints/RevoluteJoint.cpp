@@ -6,6 +6,7 @@
 #include "lockbox/dynamics/joints/RevoluteJoint.h"
 
 #include "JointMath.h"
+#include "dynamics/unchecked/Widths.h"
 
 namespace lockbox {
 
@@ -39,14 +40,19 @@ Fixed b2RevoluteJoint::ContinuousAngle(Fixed aA, Fixed aB) const noexcept {
 }
 
 namespace {
-// The point-plus-angle K of 2.2.1 (symmetric).
-b2WideMat33 PointAngleK(Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA, const b2Vec2& rB) {
+// The point-plus-angle K of 2.2.1 (symmetric). A joint iterated as a row reads only the point
+// block (pointOnly): its angular column is then formed only when it could saturate (an inverse
+// inertia of 2^14 or more, raw 2^46, against arms below 2^15 m), so that every overflow 2.2.1's
+// whole K reports is still counted.
+b2WideMat33 PointAngleK(Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA, const b2Vec2& rB, bool pointOnly) {
     b2WideMat33 K;
     K.ex.x = mA + mB + iA * MulWide(rA.y, rA.y) + iB * MulWide(rB.y, rB.y);
     K.ey.x = -(iA * MulWide(rA.y, rA.x)) - iB * MulWide(rB.y, rB.x);
-    K.ez.x = -(iA * rA.y) - iB * rB.y;
     K.ex.y = K.ey.x;
     K.ey.y = mA + mB + iA * MulWide(rA.x, rA.x) + iB * MulWide(rB.x, rB.x);
+    constexpr uint64_t kNarrowTurn = uint64_t{1} << 46;
+    if (pointOnly && (solver::Folded(iA) | solver::Folded(iB)) < kNarrowTurn) return K;
+    K.ez.x = -(iA * rA.y) - iB * rB.y;
     K.ez.y = iA * rA.x + iB * rB.x;
     K.ex.z = K.ez.x;
     K.ey.z = K.ez.y;
@@ -77,7 +83,7 @@ b2RevoluteJoint::PointSetUp b2RevoluteJoint::SetUpVelocity(const b2SolverData& d
 
     const Wide iA = A.invI, iB = B.invI;
     const bool fixedRotation = (iA + iB == Wide());
-    const b2WideMat33 K = PointAngleK(A.invMass, B.invMass, iA, iB, out.rA, out.rB);
+    const b2WideMat33 K = PointAngleK(A.invMass, B.invMass, iA, iB, out.rA, out.rB, !keepSolverFields);
     const b2WideSolver22 pointSolver = K.Upper22();
     out.pointMass = math::Inverse(pointSolver);
     if (keepSolverFields) {
@@ -122,8 +128,8 @@ b2RevoluteJoint::PointSetUp b2RevoluteJoint::SetUpVelocity(const b2SolverData& d
     if (data.step.warmStarting) {
         // Scale impulses to support a variable time step.
         const Fixed r = data.step.dtRatio;
-        m_impulse = {m_impulse.x * r, m_impulse.y * r, m_impulse.z * r};
-        m_motorImpulse = m_motorImpulse * r;
+        m_impulse = {WarmScaled(m_impulse.x, r), WarmScaled(m_impulse.y, r), WarmScaled(m_impulse.z, r)};
+        m_motorImpulse = WarmScaled(m_motorImpulse, r);
 
         const b2WideVec2 P(m_impulse.x, m_impulse.y);
         vA.x -= A.invMass * P.x;
