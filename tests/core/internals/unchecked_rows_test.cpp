@@ -201,21 +201,32 @@ private:
     std::map<int, int64_t> m_wrongWhenLoosened;  // bits of loosening -> rows that went wrong
 };
 
+// How many bits a trial loosens its row's bound: none in half the trials, which keep the computed
+// bound; the rest loosen it on purpose, to see that it matters.
+int Loosening(RowDrawer& draw) { return draw.Chance(2) ? 0 : draw.Pick(1, Tally::kMaxLoosening); }
+
+// Runs 60,000 trials of one kind of row on one drawer and one tally, each returning the tally's
+// verdict on it, and then checks the tally.
+template <class Trial>
+void RunTrials(uint64_t seed, const char* rows, Trial trial) {
+    const QuietTraps quiet;
+    const UncheckedAllowed restore;
+    RowDrawer draw(seed);
+    Tally tally;
+    for (int i = 0; i < 60000; ++i) ASSERT_TRUE(trial(draw, tally)) << rows << ", trial " << i;
+    tally.Check(rows);
+}
+
 TEST(UncheckedRows, ContactRowsWithinTheBoundGiveTheTestedRowsBits) {
 #ifndef LOCKBOX_UNCHECKED_ROWS
     GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
 #else
-    const QuietTraps quiet;
-    const UncheckedAllowed restore;
-    RowDrawer draw(20261130);
-    Tally tally;
     int64_t bounded = 0;
-    for (int trial = 0; trial < 60000; ++trial) {
+    RunTrials(20261130, "contact rows", [&bounded](RowDrawer& draw, Tally& tally) {
         b2ContactVelocityConstraint vc;
         draw.Fill(vc);
         const solver::InputWidths widths = solver::UncheckedWidths(vc);
-        // Half the rows keep the computed bound; the rest loosen it to see that it matters.
-        const int loosen = draw.Chance(2) ? 0 : draw.Pick(1, Tally::kMaxLoosening);
+        const int loosen = Loosening(draw);
         vc.unchecked = {Loosened(widths.velocities, loosen), Loosened(widths.impulses, loosen)};
         const bool none = widths.velocities == 0 || widths.impulses == 0;
         if (!none) ++bounded;
@@ -227,11 +238,10 @@ TEST(UncheckedRows, ContactRowsWithinTheBoundGiveTheTestedRowsBits) {
         const bool fits = solver::UncheckedRowFits(vc, bodies[0].v, bodies[0].w, bodies[1].v, bodies[1].w);
         const Solved fast = SolveOnce(vc, bodies, true);
         const Solved reference = SolveOnce(vc, bodies, false);
-        ASSERT_TRUE(tally.Judge(loosen, fits, SameBits(fast, reference), reference.saturations)) << "trial " << trial;
-    }
-    // Both paths ran, and most rows with a bound fit it.
+        return tally.Judge(loosen, fits, SameBits(fast, reference), reference.saturations);
+    });
+    // Most rows with a bound fit it.
     EXPECT_GT(bounded, 50000);
-    tally.Check("contact rows");
 #endif
 }
 
@@ -285,14 +295,11 @@ TEST(UncheckedRows, PointRowsWithinTheBoundGiveTheTestedRowsBits) {
 #ifndef LOCKBOX_UNCHECKED_ROWS
     GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
 #else
-    const QuietTraps quiet;
-    RowDrawer draw(1130);
-    Tally tally;
-    for (int trial = 0; trial < 60000; ++trial) {
+    RunTrials(1130, "point rows", [](RowDrawer& draw, Tally& tally) {
         JointSolver::Row row;
         FillPointRow(draw, row);
         const solver::InputWidths widths = JointSolver::PointRowWidths(row);
-        const int loosen = draw.Chance(2) ? 0 : draw.Pick(1, Tally::kMaxLoosening);
+        const int loosen = Loosening(draw);
         row.unchecked = {Loosened(widths.velocities, loosen), Loosened(widths.impulses, loosen)};
         const bool none = widths.velocities == 0 || widths.impulses == 0;
         const int velocityWidth = none ? draw.Pick(16, 48) : row.unchecked.velocities + draw.Pick(-3, 1);
@@ -312,9 +319,8 @@ TEST(UncheckedRows, PointRowsWithinTheBoundGiveTheTestedRowsBits) {
             solver::Within(solver::Folded(row.impulse.x) | solver::Folded(row.impulse.y), row.unchecked.impulses);
         const PointSolved fast = SolvePoint(row, bodies, true);
         const PointSolved reference = SolvePoint(row, bodies, false);
-        ASSERT_TRUE(tally.Judge(loosen, fits, fast == reference, reference.saturations)) << "trial " << trial;
-    }
-    tally.Check("point rows");
+        return tally.Judge(loosen, fits, fast == reference, reference.saturations);
+    });
 #endif
 }
 
@@ -376,14 +382,11 @@ TEST(UncheckedRows, PositionRowsWithinTheBoundGiveTheTestedRowsBits) {
 #ifndef LOCKBOX_UNCHECKED_ROWS
     GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
 #else
-    const QuietTraps quiet;
-    RowDrawer draw(2611);
-    Tally tally;
-    for (int trial = 0; trial < 60000; ++trial) {
+    RunTrials(2611, "position rows", [](RowDrawer& draw, Tally& tally) {
         JointSolver::PositionRow row;
         FillPositionRow(draw, row);
         const JointSolver::PositionWidths widths = JointSolver::PositionRowWidths(row);
-        const int loosen = draw.Chance(2) ? 0 : draw.Pick(1, Tally::kMaxLoosening);
+        const int loosen = Loosening(draw);
         // Loosen the poses, the impulses or both.
         const int which = draw.Pick(0, 2);
         row.unchecked = {Loosened(widths.poses, which != 1 ? loosen : 0),
@@ -407,10 +410,8 @@ TEST(UncheckedRows, PositionRowsWithinTheBoundGiveTheTestedRowsBits) {
                           solver::Within(Folded(impulse.x) | Folded(impulse.y), row.unchecked.impulses);
         const bool solveSaturated = impulse.x.Raw() == Wide::kMaxRaw || impulse.x.Raw() == -Wide::kMaxRaw ||
                                     impulse.y.Raw() == Wide::kMaxRaw || impulse.y.Raw() == -Wide::kMaxRaw;
-        ASSERT_TRUE(tally.Judge(loosen, fits, fast == reference, solveSaturated ? 0 : reference.saturations))
-            << "trial " << trial;
-    }
-    tally.Check("position rows");
+        return tally.Judge(loosen, fits, fast == reference, solveSaturated ? 0 : reference.saturations);
+    });
 #endif
 }
 
