@@ -403,8 +403,7 @@ TEST(UncheckedRows, PositionRowsWithinTheBoundGiveTheTestedRowsBits) {
         // The row ran wholly unchecked when the poses and its impulse fit. A solve that saturates
         // reports on both paths alike (it is always Wide's); only such a row may saturate.
         using solver::Folded;
-        const uint64_t poses = Folded(bodies[0].c.x) | Folded(bodies[0].c.y) | Folded(bodies[0].a) |
-                               Folded(bodies[1].c.x) | Folded(bodies[1].c.y) | Folded(bodies[1].a);
+        const uint64_t poses = solver::FoldedPair(bodies[0].c, bodies[0].a, bodies[1].c, bodies[1].a);
         const b2WideVec2 impulse = RowImpulse(row, bodies);
         const bool fits = solver::Within(poses, row.unchecked.poses) &&
                           solver::Within(Folded(impulse.x) | Folded(impulse.y), row.unchecked.impulses);

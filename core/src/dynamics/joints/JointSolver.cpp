@@ -160,8 +160,7 @@ bool JointSolver::SolvePointPositionRow(const PositionRow& row, const b2SolverDa
     const b2Rot qA = data.Rotation(row.indexA, posA.a), qB = data.Rotation(row.indexB, posB.a);
 #ifdef LOCKBOX_UNCHECKED_ROWS
     using solver::Folded;
-    const uint64_t poses =
-        Folded(posA.c.x) | Folded(posA.c.y) | Folded(posA.a) | Folded(posB.c.x) | Folded(posB.c.y) | Folded(posB.a);
+    const uint64_t poses = solver::FoldedPair(posA.c, posA.a, posB.c, posB.a);
     if (uncheckedAllowed && solver::Within(poses, row.unchecked.poses)) {
         using solver::UncheckedFixed, solver::UncheckedWide;
         auto A = Pose<UncheckedFixed>::Load(posA), B = Pose<UncheckedFixed>::Load(posB);

@@ -34,7 +34,7 @@ namespace lockbox::solver {
 inline uint64_t Folded(Wide w) noexcept { return Folded(w.Raw()); }
 inline uint64_t Folded(Fixed f) noexcept { return Folded(f.Raw()); }
 
-// The OR of the folded raws of a pair's velocities (A's linear and angular, then B's).
+// The OR of the folded raws of a pair's velocities or poses (A's linear and angular, then B's).
 template <class V, class N>
 [[gnu::always_inline]] inline uint64_t FoldedPair(const V& vA, N wA, const V& vB, N wB) noexcept {
     return Folded(vA.x) | Folded(vA.y) | Folded(wA) | Folded(vB.x) | Folded(vB.y) | Folded(wB);
