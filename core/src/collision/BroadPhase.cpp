@@ -1,7 +1,9 @@
 #include "lockbox/collision/BroadPhase.h"
 
 #include <algorithm>
+#include <bit>
 
+#include "common/KeySort.h"
 #include "lockbox/fixed/Assert.h"
 
 namespace lockbox {
@@ -10,6 +12,8 @@ namespace {
 /// Initial buffer capacities, as 2.2.1 (they grow by doubling and never shrink).
 constexpr size_t kInitialMoveCapacity = 16;
 constexpr size_t kInitialPairCapacity = 16;
+/// From this many pairs on, the radix sort's fixed cost (its digit counts) is repaid.
+constexpr size_t kRadixSortMinPairs = 256;
 }  // namespace
 
 b2BroadPhase::b2BroadPhase() {
@@ -97,8 +101,17 @@ const std::vector<b2Pair>& b2BroadPhase::FinishPairs() {
     // Total order on (A, B): equal elements are identical, so any sort gives the same sequence.
     // Proxy ids are never negative here, so (A, B) packed into one unsigned key orders exactly
     // as b2PairLessThan does, in one comparison the sort can inline.
-    std::sort(m_pairBuffer.begin(), m_pairBuffer.end(),
-              [](const b2Pair& p1, const b2Pair& p2) noexcept { return PairKey(p1) < PairKey(p2); });
+    if (m_pairBuffer.size() < kRadixSortMinPairs) {
+        std::sort(m_pairBuffer.begin(), m_pairBuffer.end(),
+                  [](const b2Pair& p1, const b2Pair& p2) noexcept { return PairKey(p1) < PairKey(p2); });
+    } else {
+        // Every id is below the tree's node count, so (A, B) packed at B's bit width orders as
+        // PairKey does, over a span narrow enough for a few radix passes.
+        const int idBits = std::bit_width(m_tree.GetNodes().size());
+        core_detail::SortByKey(m_pairBuffer, m_pairScratch, [idBits](const b2Pair& p) noexcept {
+            return (int64_t{p.proxyIdA} << idBits) | p.proxyIdB;
+        });
+    }
     // Each distinct pair once.
     const auto last =
         std::unique(m_pairBuffer.begin(), m_pairBuffer.end(),

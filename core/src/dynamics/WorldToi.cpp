@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "dynamics/KeySort.h"
+#include "common/KeySort.h"
 #include "dynamics/WorldState.h"
 #include "dynamics/contacts/ContactRules.h"
 #include "lockbox/collision/TimeOfImpact.h"

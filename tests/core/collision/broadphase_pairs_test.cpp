@@ -209,6 +209,61 @@ TEST(BroadPhasePairs, PackedKeyOrdersLikeThePairComparison) {
             ASSERT_EQ(PairKey(pairs[i]) < PairKey(pairs[j]), b2PairLessThan(pairs[i], pairs[j])) << i << " " << j;
 }
 
+// A crowded step reports hundreds of pairs, which are sorted by radix on a key packed at the ids'
+// bit width instead of by comparison: the sequence must still be the brute-force one, also after
+// destructions leave holes in the ids and creations reuse them.
+TEST(BroadPhasePairs, CrowdedStepsGiveTheBruteForceSequence) {
+    Rng rng(0xC20D);
+    b2BroadPhase bp;
+    std::map<int32, b2AABB> live;
+    uint64 nextUserData = 7;
+    auto create = [&]() {
+        // Boxes of 0.5-3 m in a 40 m square: each overlaps about a dozen others.
+        const b2Vec2 c{rng.Raw(-20 * 65536, 20 * 65536), rng.Raw(-20 * 65536, 20 * 65536)};
+        const b2Vec2 h{rng.Raw(16384, 98304), rng.Raw(16384, 98304)};
+        const int32 id = bp.CreateProxy(b2AABB{c - h, c + h}, nextUserData);
+        nextUserData += 5;
+        live[id] = b2AABB{c - h, c + h};
+    };
+    for (int i = 0; i < 1500; ++i) create();
+    size_t fewest = SIZE_MAX;
+    for (int step = 0; step < 6; ++step) {
+        if (step > 0) {
+            for (int k = 0; k < 300; ++k) {
+                auto it = live.begin();
+                std::advance(it, static_cast<long>(rng.Range(0, static_cast<int64_t>(live.size()) - 1)));
+                if (k % 10 == 0) {
+                    bp.DestroyProxy(it->first);
+                    live.erase(it);
+                    create();
+                } else {
+                    const b2Vec2 d{rng.Raw(-65536, 65536), rng.Raw(-65536, 65536)};
+                    it->second = b2AABB{it->second.lowerBound + d, it->second.upperBound + d};
+                    bp.MoveProxy(it->first, it->second, d);
+                }
+            }
+        }
+        std::vector<std::pair<int32, int32>> ids;
+        for (const int32 q : bp.GetMoveBuffer()) {
+            if (q == b2BroadPhase::e_nullProxy) continue;
+            for (const auto& entry : live) {
+                const int32 id = entry.first;
+                if (id != q && bp.TestOverlap(q, id)) ids.emplace_back(std::min(q, id), std::max(q, id));
+            }
+        }
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        PairList expected;
+        for (const auto& [a, b] : ids) expected.emplace_back(bp.GetUserData(a), bp.GetUserData(b));
+        Recorder rec;
+        bp.UpdatePairs(&rec);
+        ASSERT_EQ(rec.pairs, expected) << "step " << step;
+        fewest = std::min(fewest, expected.size());
+    }
+    // Every step is past the size from which the radix sort is taken.
+    EXPECT_GT(fewest, 1000u);
+}
+
 TEST(BroadPhasePairs, SortedUniqueAndNoSelfPairs) {
     b2BroadPhase bp;
     // Five overlapping boxes created in an order that is not the id order of their pairs.

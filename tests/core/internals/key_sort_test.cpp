@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "dynamics/KeySort.h"
+#include "common/KeySort.h"
 
 namespace LOCKBOX_TEST_FILE {
 

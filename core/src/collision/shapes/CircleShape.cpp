@@ -110,7 +110,9 @@ bool b2CircleShape::RayCast(b2RayCastOutput* output, const b2RayCastInput& input
 
 void b2CircleShape::ComputeAABB(b2AABB* aabb, const b2Transform& transform, int32 childIndex) const {
     (void)childIndex;
-    const b2Vec2 p = transform.p + b2Mul(transform.q, m_p);
+    // Most circles sit on their body's origin: rotating a zero offset gives zero exactly.
+    const bool centred = m_p.x == Fixed() && m_p.y == Fixed();
+    const b2Vec2 p = centred ? transform.p : transform.p + b2Mul(transform.q, m_p);
     aabb->lowerBound.Set(p.x - m_radius, p.y - m_radius);
     aabb->upperBound.Set(p.x + m_radius, p.y + m_radius);
 }

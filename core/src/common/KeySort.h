@@ -1,8 +1,8 @@
 #pragma once
 // Sorting by an integer key in linear time: a least-significant-digit radix sort on the key's
 // offset from the smallest key, for the large per-step sorts whose keys span a narrow range (list
-// keys, which the world hands out consecutively). Stable, so on distinct keys the order is the
-// one any comparison sort gives.
+// keys, which the world hands out consecutively; the broad phase's pairs, packed at the width of a
+// proxy id). Stable, so on distinct keys the order is the one any comparison sort gives.
 
 #include <algorithm>
 #include <array>
