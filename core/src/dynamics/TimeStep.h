@@ -27,6 +27,10 @@ struct b2TimeStep {
 inline Wide WarmScaled(Wide x, Fixed dtRatio) noexcept {
     return dtRatio == Fixed(1) && x.Raw() != INT64_MIN ? x : x * dtRatio;
 }
+/// WarmScaled for each component (Fixed * b2WideVec2 rounds each component as Wide * Fixed).
+inline b2WideVec2 WarmScaled(const b2WideVec2& v, Fixed dtRatio) noexcept {
+    return {WarmScaled(v.x, dtRatio), WarmScaled(v.y, dtRatio)};
+}
 
 /// A body's rotation with the angle it was built from. b2Rot::Set is a pure function of the
 /// angle, so an entry whose angle matches needs no sine or cosine, whichever body or island

@@ -173,7 +173,7 @@ private:
     std::vector<int32> m_moveBuffer;
     std::vector<b2Pair> m_pairBuffer;
     std::vector<b2Pair> m_pairScratch;  ///< the radix sort's second buffer (scratch)
-    std::vector<uint8> m_moved;  ///< per tree node, 1 while pairs are collected for a buffered proxy (scratch)
+    std::vector<uint8> m_moved;         ///< per tree node, 1 while pairs are collected for a buffered proxy (scratch)
     std::vector<std::vector<b2Pair>> m_blockPairs;  ///< per block of the parallel collection (scratch)
 };
 

@@ -58,7 +58,7 @@ void b2DistanceJoint::InitVelocityConstraints(const b2SolverData& data) {
 
     if (data.step.warmStarting) {
         // Scale the impulse to support a variable time step.
-        m_impulse = m_impulse * data.step.dtRatio;
+        m_impulse = WarmScaled(m_impulse, data.step.dtRatio);
         const b2WideVec2 P = m_impulse * m_u;
         ApplyNeg(vA, wA, A, m_rA, P);
         ApplyPos(vB, wB, B, m_rB, P);

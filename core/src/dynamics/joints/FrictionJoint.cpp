@@ -42,8 +42,8 @@ void b2FrictionJoint::InitVelocityConstraints(const b2SolverData& data) {
 
     if (data.step.warmStarting) {
         const Fixed r = data.step.dtRatio;
-        m_linearImpulse = r * m_linearImpulse;
-        m_angularImpulse = m_angularImpulse * r;
+        m_linearImpulse = WarmScaled(m_linearImpulse, r);
+        m_angularImpulse = WarmScaled(m_angularImpulse, r);
         const b2WideVec2 P = m_linearImpulse;
         vA.x -= mA * P.x;
         vA.y -= mA * P.y;

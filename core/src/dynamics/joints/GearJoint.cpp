@@ -149,7 +149,7 @@ void b2GearJoint::InitVelocityConstraints(const b2SolverData& data) {
     m_mass = Invert(mass);
 
     if (data.step.warmStarting) {
-        m_impulse = m_impulse * data.step.dtRatio;
+        m_impulse = WarmScaled(m_impulse, data.step.dtRatio);
     } else {
         m_impulse = Wide();
     }

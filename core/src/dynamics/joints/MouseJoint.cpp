@@ -61,7 +61,7 @@ void b2MouseJoint::InitVelocityConstraints(const b2SolverData& data) {
     wB = wB * 0.98_fx;
 
     if (data.step.warmStarting) {
-        m_impulse = data.step.dtRatio * m_impulse;
+        m_impulse = WarmScaled(m_impulse, data.step.dtRatio);
         vB.x += mB * m_impulse.x;
         vB.y += mB * m_impulse.y;
         wB += iB * b2Cross(m_rB, m_impulse);

@@ -134,8 +134,8 @@ void b2PrismaticJoint::InitVelocityConstraints(const b2SolverData& data) {
 
     if (data.step.warmStarting) {
         const Fixed r = data.step.dtRatio;
-        m_impulse = {m_impulse.x * r, m_impulse.y * r, m_impulse.z * r};
-        m_motorImpulse = m_motorImpulse * r;
+        m_impulse = {WarmScaled(m_impulse.x, r), WarmScaled(m_impulse.y, r), WarmScaled(m_impulse.z, r)};
+        m_motorImpulse = WarmScaled(m_motorImpulse, r);
         ApplyFrameImpulse(vA, wA, vB, wB, mA, mB, iA, iB, m_perp, m_axis, m_s1, m_s2, m_a1, m_a2, m_impulse.x,
                           m_impulse.y, m_motorImpulse + m_impulse.z);
     } else {

@@ -69,7 +69,7 @@ void b2PulleyJoint::InitVelocityConstraints(const b2SolverData& data) {
     m_mass = Invert(mA + mB * MulWide(m_ratio, m_ratio));
 
     if (data.step.warmStarting) {
-        m_impulse = m_impulse * data.step.dtRatio;
+        m_impulse = WarmScaled(m_impulse, data.step.dtRatio);
         // Warm starting.
         const b2WideVec2 PA = -(m_impulse * m_uA);
         const b2WideVec2 PB = -((m_impulse * m_ratio) * m_uB);

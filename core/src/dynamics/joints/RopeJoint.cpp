@@ -41,7 +41,7 @@ void b2RopeJoint::InitVelocityConstraints(const b2SolverData& data) {
     m_mass = Invert(m_invMassA + m_invIA * (crA * crA) + m_invMassB + m_invIB * (crB * crB));
 
     if (data.step.warmStarting) {
-        m_impulse = m_impulse * data.step.dtRatio;
+        m_impulse = WarmScaled(m_impulse, data.step.dtRatio);
         const b2WideVec2 P = m_impulse * m_u;
         ApplyNeg(vA, wA, A, m_rA, P);
         ApplyPos(vB, wB, B, m_rB, P);

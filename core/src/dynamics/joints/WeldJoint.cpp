@@ -84,7 +84,7 @@ void b2WeldJoint::InitVelocityConstraints(const b2SolverData& data) {
 
     if (data.step.warmStarting) {
         const Fixed r = data.step.dtRatio;
-        m_impulse = {m_impulse.x * r, m_impulse.y * r, m_impulse.z * r};
+        m_impulse = {WarmScaled(m_impulse.x, r), WarmScaled(m_impulse.y, r), WarmScaled(m_impulse.z, r)};
         ApplyAnchorImpulse(vA, wA, vB, wB, mA, mB, iA, iB, m_rA, m_rB, b2WideVec2(m_impulse.x, m_impulse.y),
                            m_impulse.z);
     } else {

@@ -76,9 +76,9 @@ void b2WheelJoint::InitVelocityConstraints(const b2SolverData& data) {
 
     if (data.step.warmStarting) {
         const Fixed r = data.step.dtRatio;
-        m_impulse = m_impulse * r;
-        m_springImpulse = m_springImpulse * r;
-        m_motorImpulse = m_motorImpulse * r;
+        m_impulse = WarmScaled(m_impulse, r);
+        m_springImpulse = WarmScaled(m_springImpulse, r);
+        m_motorImpulse = WarmScaled(m_motorImpulse, r);
         const b2WideVec2 P = m_impulse * m_ay + m_springImpulse * m_ax;
         const Wide LA = m_impulse * m_sAy + m_springImpulse * m_sAx + m_motorImpulse;
         const Wide LB = m_impulse * m_sBy + m_springImpulse * m_sBx + m_motorImpulse;
