@@ -1,5 +1,5 @@
 // Polygon-polygon manifold (Box2D 2.2.1's b2CollidePolygon.cpp): separating-axis search over
-// the edge normals of both polygons (full scan, as 2.3+; see b2FindMaxSeparation), reference/incident face selection
+// the edge normals of both polygons (full scan, as 2.3+; MaxSeparation.cpp), reference/incident face selection
 // with hysteresis, and clipping of the incident edge against the reference face's side planes.
 //
 // Frames: 2.2.1 clips in world coordinates. lockbox runs the same steps in the frame of the
@@ -10,76 +10,15 @@
 //
 // Every separation is an exact Q32.32 dot product; comparisons never round.
 
+#include "MaxSeparation.h"
 #include "Midpoint.h"
 #include "ReferenceFace.h"
 #include "lockbox/collision/Collision.h"
 #include "lockbox/collision/PolygonShape.h"
-#include "shapes/CentredBox.h"
 
 namespace lockbox {
 
 namespace {
-
-/// Separation of poly2 from edge `edge1` of poly1 (both in poly1's frame; xf maps poly2's
-/// frame into poly1's). Box2D's b2EdgeSeparation. `box2` says whether poly2 is a centred box.
-Wide b2EdgeSeparation(const b2PolygonShape* poly1, int32 edge1, const b2PolygonShape* poly2, bool box2,
-                      const b2Transform& xf) {
-    const b2Vec2* vertices1 = poly1->m_vertices;
-    const b2Vec2* normals1 = poly1->m_normals;
-    const int32 count2 = poly2->m_vertexCount;
-    const b2Vec2* vertices2 = poly2->m_vertices;
-
-    // Convert normal from poly1's frame into poly2's frame.
-    const b2Vec2 normal1 = b2MulT(xf.q, normals1[edge1]);
-
-    // Find support vertex on poly2 for -normal (first minimum on ties, as Box2D). A centred
-    // box's is the corner opposite the normal's signs; its dot products are exact and cannot
-    // saturate for a normal of unit range, so skipping them changes nothing.
-    int32 index = 0;
-    if (box2 && shape_detail::InUnitRange(normal1.x) && shape_detail::InUnitRange(normal1.y)) {
-        index = shape_detail::CentredBoxSupport(normal1);
-    } else {
-        Wide minDot = Wide::FromRaw(Wide::kMaxRaw);
-        for (int32 i = 0; i < count2; ++i) {
-            const Wide dot = b2DotWide(vertices2[i], normal1);
-            if (dot < minDot) {
-                minDot = dot;
-                index = i;
-            }
-        }
-    }
-
-    const b2Vec2 v1 = vertices1[edge1];
-    const b2Vec2 v2 = b2Mul(xf, vertices2[index]);
-    return b2DotWide(v2 - v1, normals1[edge1]);
-}
-
-/// Max separation between poly1 and poly2 over the edge normals of poly1 (poly1's frame).
-///
-/// Corrected form (Box2D 2.3+): every edge of poly1 is scanned. 2.2.1 starts at the normal
-/// facing poly2's centroid and hill-climbs to a neighbour while the separation grows; for deep
-/// overlaps the separation over the edges is not unimodal, the climb stops at a local maximum,
-/// and the manifold then pushes along a deeper axis than necessary (the differential test
-/// against 2.4.1 found it in 0.1 % of random pairs, all with overlaps of 0.2 m or more). The
-/// full scan costs count1 * count2 dot products (64 at most) and returns the true maximum;
-/// ties keep the lowest edge index (strict >), so the choice is a total order on edge ids.
-Wide b2FindMaxSeparation(int32* edgeIndex, const b2PolygonShape* poly1, const b2PolygonShape* poly2,
-                         const b2Transform& xf) {
-    const int32 count1 = poly1->m_vertexCount;
-    shape_detail::CentredBox box;
-    const bool box2 = shape_detail::AsCentredBox(poly2->m_vertices, poly2->m_vertexCount, &box);
-    int32 bestEdge = 0;
-    Wide maxSeparation = Wide::FromRaw(-Wide::kMaxRaw);
-    for (int32 i = 0; i < count1; ++i) {
-        const Wide s = b2EdgeSeparation(poly1, i, poly2, box2, xf);
-        if (s > maxSeparation) {
-            maxSeparation = s;
-            bestEdge = i;
-        }
-    }
-    *edgeIndex = bestEdge;
-    return maxSeparation;
-}
 
 /// The edge of poly2 most anti-parallel to reference edge `edge1` of poly1, as two clip
 /// vertices in poly1's frame with 2.2.1's feature ids (face of poly1, vertex of poly2).
@@ -137,11 +76,11 @@ void b2CollidePolygons(b2Manifold* manifold, const b2PolygonShape* polyA, const 
     const b2Transform xfBA = b2MulT(xfB, xfA);
 
     int32 edgeA = 0;
-    const Wide separationA = b2FindMaxSeparation(&edgeA, polyA, polyB, xfAB);
+    const Wide separationA = collision_detail::MaxSeparation(&edgeA, polyA, polyB, xfAB);
     if (separationA > totalRadiusWide) return;
 
     int32 edgeB = 0;
-    const Wide separationB = b2FindMaxSeparation(&edgeB, polyB, polyA, xfBA);
+    const Wide separationB = collision_detail::MaxSeparation(&edgeB, polyB, polyA, xfBA);
     if (separationB > totalRadiusWide) return;
 
     const b2PolygonShape* poly1;  // reference polygon

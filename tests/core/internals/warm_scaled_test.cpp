@@ -14,8 +14,17 @@ namespace LOCKBOX_TEST_FILE {
 
 using namespace lockbox;
 
-constexpr int64_t kEdges[] = {0,          1,         -1,        2,        -2, (int64_t{1} << 31) - 1, int64_t{1} << 32,
-                              -(int64_t{1} << 32), (int64_t{1} << 47) + 3, int64_t{1} << 62, std::numeric_limits<int64_t>::max(),
+constexpr int64_t kEdges[] = {0,
+                              1,
+                              -1,
+                              2,
+                              -2,
+                              (int64_t{1} << 31) - 1,
+                              int64_t{1} << 32,
+                              -(int64_t{1} << 32),
+                              (int64_t{1} << 47) + 3,
+                              int64_t{1} << 62,
+                              std::numeric_limits<int64_t>::max(),
                               std::numeric_limits<int64_t>::min() + 1};
 
 void ExpectLikeProduct(int64_t raw, Fixed ratio) {
@@ -32,8 +41,14 @@ void ExpectLikeProduct(int64_t raw, Fixed ratio) {
 
 TEST(WarmScaled, IsTheProductByTheRatio) {
     std::mt19937_64 random(0x3a12);
-    const Fixed ratios[] = {Fixed(1), Fixed::FromRaw(65535), Fixed::FromRaw(65537), Fixed(2), Fixed::FromRaw(32768),
-                            Fixed::FromRaw(-65536), Fixed(), Fixed::FromRaw(std::numeric_limits<int32_t>::max())};
+    const Fixed ratios[] = {Fixed(1),
+                            Fixed::FromRaw(65535),
+                            Fixed::FromRaw(65537),
+                            Fixed(2),
+                            Fixed::FromRaw(32768),
+                            Fixed::FromRaw(-65536),
+                            Fixed(),
+                            Fixed::FromRaw(std::numeric_limits<int32_t>::max())};
     for (const Fixed ratio : ratios) {
         for (const int64_t raw : kEdges) {
             ExpectLikeProduct(raw, ratio);

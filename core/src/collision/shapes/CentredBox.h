@@ -27,6 +27,14 @@ inline bool AsCentredBox(const b2Vec2* v, int32 count, CentredBox* box) noexcept
     return true;
 }
 
+/// Whether a centred box's normals are the axes SetAsBox gives it: (0, -1), (1, 0), (0, 1),
+/// (-1, 0) for edges 0 to 3 (the vertices alone do not say it; the normals are public fields).
+inline bool HasAxisNormals(const b2Vec2* n) noexcept {
+    constexpr int32 kOne = Fixed::kOneRaw;
+    return n[0].x.Raw() == 0 && n[0].y.Raw() == -kOne && n[1].x.Raw() == kOne && n[1].y.Raw() == 0 &&
+           n[2].x.Raw() == 0 && n[2].y.Raw() == kOne && n[3].x.Raw() == -kOne && n[3].y.Raw() == 0;
+}
+
 /// Whether a rotation or direction component is in the range the shortcuts assume.
 constexpr bool InUnitRange(Fixed x) noexcept {
     constexpr int32 kMax = int32{1} << 17;
