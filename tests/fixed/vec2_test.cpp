@@ -2,8 +2,12 @@
 // (NUMERICS Table 9).
 #include "lockbox/fixed/Vec2.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -94,6 +98,45 @@ TEST(Vec2, NormalizeOfZeroAndTinyVectors) {
     diag.Normalize();
     EXPECT_EQ(diag.x.Raw(), -46341);  // 65536 / sqrt(2) = 46340.95
     EXPECT_EQ(diag.y.Raw(), 46341);
+}
+
+// Normalize's general steps (a scaled exact root and one reciprocal), which an axis vector skips:
+// on an axis they must give what the shortcut gives, the unit axis and the magnitude.
+std::pair<b2Vec2, Fixed> NormalizeByTheRoot(b2Vec2 v) {
+    const uint64_t sum = static_cast<uint64_t>(v.LengthSquaredWide().Raw());
+    const uint64_t root = detail::IsqrtRound64(sum);
+    const Fixed length = Fixed::FromRaw(static_cast<int32_t>(std::min<uint64_t>(root, Fixed::kMaxRaw)));
+    const int k = (std::countl_zero(sum) - 2) / 2;
+    const uint64_t rootScaled = detail::IsqrtRound64(sum << (2 * k));
+    const int64_t recip = static_cast<int64_t>((uint64_t{1} << 62) / rootScaled);
+    const auto scale = [&](Fixed c) {
+        const int64_t cs = int64_t{c.Raw()} * (int64_t{1} << k);
+        return Fixed::FromRaw(static_cast<int32_t>(detail::ShiftRound(cs * recip, 46)));
+    };
+    return {b2Vec2(scale(v.x), scale(v.y)), length};
+}
+
+TEST(Vec2, NormalizeOnAnAxisIsTheUnitAxisAndTheMagnitude) {
+    std::mt19937_64 rng(0xa515);
+    std::vector<int32_t> magnitudes;
+    for (int32_t m = 1; m <= (1 << 20); ++m) magnitudes.push_back(m);
+    for (int i = 0; i < 200000; ++i) magnitudes.push_back(static_cast<int32_t>(1 + rng() % Fixed::kMaxRaw));
+    for (int b = 20; b < 31; ++b) {
+        for (const int32_t d : {-1, 0, 1}) magnitudes.push_back((int32_t{1} << b) + d);
+    }
+    magnitudes.push_back(Fixed::kMaxRaw);
+    for (const int32_t m : magnitudes) {
+        for (const b2Vec2 v : {b2Vec2(Fixed::FromRaw(m), Fixed()), b2Vec2(Fixed::FromRaw(-m), Fixed()),
+                               b2Vec2(Fixed(), Fixed::FromRaw(m)), b2Vec2(Fixed(), Fixed::FromRaw(-m))}) {
+            const auto [expected, expectedLength] = NormalizeByTheRoot(v);
+            b2Vec2 n = v;
+            const Fixed length = n.Normalize();
+            ASSERT_EQ(n, expected) << v.x.Raw() << "," << v.y.Raw();
+            ASSERT_EQ(length, expectedLength) << v.x.Raw() << "," << v.y.Raw();
+            ASSERT_EQ(length.Raw(), m);
+            ASSERT_EQ(b2Abs(n.x).Raw() + b2Abs(n.y).Raw(), Fixed::kOneRaw);
+        }
+    }
 }
 
 TEST(Vec2, HelpersMatchTheManual) {

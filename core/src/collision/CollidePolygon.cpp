@@ -71,14 +71,13 @@ void b2CollidePolygons(b2Manifold* manifold, const b2PolygonShape* polyA, const 
     const Fixed totalRadius = polyA->m_radius + polyB->m_radius;
     const Wide totalRadiusWide(totalRadius);
 
-    // Relative transforms: B's frame into A's, and A's frame into B's.
+    // Relative transforms: B's frame into A's, and (once A's edges found no gap) A's into B's.
     const b2Transform xfAB = b2MulT(xfA, xfB);
-    const b2Transform xfBA = b2MulT(xfB, xfA);
-
     int32 edgeA = 0;
     const Wide separationA = collision_detail::MaxSeparation(&edgeA, polyA, polyB, xfAB);
     if (separationA > totalRadiusWide) return;
 
+    const b2Transform xfBA = b2MulT(xfB, xfA);
     int32 edgeB = 0;
     const Wide separationB = collision_detail::MaxSeparation(&edgeB, polyB, polyA, xfBA);
     if (separationB > totalRadiusWide) return;

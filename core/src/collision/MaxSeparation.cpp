@@ -99,8 +99,7 @@ bool BoxPair(int32* edgeIndex, Wide* separation, const shape_detail::CentredBox&
 Wide ScannedMaxSeparation(int32* edgeIndex, const b2PolygonShape* poly1, const b2PolygonShape* poly2,
                           const b2Transform& xf) {
     shape_detail::CentredBox box;
-    return Scan(edgeIndex, poly1, poly2, shape_detail::AsCentredBox(poly2->m_vertices, poly2->m_vertexCount, &box),
-                xf);
+    return Scan(edgeIndex, poly1, poly2, shape_detail::AsCentredBox(poly2->m_vertices, poly2->m_vertexCount, &box), xf);
 }
 
 Wide MaxSeparation(int32* edgeIndex, const b2PolygonShape* poly1, const b2PolygonShape* poly2, const b2Transform& xf) {

@@ -35,8 +35,8 @@ bool SameAsScan(const b2PolygonShape& poly1, const b2PolygonShape& poly2, const 
     ResetSaturationCount();
     EXPECT_EQ(edge, scannedEdge) << "q " << xf.q.c.Raw() << "," << xf.q.s.Raw() << " p " << xf.p.x.Raw() << ","
                                  << xf.p.y.Raw();
-    EXPECT_EQ(separation.Raw(), scanned.Raw()) << "q " << xf.q.c.Raw() << "," << xf.q.s.Raw() << " p "
-                                               << xf.p.x.Raw() << "," << xf.p.y.Raw();
+    EXPECT_EQ(separation.Raw(), scanned.Raw())
+        << "q " << xf.q.c.Raw() << "," << xf.q.s.Raw() << " p " << xf.p.x.Raw() << "," << xf.p.y.Raw();
     EXPECT_EQ(reports, scannedReports);
     return edge == scannedEdge && separation.Raw() == scanned.Raw() && reports == scannedReports;
 }

@@ -119,8 +119,21 @@ private:
 };
 
 constexpr Fixed b2Vec2::Normalize() noexcept {
+    if (x.Raw() == 0 || y.Raw() == 0) {
+        // Along an axis (a box's edges, axis-aligned offsets) the steps below give the unit axis
+        // exactly: the scaled sum is a square, so its root r is exact, and r * floor(2^62 / r)
+        // falls short of 2^62 by less than r < 2^31, which rounds away at 2^46. The length is the
+        // component's magnitude, clamped like the root.
+        const int64_t c = int64_t{x.Raw()} + y.Raw();
+        if (c == 0) return Fixed();
+        const auto unit = [](int32_t v) {
+            return Fixed::FromRaw(v > 0 ? Fixed::kOneRaw : v < 0 ? -Fixed::kOneRaw : 0);
+        };
+        x = unit(x.Raw());
+        y = unit(y.Raw());
+        return Fixed::FromRaw(static_cast<int32_t>(Clamp32(static_cast<uint64_t>(c < 0 ? -c : c))));
+    }
     const int64_t sumSigned = LengthSquaredWide().Raw();
-    if (sumSigned == 0) return Fixed();
     const uint64_t sum = static_cast<uint64_t>(sumSigned);
     const Fixed length = Fixed::FromRaw(static_cast<int32_t>(Clamp32(detail::IsqrtRound64(sum))));
     // Scale the exact sum up to [2^60, 2^62) by an even shift 2k, so that its square root has
