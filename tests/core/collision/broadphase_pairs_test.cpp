@@ -65,6 +65,24 @@ uint64 Fnv1a(const PairList& list) {
 
 b2AABB Shifted(const b2AABB& b, const b2Vec2& s) { return b2AABB{b.lowerBound + s, b.upperBound + s}; }
 
+/// The pairs UpdatePairs must report, by brute force: every moved proxy against every live one
+/// (live maps proxy ids to their boxes), each distinct pair once in (id, id) order, as user data.
+PairList BruteForcePairs(const b2BroadPhase& bp, const std::map<int32, b2AABB>& live) {
+    std::vector<std::pair<int32, int32>> ids;
+    for (const int32 q : bp.GetMoveBuffer()) {
+        if (q == b2BroadPhase::e_nullProxy) continue;
+        for (const auto& entry : live) {
+            const int32 id = entry.first;
+            if (id != q && bp.TestOverlap(q, id)) ids.emplace_back(std::min(q, id), std::max(q, id));
+        }
+    }
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    PairList pairs;
+    for (const auto& [a, b] : ids) pairs.emplace_back(bp.GetUserData(a), bp.GetUserData(b));
+    return pairs;
+}
+
 /// How RunScenario takes a step's pairs: reported by UpdatePairs, or handed over by CollectPairs
 /// (on one thread, or with the queries in blocks run last to first).
 enum class Take { kUpdate, kCollect, kCollectInBlocks };
@@ -114,18 +132,7 @@ PairList RunScenario(const b2Vec2& shift, Take take = Take::kUpdate) {
             for (int k = 0; k < 4; ++k) create();
         }
 
-        // Brute force from the move buffer and every live fat AABB.
-        std::vector<std::pair<int32, int32>> expectedIds;
-        for (const int32 q : bp.GetMoveBuffer()) {
-            if (q == b2BroadPhase::e_nullProxy) continue;
-            for (const auto& [id, box] : live) {
-                if (id != q && bp.TestOverlap(q, id)) expectedIds.emplace_back(std::min(q, id), std::max(q, id));
-            }
-        }
-        std::sort(expectedIds.begin(), expectedIds.end());
-        expectedIds.erase(std::unique(expectedIds.begin(), expectedIds.end()), expectedIds.end());
-        PairList expected;
-        for (const auto& [a, b] : expectedIds) expected.emplace_back(bp.GetUserData(a), bp.GetUserData(b));
+        const PairList expected = BruteForcePairs(bp, live);
 
         Recorder rec;
         if (take == Take::kUpdate) {
@@ -243,18 +250,7 @@ TEST(BroadPhasePairs, CrowdedStepsGiveTheBruteForceSequence) {
                 }
             }
         }
-        std::vector<std::pair<int32, int32>> ids;
-        for (const int32 q : bp.GetMoveBuffer()) {
-            if (q == b2BroadPhase::e_nullProxy) continue;
-            for (const auto& entry : live) {
-                const int32 id = entry.first;
-                if (id != q && bp.TestOverlap(q, id)) ids.emplace_back(std::min(q, id), std::max(q, id));
-            }
-        }
-        std::sort(ids.begin(), ids.end());
-        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-        PairList expected;
-        for (const auto& [a, b] : ids) expected.emplace_back(bp.GetUserData(a), bp.GetUserData(b));
+        const PairList expected = BruteForcePairs(bp, live);
         Recorder rec;
         bp.UpdatePairs(&rec);
         ASSERT_EQ(rec.pairs, expected) << "step " << step;
