@@ -28,26 +28,6 @@
 
 namespace lockbox::scenes {
 
-/// The two largest lockbox stage costs of a run, as "stage 41%, stage 22%".
-inline std::string TopCosts(const RunResult& r) {
-    double step = 0;
-    std::vector<std::pair<double, std::string>> stages;
-    for (const auto& [k, v] : r.profile) {
-        if (k == "step_ms") step = v;
-        // The leaf stages (solve_ms contains the three solve stages).
-        if (k == "collide_ms" || k == "solveInit_ms" || k == "solveVelocity_ms" || k == "solvePosition_ms" ||
-            k == "broadphase_ms" || k == "solveTOI_ms")
-            stages.emplace_back(v, k.substr(0, k.size() - 3));
-    }
-    std::sort(stages.rbegin(), stages.rend());
-    std::ostringstream os;
-    for (size_t i = 0; i < 2 && i < stages.size() && step > 0; ++i) {
-        if (i) os << ", ";
-        os << stages[i].second << " " << static_cast<int>(std::lround(100 * stages[i].first / step)) << "%";
-    }
-    return os.str();
-}
-
 /// The leaf stages of a step, in the order of the stage table (solve_ms contains the three
 /// solve stages), with the table's headings.
 inline constexpr std::pair<const char*, const char*> kStages[] = {
@@ -62,6 +42,26 @@ inline std::vector<double> StageTimes(const RunResult& r) {
         for (size_t i = 0; i < kStageCount; ++i)
             if (k == kStages[i].first) out[i] = v;
     return out;
+}
+
+/// The two largest lockbox stage costs of a run, as "stage 41%, stage 22%".
+inline std::string TopCosts(const RunResult& r) {
+    double step = 0;
+    for (const auto& [k, v] : r.profile)
+        if (k == "step_ms") step = v;
+    const std::vector<double> times = StageTimes(r);
+    std::vector<std::pair<double, std::string>> stages;
+    for (size_t i = 0; i < kStageCount; ++i) {
+        const std::string key = kStages[i].first;
+        stages.emplace_back(times[i], key.substr(0, key.size() - 3));
+    }
+    std::sort(stages.rbegin(), stages.rend());
+    std::ostringstream os;
+    for (size_t i = 0; i < 2 && i < stages.size() && step > 0; ++i) {
+        if (i) os << ", ";
+        os << stages[i].second << " " << static_cast<int>(std::lround(100 * stages[i].first / step)) << "%";
+    }
+    return os.str();
 }
 
 /// One row of the comparison (what compare.csv stores).

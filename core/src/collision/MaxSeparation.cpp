@@ -2,6 +2,8 @@
 // every edge) and its closed form for two centred boxes.
 #include "MaxSeparation.h"
 
+#include <cstdlib>
+
 #include "shapes/CentredBox.h"
 
 namespace lockbox::collision_detail {
@@ -73,8 +75,6 @@ constexpr int64_t kMaxTurn = Fixed::kOneRaw;
 constexpr int64_t kMaxOffset = int64_t{1} << 29;
 constexpr int64_t kMaxHalf = int64_t{1} << 27;
 
-constexpr int64_t Abs64(int64_t x) noexcept { return x < 0 ? -x : x; }
-
 /// The scan for two centred boxes, box1 with its axis normals. Edge e of box1 has the unit
 /// normal n_e (0,-1), (1,0), (0,1), (-1,0); in box2's frame it is R^T n_e, whose support corner
 /// is the one opposite its signs, and that corner sent into box1's frame has, along n_e, the
@@ -86,10 +86,10 @@ constexpr int64_t Abs64(int64_t x) noexcept { return x < 0 ? -x : x; }
 bool BoxPair(int32* edgeIndex, Wide* separation, const shape_detail::CentredBox& box1,
              const shape_detail::CentredBox& box2, const b2Transform& xf) {
     const int64_t c = xf.q.c.Raw(), s = xf.q.s.Raw(), px = xf.p.x.Raw(), py = xf.p.y.Raw();
-    if (Abs64(c) > kMaxTurn || Abs64(s) > kMaxTurn || Abs64(px) >= kMaxOffset || Abs64(py) >= kMaxOffset ||
+    if (std::abs(c) > kMaxTurn || std::abs(s) > kMaxTurn || std::abs(px) >= kMaxOffset || std::abs(py) >= kMaxOffset ||
         box1.hx >= kMaxHalf || box1.hy >= kMaxHalf || box2.hx >= kMaxHalf || box2.hy >= kMaxHalf)
         return false;
-    const int64_t ac = Abs64(c), as = Abs64(s);
+    const int64_t ac = std::abs(c), as = std::abs(s);
     const int64_t ex = detail::ShiftRound(ac * box2.hx + as * box2.hy, Fixed::kFractionBits);
     const int64_t ey = detail::ShiftRound(as * box2.hx + ac * box2.hy, Fixed::kFractionBits);
     const int64_t seps[4] = {-py - ey - box1.hy, px - ex - box1.hx, py - ey - box1.hy, -px - ex - box1.hx};
