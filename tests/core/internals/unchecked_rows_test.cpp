@@ -278,24 +278,40 @@ struct PointSolved {
     }
 };
 
-PointSolved SolvePoint(JointSolver::Row row, std::vector<b2Velocity> bodies, bool unchecked) {
+// What `run` does to a point row and its bodies.
+template <class Run>
+PointSolved RunPoint(JointSolver::Row row, std::vector<b2Velocity> bodies, Run run) {
     b2SolverData data;
     data.velocities = bodies.data();
     PointSolved out;
     {
         const SaturationCapture capture(&out.saturations);
-        JointSolver::SolvePointRow(row, data, unchecked);
+        run(row, data);
     }
     out.bodies = std::move(bodies);
     out.impulse = row.impulse;
     return out;
 }
 
-TEST(UncheckedRows, PointRowsWithinTheBoundGiveTheTestedRowsBits) {
-#ifndef LOCKBOX_UNCHECKED_ROWS
-    GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
-#else
-    RunTrials(1130, "point rows", [](RowDrawer& draw, Tally& tally) {
+// One iteration of a point row.
+PointSolved SolvePoint(JointSolver::Row row, std::vector<b2Velocity> bodies, bool unchecked) {
+    return RunPoint(row, std::move(bodies), [unchecked](JointSolver::Row& r, const b2SolverData& data) {
+        JointSolver::SolvePointRow(r, data, unchecked);
+    });
+}
+
+// The warm start of a point row: its accumulated impulse applied to its bodies.
+PointSolved WarmStartPoint(JointSolver::Row row, std::vector<b2Velocity> bodies, bool unchecked) {
+    return RunPoint(row, std::move(bodies), [unchecked](JointSolver::Row& r, const b2SolverData& data) {
+        JointSolver::WarmStartPointRow(r, data, unchecked);
+    });
+}
+
+// Trials of point rows through `run` (an iteration or the warm start), both of which the row's
+// widths bound.
+void PointRowTrials(uint64_t seed, const char* rows,
+                    PointSolved (*run)(JointSolver::Row, std::vector<b2Velocity>, bool)) {
+    RunTrials(seed, rows, [run](RowDrawer& draw, Tally& tally) {
         JointSolver::Row row;
         FillPointRow(draw, row);
         const solver::InputWidths widths = JointSolver::PointRowWidths(row);
@@ -317,10 +333,25 @@ TEST(UncheckedRows, PointRowsWithinTheBoundGiveTheTestedRowsBits) {
         const bool fits =
             solver::Within(velocities, row.unchecked.velocities) &&
             solver::Within(solver::Folded(row.impulse.x) | solver::Folded(row.impulse.y), row.unchecked.impulses);
-        const PointSolved fast = SolvePoint(row, bodies, true);
-        const PointSolved reference = SolvePoint(row, bodies, false);
+        const PointSolved fast = run(row, bodies, true);
+        const PointSolved reference = run(row, bodies, false);
         return tally.Judge(loosen, fits, fast == reference, reference.saturations);
     });
+}
+
+TEST(UncheckedRows, PointRowsWithinTheBoundGiveTheTestedRowsBits) {
+#ifndef LOCKBOX_UNCHECKED_ROWS
+    GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
+#else
+    PointRowTrials(1130, "point rows", SolvePoint);
+#endif
+}
+
+TEST(UncheckedRows, PointRowWarmStartsWithinTheBoundGiveTheTestedBits) {
+#ifndef LOCKBOX_UNCHECKED_ROWS
+    GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
+#else
+    PointRowTrials(3011, "point row warm starts", WarmStartPoint);
 #endif
 }
 
@@ -464,6 +495,77 @@ std::vector<uint64_t> Hashes(bool unchecked) {
 TEST(UncheckedRows, WorldsGiveTheSameHashesWithAndWithoutUncheckedRows) {
     const UncheckedAllowed restore;
     EXPECT_EQ(Hashes(true), Hashes(false));
+}
+
+// Revolute joints of every kind a row's set-up meets: bodies of masses from grams to tonnes,
+// fixed rotation, static bodies, anchors near and beyond the rows' bounds, limits and motors (the
+// limits switched off midway, which turns those joints into rows), warm starting on or off, and a
+// time step that changes. The set-up that writes straight into the rows must give the joint's own bits.
+struct RevoluteRun {
+    std::vector<uint64_t> hashes;
+    uint64_t saturations = 0;
+    bool operator==(const RevoluteRun&) const = default;
+};
+
+RevoluteRun RevoluteWorld(uint64_t seed, bool unchecked) {
+    solver::AllowUncheckedRows(unchecked);
+    std::mt19937_64 rng(seed);
+    const auto pick = [&rng](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    const auto raw = [](int32_t r) { return Fixed::FromRaw(r); };
+    RevoluteRun run;
+    const SaturationCapture capture(&run.saturations);
+    b2World world(b2Vec2(0, -10));
+    world.SetWarmStarting(pick(0, 3) != 0);
+    std::vector<b2Body*> bodies;
+    for (int i = 0; i < 24; ++i) {
+        b2BodyDef def;
+        def.type = i > 0 && pick(0, 5) == 0 ? b2_staticBody : b2_dynamicBody;
+        const int reach = pick(0, 7) == 0 ? 9000 : 30;
+        def.position.Set(Fixed(pick(-reach, reach)), Fixed(pick(-reach, reach)));
+        def.angle = raw(pick(-400000, 400000));
+        def.fixedRotation = pick(0, 9) == 0;
+        def.linearVelocity.Set(Fixed(pick(-6, 6)), Fixed(pick(-6, 6)));
+        def.angularVelocity = Fixed(pick(-4, 4));
+        b2Body* body = world.CreateBody(&def);
+        b2CircleShape circle;
+        circle.m_radius = raw(pick(2000, 300000));
+        body->CreateFixture(&circle, raw(pick(60, 6553600)));  // 0.001 to 100 kg/m^2
+        bodies.push_back(body);
+    }
+    std::vector<b2RevoluteJoint*> joints;
+    for (int i = 1; i < 24; ++i) {
+        b2RevoluteJointDef def;
+        def.bodyA = bodies[static_cast<size_t>(pick(0, i - 1))];
+        def.bodyB = bodies[static_cast<size_t>(i)];
+        const int reach = pick(0, 6) == 0 ? 196608000 : 196608;  // 3000 m or 3 m, raw
+        def.localAnchorA.Set(raw(pick(-reach, reach)), raw(pick(-reach, reach)));
+        def.localAnchorB.Set(raw(pick(-reach, reach)), raw(pick(-reach, reach)));
+        def.enableLimit = pick(0, 5) == 0;
+        def.lowerAngle = raw(pick(-100000, 0));
+        def.upperAngle = raw(pick(0, 100000));
+        def.enableMotor = pick(0, 5) == 0;
+        def.motorSpeed = Fixed(pick(-3, 3));
+        def.maxMotorTorque = Fixed(pick(1, 50));
+        joints.push_back(static_cast<b2RevoluteJoint*>(world.CreateJoint(&def)));
+    }
+    for (int step = 0; step < 60; ++step) {
+        if (step == 25) {
+            for (b2RevoluteJoint* joint : joints) joint->EnableLimit(false);
+        }
+        const Fixed dt = step % 17 == 5 ? raw(728) : test::kDt;
+        world.Step(dt, 8, 3);
+        run.hashes.push_back(world.Hash());
+    }
+    return run;
+}
+
+TEST(UncheckedRows, RevoluteSetUpsGiveTheJointsOwnBits) {
+    const QuietTraps quiet;
+    const UncheckedAllowed restore;
+    for (uint64_t seed = 1; seed <= 24; ++seed) {
+        const RevoluteRun reference = RevoluteWorld(seed, false);
+        EXPECT_EQ(RevoluteWorld(seed, true), reference) << "seed " << seed;
+    }
 }
 
 }  // namespace LOCKBOX_TEST_FILE

@@ -90,13 +90,11 @@ inline Wide CrossW(const b2Vec2& r, const b2Vec2& d) noexcept { return b2CrossWi
 // invMass + invI * a^2 for an arm term a (m): the scalar effective inverse mass of one body.
 inline Wide InvMassTerm(Wide invMass, Wide invI, Wide armSq) noexcept { return invMass + invI * armSq; }
 
-// The point-to-point position correction (2.2.1's revolute K solve): the impulse that closes
-// the gap C between two anchors at arms rA and rB. K is formed on Wide, or on
-// solver::UncheckedWide for a position row proven to stay in range (the same bits); the solve is
-// always Wide's.
+// The point-to-point block of 2.2.1's revolute K for anchors at arms rA and rB (symmetric, 1/kg).
+// Formed on Wide, or on solver::UncheckedWide where a row's bound proves it in range (the same
+// bits).
 template <class N>
-inline b2WideVec2 PointGapImpulse(const b2Vec2& C, const b2Vec2& rA, const b2Vec2& rB, N mA, N mB, N iA,
-                                  N iB) noexcept {
+inline b2WideMat22 PointK(const b2Vec2& rA, const b2Vec2& rB, N mA, N mB, N iA, N iB) noexcept {
     const N exx = mA + mB + iA * N(MulWide(rA.y, rA.y)) + iB * N(MulWide(rB.y, rB.y));
     const N exy = -(iA * N(MulWide(rA.x, rA.y))) - iB * N(MulWide(rB.x, rB.y));
     const N eyy = mA + mB + iA * N(MulWide(rA.x, rA.x)) + iB * N(MulWide(rB.x, rB.x));
@@ -105,8 +103,21 @@ inline b2WideVec2 PointGapImpulse(const b2Vec2& C, const b2Vec2& rA, const b2Vec
     K.ex.y = Wide(exy);
     K.ey.x = K.ex.y;
     K.ey.y = Wide(eyy);
-    return -K.Solve(C);
+    return K;
 }
+
+// The point-to-point position correction (2.2.1's revolute K solve): the impulse that closes
+// the gap C between two anchors at arms rA and rB. The solve is always Wide's.
+template <class N>
+inline b2WideVec2 PointGapImpulse(const b2Vec2& C, const b2Vec2& rA, const b2Vec2& rB, N mA, N mB, N iA,
+                                  N iB) noexcept {
+    return -PointK(rA, rB, mA, mB, iA, iB).Solve(C);
+}
+
+// A revolute K's angular column cannot leave Q32.32 while both inverse inertias are below this
+// raw (2^14 per kg m^2): each entry is i r with |r| < 2^15 m. Rows, which read only the point
+// block, form the column only at or above it, to report its overflow as 2.2.1's whole K would.
+inline constexpr uint64_t kNarrowTurn = uint64_t{1} << 46;
 
 // v.Length() <= limit without the square root, for a limit >= 0. Length rounds sqrt(s) to nearest
 // (s the exact squared length), and rounds up exactly when s exceeds r^2 + r for r = floor(sqrt(s));

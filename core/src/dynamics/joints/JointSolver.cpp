@@ -1,14 +1,17 @@
 #include "dynamics/joints/JointSolver.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "JointMath.h"
+#include "PointRow.h"
 #include "dynamics/unchecked/UncheckedWide.h"
 #include "lockbox/dynamics/joints/RevoluteJoint.h"
 
 namespace lockbox {
 
 using namespace jointmath;
+using namespace pointrow;
 using JointSolver = core_detail::Engine::Joints::Solver;
 
 namespace {
@@ -25,14 +28,6 @@ void Prefetch(const b2Joint* joint) noexcept {
 #endif
 }
 
-// r x P for the point row, on either number type.
-inline Wide ArmCross(const b2Vec2& r, Wide px, Wide py) noexcept { return b2Cross(r, b2WideVec2(px, py)); }
-#ifdef LOCKBOX_UNCHECKED_ROWS
-inline solver::UncheckedWide ArmCross(const b2Vec2& r, solver::UncheckedWide px, solver::UncheckedWide py) noexcept {
-    return solver::UncheckedWide::Cross(r, px, py);
-}
-#endif
-
 // One iteration of a revolute joint whose motor and limit are idle: the point-to-point branch
 // of b2RevoluteJoint::SolveVelocityConstraints, the same operations in the same order (its
 // PointVelocity, math::Mul, ApplyNeg and ApplyPos written out), on Wide or, for a row proven to
@@ -47,12 +42,7 @@ template <class N, class V>
     const N py = -(N(m.ex.y) * cx + N(m.ey.y) * cy);
     accumulated.x += px;
     accumulated.y += py;
-    vA.x -= N(row.mA) * px;
-    vA.y -= N(row.mA) * py;
-    wA -= N(row.iA) * ArmCross(row.rA, px, py);
-    vB.x += N(row.mB) * px;
-    vB.y += N(row.mB) * py;
-    wB += N(row.iB) * ArmCross(row.rB, px, py);
+    ApplyPointImpulse(row, vA, wA, vB, wB, px, py);
 }
 
 }  // namespace
@@ -61,10 +51,7 @@ void JointSolver::SolvePointRow(Row& row, const b2SolverData& data, bool uncheck
     b2Velocity& velA = data.velocities[row.indexA];
     b2Velocity& velB = data.velocities[row.indexB];
 #ifdef LOCKBOX_UNCHECKED_ROWS
-    const uint64_t velocities = solver::FoldedPair(velA.v, velA.w, velB.v, velB.w);
-    const uint64_t impulse = solver::Folded(row.impulse.x) | solver::Folded(row.impulse.y);
-    if (uncheckedAllowed && solver::Within(velocities, row.unchecked.velocities) &&
-        solver::Within(impulse, row.unchecked.impulses)) {
+    if (uncheckedAllowed && PointRowFits(row, velA, velB)) {
         using solver::UncheckedVec2, solver::UncheckedWide;
         auto vA = UncheckedVec2::From(velA.v), vB = UncheckedVec2::From(velB.v);
         UncheckedWide wA = velA.w, wB = velB.w;
@@ -93,9 +80,6 @@ void JointSolver::SolvePointRow(Row& row, const b2SolverData& data, bool uncheck
 
 namespace {
 
-// q v on Fixed, as the joint computes its arms (the unchecked row has solver::Rotate).
-inline b2Vec2 Rotate(const b2Rot& q, Fixed x, Fixed y) noexcept { return b2Mul(q, b2Vec2(x, y)); }
-
 // A body's centre and angle in a position row, on Fixed or solver::UncheckedFixed.
 template <class F>
 struct Pose {
@@ -123,10 +107,14 @@ template <class F, class N>
 [[gnu::always_inline]] inline Gap PointGap(const JointSolver::PositionRow& row, const b2Rot& qA, const b2Rot& qB,
                                            const Pose<F>& A, const Pose<F>& B) noexcept {
     Gap g;
-    g.rA = Rotate(qA, F(row.localAnchorA.x) - F(row.localCenterA.x), F(row.localAnchorA.y) - F(row.localCenterA.y));
-    g.rB = Rotate(qB, F(row.localAnchorB.x) - F(row.localCenterB.x), F(row.localAnchorB.y) - F(row.localCenterB.y));
+    PointArms<F>(row, qA, qB, g.rA, g.rB);
     const b2Vec2 C(Fixed(B.x + F(g.rB.x) - A.x - F(g.rA.x)), Fixed(B.y + F(g.rB.y) - A.y - F(g.rA.y)));
     g.closed = LengthWithin(C, b2_linearSlop);
+    // On a proven row K cannot saturate, and a zero gap's solve gives exactly zero (zero
+    // numerators): a joint at rest needs neither K nor the solve.
+    if constexpr (!std::is_same_v<N, Wide>) {
+        if (C.x == Fixed() && C.y == Fixed()) return g;
+    }
     g.impulse = PointGapImpulse(C, g.rA, g.rB, N(row.mA), N(row.mB), N(row.iA), N(row.iB));
     return g;
 }
@@ -165,6 +153,8 @@ bool JointSolver::SolvePointPositionRow(const PositionRow& row, const b2SolverDa
         using solver::UncheckedFixed, solver::UncheckedWide;
         auto A = Pose<UncheckedFixed>::Load(posA), B = Pose<UncheckedFixed>::Load(posB);
         const Gap g = PointGap<UncheckedFixed, UncheckedWide>(row, qA, qB, A, B);
+        // A zero impulse moves neither body.
+        if (g.impulse.x == Wide() && g.impulse.y == Wide()) return g.closed;
         if (solver::Within(Folded(g.impulse.x) | Folded(g.impulse.y), row.unchecked.impulses)) {
             ApplyGapImpulse<UncheckedFixed, UncheckedWide>(row, g, A, B);
             A.Store(posA);
@@ -214,6 +204,9 @@ void JointSolver::Begin(int32 count) {
 }
 
 void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 begin, int32 end, const b2SolverData& data) {
+#ifdef LOCKBOX_UNCHECKED_ROWS
+    const bool uncheckedAllowed = solver::UncheckedRowsAllowed();
+#endif
     for (int32 i = begin; i < end; ++i) {
         b2Joint* joint = joints[i];
         if (i + kPrefetchAhead < end) Prefetch(joints[i + kPrefetchAhead]);
@@ -230,7 +223,11 @@ void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 begin, i
         // With both disabled the joint is certain to be a row, and its own solver fields, which
         // only its own iterations would read, are not written.
         auto* revolute = static_cast<b2RevoluteJoint*>(joint);
+        PositionRow& position = m_positionRows[static_cast<size_t>(i)];
         const bool rowOnly = !revolute->m_enableMotor && !revolute->m_enableLimit;
+#ifdef LOCKBOX_UNCHECKED_ROWS
+        if (rowOnly && uncheckedAllowed && SetUpRow(*revolute, data, row, position)) continue;
+#endif
         const b2RevoluteJoint::PointSetUp s = revolute->SetUpVelocity(data, !rowOnly);
         const bool fixedRotation = (s.iA + s.iB == Wide());
         const bool motor = revolute->m_enableMotor && revolute->m_limitState != e_equalLimits && !fixedRotation;
@@ -249,17 +246,7 @@ void JointSolver::InitVelocityConstraints(b2Joint* const* joints, int32 begin, i
         row.revolute = revolute;
         row.unchecked = PointRowWidths(row);
 
-        PositionRow& position = m_positionRows[static_cast<size_t>(i)];
-        position.indexA = s.indexA;
-        position.indexB = s.indexB;
-        position.localAnchorA = revolute->m_localAnchorA;
-        position.localCenterA = s.localCenterA;
-        position.localAnchorB = revolute->m_localAnchorB;
-        position.localCenterB = s.localCenterB;
-        position.mA = s.mA;
-        position.mB = s.mB;
-        position.iA = s.iA;
-        position.iB = s.iB;
+        LoadPositionRow(position, row, *revolute, s.localCenterA, s.localCenterB);
 #ifdef LOCKBOX_UNCHECKED_ROWS
         position.unchecked = PositionRowWidths(position);
 #endif
@@ -284,6 +271,10 @@ solver::InputWidths JointSolver::PointRowWidths(const Row& row) noexcept {
     Slopes widest = Max(Max(cdot, Product64(kVelocity, arm)), Sum(kImpulse, impulse));
     widest = Max(widest, Max(cross, Sum(kVelocity, Times(impulse, resp, kWideShift))));
     widest = Max(widest, Sum(kVelocity, Times(cross, resp, kWideShift)));
+    // The set-up applies the accumulated impulse itself in the same way (its warm start).
+    const Slopes carriedCross = Plus(Times(kImpulse, arm, kFixedShift), 1);
+    widest = Max(widest, Max(carriedCross, Sum(kVelocity, Times(kImpulse, resp, kWideShift))));
+    widest = Max(widest, Sum(kVelocity, Times(carriedCross, resp, kWideShift)));
     return WidthsFor(widest);
 }
 

@@ -71,7 +71,11 @@ public:
 
     /// One iteration of a point row; unchecked when allowed and its inputs are within its widths.
     static void SolvePointRow(Row& row, const b2SolverData& data, bool uncheckedAllowed) noexcept;
-    /// The widest velocities and accumulated impulse for which no value of a point row can leave
+    /// A point row's warm start: its accumulated impulse applied to its bodies, unchecked when
+    /// allowed and the velocities and impulse are within its widths.
+    static void WarmStartPointRow(const Row& row, const b2SolverData& data, bool uncheckedAllowed) noexcept;
+    /// The widest velocities and accumulated impulse for which no value of a point row (its
+    /// iterations and its warm start) can leave
     /// Q32.32 (dynamics/unchecked/Widths.h), from the widths of the row's constants.
     static solver::InputWidths PointRowWidths(const Row& row) noexcept;
 
@@ -106,6 +110,15 @@ public:
     static PositionWidths PositionRowWidths(const PositionRow& row) noexcept;
 
 private:
+    /// The position row of a revolute row joint: the row's bodies, masses and the anchors.
+    static void LoadPositionRow(PositionRow& position, const Row& row, const b2RevoluteJoint& joint,
+                                const b2Vec2& localCenterA, const b2Vec2& localCenterB) noexcept;
+    /// The velocity set-up of a revolute joint with its motor and limit disabled, straight into
+    /// its rows, with the arms, K and warm start unchecked where the rows' bounds prove them in
+    /// range (the joint's own set-up's bits). False, with the joint and bodies untouched, when
+    /// the joint needs its own set-up.
+    static bool SetUpRow(b2RevoluteJoint& joint, const b2SolverData& data, Row& row, PositionRow& position) noexcept;
+
     std::vector<Row> m_rows;
     std::vector<PositionRow> m_positionRows;  ///< parallel to m_rows, set where a row is
     int32 m_count = 0;

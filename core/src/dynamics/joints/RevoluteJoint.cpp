@@ -39,18 +39,26 @@ Fixed b2RevoluteJoint::ContinuousAngle(Fixed aA, Fixed aB) const noexcept {
     return m_angleBase + math::WrapAngle(aB - aA - m_referenceAngle - m_angleBase);
 }
 
+Fixed b2RevoluteJoint::TrackAngle(Fixed aA, Fixed aB) noexcept {
+    Fixed jointAngle = ContinuousAngle(aA, aB);
+    // Without a limit, beyond kMaxContinuousAngle the turn count restarts from the wrapped
+    // angle, so a joint that spins freely for hours never saturates Q16.16. With a limit the
+    // angle is held near the limits (|limit| <= 16000 rad) and is never reset.
+    if (!m_enableLimit && b2Abs(jointAngle) > kMaxContinuousAngle) jointAngle = math::WrapAngle(jointAngle);
+    m_angleBase = jointAngle;
+    return jointAngle;
+}
+
 namespace {
 // The point-plus-angle K of 2.2.1 (symmetric). A joint iterated as a row reads only the point
-// block (pointOnly): its angular column is then formed only when it could saturate (an inverse
-// inertia of 2^14 or more, raw 2^46, against arms below 2^15 m), so that every overflow 2.2.1's
-// whole K reports is still counted.
+// block (pointOnly): its angular column is then formed only when it could saturate
+// (kNarrowTurn), so that every overflow 2.2.1's whole K reports is still counted.
 b2WideMat33 PointAngleK(Wide mA, Wide mB, Wide iA, Wide iB, const b2Vec2& rA, const b2Vec2& rB, bool pointOnly) {
     b2WideMat33 K;
     K.ex.x = mA + mB + iA * MulWide(rA.y, rA.y) + iB * MulWide(rB.y, rB.y);
     K.ey.x = -(iA * MulWide(rA.y, rA.x)) - iB * MulWide(rB.y, rB.x);
     K.ex.y = K.ey.x;
     K.ey.y = mA + mB + iA * MulWide(rA.x, rA.x) + iB * MulWide(rB.x, rB.x);
-    constexpr uint64_t kNarrowTurn = uint64_t{1} << 46;
     if (pointOnly && (solver::Folded(iA) | solver::Folded(iB)) < kNarrowTurn) return K;
     K.ez.x = -(iA * rA.y) - iB * rB.y;
     K.ez.y = iA * rA.x + iB * rB.x;
@@ -98,12 +106,7 @@ b2RevoluteJoint::PointSetUp b2RevoluteJoint::SetUpVelocity(const b2SolverData& d
 
     if (!m_enableMotor || fixedRotation) m_motorImpulse = Wide();
 
-    Fixed jointAngle = ContinuousAngle(aA, aB);
-    // Without a limit, beyond kMaxContinuousAngle the turn count restarts from the wrapped
-    // angle, so a joint that spins freely for hours never saturates Q16.16. With a limit the
-    // angle is held near the limits (|limit| <= 16000 rad) and is never reset.
-    if (!m_enableLimit && b2Abs(jointAngle) > kMaxContinuousAngle) jointAngle = math::WrapAngle(jointAngle);
-    m_angleBase = jointAngle;
+    const Fixed jointAngle = TrackAngle(aA, aB);
     if (m_enableLimit && !fixedRotation) {
         // Equal limits within 2 angularSlop (4 degrees) are solved as a fixed angle.
         if (b2Abs(m_upperAngle - m_lowerAngle) < Fixed(2) * b2_angularSlop) {

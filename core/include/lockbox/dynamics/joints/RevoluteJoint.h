@@ -135,6 +135,9 @@ private:
 
     /// The continuous angle for body angles aA, aB: the branch nearest to m_angleBase.
     Fixed ContinuousAngle(Fixed aA, Fixed aB) const noexcept;
+    /// Carries the continuous angle to body angles aA, aB (the velocity set-up's step) and
+    /// returns it.
+    Fixed TrackAngle(Fixed aA, Fixed aB) noexcept;
 
     // Declared in the order of use, so that a step touches as few cache lines of a joint as it
     // can (a large joint graph's set-up and iterations are memory-bound). First what the
