@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +19,8 @@
 #include <gtest/gtest.h>
 
 #include "../dynamics/DynamicsTestUtil.h"
+#include "dynamics/contacts/ContactPointSetUp.h"
+#include "dynamics/contacts/ContactPointSetUpBound.h"
 #include "dynamics/contacts/ContactRowBound.h"
 #include "dynamics/contacts/ContactSolver.h"
 #include "dynamics/joints/JointMath.h"
@@ -242,6 +245,255 @@ TEST(UncheckedRows, ContactRowsWithinTheBoundGiveTheTestedRowsBits) {
     });
     // Most rows with a bound fit it.
     EXPECT_GT(bounded, 50000);
+#endif
+}
+
+// A contact's velocity set-up: its manifold, the bodies' poses and velocities, and the constants
+// Load copies from the bodies and the fixtures. The manifold lives in a contact of `world`.
+struct SetUpCase {
+    b2Manifold manifold;
+    b2Position poses[2];
+    b2Velocity velocities[2];
+    b2ContactVelocityConstraint vc;
+    b2ContactPositionConstraint pc;
+};
+
+// Draws a set-up's constants: arms, masses, inertias and restitution of every scale (now and
+// then beyond the set-up's bound: a direction that is not unit, an arm or inertia too wide).
+void FillSetUp(RowDrawer& draw, SetUpCase& c) {
+    c = SetUpCase();
+    b2Manifold& m = c.manifold;
+    m.type = static_cast<b2Manifold::Type>(draw.Pick(0, 2));
+    m.pointCount = m.type == b2Manifold::e_circles ? 1 : draw.Pick(1, 2);
+    const double angle = draw.Pick(0, 6283) / 1000.0;
+    m.localNormal = draw.Chance(10) ? b2Vec2(draw.FixedOf(draw.Pick(1, 31)), draw.FixedOf(draw.Pick(1, 31)))
+                                    : b2Vec2(Fixed::FromRaw(static_cast<int32_t>(std::cos(angle) * 65536)),
+                                             Fixed::FromRaw(static_cast<int32_t>(std::sin(angle) * 65536)));
+    const int arm = draw.Chance(4) ? draw.Pick(1, 30) : draw.Pick(12, 20);
+    m.localPoint = b2Vec2(draw.FixedOf(arm), draw.FixedOf(arm));
+    for (int32 j = 0; j < m.pointCount; ++j)
+        m.points[j].localPoint = b2Vec2(draw.FixedOf(arm - draw.Pick(0, 2)), draw.FixedOf(arm - draw.Pick(0, 2)));
+    const int pose = draw.Chance(4) ? draw.Pick(1, 30) : draw.Pick(12, 24);
+    for (b2Position& p : c.poses) {
+        p.c = b2Vec2(draw.FixedOf(pose - draw.Pick(0, 1)), draw.FixedOf(pose - draw.Pick(0, 1)));
+        p.a = draw.Chance(3) ? Fixed() : draw.FixedOf(draw.Pick(0, 20));
+    }
+
+    b2ContactPositionConstraint& pc = c.pc;
+    pc.indexA = 0;
+    pc.indexB = 1;
+    pc.type = m.type;
+    pc.pointCount = m.pointCount;
+    pc.localCenterA = draw.Chance(2) ? b2Vec2() : b2Vec2(draw.FixedOf(arm - 2), draw.FixedOf(arm - 2));
+    pc.localCenterB = draw.Chance(2) ? b2Vec2() : b2Vec2(draw.FixedOf(arm - 2), draw.FixedOf(arm - 2));
+    pc.radiusA = draw.Chance(2) ? Fixed() : Fixed::FromRaw(static_cast<int32_t>(draw.Raw(17) & 0xffff));
+    pc.radiusB = draw.Chance(2) ? Fixed() : Fixed::FromRaw(static_cast<int32_t>(draw.Raw(17) & 0xffff));
+
+    // Inverse masses from 2^-12 to 2^23 1/kg (the divisions stay in range), inverse inertias
+    // wider still; a static body A has neither.
+    b2ContactVelocityConstraint& vc = c.vc;
+    vc.indexA = 0;
+    vc.indexB = 1;
+    vc.contactIndex = 0;
+    vc.pointCount = m.pointCount;
+    const bool staticA = draw.Chance(5);
+    const int mass = draw.Pick(20, 50), turn = draw.Chance(4) ? draw.Pick(20, 60) : draw.Pick(24, 44);
+    const auto positive = [&draw](int width) { return Wide::FromRaw(std::abs(draw.Raw(width)) | (int64_t{1} << 20)); };
+    vc.invMassA = staticA ? Wide() : positive(mass);
+    vc.invIA = staticA ? Wide() : positive(turn);
+    vc.invMassB = positive(mass);
+    vc.invIB = draw.Chance(10) ? Wide() : positive(turn);
+    vc.friction = draw.FixedOf(17);
+    vc.restitution = draw.Chance(2) ? Fixed() : draw.Chance(4) ? draw.FixedOf(draw.Pick(1, 31)) : draw.FixedOf(17);
+}
+
+// The world points and normal of a case, as the set-up forms them.
+b2WorldManifold WorldPoints(const SetUpCase& c) {
+    b2Transform xfA, xfB;
+    xfA.q = b2Rot(c.poses[0].a);
+    xfB.q = b2Rot(c.poses[1].a);
+    xfA.p = solver::BodyOrigin(c.poses[0].c, xfA.q, c.pc.localCenterA);
+    xfB.p = solver::BodyOrigin(c.poses[1].c, xfB.q, c.pc.localCenterB);
+    b2WorldManifold world;
+    world.Initialize(&c.manifold, xfA, c.pc.radiusA, xfB, c.pc.radiusB);
+    return world;
+}
+
+// Velocities of width at most `width` (a static body A keeps its own: the set-up reads it all the same).
+void SetUpVelocities(RowDrawer& draw, SetUpCase& c, int width) {
+    for (b2Velocity& b : c.velocities) {
+        b.v = b2WideVec2(draw.WideOf(width - draw.Pick(0, 1)), draw.WideOf(width - draw.Pick(0, 1)));
+        b.w = draw.WideOf(width - draw.Pick(0, 1));
+    }
+}
+
+struct SetUpDone {
+    b2ContactVelocityConstraint vc;
+    b2WideSym22 K;  ///< of the templated part alone
+    uint64_t saturations = 0;
+};
+
+// The solver's whole set-up of the case's contact, with the unchecked set-up allowed or not.
+SetUpDone InitializeOnce(b2Contact* contact, const SetUpCase& c, bool unchecked) {
+    solver::AllowUncheckedRows(unchecked);
+    *contact->GetManifold() = c.manifold;
+    b2Position poses[2] = {c.poses[0], c.poses[1]};
+    b2Velocity velocities[2] = {c.velocities[0], c.velocities[1]};
+    b2CachedRot rotations[2];
+    b2ContactPositionConstraint pc = c.pc;
+    SetUpDone out;
+    out.vc = c.vc;
+    b2ContactSolverDef def;
+    def.count = 1;
+    def.contacts = &contact;
+    def.positions = poses;
+    def.velocities = velocities;
+    def.positionConstraints = &pc;
+    def.velocityConstraints = &out.vc;
+    def.rotations = rotations;
+    b2ContactSolver solver(&def);
+    const SaturationCapture capture(&out.saturations);
+    solver.InitializeVelocityConstraints(0, 1);
+    return out;
+}
+
+// Only the templated part (ContactPointSetUp.h), on the number types F, N and V: what the bound
+// speaks for.
+template <class F, class N, class V>
+SetUpDone SetUpPointsOnce(const SetUpCase& c, const b2WorldManifold& world) {
+    SetUpDone out;
+    out.vc = c.vc;
+    out.vc.normal = world.normal;
+    out.vc.tangent = b2Cross(world.normal, Fixed(1));
+    const b2Velocity& A = c.velocities[0];
+    const b2Velocity& B = c.velocities[1];
+    const SaturationCapture capture(&out.saturations);
+    out.K = solver::SetUpContactPoints<F, N>(out.vc, world.points, c.poses[0].c, c.poses[1].c, V{N(A.v.x), N(A.v.y)},
+                                             N(A.w), V{N(B.v.x), N(B.v.y)}, N(B.w));
+    return out;
+}
+
+// Every field the set-up writes, and the saturations.
+bool SameSetUp(const SetUpDone& a, const SetUpDone& b, int32 pointCount) {
+    const b2ContactVelocityConstraint &x = a.vc, &y = b.vc;
+    if (a.saturations != b.saturations || x.normal != y.normal || x.tangent != y.tangent || x.pushA.x != y.pushA.x ||
+        x.pushA.y != y.pushA.y || x.pushB.x != y.pushB.x || x.pushB.y != y.pushB.y || x.samePush != y.samePush ||
+        x.pointCount != y.pointCount || x.useBlock != y.useBlock || x.unchecked.velocities != y.unchecked.velocities ||
+        x.unchecked.impulses != y.unchecked.impulses || a.K.k11 != b.K.k11 || a.K.k12 != b.K.k12 || a.K.k22 != b.K.k22)
+        return false;
+    if (x.useBlock &&
+        (x.K.k11 != y.K.k11 || x.K.k12 != y.K.k12 || x.K.k22 != y.K.k22 || x.normalMass.k11 != y.normalMass.k11 ||
+         x.normalMass.k12 != y.normalMass.k12 || x.normalMass.k22 != y.normalMass.k22))
+        return false;
+    for (int32 j = 0; j < pointCount; ++j) {
+        const b2VelocityConstraintPoint &p = x.points[j], &q = y.points[j];
+        if (p.rnA != q.rnA || p.rnB != q.rnB || p.rtA != q.rtA || p.rtB != q.rtB || p.normalMass != q.normalMass ||
+            p.tangentMass != q.tangentMass || p.turnNA != q.turnNA || p.turnNB != q.turnNB || p.turnTA != q.turnTA ||
+            p.turnTB != q.turnTB || p.velocityBias != q.velocityBias)
+            return false;
+    }
+    return true;
+}
+
+TEST(UncheckedRows, ContactSetUpsWithinTheBoundGiveTheTestedSetUpsBits) {
+#ifndef LOCKBOX_UNCHECKED_ROWS
+    GTEST_SKIP() << "no native 128-bit integer: every set-up keeps its tests";
+#else
+    // A contact whose manifold each trial overwrites: the set-up reads nothing else of it.
+    b2World world(b2Vec2(0, -10));
+    test::MakeDynamicBox(world, 0, 0, 1, 1);
+    test::MakeDynamicBox(world, 0, Fixed(1.5), 1, 1);
+    world.Step(test::kDt, 8, 3);
+    b2Contact* contact = world.GetContactList();
+    ASSERT_NE(contact, nullptr);
+
+    int64_t bounded = 0, unchecked = 0;
+    RunTrials(20261201, "contact set-ups", [&](RowDrawer& draw, Tally& tally) {
+        SetUpCase c;
+        FillSetUp(draw, c);
+        const b2WorldManifold points = WorldPoints(c);
+        b2ContactVelocityConstraint bound = c.vc;
+        bound.normal = points.normal;
+        bound.tangent = b2Cross(points.normal, Fixed(1));
+        const int width = solver::SetUpVelocityWidth(bound, points.points, c.poses[0].c, c.poses[1].c);
+        const int loosen = Loosening(draw);
+        const int loosened = width == 0 ? 0 : std::min(width + loosen, 63);
+        if (width != 0) ++bounded;
+        SetUpVelocities(draw, c, width == 0 ? draw.Pick(16, 48) : loosened + draw.Pick(-3, 1));
+        const bool fits = solver::Within(
+            solver::FoldedPair(c.velocities[0].v, c.velocities[0].w, c.velocities[1].v, c.velocities[1].w), loosened);
+
+        using solver::UncheckedFixed, solver::UncheckedVec2, solver::UncheckedWide;
+        const SetUpDone tested = SetUpPointsOnce<Fixed, Wide, b2WideVec2>(c, points);
+        const SetUpDone fast = SetUpPointsOnce<UncheckedFixed, UncheckedWide, UncheckedVec2>(c, points);
+        if (loosen != 0) return tally.Judge(loosen, fits, fits && SameSetUp(fast, tested, c.vc.pointCount), 0);
+        // The solver's own choice: the whole set-up, unchecked where it may be, against the tested one.
+        const SetUpDone solverFast = InitializeOnce(contact, c, true);
+        const SetUpDone solverTested = InitializeOnce(contact, c, false);
+        if (fits) ++unchecked;
+        const bool same =
+            SameSetUp(solverFast, solverTested, c.vc.pointCount) && (!fits || SameSetUp(fast, tested, c.vc.pointCount));
+        return tally.Judge(0, fits, same, tested.saturations);
+    });
+    // Half the set-ups have a bound (the rest are drawn beyond it), and many run unchecked.
+    EXPECT_GT(bounded, 25000);
+    EXPECT_GT(unchecked, 10000);
+#endif
+}
+
+// The set-up's bound at its edges: arms, inertias and velocities at the widest it admits, either
+// sign, with the restitution at full scale; beyond the arms' edge it admits nothing.
+TEST(UncheckedRows, ContactSetUpsAtTheBoundsEdgesGiveTheTestedSetUpsBits) {
+#ifndef LOCKBOX_UNCHECKED_ROWS
+    GTEST_SKIP() << "no native 128-bit integer: every set-up keeps its tests";
+#else
+    const QuietTraps quiet;
+    int admitted = 0;
+    for (int arm = 1; arm <= 29; ++arm) {
+        for (int turn = 1; turn <= 63; turn += 2) {
+            for (int sign = 0; sign < 16; ++sign) {
+                // The widest raws of width `width`, as Within admits them: -(2^width - 1) and
+                // 2^width - 2 (a fold is one short for a positive raw).
+                const auto edge = [sign](int width, int bit) {
+                    const auto top = static_cast<int64_t>((uint64_t{1} << width) - 1);
+                    return (sign >> bit & 1) != 0 ? -top : top - 1;
+                };
+                SetUpCase c;
+                c.vc.pointCount = 2;
+                c.vc.indexB = 1;
+                c.vc.normal = b2Vec2(Fixed::FromRaw(sign & 1 ? -65536 : 65536), Fixed());
+                if (sign & 2) c.vc.normal = c.vc.normal.Skew();
+                c.vc.tangent = b2Cross(c.vc.normal, Fixed(1));
+                c.vc.invMassA = c.vc.invMassB = Wide::FromRaw((int64_t{1} << 45) - 2);
+                c.vc.invIA = c.vc.invIB = Wide::FromRaw(edge(turn, 31));
+                c.vc.restitution = Fixed(1);
+                b2WorldManifold points;
+                points.normal = c.vc.normal;
+                // Arms of width `arm` from both centres: A at the origin, B across it.
+                const auto raw = [](int64_t v) { return Fixed::FromRaw(static_cast<int32_t>(v)); };
+                const int64_t half = edge(arm, 0) / 2;
+                c.poses[0].c = b2Vec2(raw(half), raw(half));
+                c.poses[1].c = b2Vec2(raw(-half), raw(-half));
+                points.points[0] = b2Vec2(raw(half - edge(arm - 1, 1)), raw(-half));
+                points.points[1] = b2Vec2(raw(half), raw(half + edge(arm - 1, 2)));
+                const int width = solver::SetUpVelocityWidth(c.vc, points.points, c.poses[0].c, c.poses[1].c);
+                if (width == 0) continue;
+                for (b2Velocity& b : c.velocities) {
+                    b.v = b2WideVec2(Wide::FromRaw(edge(width, 0)), Wide::FromRaw(-edge(width, 1)));
+                    b.w = Wide::FromRaw(edge(width, 2));
+                }
+                c.velocities[0].v.x = Wide::FromRaw(-c.velocities[1].v.x.Raw());
+                c.velocities[0].w = Wide::FromRaw(-c.velocities[1].w.Raw());
+                using solver::UncheckedFixed, solver::UncheckedVec2, solver::UncheckedWide;
+                const SetUpDone tested = SetUpPointsOnce<Fixed, Wide, b2WideVec2>(c, points);
+                const SetUpDone fast = SetUpPointsOnce<UncheckedFixed, UncheckedWide, UncheckedVec2>(c, points);
+                ASSERT_EQ(tested.saturations, 0u) << arm << " " << turn << " " << sign;
+                ASSERT_TRUE(SameSetUp(fast, tested, 2)) << arm << " " << turn << " " << sign;
+                ++admitted;
+            }
+        }
+    }
+    EXPECT_GT(admitted, 5000);
 #endif
 }
 

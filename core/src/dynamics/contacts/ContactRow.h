@@ -23,11 +23,6 @@ template <class N>
     return a < b ? b : a;
 }
 
-inline Wide AsWide(Wide w) noexcept { return w; }
-#ifdef LOCKBOX_UNCHECKED_ROWS
-inline Wide AsWide(UncheckedWide w) noexcept { return w.ToWide(); }
-#endif
-
 // Solves one iteration of vc on the pair's velocities (A: vA, wA; B: vB, wB) and its
 // accumulated impulses.
 template <class N, class V>

@@ -1,6 +1,8 @@
 // b2ContactSolver: setup, warm starting and the velocity iterations.
 #include "dynamics/contacts/ContactSolver.h"
 
+#include "ContactPointSetUp.h"
+#include "ContactPointSetUpBound.h"
 #include "ContactRow.h"
 #include "ContactRowBound.h"
 #include "SolverMath.h"
@@ -39,6 +41,26 @@ bool InvertBlock(const b2WideSym22& K, b2WideSym22* inverse) {
     inverse->k12 = entry(-K.k12.Raw());
     inverse->k22 = entry(K.k11.Raw());
     return true;
+}
+
+// The pushes and points of vc and the block solver's K (ContactPointSetUp.h), unchecked where
+// the contact is proven to stay in range. Flattened: the unchecked path pays off only with every
+// operation inlined.
+[[gnu::flatten]] b2WideSym22 SetUpPoints(b2ContactVelocityConstraint& vc, const b2Vec2* points, const b2Vec2& cA,
+                                         const b2Vec2& cB, const b2Velocity& A, const b2Velocity& B,
+                                         bool uncheckedAllowed) {
+#ifdef LOCKBOX_UNCHECKED_ROWS
+    if (uncheckedAllowed &&
+        solver::Within(solver::FoldedPair(A.v, A.w, B.v, B.w), solver::SetUpVelocityWidth(vc, points, cA, cB))) {
+        using solver::UncheckedFixed, solver::UncheckedVec2, solver::UncheckedWide;
+        return solver::SetUpContactPoints<UncheckedFixed, UncheckedWide>(vc, points, cA, cB, UncheckedVec2::From(A.v),
+                                                                         UncheckedWide(A.w), UncheckedVec2::From(B.v),
+                                                                         UncheckedWide(B.w));
+    }
+#else
+    (void)uncheckedAllowed;
+#endif
+    return solver::SetUpContactPoints<Fixed, Wide>(vc, points, cA, cB, A.v, A.w, B.v, B.w);
 }
 
 }  // namespace
@@ -112,6 +134,7 @@ void b2ContactSolver::Load(int32 begin, int32 end) {
 }
 
 void b2ContactSolver::InitializeVelocityConstraints(int32 begin, int32 end) {
+    const bool uncheckedAllowed = solver::UncheckedRowsAllowed();
     for (int32 i = begin; i < end; ++i) {
         b2ContactVelocityConstraint* vc = &m_velocityConstraints[static_cast<size_t>(i)];
         const b2ContactPositionConstraint* pc = &m_positionConstraints[static_cast<size_t>(i)];
@@ -121,12 +144,8 @@ void b2ContactSolver::InitializeVelocityConstraints(int32 begin, int32 end) {
         const Wide iA = vc->invIA, iB = vc->invIB;
         const b2Vec2 cA = m_positions[vc->indexA].c;
         const Fixed aA = m_positions[vc->indexA].a;
-        const b2WideVec2 vA = m_velocities[vc->indexA].v;
-        const Wide wA = m_velocities[vc->indexA].w;
         const b2Vec2 cB = m_positions[vc->indexB].c;
         const Fixed aB = m_positions[vc->indexB].a;
-        const b2WideVec2 vB = m_velocities[vc->indexB].v;
-        const Wide wB = m_velocities[vc->indexB].w;
 
         b2Transform xfA, xfB;
         xfA.q = m_rotations[vc->indexA].For(aA);
@@ -139,51 +158,18 @@ void b2ContactSolver::InitializeVelocityConstraints(int32 begin, int32 end) {
 
         vc->normal = worldManifold.normal;
         vc->tangent = b2Cross(vc->normal, Fixed(1));
-        vc->pushA = b2WideVec2(mA * vc->normal.x, mA * vc->normal.y);
-        vc->pushB = b2WideVec2(mB * vc->normal.x, mB * vc->normal.y);
+        b2WideSym22 K = SetUpPoints(*vc, worldManifold.points, cA, cB, m_velocities[vc->indexA],
+                                    m_velocities[vc->indexB], uncheckedAllowed);
         vc->samePush = vc->pushA.x == vc->pushB.x && vc->pushA.y == vc->pushB.y;
-        const b2Vec2 tangent = vc->tangent;
-        // The normal denominators are also the diagonal of the block solver's K.
-        Wide kNormals[b2_maxManifoldPoints];
-
-        for (int32 j = 0; j < vc->pointCount; ++j) {
-            b2VelocityConstraintPoint* vcp = vc->points + j;
-            const b2Vec2 rA = worldManifold.points[j] - cA;
-            const b2Vec2 rB = worldManifold.points[j] - cB;
-
-            vcp->rnA = b2Cross(rA, vc->normal);
-            vcp->rnB = b2Cross(rB, vc->normal);
-            const Wide kNormal = solver::EffectiveInverseMass(mA, mB, iA, iB, vcp->rnA, vcp->rnB);
-            kNormals[j] = kNormal;
-            vcp->normalMass = kNormal > Wide() ? Wide(1) / kNormal : Wide();
-            vcp->turnNA = iA * vcp->rnA;
-            vcp->turnNB = iB * vcp->rnB;
-
-            vcp->rtA = b2Cross(rA, tangent);
-            vcp->rtB = b2Cross(rB, tangent);
-            const Wide kTangent = solver::EffectiveInverseMass(mA, mB, iA, iB, vcp->rtA, vcp->rtB);
-            vcp->tangentMass = kTangent > Wide() ? Wide(1) / kTangent : Wide();
-            vcp->turnTA = iA * vcp->rtA;
-            vcp->turnTB = iB * vcp->rtB;
-
-            // Restitution only above the threshold speed (inelastic resting contact).
-            vcp->velocityBias = Fixed();
-            const Wide vRel = solver::SpeedAlong(vA, wA, vcp->rnA, vB, wB, vcp->rnB, vc->normal);
-            if (vRel < -Wide(b2_velocityThreshold)) vcp->velocityBias = -(vRel * vc->restitution).ToFixed();
-        }
 
         // Two points: prepare the block solver if K is well conditioned, else keep one point.
         if (vc->pointCount == 2) {
             const b2VelocityConstraintPoint& p1 = vc->points[0];
             const b2VelocityConstraintPoint& p2 = vc->points[1];
-            b2WideSym22 K;
             // Every term of the denominator is >= 0, so a saturation leaves it at +max; only
             // then is it evaluated again, to report the overflow as often as before.
-            K.k11 = kNormals[0].Raw() != Wide::kMaxRaw ? kNormals[0]
-                                                       : solver::EffectiveInverseMass(mA, mB, iA, iB, p1.rnA, p1.rnB);
-            K.k22 = kNormals[1].Raw() != Wide::kMaxRaw ? kNormals[1]
-                                                       : solver::EffectiveInverseMass(mA, mB, iA, iB, p2.rnA, p2.rnB);
-            K.k12 = mA + mB + iA * MulWide(p1.rnA, p2.rnA) + iB * MulWide(p1.rnB, p2.rnB);
+            if (K.k11.Raw() == Wide::kMaxRaw) K.k11 = solver::EffectiveInverseMass(mA, mB, iA, iB, p1.rnA, p1.rnB);
+            if (K.k22.Raw() == Wide::kMaxRaw) K.k22 = solver::EffectiveInverseMass(mA, mB, iA, iB, p2.rnA, p2.rnB);
             b2WideSym22 inverse;
             if (InvertBlock(K, &inverse)) {
                 vc->K = K;

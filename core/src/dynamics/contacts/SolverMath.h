@@ -63,9 +63,11 @@ template <class V, class N>
     wB += lambda * turnB;
 }
 
-// Effective mass denominator mA + mB + iA rnA^2 + iB rnB^2 (1/kg), with the squares exact.
-inline Wide EffectiveInverseMass(Wide mA, Wide mB, Wide iA, Wide iB, Fixed rnA, Fixed rnB) noexcept {
-    return mA + mB + iA * MulWide(rnA, rnA) + iB * MulWide(rnB, rnB);
+// Effective mass denominator mA + mB + iA rnA^2 + iB rnB^2 (1/kg), with the squares exact, on
+// Wide or a proven set-up's UncheckedWide.
+template <class N>
+inline N EffectiveInverseMass(N mA, N mB, N iA, N iB, Fixed rnA, Fixed rnB) noexcept {
+    return mA + mB + iA * N(MulWide(rnA, rnA)) + iB * N(MulWide(rnB, rnB));
 }
 
 // The body origin c - q * localCenter (m). For a shape centred on its body (localCenter zero)

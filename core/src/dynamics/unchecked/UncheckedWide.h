@@ -1,9 +1,10 @@
 #pragma once
 // Q32.32 and Q16.16 arithmetic with Wide's and Fixed's rounding and no range tests, for a solver
-// row (a contact's, a revolute joint's point row and its position row) whose every result is
-// proven to stay in range before it runs (Widths.h). Where Wide's or Fixed's result is in range
-// it is exactly these types', so a proven row gives their bits; out of range these operations
-// wrap where Wide and Fixed saturate, which is why nothing may use them without the proof.
+// row (a contact's, a revolute joint's point row and its position row) or a contact's velocity
+// set-up whose every result is proven to stay in range before it runs (Widths.h). Where Wide's
+// or Fixed's result is in range it is exactly these types', so a proven row gives their bits; out
+// of range these operations wrap where Wide and Fixed saturate, which is why nothing may use them
+// without the proof.
 //
 // Products by a Q32.32 value are formed in 128 bits, so they never overflow before their
 // rounding; only the rounded result must fit. That needs a native 128-bit integer: elsewhere the
@@ -25,6 +26,10 @@ namespace lockbox::solver {
 bool UncheckedRowsAllowed() noexcept;
 void AllowUncheckedRows(bool allow) noexcept;
 
+// The Wide of a row's number, for a result stored in a Wide field (the UncheckedWide overload
+// is below).
+inline Wide AsWide(Wide w) noexcept { return w; }
+
 }  // namespace lockbox::solver
 
 #ifdef LOCKBOX_NATIVE_INT128
@@ -45,6 +50,14 @@ namespace lockbox::solver {
     return static_cast<int64_t>(q + carry);
 }
 
+// An exact Q32.32 raw p (|p| < 2^62), held in an unsigned integer so that it wraps instead of
+// being undefined, rounded to Q16.16 with ties away from zero, as Wide::ToFixed where its result
+// fits; of the rounded value only the low 32 bits are kept.
+[[gnu::always_inline]] constexpr Fixed RoundToFixed(uint64_t p) noexcept {
+    const uint64_t biased = p + (uint64_t{1} << 15) + static_cast<uint64_t>(static_cast<int64_t>(p) >> 63);
+    return Fixed::FromRaw(static_cast<int32_t>(static_cast<int64_t>(biased) >> Fixed::kFractionBits));
+}
+
 class UncheckedWide {
 public:
     constexpr UncheckedWide() noexcept = default;
@@ -55,6 +68,10 @@ public:
     constexpr Wide ToWide() const noexcept { return Wide::FromRaw(m_raw); }
     constexpr explicit operator Wide() const noexcept { return ToWide(); }
     constexpr int64_t Raw() const noexcept { return m_raw; }
+    // Rounded to Q16.16, as Wide::ToFixed.
+    [[gnu::always_inline]] constexpr Fixed ToFixed() const noexcept {
+        return RoundToFixed(static_cast<uint64_t>(m_raw));
+    }
 
     constexpr auto operator<=>(const UncheckedWide&) const noexcept = default;
     constexpr bool operator==(const UncheckedWide&) const noexcept = default;
@@ -100,6 +117,8 @@ private:
     }
     int64_t m_raw = 0;
 };
+
+inline Wide AsWide(UncheckedWide w) noexcept { return w.ToWide(); }
 
 // A pair of components, as b2WideVec2 is for Wide.
 struct UncheckedVec2 {
@@ -151,11 +170,15 @@ private:
     const auto product = [](Fixed a, UncheckedFixed b) {
         return static_cast<uint64_t>(int64_t{a.Raw()} * b.Raw());  // below 2^62 for any raws
     };
-    const auto round = [](uint64_t p) {
-        const uint64_t biased = p + (uint64_t{1} << 15) + static_cast<uint64_t>(static_cast<int64_t>(p) >> 63);
-        return Fixed::FromRaw(static_cast<int32_t>(static_cast<int64_t>(biased) >> Fixed::kFractionBits));
-    };
-    return {round(product(q.c, x) - product(q.s, y)), round(product(q.s, x) + product(q.c, y))};
+    return {RoundToFixed(product(q.c, x) - product(q.s, y)), RoundToFixed(product(q.s, x) + product(q.c, y))};
+}
+
+// r x d of the arm r = (x, y): the exact difference of two products, rounded once, as
+// b2Cross(b2Vec2, b2Vec2).
+[[gnu::always_inline]] constexpr Fixed Cross(UncheckedFixed x, UncheckedFixed y, const b2Vec2& d) noexcept {
+    // Each product is exact in 64 bits for any raws; their difference wraps when unproven.
+    const auto product = [](UncheckedFixed a, Fixed b) { return static_cast<uint64_t>(int64_t{a.Raw()} * b.Raw()); };
+    return RoundToFixed(product(x, d.y) - product(y, d.x));
 }
 
 }  // namespace lockbox::solver
