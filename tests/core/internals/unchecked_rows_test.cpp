@@ -497,6 +497,35 @@ TEST(UncheckedRows, ContactSetUpsAtTheBoundsEdgesGiveTheTestedSetUpsBits) {
 #endif
 }
 
+// The contact rows' bound in closed form is its step-by-step definition: the same slopes for
+// every width of the constants, drawn over their whole ranges and at every corner of them.
+TEST(UncheckedRows, ContactRowSlopesInClosedFormAreTheSteps) {
+    constexpr solver::RowWidths kWidest{32, 32, 64, solver::kWidestResult, 32};
+    const auto same = [](const solver::RowWidths& w, int points) {
+        const solver::Slopes closed = solver::RowSlopes(w, points), steps = solver::RowSlopesBySteps(w, points);
+        return closed.v == steps.v && closed.i == steps.i;
+    };
+    const auto describe = [](const solver::RowWidths& w, int points) {
+        return ::testing::Message() << points << " points, dir " << w.dir << " arm " << w.arm << " mass " << w.mass
+                                    << " resp " << w.resp << " friction " << w.friction;
+    };
+    std::mt19937_64 rng(20261130);
+    const auto up = [&rng](int top) { return std::uniform_int_distribution<int>(0, top)(rng); };
+    for (int points = 1; points <= 2; ++points) {
+        for (int corner = 0; corner < 32; ++corner) {
+            const auto pick = [corner](int bit, int top) { return (corner >> bit) & 1 ? top : 0; };
+            const solver::RowWidths w{pick(0, kWidest.dir), pick(1, kWidest.arm), pick(2, kWidest.mass),
+                                      pick(3, kWidest.resp), pick(4, kWidest.friction)};
+            ASSERT_TRUE(same(w, points)) << describe(w, points);
+        }
+        for (int i = 0; i < 400000; ++i) {
+            const solver::RowWidths w{up(kWidest.dir), up(kWidest.arm), up(kWidest.mass), up(kWidest.resp),
+                                      up(kWidest.friction)};
+            ASSERT_TRUE(same(w, points)) << describe(w, points);
+        }
+    }
+}
+
 // Point rows of a revolute joint: arms of any length, a point block around 2^mass kg and
 // responses around its inverse.
 void FillPointRow(RowDrawer& draw, JointSolver::Row& row) {

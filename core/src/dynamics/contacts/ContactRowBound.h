@@ -8,6 +8,18 @@
 
 namespace lockbox::solver {
 
+// The widths of a row's constants by kind: its directions (normal and tangent), lever arms,
+// effective masses (and the block's inverse), responses (pushes, turns, K) and friction.
+struct RowWidths {
+    int dir = 0, arm = 0, mass = 0, resp = 0, friction = 0;
+};
+
+// The widest slopes of the values of a row with `points` (1 or 2) points and constants of
+// widths w (every width at least 0, resp at most kWidestResult): the row's operations in order.
+Slopes RowSlopesBySteps(const RowWidths& w, int points) noexcept;
+// RowSlopesBySteps in closed form, equal to it for every such w.
+Slopes RowSlopes(const RowWidths& w, int points) noexcept;
+
 // The widths of vc's inputs under which it runs unchecked, set once per step after vc's constants.
 InputWidths UncheckedWidths(const b2ContactVelocityConstraint& vc) noexcept;
 
