@@ -103,8 +103,9 @@ inline int64_t DivShiftNative(NativeI128 n, NativeI128 d, int shift, const char*
     const NativeU128 dm = MagnitudeU128(d);
     if (dm == 0) return 0;
     nm <<= shift;
-    NativeU128 q = nm / dm;
-    const NativeU128 rem = nm - q * dm;
+    const NativeDivMod qr = DivModNative(nm, dm);
+    NativeU128 q = qr.quot;
+    const NativeU128 rem = qr.rem;
     if (rem >= dm - rem) ++q;  // 2 rem >= d: ties away from zero
     return NarrowMagnitude(q, q != 0 && ((n < 0) != (d < 0)), op, 0, 0);
 }

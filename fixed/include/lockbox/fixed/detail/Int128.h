@@ -7,6 +7,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <type_traits>
 
 #if defined(__SIZEOF_INT128__) && !defined(LOCKBOX_PORTABLE_INT128)
 #define LOCKBOX_NATIVE_INT128 1
@@ -80,8 +81,63 @@ constexpr int BitWidthU128(U128 a) noexcept {
     return a.hi != 0 ? 64 + static_cast<int>(std::bit_width(a.hi)) : static_cast<int>(std::bit_width(a.lo));
 }
 
-/// Quotient and remainder of a 128-bit value by a non-zero 128-bit divisor (shift-subtract).
-/// Used off the hot path only (matrix solves, conversions).
+#ifdef LOCKBOX_NATIVE_INT128
+/// Quotient and remainder of native values.
+struct NativeDivMod {
+    NativeU128 quot;
+    NativeU128 rem;
+};
+
+/// n / d and n % d for d != 0. On x86-64 through the processor's 128-by-64 division, each step
+/// arranged so that its quotient fits in 64 bits: a fraction of the instructions of the
+/// compiler's general 128-bit routine, which the solvers' set-ups call in every step. Quotient
+/// and remainder are unique, so every path has the same bits.
+inline NativeDivMod DivModNative(NativeU128 n, NativeU128 d) noexcept {
+#if defined(__x86_64__)
+    // hi:lo / den for hi < den (the quotient then fits in 64 bits, no divide fault).
+    const auto divq = [](uint64_t hi, uint64_t lo, uint64_t den, uint64_t* rem) {
+        uint64_t q = 0, r = 0;
+        __asm__("divq %4" : "=a"(q), "=d"(r) : "a"(lo), "d"(hi), "rm"(den) : "cc");
+        *rem = r;
+        return q;
+    };
+    const auto dHi = static_cast<uint64_t>(d >> 64), dLo = static_cast<uint64_t>(d);
+    const auto nHi = static_cast<uint64_t>(n >> 64), nLo = static_cast<uint64_t>(n);
+    if (dHi == 0) {
+        uint64_t r = 0;
+        if (nHi < dLo) {
+            const uint64_t q = divq(nHi, nLo, dLo, &r);
+            return {q, r};
+        }
+        // A quotient of more than 64 bits: its high half first, then the rest.
+        uint64_t r1 = 0;
+        const uint64_t q1 = divq(0, nHi, dLo, &r1);
+        const uint64_t q0 = divq(r1, nLo, dLo, &r);
+        return {(NativeU128{q1} << 64) | q0, r};
+    }
+    // d >= 2^64, so the quotient is below 2^64. Divide n / 2 by d's leading 64 bits (normalised,
+    // so the step cannot overflow), undo both scalings, and correct the estimate, which is the
+    // quotient or one above it, then one below it at most (Hacker's Delight, section 9-5).
+    const int s = std::countl_zero(dHi);
+    const auto v1 = static_cast<uint64_t>((d << s) >> 64);
+    const NativeU128 u1 = n >> 1;
+    uint64_t unused = 0;
+    const uint64_t q1 = divq(static_cast<uint64_t>(u1 >> 64), static_cast<uint64_t>(u1), v1, &unused);
+    auto q0 = static_cast<uint64_t>((NativeU128{q1} << s) >> 63);
+    if (q0 != 0) --q0;
+    NativeU128 rem = n - NativeU128{q0} * d;
+    if (rem >= d) {
+        ++q0;
+        rem -= d;
+    }
+    return {q0, rem};
+#else
+    return {n / d, n % d};
+#endif
+}
+#endif
+
+/// Quotient and remainder of a 128-bit value by a non-zero 128-bit divisor.
 struct DivModU128Result {
     U128 quot;
     U128 rem;
@@ -91,9 +147,14 @@ constexpr DivModU128Result DivModU128(U128 n, U128 d) noexcept {
     using u128 = NativeU128;
     const u128 nn = (static_cast<u128>(n.hi) << 64) | n.lo;
     const u128 dd = (static_cast<u128>(d.hi) << 64) | d.lo;
-    const u128 q = nn / dd, r = nn % dd;
-    return {{static_cast<uint64_t>(q >> 64), static_cast<uint64_t>(q)},
-            {static_cast<uint64_t>(r >> 64), static_cast<uint64_t>(r)}};
+    NativeDivMod qr{0, 0};
+    if (std::is_constant_evaluated()) {
+        qr = {nn / dd, nn % dd};
+    } else {
+        qr = DivModNative(nn, dd);
+    }
+    return {{static_cast<uint64_t>(qr.quot >> 64), static_cast<uint64_t>(qr.quot)},
+            {static_cast<uint64_t>(qr.rem >> 64), static_cast<uint64_t>(qr.rem)}};
 #else
     U128 q{}, r{};
     const int width = BitWidthU128(n);
