@@ -21,6 +21,8 @@
 #include "../dynamics/DynamicsTestUtil.h"
 #include "dynamics/contacts/ContactPointSetUp.h"
 #include "dynamics/contacts/ContactPointSetUpBound.h"
+#include "dynamics/contacts/ContactPositionBound.h"
+#include "dynamics/contacts/ContactPositionRow.h"
 #include "dynamics/contacts/ContactRowBound.h"
 #include "dynamics/contacts/ContactSolver.h"
 #include "dynamics/joints/JointMath.h"
@@ -67,6 +69,14 @@ public:
     Wide WideOf(int width) { return Wide::FromRaw(Raw(width)); }
     Fixed FixedOf(int width) { return Fixed::FromRaw(static_cast<int32_t>(Raw(std::min(width, 31)))); }
 
+    // A unit direction at any angle or, one time in `oneIn`, a vector of any size.
+    b2Vec2 Direction(int oneIn) {
+        const double angle = Pick(0, 6283) / 1000.0;
+        return Chance(oneIn) ? b2Vec2(FixedOf(Pick(1, 31)), FixedOf(Pick(1, 31)))
+                             : b2Vec2(Fixed::FromRaw(static_cast<int32_t>(std::cos(angle) * 65536)),
+                                      Fixed::FromRaw(static_cast<int32_t>(std::sin(angle) * 65536)));
+    }
+
     // Constants of every scale: effective masses around 2^massScale kg, responses (pushes, turns,
     // K) around their inverse, with the spread a row of mismatched bodies has.
     void Fill(b2ContactVelocityConstraint& vc) {
@@ -78,10 +88,7 @@ public:
         const int mass = 32 + Pick(-14, 14);
         const int resp = 64 - mass + Pick(-3, 9);
         const int arm = Chance(3) ? Pick(1, 31) : Pick(12, 19);
-        const double angle = Pick(0, 6283) / 1000.0;
-        vc.normal = Chance(8) ? b2Vec2(FixedOf(Pick(1, 31)), FixedOf(Pick(1, 31)))
-                              : b2Vec2(Fixed::FromRaw(static_cast<int32_t>(std::cos(angle) * 65536)),
-                                       Fixed::FromRaw(static_cast<int32_t>(std::sin(angle) * 65536)));
+        vc.normal = Direction(8);
         vc.tangent = b2Cross(vc.normal, Fixed(1));
         const bool staticA = Chance(5);
         vc.invMassA = staticA ? Wide() : WideOf(resp);
@@ -265,10 +272,7 @@ void FillSetUp(RowDrawer& draw, SetUpCase& c) {
     b2Manifold& m = c.manifold;
     m.type = static_cast<b2Manifold::Type>(draw.Pick(0, 2));
     m.pointCount = m.type == b2Manifold::e_circles ? 1 : draw.Pick(1, 2);
-    const double angle = draw.Pick(0, 6283) / 1000.0;
-    m.localNormal = draw.Chance(10) ? b2Vec2(draw.FixedOf(draw.Pick(1, 31)), draw.FixedOf(draw.Pick(1, 31)))
-                                    : b2Vec2(Fixed::FromRaw(static_cast<int32_t>(std::cos(angle) * 65536)),
-                                             Fixed::FromRaw(static_cast<int32_t>(std::sin(angle) * 65536)));
+    m.localNormal = draw.Direction(10);
     const int arm = draw.Chance(4) ? draw.Pick(1, 30) : draw.Pick(12, 20);
     m.localPoint = b2Vec2(draw.FixedOf(arm), draw.FixedOf(arm));
     for (int32 j = 0; j < m.pointCount; ++j)
@@ -655,16 +659,20 @@ void FillPositionRow(RowDrawer& draw, JointSolver::PositionRow& row) {
     row.iB = draw.WideOf(resp + draw.Pick(-4, 4));
 }
 
+// The same centres and angles, to the bit.
+bool SamePoses(const std::vector<b2Position>& a, const std::vector<b2Position>& b) {
+    for (size_t i = 0; i < a.size(); ++i) {
+        if (a[i].c.x != b[i].c.x || a[i].c.y != b[i].c.y || a[i].a != b[i].a) return false;
+    }
+    return true;
+}
+
 struct PositionSolved {
     std::vector<b2Position> bodies;
     bool closed = false;
     uint64_t saturations = 0;
     bool operator==(const PositionSolved& o) const {
-        for (size_t i = 0; i < bodies.size(); ++i) {
-            if (bodies[i].c.x != o.bodies[i].c.x || bodies[i].c.y != o.bodies[i].c.y || bodies[i].a != o.bodies[i].a)
-                return false;
-        }
-        return closed == o.closed && saturations == o.saturations;
+        return SamePoses(bodies, o.bodies) && closed == o.closed && saturations == o.saturations;
     }
 };
 
@@ -722,6 +730,137 @@ TEST(UncheckedRows, PositionRowsWithinTheBoundGiveTheTestedRowsBits) {
         const bool solveSaturated = impulse.x.Raw() == Wide::kMaxRaw || impulse.x.Raw() == -Wide::kMaxRaw ||
                                     impulse.y.Raw() == Wide::kMaxRaw || impulse.y.Raw() == -Wide::kMaxRaw;
         return tally.Judge(loosen, fits, fast == reference, solveSaturated ? 0 : reference.saturations);
+    });
+#endif
+}
+
+// A face manifold's position constraint: local points, centres and normals of every size, radii,
+// masses and inertias of every scale (now and then beyond the bound: a normal that is not unit,
+// points or radii too wide), a static body A now and then.
+void FillFacePosition(RowDrawer& draw, b2ContactPositionConstraint& pc) {
+    pc = b2ContactPositionConstraint();
+    pc.indexA = 0;
+    pc.indexB = 1;
+    pc.type = draw.Chance(2) ? b2Manifold::e_faceA : b2Manifold::e_faceB;
+    pc.pointCount = draw.Pick(1, 2);
+    pc.localNormal = draw.Direction(10);
+    const int local = draw.Chance(4) ? draw.Pick(1, 30) : draw.Pick(12, 22);
+    pc.localPoint = b2Vec2(draw.FixedOf(local), draw.FixedOf(local));
+    for (int32 j = 0; j < pc.pointCount; ++j)
+        pc.localPoints[j] = b2Vec2(draw.FixedOf(local - draw.Pick(0, 2)), draw.FixedOf(local - draw.Pick(0, 2)));
+    pc.localCenterA = draw.Chance(2) ? b2Vec2() : b2Vec2(draw.FixedOf(local - 2), draw.FixedOf(local - 2));
+    pc.localCenterB = draw.Chance(2) ? b2Vec2() : b2Vec2(draw.FixedOf(local - 2), draw.FixedOf(local - 2));
+    const int radius = draw.Chance(8) ? draw.Pick(1, 31) : draw.Pick(0, 12);
+    pc.radiusA = Fixed::FromRaw(static_cast<int32_t>(std::abs(draw.Raw(radius))));
+    pc.radiusB = Fixed::FromRaw(static_cast<int32_t>(std::abs(draw.Raw(radius))));
+    const bool staticA = draw.Chance(5);
+    const int mass = draw.Pick(16, 56), turn = draw.Chance(4) ? draw.Pick(16, 62) : draw.Pick(24, 48);
+    const auto positive = [&draw](int width) { return Wide::FromRaw(std::abs(draw.Raw(width))); };
+    pc.invMassA = staticA ? Wide() : positive(mass - draw.Pick(0, 4));
+    pc.invIA = staticA ? Wide() : positive(turn - draw.Pick(0, 4));
+    pc.invMassB = draw.Chance(4) ? pc.invMassA : positive(mass - draw.Pick(0, 4));
+    pc.invIB = positive(turn - draw.Pick(0, 4));
+}
+
+// One pass of the solver over the constraint: the discrete pass, or now and then the
+// time-of-impact pass with A held still or not.
+struct FacePass {
+    bool toi = false;
+    int32 toiIndexA = 0;
+};
+
+struct FaceSolved {
+    std::vector<b2Position> bodies;
+    Fixed minSeparation;
+    bool toiDone = false;
+    uint64_t saturations = 0;
+    bool operator==(const FaceSolved& o) const {
+        return SamePoses(bodies, o.bodies) && minSeparation == o.minSeparation && toiDone == o.toiDone &&
+               saturations == o.saturations;
+    }
+};
+
+FaceSolved SolveFaces(b2ContactPositionConstraint pc, std::vector<b2Position> bodies, FacePass pass, bool unchecked) {
+    solver::AllowUncheckedRows(unchecked);
+    std::vector<b2CachedRot> rotations(bodies.size());
+    b2ContactSolverDef def;
+    def.count = 1;
+    def.positions = bodies.data();
+    def.positionConstraints = &pc;
+    def.rotations = rotations.data();
+    b2ContactSolver solver(&def);
+    FaceSolved out;
+    {
+        const SaturationCapture capture(&out.saturations);
+        if (pass.toi)
+            out.toiDone = solver.SolveTOIPositionConstraints(pass.toiIndexA, 1);
+        else
+            out.minSeparation = solver.SolvePositionConstraints(0, 1);
+    }
+    out.bodies = std::move(bodies);
+    return out;
+}
+
+// Whether every point of the pass is within the constraint's widths (the poses, then the located
+// point, then its impulse), followed on the tested path.
+bool FacesFit(const b2ContactPositionConstraint& pc, std::vector<b2Position> bodies, FacePass pass) {
+    solver::PairMasses<Wide> masses{pc.invMassA, pc.invMassB, pc.invIA, pc.invIB};
+    if (pass.toi && pass.toiIndexA != 0) masses.mA = masses.iA = Wide();
+    b2Vec2 cA = bodies[0].c, cB = bodies[1].c;
+    Fixed aA = bodies[0].a, aB = bodies[1].a;
+    for (int32 j = 0; j < pc.pointCount; ++j) {
+        if (!solver::Within(solver::FoldedPair(cA, aA, cB, aB), pc.unchecked.poses)) return false;
+        b2Transform xfA, xfB;
+        xfA.q = b2Rot(aA);
+        xfB.q = b2Rot(aB);
+        xfA.p = solver::BodyOrigin(cA, xfA.q, pc.localCenterA);
+        xfB.p = solver::BodyOrigin(cB, xfB.q, pc.localCenterB);
+        const solver::PositionPoint p = solver::LocateFacePoint<Fixed>(pc, xfA, xfB, cA, cB, j);
+        if (!solver::FacePointFits(pc, p)) return false;
+        const solver::PositionCorrection c =
+            solver::CorrectPoint<Fixed, Wide>(p, masses, pass.toi ? b2_toiBaugarte : b2_baumgarte);
+        if (c.impulse != Wide() && !solver::Within(solver::Folded(c.impulse), pc.unchecked.impulses)) return false;
+        solver::ApplyCorrection<Fixed, Wide>(p.normal, c, masses, cA, aA, cB, aB);
+    }
+    return true;
+}
+
+TEST(UncheckedRows, FacePositionsWithinTheBoundGiveTheTestedBits) {
+#ifndef LOCKBOX_UNCHECKED_ROWS
+    GTEST_SKIP() << "no native 128-bit integer: every row keeps its tests";
+#else
+    RunTrials(2612, "face positions", [](RowDrawer& draw, Tally& tally) {
+        b2ContactPositionConstraint pc;
+        FillFacePosition(draw, pc);
+        const b2ContactPositionConstraint::Widths widths = solver::FacePositionWidths(pc);
+        const int loosen = Loosening(draw);
+        // Loosen the poses, the reference arm, the impulses or all.
+        const int which = draw.Pick(0, 3);
+        const auto loose = [&](uint8_t width, int kind) {
+            return Loosened(width, which == kind || which == 3 ? loosen : 0);
+        };
+        pc.unchecked = {loose(widths.poses, 0), loose(widths.arm, 1), loose(widths.impulses, 2)};
+        // A's centre near the pose bound's edge, B's at an offset near the arm's edge.
+        const bool bounded = widths.poses != 0;
+        const int poseWidth = (bounded ? pc.unchecked.poses : solver::kFacePoseWidth) + draw.Pick(-6, 1);
+        const int reach = bounded ? pc.unchecked.arm : 24;
+        const int offset = draw.Chance(4) ? draw.Pick(1, 31) : reach + draw.Pick(-4, 1);
+        std::vector<b2Position> bodies(2);
+        bodies[0].c = b2Vec2(draw.FixedOf(poseWidth - draw.Pick(0, 1)), draw.FixedOf(poseWidth - draw.Pick(0, 1)));
+        const auto near = [&](Fixed c) {
+            return Fixed::FromRaw(static_cast<int32_t>(std::clamp<int64_t>(
+                int64_t{c.Raw()} + draw.Raw(offset - draw.Pick(0, 1)), -Fixed::kMaxRaw, Fixed::kMaxRaw)));
+        };
+        bodies[1].c = b2Vec2(near(bodies[0].c.x), near(bodies[0].c.y));
+        for (b2Position& b : bodies)
+            b.a = draw.Chance(3) ? draw.FixedOf(draw.Pick(0, 19)) : draw.FixedOf(poseWidth - draw.Pick(0, 1));
+        FacePass pass;
+        if (draw.Chance(4)) pass = {true, draw.Chance(2) ? 0 : 2};
+
+        const FaceSolved fast = SolveFaces(pc, bodies, pass, true);
+        const FaceSolved reference = SolveFaces(pc, bodies, pass, false);
+        const bool fits = FacesFit(pc, bodies, pass);
+        return tally.Judge(loosen, fits, fast == reference, reference.saturations);
     });
 #endif
 }

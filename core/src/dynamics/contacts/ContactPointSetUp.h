@@ -15,9 +15,6 @@
 
 namespace lockbox::solver {
 
-// r x d of the arm r = (x, y), as b2Cross(b2Vec2, b2Vec2) (UncheckedWide.h has the unchecked twin).
-inline Fixed Cross(Fixed x, Fixed y, const b2Vec2& d) noexcept { return b2Cross(b2Vec2(x, y), d); }
-
 // Sets up vc's pushes and points from its normal, tangent, masses and restitution, the world
 // points, the bodies' centres cA, cB and their velocities (A: vA, wA; B: vB, wB). Returns the
 // block solver's K for two points: its diagonal is the points' normal denominators.

@@ -3,6 +3,7 @@
 
 #include "ContactPointSetUp.h"
 #include "ContactPointSetUpBound.h"
+#include "ContactPositionBound.h"
 #include "ContactRow.h"
 #include "ContactRowBound.h"
 #include "SolverMath.h"
@@ -130,6 +131,11 @@ void b2ContactSolver::Load(int32 begin, int32 end) {
             }
             pc->localPoints[j] = cp->localPoint;
         }
+#ifdef LOCKBOX_UNCHECKED_ROWS
+        pc->unchecked = solver::FacePositionWidths(*pc);
+#else
+        pc->unchecked = b2ContactPositionConstraint::Widths();
+#endif
     }
 }
 

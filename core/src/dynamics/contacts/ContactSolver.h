@@ -65,6 +65,16 @@ struct b2ContactVelocityConstraint {
 
 /// One contact's position constraint (copied from the manifold).
 struct b2ContactPositionConstraint {
+    /// The widest values for which a face manifold's correction may run without range tests,
+    /// set with the constraint each step (ContactPositionBound.h; 0: none): the bodies' centres
+    /// and angles, then, once formed, the reference face's body's arm to the point and the
+    /// correction impulse.
+    struct Widths {
+        uint8_t poses = 0;
+        uint8_t arm = 0;
+        uint8_t impulses = 0;
+    };
+
     b2Vec2 localPoints[b2_maxManifoldPoints];
     b2Vec2 localNormal;
     b2Vec2 localPoint;
@@ -75,6 +85,7 @@ struct b2ContactPositionConstraint {
     b2Manifold::Type type = b2Manifold::e_circles;
     Fixed radiusA, radiusB;
     int32 pointCount = 0;
+    Widths unchecked;  ///< when a face manifold's correction may run without range tests
 };
 
 /// One field of four consecutive constraints, aligned for one vector load: the unit of the

@@ -1,73 +1,60 @@
 // b2ContactSolver: non-linear position correction (discrete and time-of-impact).
+#include "ContactPositionRow.h"
 #include "SolverMath.h"
 #include "dynamics/contacts/ContactSolver.h"
+#include "dynamics/unchecked/UncheckedWide.h"
 
 namespace lockbox {
 
 namespace {
 
-// Box2D's b2PositionSolverManifold: the current normal, point and separation of one manifold
-// point, recomputed from the solver's positions.
-struct PositionSolverManifold {
-    void Initialize(const b2ContactPositionConstraint* pc, const b2Transform& xfA, const b2Transform& xfB,
-                    int32 index) {
-        switch (pc->type) {
-            case b2Manifold::e_circles: {
-                const b2Vec2 pointA = b2Mul(xfA, pc->localPoint);
-                const b2Vec2 pointB = b2Mul(xfB, pc->localPoints[0]);
-                normal = pointB - pointA;
-                normal.Normalize();  // coincident centres keep a zero normal (no push)
-                // The midpoint as A plus half the (translation-invariant) difference: halving
-                // A + B would round ties by the sign of the world coordinate.
-                point = pointA + Fixed(0.5) * (pointB - pointA);
-                separation = b2Dot(pointB - pointA, normal) - pc->radiusA - pc->radiusB;
-                break;
-            }
-            case b2Manifold::e_faceA: {
-                normal = b2Mul(xfA.q, pc->localNormal);
-                const b2Vec2 planePoint = b2Mul(xfA, pc->localPoint);
-                const b2Vec2 clipPoint = b2Mul(xfB, pc->localPoints[index]);
-                separation = b2Dot(clipPoint - planePoint, normal) - pc->radiusA - pc->radiusB;
-                point = clipPoint;
-                break;
-            }
-            case b2Manifold::e_faceB: {
-                normal = b2Mul(xfB.q, pc->localNormal);
-                const b2Vec2 planePoint = b2Mul(xfB, pc->localPoint);
-                const b2Vec2 clipPoint = b2Mul(xfA, pc->localPoints[index]);
-                separation = b2Dot(clipPoint - planePoint, normal) - pc->radiusA - pc->radiusB;
-                point = clipPoint;
-                // Ensure the normal points from A to B.
-                normal = -normal;
-                break;
-            }
-        }
-    }
+// Box2D's b2PositionSolverManifold for a circles manifold: the normal between the centres, the
+// midpoint and the separation, from the solver's positions (always with range tests).
+solver::PositionPoint LocateCirclePoint(const b2ContactPositionConstraint& pc, const b2Transform& xfA,
+                                        const b2Transform& xfB, const b2Vec2& cA, const b2Vec2& cB) noexcept {
+    solver::PositionPoint p;
+    const b2Vec2 pointA = b2Mul(xfA, pc.localPoint);
+    const b2Vec2 pointB = b2Mul(xfB, pc.localPoints[0]);
+    p.normal = pointB - pointA;
+    p.normal.Normalize();  // coincident centres keep a zero normal (no push)
+    // The midpoint as A plus half the (translation-invariant) difference: halving A + B would
+    // round ties by the sign of the world coordinate.
+    const b2Vec2 point = pointA + Fixed(0.5) * (pointB - pointA);
+    p.separation = b2Dot(pointB - pointA, p.normal) - pc.radiusA - pc.radiusB;
+    p.rA = point - cA;
+    p.rB = point - cB;
+    return p;
+}
 
-    b2Vec2 normal;
-    b2Vec2 point;
-    Fixed separation;
-};
+// A point's correction with range tests, from where the point is.
+void CorrectTested(const solver::PositionPoint& p, const solver::PairMasses<Wide>& masses, Fixed baumgarte, b2Vec2& cA,
+                   Fixed& aA, b2Vec2& cB, Fixed& aB) noexcept {
+    const solver::PositionCorrection c = solver::CorrectPoint<Fixed, Wide>(p, masses, baumgarte);
+    solver::ApplyCorrection<Fixed, Wide>(p.normal, c, masses, cA, aA, cB, aB);
+}
 
-// One pass over all constraints; returns the smallest separation seen (m, <= 0).
-Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 begin, int32 end, b2Position* positions,
-                b2CachedRot* rotations, Fixed baumgarte, bool toi, int32 toiIndexA, int32 toiIndexB) {
+// One pass over all constraints; returns the smallest separation seen (m, <= 0). A face point
+// runs without range tests when allowed and the constraint's widths prove it in range: the poses
+// before it is located, the reference arm once located, the impulse once formed.
+[[gnu::flatten]] Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 begin, int32 end,
+                                 b2Position* positions, b2CachedRot* rotations, Fixed baumgarte, bool toi,
+                                 int32 toiIndexA, int32 toiIndexB) {
+    const bool uncheckedAllowed = solver::UncheckedRowsAllowed();
     Fixed minSeparation;
     for (int32 i = begin; i < end; ++i) {
         const b2ContactPositionConstraint* pc = constraints + i;
         const int32 indexA = pc->indexA;
         const int32 indexB = pc->indexB;
-        Wide mA = pc->invMassA, iA = pc->invIA;
-        Wide mB = pc->invMassB, iB = pc->invIB;
+        solver::PairMasses<Wide> masses{pc->invMassA, pc->invMassB, pc->invIA, pc->invIB};
         if (toi) {
             // Only the two TOI bodies move; the others act as if static.
             if (indexA != toiIndexA && indexA != toiIndexB) {
-                mA = Wide();
-                iA = Wide();
+                masses.mA = Wide();
+                masses.iA = Wide();
             }
             if (indexB != toiIndexA && indexB != toiIndexB) {
-                mB = Wide();
-                iB = Wide();
+                masses.mB = Wide();
+                masses.iB = Wide();
             }
         }
 
@@ -87,41 +74,41 @@ Fixed SolvePass(const b2ContactPositionConstraint* constraints, int32 begin, int
             xfA.p = solver::BodyOrigin(cA, xfA.q, pc->localCenterA);
             xfB.p = solver::BodyOrigin(cB, xfB.q, pc->localCenterB);
 
-            PositionSolverManifold psm;
-            psm.Initialize(pc, xfA, xfB, j);
-            const b2Vec2 normal = psm.normal;
-            const b2Vec2 rA = psm.point - cA;
-            const b2Vec2 rB = psm.point - cB;
-            minSeparation = b2Min(minSeparation, psm.separation);
-
-            // Prevent large corrections and allow slop.
-            const Fixed C = b2Clamp(baumgarte * (psm.separation + b2_linearSlop), -b2_maxLinearCorrection, Fixed());
-            const Fixed rnA = b2Cross(rA, normal);
-            const Fixed rnB = b2Cross(rB, normal);
-            const Wide K = solver::EffectiveInverseMass(mA, mB, iA, iB, rnA, rnB);
-            const Wide impulse = K > Wide() ? -(Wide(C) / K) : Wide();
-
-            // Position changes are rounded once from impulse * inverse mass. Equal masses give
-            // B the very changes of A (computed, and reported on saturation, once).
-            const Wide linA = mA * impulse;
-            const Fixed dxA = MulToFixed(linA, normal.x);
-            const Fixed dyA = MulToFixed(linA, normal.y);
-            cA.x -= dxA;
-            cA.y -= dyA;
-            aA -= MulToFixed(iA * impulse, rnA);
-            if (mB == mA) {
-                cB.x += dxA;
-                cB.y += dyA;
-            } else {
-                const Wide linB = mB * impulse;
-                cB.x += MulToFixed(linB, normal.x);
-                cB.y += MulToFixed(linB, normal.y);
+            if (pc->type == b2Manifold::e_circles) {
+                const solver::PositionPoint p = LocateCirclePoint(*pc, xfA, xfB, cA, cB);
+                minSeparation = b2Min(minSeparation, p.separation);
+                CorrectTested(p, masses, baumgarte, cA, aA, cB, aB);
+                continue;
             }
-            aB += MulToFixed(iB * impulse, rnB);
+#ifdef LOCKBOX_UNCHECKED_ROWS
+            if (uncheckedAllowed && solver::Within(solver::FoldedPair(cA, aA, cB, aB), pc->unchecked.poses)) {
+                using solver::UncheckedFixed, solver::UncheckedWide;
+                const solver::PositionPoint p = solver::LocateFacePoint<UncheckedFixed>(*pc, xfA, xfB, cA, cB, j);
+                if (solver::FacePointFits(*pc, p)) {
+                    minSeparation = b2Min(minSeparation, p.separation);
+                    const solver::PairMasses<UncheckedWide> unchecked{masses.mA, masses.mB, masses.iA, masses.iB};
+                    const solver::PositionCorrection c =
+                        solver::CorrectPoint<UncheckedFixed, UncheckedWide>(p, unchecked, baumgarte);
+                    // A zero impulse moves neither body.
+                    if (c.impulse == Wide()) continue;
+                    if (solver::Within(solver::Folded(c.impulse), pc->unchecked.impulses)) {
+                        solver::ApplyCorrection<UncheckedFixed, UncheckedWide>(p.normal, c, unchecked, cA, aA, cB, aB);
+                    } else {
+                        solver::ApplyCorrection<Fixed, Wide>(p.normal, c, masses, cA, aA, cB, aB);
+                    }
+                    continue;
+                }
+            }
+#else
+            (void)uncheckedAllowed;
+#endif
+            const solver::PositionPoint p = solver::LocateFacePoint<Fixed>(*pc, xfA, xfB, cA, cB, j);
+            minSeparation = b2Min(minSeparation, p.separation);
+            CorrectTested(p, masses, baumgarte, cA, aA, cB, aB);
         }
 
-        solver::Store(positions[indexA], cA, aA, mA, iA);
-        solver::Store(positions[indexB], cB, aB, mB, iB);
+        solver::Store(positions[indexA], cA, aA, masses.mA, masses.iA);
+        solver::Store(positions[indexB], cB, aB, masses.mB, masses.iB);
     }
     return minSeparation;
 }

@@ -39,16 +39,15 @@ inline bool PointRowFits(const core_detail::Engine::Joints::Solver::Row& row, co
     return solver::Within(velocities, row.unchecked.velocities) && solver::Within(impulse, row.unchecked.impulses);
 }
 
-// q v on Fixed, as the joint computes its arms (the unchecked row has solver::Rotate).
-inline b2Vec2 Rotate(const b2Rot& q, Fixed x, Fixed y) noexcept { return b2Mul(q, b2Vec2(x, y)); }
-
 // The anchors' arms q (localAnchor - localCenter), as the joint forms them, on Fixed or, where
 // PositionRowWidths proves them in range, on solver::UncheckedFixed.
 template <class F>
 [[gnu::always_inline]] inline void PointArms(const core_detail::Engine::Joints::Solver::PositionRow& row,
                                              const b2Rot& qA, const b2Rot& qB, b2Vec2& rA, b2Vec2& rB) noexcept {
-    rA = Rotate(qA, F(row.localAnchorA.x) - F(row.localCenterA.x), F(row.localAnchorA.y) - F(row.localCenterA.y));
-    rB = Rotate(qB, F(row.localAnchorB.x) - F(row.localCenterB.x), F(row.localAnchorB.y) - F(row.localCenterB.y));
+    rA = solver::Rotate(qA, F(row.localAnchorA.x) - F(row.localCenterA.x),
+                        F(row.localAnchorA.y) - F(row.localCenterA.y));
+    rB = solver::Rotate(qB, F(row.localAnchorB.x) - F(row.localCenterB.x),
+                        F(row.localAnchorB.y) - F(row.localCenterB.y));
 }
 
 }  // namespace lockbox::pointrow

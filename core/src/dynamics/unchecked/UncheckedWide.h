@@ -30,6 +30,15 @@ void AllowUncheckedRows(bool allow) noexcept;
 // is below).
 inline Wide AsWide(Wide w) noexcept { return w; }
 
+// The tested twins of the unchecked Rotate, Cross and Dot below, for rows written over either
+// number type.
+// q v for v = (x, y), as b2Mul(b2Rot, b2Vec2).
+inline b2Vec2 Rotate(const b2Rot& q, Fixed x, Fixed y) noexcept { return b2Mul(q, b2Vec2(x, y)); }
+// r x d of the arm r = (x, y), as b2Cross(b2Vec2, b2Vec2).
+inline Fixed Cross(Fixed x, Fixed y, const b2Vec2& d) noexcept { return b2Cross(b2Vec2(x, y), d); }
+// r . d of r = (x, y), as b2Dot.
+inline Fixed Dot(Fixed x, Fixed y, const b2Vec2& d) noexcept { return b2Dot(b2Vec2(x, y), d); }
+
 }  // namespace lockbox::solver
 
 #ifdef LOCKBOX_NATIVE_INT128
@@ -150,8 +159,17 @@ public:
     [[gnu::always_inline]] friend constexpr UncheckedFixed operator-(UncheckedFixed a, UncheckedFixed b) noexcept {
         return FromRaw(static_cast<int32_t>(static_cast<uint32_t>(a.m_raw) - static_cast<uint32_t>(b.m_raw)));
     }
+    [[gnu::always_inline]] constexpr UncheckedFixed operator-() const noexcept {
+        return FromRaw(static_cast<int32_t>(uint32_t{0} - static_cast<uint32_t>(m_raw)));
+    }
     constexpr UncheckedFixed& operator+=(UncheckedFixed b) noexcept { return *this = *this + b; }
     constexpr UncheckedFixed& operator-=(UncheckedFixed b) noexcept { return *this = *this - b; }
+    // Rounded to 2^-16 with ties away from zero, as Fixed's: the product of two raws is exact in
+    // 64 bits and leaves room for the bias, so only the result can leave the range.
+    [[gnu::always_inline]] friend constexpr UncheckedFixed operator*(UncheckedFixed a, UncheckedFixed b) noexcept {
+        const int64_t p = int64_t{a.m_raw} * b.m_raw;
+        return FromRaw(static_cast<int32_t>((p + (int64_t{1} << 15) + (p >> 63)) >> Fixed::kFractionBits));
+    }
 
 private:
     int32_t m_raw = 0;
@@ -160,6 +178,13 @@ private:
 // Wide * Wide rounded once to Q16.16, as MulToFixed(Wide, Wide).
 [[gnu::always_inline]] constexpr UncheckedFixed MulToFixed(UncheckedWide a, UncheckedWide b) noexcept {
     const int64_t r = RoundShift(static_cast<detail::NativeI128>(a.Raw()) * b.Raw(), Wide::kFractionBits + 16);
+    return UncheckedFixed::FromRaw(static_cast<int32_t>(r));
+}
+
+// Wide * Fixed rounded once to Q16.16, as MulToFixed(Wide, Fixed): the product is exact in 128
+// bits.
+[[gnu::always_inline]] constexpr UncheckedFixed MulToFixed(UncheckedWide a, Fixed b) noexcept {
+    const int64_t r = RoundShift(static_cast<detail::NativeI128>(a.Raw()) * b.Raw(), Wide::kFractionBits);
     return UncheckedFixed::FromRaw(static_cast<int32_t>(r));
 }
 
@@ -179,6 +204,12 @@ private:
     // Each product is exact in 64 bits for any raws; their difference wraps when unproven.
     const auto product = [](UncheckedFixed a, Fixed b) { return static_cast<uint64_t>(int64_t{a.Raw()} * b.Raw()); };
     return RoundToFixed(product(x, d.y) - product(y, d.x));
+}
+
+// r . d of r = (x, y): the exact sum of two products, rounded once, as b2Dot.
+[[gnu::always_inline]] constexpr Fixed Dot(UncheckedFixed x, UncheckedFixed y, const b2Vec2& d) noexcept {
+    const auto product = [](UncheckedFixed a, Fixed b) { return static_cast<uint64_t>(int64_t{a.Raw()} * b.Raw()); };
+    return RoundToFixed(product(x, d.x) + product(y, d.y));
 }
 
 }  // namespace lockbox::solver
