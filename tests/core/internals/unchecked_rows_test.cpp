@@ -842,7 +842,7 @@ TEST(UncheckedRows, FacePositionsWithinTheBoundGiveTheTestedBits) {
         pc.unchecked = {loose(widths.poses, 0), loose(widths.arm, 1), loose(widths.impulses, 2)};
         // A's centre near the pose bound's edge, B's at an offset near the arm's edge.
         const bool bounded = widths.poses != 0;
-        const int poseWidth = (bounded ? pc.unchecked.poses : solver::kFacePoseWidth) + draw.Pick(-6, 1);
+        const int poseWidth = (bounded ? pc.unchecked.poses : solver::kPoseWidth) + draw.Pick(-6, 1);
         const int reach = bounded ? pc.unchecked.arm : 24;
         const int offset = draw.Chance(4) ? draw.Pick(1, 31) : reach + draw.Pick(-4, 1);
         std::vector<b2Position> bodies(2);

@@ -13,10 +13,6 @@
 
 namespace lockbox::solver {
 
-// The bodies' centres and angles within which a face point's world points are formed without
-// range tests (|raw| < 2^29: 8192 m, or rad).
-inline constexpr int kFacePoseWidth = 29;
-
 // The correction scales separation + slop by a Baumgarte factor of at most 1, which rounds to no
 // more than the scaled value: the product is in range whenever its operand is.
 static_assert(b2_baumgarte >= Fixed() && b2_baumgarte <= Fixed(1));
@@ -70,9 +66,9 @@ inline b2ContactPositionConstraint::Widths FacePositionWidths(const b2ContactPos
     // bits) times r x n (turn + J + arm + 3 - 62 bits). Changes within the pose width keep the
     // bodies below 2^30.
     const int impulses =
-        std::min({kWidestResult, kFacePoseWidth + 62 - kNormal - mass, kFacePoseWidth + 62 - kByNormal - turn - arm});
+        std::min({kWidestResult, kPoseWidth + 62 - kNormal - mass, kPoseWidth + 62 - kByNormal - turn - arm});
     if (impulses <= 0) return {};
-    return {static_cast<uint8_t>(kFacePoseWidth), static_cast<uint8_t>(arm), static_cast<uint8_t>(impulses)};
+    return {static_cast<uint8_t>(kPoseWidth), static_cast<uint8_t>(arm), static_cast<uint8_t>(impulses)};
 }
 
 }  // namespace lockbox::solver

@@ -98,8 +98,8 @@ public:
     };
 
     /// The bodies' centres and angles within which a position row forms its gap and K without
-    /// range tests (|raw| < 2^29: 8192 m, or rad).
-    static constexpr int kPoseWidth = 29;
+    /// range tests (dynamics/unchecked/Widths.h).
+    static constexpr int kPoseWidth = solver::kPoseWidth;
     /// One position iteration of a row's joint: the point-to-point part of 2.2.1's revolute
     /// SolvePositionConstraints. The gap and K are formed unchecked when allowed and the bodies
     /// are within the row's pose width, and the correction is applied unchecked when its impulse

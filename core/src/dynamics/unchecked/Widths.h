@@ -57,6 +57,9 @@ struct InputWidths {
 
 // The widest result every Wide operation takes without a test firing.
 inline constexpr int kWidestResult = 63;
+// The bodies' centres and angles within which the position rows (a revolute joint's, a contact
+// face's) form their points without range tests: |raw| < 2^29, 8192 m or rad.
+inline constexpr int kPoseWidth = 29;
 // The slope of a quantity that an input does not reach.
 inline constexpr int kUnreached = -(1 << 20);
 
