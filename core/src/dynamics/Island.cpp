@@ -249,6 +249,16 @@ void b2Island::SolveContactVelocities(b2ContactSolver& contacts) {
     contacts.SolveVelocityConstraints(m_contactColours.Start(b2_colourCount), m_contactCount);
 }
 
+void b2Island::SolveJointVelocities(const b2SolverData& data) {
+    if (!ColoursJoints()) {
+        m_jointSolver.SolveVelocityConstraints(data);
+        return;
+    }
+    for (int32 c = 0; c < b2_colourCount; ++c)
+        m_jointSolver.SolveIndependentVelocityConstraints(data, m_jointColours.Start(c), m_jointColours.Start(c + 1));
+    m_jointSolver.SolveVelocityConstraints(data, m_jointColours.Start(b2_colourCount), m_jointCount);
+}
+
 bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep) {
     Clock::time_point timer = Clock::now();
     const Fixed h = step.dt;
@@ -283,7 +293,7 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
 
         timer = Clock::now();
         for (int32 it = 0; it < step.velocityIterations; ++it) {
-            if (m_jointCount > 0) m_jointSolver.SolveVelocityConstraints(solverData);
+            if (m_jointCount > 0) SolveJointVelocities(solverData);
             SolveContactVelocities(contactSolver);
         }
     }

@@ -78,6 +78,8 @@ public:
     /// One velocity iteration over the contacts: in island order, or colour by colour (each
     /// colour's contacts write no body in common), then the overflow in order.
     void SolveContactVelocities(b2ContactSolver& contacts);
+    /// The same over the joints (their colours' joints write no body in common either).
+    void SolveJointVelocities(const b2SolverData& data);
 
     /// Bodies [begin, end): integrate velocities (gravity, forces, damping) and copy the state
     /// into the solver buffers.

@@ -112,7 +112,13 @@ void Shared::RunBlock(int32 stage, int32 block, void* context) {
         case Kind::e_jointInit:
             island.m_jointSolver.InitVelocityConstraints(island.m_joints.data(), begin, end, data);
             break;
-        case Kind::e_jointVelocity: island.m_jointSolver.SolveVelocityConstraints(data, begin, end); break;
+        case Kind::e_jointVelocity:
+            if (st.oneColour) {
+                island.m_jointSolver.SolveIndependentVelocityConstraints(data, begin, end);
+            } else {
+                island.m_jointSolver.SolveVelocityConstraints(data, begin, end);
+            }
+            break;
         case Kind::e_velocity:
             if (st.oneColour) {
                 s.contacts->SolveIndependentVelocityConstraints(begin, end);

@@ -9,17 +9,12 @@
 // that might leave the bound, or whose two-point contact needs a case of the block solver other
 // than "both points pushing", is not written back and is solved again by the scalar row.
 //
-// Lanes need x86-64 with AVX2 (checked once at run time); elsewhere the scalar row runs.
-#include <atomic>
+// The lane arithmetic they share with the joints' rows is dynamics/lanes/IntegerLanes.h.
 #include <cstddef>
 
 #include "SolverMath.h"
 #include "dynamics/contacts/ContactSolver.h"
-
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define LOCKBOX_CONTACT_LANES 1
-#include <immintrin.h>
-#endif
+#include "dynamics/lanes/IntegerLanes.h"
 
 namespace lockbox {
 
@@ -72,86 +67,10 @@ constexpr std::ptrdiff_t QuadOf(int32 i) noexcept {
     return static_cast<std::ptrdiff_t>(i / b2LaneQuad::kConstraints) * kLaneFields;
 }
 
-// Tests switch the lanes off to compare the two paths; the choice never changes a result.
-std::atomic<bool> g_lanesAllowed{true};
-
-#ifdef LOCKBOX_CONTACT_LANES
-#define LOCKBOX_AVX2 __attribute__((target("avx2")))
-
+#ifdef LOCKBOX_INTEGER_LANES
 // In a namespace of their own: short names, kept apart from the other solver files' helpers.
-namespace lanes {
-
-bool HasAvx2() noexcept {
-    static const bool has = __builtin_cpu_supports("avx2") != 0;
-    return has;
-}
-
-using Lanes = __m256i;
-
-// Every value a lane loads or a product forms stays below 2^kBoundBits in magnitude. A row adds
-// at most eight such terms into one sum, so no sum reaches 2^62, and no lane wraps where the
-// scalar row would saturate.
-constexpr int kBoundBits = 59;
-
-// A lane value as magnitude and sign mask (all ones where negative).
-struct Split {
-    Lanes mag;
-    Lanes neg;
-};
-
-LOCKBOX_AVX2 inline Lanes Zero() { return _mm256_setzero_si256(); }
-LOCKBOX_AVX2 inline Lanes Add(Lanes a, Lanes b) { return _mm256_add_epi64(a, b); }
-LOCKBOX_AVX2 inline Lanes Sub(Lanes a, Lanes b) { return _mm256_sub_epi64(a, b); }
-LOCKBOX_AVX2 inline Lanes Neg(Lanes a) { return _mm256_sub_epi64(Zero(), a); }
-LOCKBOX_AVX2 inline Lanes Max(Lanes a, Lanes b) { return _mm256_blendv_epi8(a, b, _mm256_cmpgt_epi64(b, a)); }
-LOCKBOX_AVX2 inline Lanes Min(Lanes a, Lanes b) { return _mm256_blendv_epi8(a, b, _mm256_cmpgt_epi64(a, b)); }
-
-LOCKBOX_AVX2 inline Split SplitSign(Lanes x) {
-    const Lanes neg = _mm256_cmpgt_epi64(Zero(), x);
-    return {_mm256_sub_epi64(_mm256_xor_si256(x, neg), neg), neg};
-}
-LOCKBOX_AVX2 inline Lanes WithSign(Lanes mag, Lanes neg) { return _mm256_sub_epi64(_mm256_xor_si256(mag, neg), neg); }
-// -x as a split (a zero magnitude gives zero whatever its sign).
-LOCKBOX_AVX2 inline Split Flip(const Split& s) { return {s.mag, _mm256_xor_si256(s.neg, _mm256_set1_epi64x(-1))}; }
-
-// Marks the lanes where `bits` is non-zero.
-LOCKBOX_AVX2 inline void Flag(Lanes& unsafe, Lanes bits) { unsafe = _mm256_or_si256(unsafe, bits); }
-// Marks the lanes where |x| >= 2^kBoundBits (INT64_MIN included: its magnitude is 2^63).
-LOCKBOX_AVX2 inline void Bound(Lanes& unsafe, Lanes x) {
-    Flag(unsafe, _mm256_srli_epi64(SplitSign(x).mag, kBoundBits));
-}
-
-// Wide * Fixed (a Q32.32 raw times a Q16.16 raw, rounded by 2^16): with |w| = h 2^32 + l,
-// round(|w| |f| / 2^16) = h |f| 2^16 + round(l |f| / 2^16), as h |f| 2^32 is a multiple of 2^16.
-LOCKBOX_AVX2 inline Lanes MulWF(Lanes& unsafe, Lanes w, const Split& f) {
-    const Split s = SplitSign(w);
-    const Lanes hi = _mm256_mul_epu32(_mm256_srli_epi64(s.mag, 32), f.mag);
-    const Lanes lo = _mm256_mul_epu32(s.mag, f.mag);
-    // hi < 2^42 keeps the magnitude below 2^58 + 2^47.
-    Flag(unsafe, _mm256_srli_epi64(hi, kBoundBits - 17));
-    const Lanes rounded = _mm256_srli_epi64(_mm256_add_epi64(lo, _mm256_set1_epi64x(int64_t{1} << 15)), 16);
-    const Lanes mag = _mm256_add_epi64(_mm256_slli_epi64(hi, 16), rounded);
-    return WithSign(mag, _mm256_xor_si256(s.neg, f.neg));
-}
-
-// Wide * Wide (rounded by 2^32): with |x| = xh 2^32 + xl and |y| = yh 2^32 + yl,
-// round(|x||y| / 2^32) = xh yh 2^32 + xh yl + xl yh + round(xl yl / 2^32).
-LOCKBOX_AVX2 inline Lanes MulWW(Lanes& unsafe, const Split& sx, const Split& sy) {
-    const Lanes xh = _mm256_srli_epi64(sx.mag, 32), yh = _mm256_srli_epi64(sy.mag, 32);
-    const Lanes hh = _mm256_mul_epu32(xh, yh);
-    const Lanes hl = _mm256_mul_epu32(xh, sy.mag);
-    const Lanes lh = _mm256_mul_epu32(sx.mag, yh);
-    const Lanes ll = _mm256_mul_epu32(sx.mag, sy.mag);
-    // hh < 2^26, hl and lh < 2^57: the magnitude stays below 2^59.
-    Flag(unsafe, _mm256_srli_epi64(hh, kBoundBits - 33));
-    Flag(unsafe, _mm256_or_si256(_mm256_srli_epi64(hl, kBoundBits - 2), _mm256_srli_epi64(lh, kBoundBits - 2)));
-    // floor((ll + 2^31) / 2^32) == floor((floor(ll / 2) + 2^30) / 2^31), without a carry out.
-    const Lanes rounded =
-        _mm256_srli_epi64(_mm256_add_epi64(_mm256_srli_epi64(ll, 1), _mm256_set1_epi64x(int64_t{1} << 30)), 31);
-    const Lanes mag = _mm256_add_epi64(_mm256_add_epi64(_mm256_slli_epi64(hh, 32), _mm256_add_epi64(hl, lh)), rounded);
-    return WithSign(mag, _mm256_xor_si256(sx.neg, sy.neg));
-}
-LOCKBOX_AVX2 inline Lanes MulWW(Lanes& unsafe, Lanes x, const Split& y) { return MulWW(unsafe, SplitSign(x), y); }
+namespace contactlanes {
+using namespace lanes;
 
 // The lane rows of one quad of constraints.
 struct Rows {
@@ -197,8 +116,6 @@ LOCKBOX_AVX2 inline void ApplyAlong(Lanes& unsafe, Pair& p, Lanes lambda, const 
     p.wA = Sub(p.wA, MulWW(unsafe, l, turnA));
     p.wB = Add(p.wB, MulWW(unsafe, l, turnB));
 }
-
-LOCKBOX_AVX2 inline void Spill(Lanes v, int64_t out[4]) { _mm256_storeu_si256(reinterpret_cast<Lanes*>(out), v); }
 
 // One velocity iteration of four contacts of one colour with `points` points each, the scalar
 // row's operations in its order. Writes back the lanes it could follow and returns a mask of
@@ -337,9 +254,8 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], const Ro
 }
 
 #undef LOCKBOX_LANES
-#undef LOCKBOX_AVX2
-}  // namespace lanes
-#endif  // LOCKBOX_CONTACT_LANES
+}  // namespace contactlanes
+#endif  // LOCKBOX_INTEGER_LANES
 
 }  // namespace
 
@@ -388,18 +304,18 @@ void b2ContactSolver::StoreLaneRows(int32 begin, int32 end) {
 }
 
 bool b2ContactSolver::LanesAvailable() noexcept {
-#ifdef LOCKBOX_CONTACT_LANES
+#ifdef LOCKBOX_INTEGER_LANES
     return lanes::HasAvx2();
 #else
     return false;
 #endif
 }
 
-void b2ContactSolver::AllowLanes(bool allow) noexcept { g_lanesAllowed.store(allow, std::memory_order_relaxed); }
+void b2ContactSolver::AllowLanes(bool allow) noexcept { lanes::Allow(allow); }
 
 int32 b2ContactSolver::SolveIndependentVelocityConstraints(int32 begin, int32 end) {
-#ifdef LOCKBOX_CONTACT_LANES
-    if (m_laneRows != nullptr && lanes::HasAvx2() && g_lanesAllowed.load(std::memory_order_relaxed)) {
+#ifdef LOCKBOX_INTEGER_LANES
+    if (m_laneRows != nullptr && lanes::HasAvx2() && lanes::Allowed()) {
         // The constraints write no body in common, so any order gives the same bits: each quad
         // of the lane rows whose constraints have one point count goes to the lanes; the
         // constraints before the first quad, in mixed quads and after the last go to the
@@ -415,7 +331,8 @@ int32 b2ContactSolver::SolveIndependentVelocityConstraints(int32 begin, int32 en
                 SolveVelocityConstraints(i, i + 4);
                 continue;
             }
-            const uint32 rest = lanes::SolveFour(vc, lanes::Rows{m_laneRows + QuadOf(i)}, m_velocities, points);
+            const uint32 rest =
+                contactlanes::SolveFour(vc, contactlanes::Rows{m_laneRows + QuadOf(i)}, m_velocities, points);
             for (int32 k = 0; k < 4; ++k) {
                 if (rest & (1u << k)) {
                     SolveVelocityConstraints(i + k, i + k + 1);
@@ -433,5 +350,3 @@ int32 b2ContactSolver::SolveIndependentVelocityConstraints(int32 begin, int32 en
 }
 
 }  // namespace lockbox
-
-#undef LOCKBOX_CONTACT_LANES

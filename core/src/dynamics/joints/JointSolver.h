@@ -10,10 +10,12 @@
 // SolveVelocityConstraints, in the same place of the order.
 // The arithmetic of a row is the joint's own, operation for operation: the bits are the same.
 // While a row's inputs are within the widths its set-up derived, it runs without range tests
-// (dynamics/unchecked/Widths.h), which gives the same bits again; so does its position row.
+// (dynamics/unchecked/Widths.h), which gives the same bits again; so does its position row. In a
+// colour of a coloured island, four rows at a time run in integer lanes (JointRowLanes.cpp).
 //
 // The rows are scratch of one island's solve, never state: snapshots and frames do not see them.
 
+#include <span>
 #include <vector>
 
 #include "dynamics/TimeStep.h"
@@ -42,6 +44,10 @@ public:
     void SolveVelocityConstraints(const b2SolverData& data) { SolveVelocityConstraints(data, 0, m_count); }
     /// The same over joints [begin, end), in order.
     void SolveVelocityConstraints(const b2SolverData& data, int32 begin, int32 end);
+    /// The same over joints [begin, end) of which no two write the same body (one colour of a
+    /// coloured island): the same bits, four point rows at a time where the machine has 64-bit
+    /// integer lanes (JointRowLanes.cpp). Returns how many rows the lanes solved.
+    int32 SolveIndependentVelocityConstraints(const b2SolverData& data, int32 begin, int32 end);
     /// Copies the rows' accumulated impulses back to their joints (for warm starting and the
     /// reaction forces). Call once after the velocity iterations.
     void StoreImpulses() const { StoreImpulses(0, m_count); }
@@ -68,6 +74,8 @@ public:
         b2RevoluteJoint* revolute = nullptr;  ///< the joint this row writes its impulse back to
         solver::InputWidths unchecked;        ///< when the row may run without range tests
     };
+    /// The rows of the joints Begin sized for (tests fill them directly).
+    std::span<Row> Rows() noexcept { return {m_rows.data(), static_cast<size_t>(m_count)}; }
 
     /// One iteration of a point row; unchecked when allowed and its inputs are within its widths.
     static void SolvePointRow(Row& row, const b2SolverData& data, bool uncheckedAllowed) noexcept;
