@@ -86,11 +86,6 @@ struct Rows {
     _mm256_set_epi64x(int64_t{(vc)[3]->field}, int64_t{(vc)[2]->field}, int64_t{(vc)[1]->field}, \
                       int64_t{(vc)[0]->field})
 
-// The two bodies of four contacts.
-struct Pair {
-    Lanes vAx, vAy, wA, vBx, vBy, wB;
-};
-
 // solver::SpeedAlong in lanes: d . (vB - vA) + wB armB - wA armA.
 LOCKBOX_AVX2 inline Lanes SpeedAlong(Lanes& unsafe, const Pair& p, const Split& dx, const Split& dy, const Split& armA,
                                      const Split& armB) {
@@ -123,31 +118,10 @@ LOCKBOX_AVX2 inline void ApplyAlong(Lanes& unsafe, Pair& p, Lanes lambda, const 
 LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], const Rows& rows, b2Velocity* velocities,
                               int32 points) {
     Lanes unsafe = Zero();
-    Pair p;
     // Each lane reads its own two bodies.
-    alignas(32) int64_t raw[6][4];
-    for (int k = 0; k < 4; ++k) {
-        const b2Velocity& a = velocities[vc[k]->indexA];
-        const b2Velocity& b = velocities[vc[k]->indexB];
-        raw[0][k] = a.v.x.Raw();
-        raw[1][k] = a.v.y.Raw();
-        raw[2][k] = a.w.Raw();
-        raw[3][k] = b.v.x.Raw();
-        raw[4][k] = b.v.y.Raw();
-        raw[5][k] = b.w.Raw();
-    }
-    p.vAx = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[0]));
-    p.vAy = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[1]));
-    p.wA = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[2]));
-    p.vBx = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[3]));
-    p.vBy = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[4]));
-    p.wB = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[5]));
-    Bound(unsafe, p.vAx);
-    Bound(unsafe, p.vAy);
-    Bound(unsafe, p.wA);
-    Bound(unsafe, p.vBx);
-    Bound(unsafe, p.vBy);
-    Bound(unsafe, p.wB);
+    const int32 bodiesA[4] = {vc[0]->indexA, vc[1]->indexA, vc[2]->indexA, vc[3]->indexA};
+    const int32 bodiesB[4] = {vc[0]->indexB, vc[1]->indexB, vc[2]->indexB, vc[3]->indexB};
+    Pair p = LoadPair(unsafe, velocities, bodiesA, bodiesB);
 
     const Split nx = rows.LoadSplit(kNormalX), ny = rows.LoadSplit(kNormalY);
     const Split tx = rows.LoadSplit(kTangentX), ty = rows.LoadSplit(kTangentY);
@@ -227,12 +201,8 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], const Ro
     // Lanes with no flag are written back; the rest are the scalar row's.
     const uint32 followed =
         static_cast<uint32>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(unsafe, Zero()))));
-    Spill(p.vAx, raw[0]);
-    Spill(p.vAy, raw[1]);
-    Spill(p.wA, raw[2]);
-    Spill(p.vBx, raw[3]);
-    Spill(p.vBy, raw[4]);
-    Spill(p.wB, raw[5]);
+    alignas(32) int64_t raw[6][4];
+    SpillPair(p, raw);
     alignas(32) int64_t normal[b2_maxManifoldPoints][4], tangent[b2_maxManifoldPoints][4];
     for (int32 j = 0; j < points; ++j) {
         Spill(normalImpulse[j], normal[j]);

@@ -60,31 +60,12 @@ LOCKBOX_AVX2 inline Lanes Cross(Lanes& unsafe, Lanes rx, Lanes ry, Lanes px, Lan
 LOCKBOX_AVX2 uint32 SolveFour(JointSolver::Row* const rows[4], b2Velocity* velocities) {
     Lanes unsafe = Zero();
     // Each lane reads its own two bodies.
-    alignas(32) int64_t raw[6][4];
-    for (int k = 0; k < 4; ++k) {
-        const b2Velocity& a = velocities[rows[k]->indexA];
-        const b2Velocity& b = velocities[rows[k]->indexB];
-        raw[0][k] = a.v.x.Raw();
-        raw[1][k] = a.v.y.Raw();
-        raw[2][k] = a.w.Raw();
-        raw[3][k] = b.v.x.Raw();
-        raw[4][k] = b.v.y.Raw();
-        raw[5][k] = b.w.Raw();
-    }
-    Lanes vAx = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[0]));
-    Lanes vAy = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[1]));
-    Lanes wA = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[2]));
-    Lanes vBx = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[3]));
-    Lanes vBy = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[4]));
-    Lanes wB = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[5]));
+    const int32 bodiesA[4] = {rows[0]->indexA, rows[1]->indexA, rows[2]->indexA, rows[3]->indexA};
+    const int32 bodiesB[4] = {rows[0]->indexB, rows[1]->indexB, rows[2]->indexB, rows[3]->indexB};
+    Pair p = LoadPair(unsafe, velocities, bodiesA, bodiesB);
+    Lanes &vAx = p.vAx, &vAy = p.vAy, &wA = p.wA, &vBx = p.vBx, &vBy = p.vBy, &wB = p.wB;
     Lanes impulseX = LOCKBOX_ROW_LANES(rows, impulse.x.Raw());
     Lanes impulseY = LOCKBOX_ROW_LANES(rows, impulse.y.Raw());
-    Bound(unsafe, vAx);
-    Bound(unsafe, vAy);
-    Bound(unsafe, wA);
-    Bound(unsafe, vBx);
-    Bound(unsafe, vBy);
-    Bound(unsafe, wB);
     Bound(unsafe, impulseX);
     Bound(unsafe, impulseY);
 
@@ -121,12 +102,8 @@ LOCKBOX_AVX2 uint32 SolveFour(JointSolver::Row* const rows[4], b2Velocity* veloc
     // Lanes with no flag are written back; the rest are the scalar row's.
     const uint32 followed =
         static_cast<uint32>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(unsafe, Zero()))));
-    Spill(vAx, raw[0]);
-    Spill(vAy, raw[1]);
-    Spill(wA, raw[2]);
-    Spill(vBx, raw[3]);
-    Spill(vBy, raw[4]);
-    Spill(wB, raw[5]);
+    alignas(32) int64_t raw[6][4];
+    SpillPair(p, raw);
     alignas(32) int64_t impulses[2][4];
     Spill(impulseX, impulses[0]);
     Spill(impulseY, impulses[1]);

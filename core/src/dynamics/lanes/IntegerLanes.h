@@ -11,6 +11,8 @@
 // Lanes need x86-64 with AVX2, checked once at run time; elsewhere the scalar rows run.
 #include <cstdint>
 
+#include "lockbox/dynamics/StepObserver.h"
+
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define LOCKBOX_INTEGER_LANES 1
 #include <immintrin.h>
@@ -103,6 +105,45 @@ LOCKBOX_AVX2 inline Lanes MulWW(Lanes& unsafe, const Split& sx, const Split& sy)
 LOCKBOX_AVX2 inline Lanes MulWW(Lanes& unsafe, Lanes x, const Split& y) { return MulWW(unsafe, SplitSign(x), y); }
 
 LOCKBOX_AVX2 inline void Spill(Lanes v, int64_t out[4]) { _mm256_storeu_si256(reinterpret_cast<Lanes*>(out), v); }
+
+// The velocities of the two bodies of four rows (lane k from row k).
+struct Pair {
+    Lanes vAx, vAy, wA, vBx, vBy, wB;
+};
+
+// The bodies a[k] and b[k] of four rows, each value flagged where beyond the bound.
+LOCKBOX_AVX2 inline Pair LoadPair(Lanes& unsafe, const b2Velocity* velocities, const int32_t (&a)[4],
+                                  const int32_t (&b)[4]) {
+    alignas(32) int64_t raw[6][4];
+    for (int k = 0; k < 4; ++k) {
+        const b2Velocity& va = velocities[a[k]];
+        const b2Velocity& vb = velocities[b[k]];
+        raw[0][k] = va.v.x.Raw();
+        raw[1][k] = va.v.y.Raw();
+        raw[2][k] = va.w.Raw();
+        raw[3][k] = vb.v.x.Raw();
+        raw[4][k] = vb.v.y.Raw();
+        raw[5][k] = vb.w.Raw();
+    }
+    Pair p;
+    Lanes* const fields[6] = {&p.vAx, &p.vAy, &p.wA, &p.vBx, &p.vBy, &p.wB};
+    for (int f = 0; f < 6; ++f) {
+        *fields[f] = _mm256_load_si256(reinterpret_cast<const Lanes*>(raw[f]));
+        Bound(unsafe, *fields[f]);
+    }
+    return p;
+}
+
+// A pair's values back in memory, component by component (raw[c][k]: component c of lane k in
+// LoadPair's order), for the writes of the lanes that were followed.
+LOCKBOX_AVX2 inline void SpillPair(const Pair& p, int64_t (&raw)[6][4]) {
+    Spill(p.vAx, raw[0]);
+    Spill(p.vAy, raw[1]);
+    Spill(p.wA, raw[2]);
+    Spill(p.vBx, raw[3]);
+    Spill(p.vBy, raw[4]);
+    Spill(p.wB, raw[5]);
+}
 
 }  // namespace lockbox::lanes
 #endif  // LOCKBOX_INTEGER_LANES
