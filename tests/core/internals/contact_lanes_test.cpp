@@ -6,12 +6,12 @@
 
 #include <cmath>
 #include <cstdint>
-#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "../dynamics/DynamicsTestUtil.h"
+#include "LaneValues.h"
 #include "dynamics/contacts/ContactSolver.h"
 #include "lockbox/fixed/Overflow.h"
 
@@ -26,29 +26,9 @@ struct LanesAllowed {
 // Random rows of one colour: row i writes bodies 2i + 1 and 2i + 2 (or only one of them when the
 // other is body 0, a static body several rows read). Raws are mostly of a game's magnitudes,
 // and sometimes anywhere in the 64-bit range, where the scalar row saturates.
-class RowMaker {
+class RowMaker : public test::LaneValues {
 public:
-    explicit RowMaker(uint32_t seed) : m_rng(seed) {}
-
-    int64_t WideRaw(double typical) {
-        const int kind = Pick(20);
-        if (kind == 0) return static_cast<int64_t>(m_rng());  // anywhere
-        if (kind == 1) {  // near the top, either sign (~x is -x - 1: no overflow at 2^63)
-            const uint64_t bits = m_rng() >> Pick(8);
-            return Pick(2) == 0 ? static_cast<int64_t>(bits) : static_cast<int64_t>(~bits);
-        }
-        if (kind == 2) return 0;
-        return static_cast<int64_t>(Uniform(-typical, typical) * 4294967296.0);
-    }
-    Fixed FixedValue(double typical) {
-        const int kind = Pick(25);
-        if (kind == 0) return Fixed::FromRaw(static_cast<int32_t>(m_rng()));
-        if (kind == 1) return Fixed::FromRaw(INT32_MIN);
-        return Fixed::FromRaw(static_cast<int32_t>(Uniform(-typical, typical) * 65536.0));
-    }
-    Wide WideValue(double typical) { return Wide::FromRaw(WideRaw(typical)); }
-    Wide Positive(double lo, double hi) { return Wide::FromRaw(static_cast<int64_t>(Uniform(lo, hi) * 4294967296.0)); }
-    int Pick(int n) { return static_cast<int>(m_rng() % static_cast<uint64_t>(n)); }
+    explicit RowMaker(uint32_t seed) : LaneValues(seed) {}
 
     void Fill(b2ContactVelocityConstraint& vc, int32 row, int32 pointCount) {
         vc = b2ContactVelocityConstraint();
@@ -92,10 +72,6 @@ public:
             p.velocityBias = Pick(4) == 0 ? Fixed::FromRaw(static_cast<int32_t>(Uniform(0, 2) * 65536)) : Fixed();
         }
     }
-
-private:
-    double Uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(m_rng); }
-    std::mt19937_64 m_rng;
 };
 
 struct SolveResult {

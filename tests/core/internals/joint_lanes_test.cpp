@@ -5,12 +5,12 @@
 // scalar row) and on worlds whose joint islands are coloured, with one worker or several.
 
 #include <cstdint>
-#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "../dynamics/DynamicsTestUtil.h"
+#include "LaneValues.h"
 #include "dynamics/joints/JointSolver.h"
 #include "dynamics/lanes/IntegerLanes.h"
 #include "lockbox/dynamics/joints/DistanceJoint.h"
@@ -45,41 +45,12 @@ bool LanesAvailable() {
 // Random point rows of one colour: row i joins bodies 2i and 2i + 1. Raws are mostly of a game's
 // magnitudes, and sometimes anywhere in their range, where the scalar row saturates; arms are
 // sometimes beyond the lanes' 2^30 raw.
-class RowMaker {
+class RowMaker : public test::LaneValues {
 public:
-    explicit RowMaker(uint32_t seed) : m_rng(seed) {}
+    explicit RowMaker(uint32_t seed) : LaneValues(seed) {}
 
-    int Pick(int n) { return static_cast<int>(m_rng() % static_cast<uint64_t>(n)); }
-    int64_t WideRaw(double typical) {
-        const int kind = Pick(20);
-        if (kind == 0) return static_cast<int64_t>(m_rng());  // anywhere
-        if (kind == 1) {  // near the top, either sign (~x is -x - 1: no overflow at 2^63)
-            const uint64_t bits = m_rng() >> Pick(8);
-            return Pick(2) == 0 ? static_cast<int64_t>(bits) : static_cast<int64_t>(~bits);
-        }
-        if (kind == 2) return 0;
-        const auto raw = static_cast<int64_t>(Uniform(-typical, typical) * 4294967296.0);
-        // Coarse values (whole multiples of a power of two, as FromRatio's often are) reach the
-        // roundings' ties.
-        if (kind == 3) return raw & ~((int64_t{1} << (12 + Pick(20))) - 1);
-        return raw;
-    }
-    Wide WideValue(double typical) { return Wide::FromRaw(WideRaw(typical)); }
-    Wide Positive(double lo, double hi) {
-        if (Pick(30) == 0) return WideValue(1);
-        return Wide::FromRaw(static_cast<int64_t>(Uniform(lo, hi) * 4294967296.0));
-    }
-    Fixed FixedValue(double typical) {
-        const int kind = Pick(25);
-        if (kind == 0) return Fixed::FromRaw(static_cast<int32_t>(m_rng()));
-        if (kind <= 2) {  // the edges of the lanes' arms (2^30 raw) and of the type
-            constexpr int32_t kEdges[] = {INT32_MIN, INT32_MAX, -(int32_t{1} << 30), (int32_t{1} << 30) - 1};
-            return Fixed::FromRaw(kEdges[Pick(4)]);
-        }
-        const auto raw = static_cast<int32_t>(Uniform(-typical, typical) * 65536.0);
-        if (kind == 3) return Fixed::FromRaw(raw & ~((int32_t{1} << (4 + Pick(10))) - 1));
-        return Fixed::FromRaw(raw);
-    }
+    // Mostly in [lo, hi), sometimes any raw.
+    Wide Mass(double lo, double hi) { return Pick(30) == 0 ? WideValue(1) : Positive(lo, hi); }
 
     void Fill(JointSolver::Row& row, int32 i, b2RevoluteJoint* joint) {
         row = JointSolver::Row();
@@ -87,12 +58,11 @@ public:
         row.indexB = 2 * i + 1;
         row.rA = b2Vec2(FixedValue(2), FixedValue(2));
         row.rB = b2Vec2(FixedValue(2), FixedValue(2));
-        row.mA = Positive(0.05, 2);
-        row.mB = Positive(0.05, 2);
-        row.iA = Positive(0.1, 8);
-        row.iB = Positive(0.1, 8);
-        row.pointMass =
-            b2WideMat22{b2WideVec2(Positive(0.1, 4), WideValue(1)), b2WideVec2(WideValue(1), Positive(0.1, 4))};
+        row.mA = Mass(0.05, 2);
+        row.mB = Mass(0.05, 2);
+        row.iA = Mass(0.1, 8);
+        row.iB = Mass(0.1, 8);
+        row.pointMass = b2WideMat22{b2WideVec2(Mass(0.1, 4), WideValue(1)), b2WideVec2(WideValue(1), Mass(0.1, 4))};
         row.impulse = b2WideVec2(WideValue(0.5), WideValue(0.5));
         row.joint = joint;
         row.revolute = joint;
@@ -100,10 +70,6 @@ public:
         // some none (the tested scalar row).
         if (Pick(4) != 0) row.unchecked = JointSolver::PointRowWidths(row);
     }
-
-private:
-    double Uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(m_rng); }
-    std::mt19937_64 m_rng;
 };
 
 struct SolveResult {
