@@ -201,7 +201,7 @@ TEST(JointLanes, GameRowsStayInTheLanes) {
     }
 }
 
-// The hashes of 60 steps of a hanging net of boxes: one island of about 1,900 joints (so
+// The hashes of 60 steps of a hanging net of boxes: one island of 1,984 joints (so
 // coloured), mostly idle revolute joints (the lanes' rows), with some motors, limits and distance
 // joints among them (joints solved by themselves inside the colours), falling onto a ground box.
 std::vector<uint64_t> NetHashes(bool withLanes, int32 workers) {
