@@ -59,6 +59,7 @@ void core_detail::Engine::World::WalkIsland(b2Body* seed, std::vector<b2Body*>& 
         }
 
         for (b2JointEdge* je = b->m_jointList; je; je = je->next) {
+            // Each edge lies in its joint, a line of its own: as for the contacts above.
             if (je->next != nullptr) __builtin_prefetch(je->next);
             b2Body* other = je->other;
             // A joint between two bodies without mass (kinematic-static, kinematic-kinematic)
@@ -73,10 +74,7 @@ void core_detail::Engine::World::WalkIsland(b2Body* seed, std::vector<b2Body*>& 
             // Don't simulate joints connected to inactive bodies.
             if (!other->IsActive()) continue;
             sink.Joint(je->joint);
-            if (!sink.Meet(*other)) continue;
-            stack.push_back(other);
-            // Joint edges live in their joints, one line each: ask for the first one ahead.
-            if (other->m_jointList != nullptr) __builtin_prefetch(other->m_jointList);
+            if (sink.Meet(*other)) stack.push_back(other);
         }
     }
 }

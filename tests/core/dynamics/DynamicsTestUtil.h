@@ -4,6 +4,7 @@
 // included beside it.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "lockbox/lockbox.h"
 
@@ -85,6 +86,16 @@ inline b2Body* MakeDynamicCircle(b2World& world, Fixed x, Fixed y, Fixed r, Fixe
     fd.restitution = restitution;
     body->CreateFixture(&fd);
     return body;
+}
+
+/// The world's hash after each of `steps` steps of 1/60 s (8 velocity, 3 position iterations).
+inline std::vector<uint64_t> StepHashes(b2World& world, int steps) {
+    std::vector<uint64_t> hashes;
+    for (int i = 0; i < steps; ++i) {
+        world.Step(kDt, 8, 3);
+        hashes.push_back(world.Hash());
+    }
+    return hashes;
 }
 
 /// Counts contact events and records their order.

@@ -6,11 +6,23 @@
 
 #include <cstdint>
 #include <random>
+#include <vector>
 
+#include <gtest/gtest.h>
+
+#include "lockbox/dynamics/StepObserver.h"
 #include "lockbox/fixed/Fixed.h"
+#include "lockbox/fixed/Overflow.h"
 #include "lockbox/fixed/Wide.h"
 
 namespace lockbox::test {
+
+// The rows saturate on purpose: a checked build, which traps on overflow, is told to go on with
+// the saturated result (and still counts it) while this is alive.
+struct QuietTraps {
+    OverflowTrapHandler previous = SetOverflowTrapHandler([](const char*, int64_t, int64_t) {});
+    ~QuietTraps() { SetOverflowTrapHandler(previous); }
+};
 
 class LaneValues {
 public:
@@ -49,8 +61,26 @@ public:
         return Fixed::FromRaw(raw);
     }
 
+    // Places that cut a colour of `count` rows into ranges, as workers' blocks cut it: random,
+    // most not on a multiple of four.
+    std::vector<int32_t> Cuts(int32_t count) {
+        std::vector<int32_t> cuts;
+        for (int32_t at = Pick(9) + 1; at < count; at += Pick(61) + 1) cuts.push_back(at);
+        return cuts;
+    }
+
 private:
     std::mt19937_64 m_rng;
 };
+
+// Whether two solves left every body with the same velocity (the first body that differs, if not).
+inline ::testing::AssertionResult SameVelocities(const std::vector<b2Velocity>& a, const std::vector<b2Velocity>& b) {
+    if (a.size() != b.size()) return ::testing::AssertionFailure() << "body counts " << a.size() << ", " << b.size();
+    for (size_t i = 0; i < a.size(); ++i) {
+        if (a[i].v.x != b[i].v.x || a[i].v.y != b[i].v.y || a[i].w != b[i].w)
+            return ::testing::AssertionFailure() << "body " << i;
+    }
+    return ::testing::AssertionSuccess();
+}
 
 }  // namespace lockbox::test

@@ -216,12 +216,7 @@ std::vector<uint64_t> Hashes(void (*build)(b2World&), b2TaskSystem* tasks, int w
         world.SetWorkerCount(workers);
     }
     build(world);
-    std::vector<uint64_t> hashes;
-    for (int i = 0; i < 20; ++i) {
-        world.Step(test::kDt, 8, 3);
-        hashes.push_back(world.Hash());
-    }
-    return hashes;
+    return test::StepHashes(world, 20);
 }
 
 TEST(Colours, SameBitsWithAnyWorkers) {

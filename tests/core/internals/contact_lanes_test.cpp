@@ -113,13 +113,7 @@ TEST(ContactLanes, RandomRowsGiveTheScalarRowsBits) {
     if (!b2ContactSolver::LanesAvailable())
         GTEST_SKIP() << "no integer lanes on this machine: only the scalar row runs";
     const LanesAllowed restore;
-    // The rows saturate on purpose: a checked build, which traps on overflow, is told to go on
-    // with the saturated result (and still counts it) while the test runs.
-    const OverflowTrapHandler previous = SetOverflowTrapHandler([](const char*, int64_t, int64_t) {});
-    struct Restore {
-        OverflowTrapHandler handler;
-        ~Restore() { SetOverflowTrapHandler(handler); }
-    } restoreTraps{previous};
+    const test::QuietTraps quiet;
     int64_t lanesTotal = 0;
     for (uint32_t seed = 1; seed <= 40; ++seed) {
         RowMaker make(seed);
@@ -138,20 +132,13 @@ TEST(ContactLanes, RandomRowsGiveTheScalarRowsBits) {
         }
 
         // Odd seeds cut the colour into ranges at random places, most not on a multiple of four.
-        std::vector<int32> cuts;
-        if (seed % 2 == 1) {
-            for (int32 at = make.Pick(9) + 1; at < kRows; at += make.Pick(61) + 1) cuts.push_back(at);
-        }
+        const std::vector<int32> cuts = seed % 2 == 1 ? make.Cuts(kRows) : std::vector<int32>{};
         const SolveResult lanes = SolveColour(constraints, velocities, true, 8, cuts);
         const SolveResult scalar = SolveColour(constraints, velocities, false, 8);
         EXPECT_EQ(scalar.inLanes, 0);
         lanesTotal += lanes.inLanes;
         ASSERT_EQ(lanes.saturations, scalar.saturations) << "seed " << seed;
-        for (size_t b = 0; b < velocities.size(); ++b) {
-            ASSERT_EQ(lanes.velocities[b].v.x, scalar.velocities[b].v.x) << "seed " << seed << " body " << b;
-            ASSERT_EQ(lanes.velocities[b].v.y, scalar.velocities[b].v.y) << "seed " << seed << " body " << b;
-            ASSERT_EQ(lanes.velocities[b].w, scalar.velocities[b].w) << "seed " << seed << " body " << b;
-        }
+        ASSERT_TRUE(test::SameVelocities(lanes.velocities, scalar.velocities)) << "seed " << seed;
         for (size_t i = 0; i < constraints.size(); ++i) {
             for (int32 j = 0; j < constraints[i].pointCount; ++j) {
                 ASSERT_EQ(lanes.constraints[i].points[j].normalImpulse, scalar.constraints[i].points[j].normalImpulse)
@@ -215,12 +202,7 @@ std::vector<uint64_t> Hashes(bool lanes) {
     b2ContactSolver::AllowLanes(lanes);
     b2World world(b2Vec2(0, -10));
     test::MakeBoxPyramid(world, 40, 150, 101);
-    std::vector<uint64_t> hashes;
-    for (int i = 0; i < 90; ++i) {
-        world.Step(test::kDt, 8, 3);
-        hashes.push_back(world.Hash());
-    }
-    return hashes;
+    return test::StepHashes(world, 90);
 }
 
 TEST(ContactLanes, ColouredIslandGivesTheSameHashes) {

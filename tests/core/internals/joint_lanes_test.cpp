@@ -27,13 +27,6 @@ struct Restore {
     ~Restore() { lanes::Allow(true); }
 };
 
-// The rows saturate on purpose: a checked build, which traps on overflow, is told to go on with
-// the saturated result (and still counts it) while this is alive.
-struct QuietTraps {
-    OverflowTrapHandler previous = SetOverflowTrapHandler([](const char*, int64_t, int64_t) {});
-    ~QuietTraps() { SetOverflowTrapHandler(previous); }
-};
-
 bool LanesAvailable() {
 #ifdef LOCKBOX_INTEGER_LANES
     return lanes::HasAvx2();
@@ -121,7 +114,7 @@ struct HostJoint {
 TEST(JointLanes, RandomRowsGiveTheScalarRowsBits) {
     if (!LanesAvailable()) GTEST_SKIP() << "no integer lanes on this machine: only the scalar row runs";
     const Restore restore;
-    const QuietTraps quiet;
+    const test::QuietTraps quiet;
     const HostJoint host;
     constexpr int32 kRows = 512;
     constexpr int kSeeds = 40, kIterations = 8;
@@ -136,20 +129,13 @@ TEST(JointLanes, RandomRowsGiveTheScalarRowsBits) {
             v.w = make.WideValue(6);
         }
         // Odd seeds cut the colour into ranges at random places, most not on a multiple of four.
-        std::vector<int32> cuts;
-        if (seed % 2 == 1) {
-            for (int32 at = make.Pick(9) + 1; at < kRows; at += make.Pick(61) + 1) cuts.push_back(at);
-        }
+        const std::vector<int32> cuts = seed % 2 == 1 ? make.Cuts(kRows) : std::vector<int32>{};
         const SolveResult withLanes = SolveColour(rows, velocities, true, kIterations, cuts);
         const SolveResult scalar = SolveColour(rows, velocities, false, kIterations);
         EXPECT_EQ(scalar.inLanes, 0);
         lanesTotal += withLanes.inLanes;
         ASSERT_EQ(withLanes.saturations, scalar.saturations) << "seed " << seed;
-        for (size_t b = 0; b < velocities.size(); ++b) {
-            ASSERT_EQ(withLanes.velocities[b].v.x, scalar.velocities[b].v.x) << "seed " << seed << " body " << b;
-            ASSERT_EQ(withLanes.velocities[b].v.y, scalar.velocities[b].v.y) << "seed " << seed << " body " << b;
-            ASSERT_EQ(withLanes.velocities[b].w, scalar.velocities[b].w) << "seed " << seed << " body " << b;
-        }
+        ASSERT_TRUE(test::SameVelocities(withLanes.velocities, scalar.velocities)) << "seed " << seed;
         for (size_t i = 0; i < rows.size(); ++i) {
             ASSERT_EQ(withLanes.impulses[i].x, scalar.impulses[i].x) << "seed " << seed << " row " << i;
             ASSERT_EQ(withLanes.impulses[i].y, scalar.impulses[i].y) << "seed " << seed << " row " << i;
@@ -242,12 +228,7 @@ std::vector<uint64_t> NetHashes(bool withLanes, int32 workers) {
             if (y + 1 < kSide) link(b, bodies[static_cast<size_t>((y + 1) * kSide + x)]);
         }
     }
-    std::vector<uint64_t> hashes;
-    for (int i = 0; i < 60; ++i) {
-        world.Step(test::kDt, 8, 3);
-        hashes.push_back(world.Hash());
-    }
-    return hashes;
+    return test::StepHashes(world, 60);
 }
 
 TEST(JointLanes, ColouredJointIslandGivesTheSameHashes) {

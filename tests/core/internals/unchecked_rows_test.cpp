@@ -904,12 +904,7 @@ std::vector<uint64_t> Hashes(bool unchecked) {
         world.CreateJoint(&joint);
         previous = body;
     }
-    std::vector<uint64_t> hashes;
-    for (int i = 0; i < 120; ++i) {
-        world.Step(test::kDt, 8, 3);
-        hashes.push_back(world.Hash());
-    }
-    return hashes;
+    return test::StepHashes(world, 120);
 }
 
 TEST(UncheckedRows, WorldsGiveTheSameHashesWithAndWithoutUncheckedRows) {

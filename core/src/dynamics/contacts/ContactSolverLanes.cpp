@@ -81,11 +81,6 @@ struct Rows {
     LOCKBOX_AVX2 Split LoadSplit(int32 field) const { return SplitSign(Load(field)); }
 };
 
-// Four constraints' field as lanes (lane k from constraint k).
-#define LOCKBOX_LANES(vc, field)                                                                 \
-    _mm256_set_epi64x(int64_t{(vc)[3]->field}, int64_t{(vc)[2]->field}, int64_t{(vc)[1]->field}, \
-                      int64_t{(vc)[0]->field})
-
 // solver::SpeedAlong in lanes: d . (vB - vA) + wB armB - wA armA.
 LOCKBOX_AVX2 inline Lanes SpeedAlong(Lanes& unsafe, const Pair& p, const Split& dx, const Split& dy, const Split& armA,
                                      const Split& armB) {
@@ -133,8 +128,8 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], const Ro
 
     Lanes normalImpulse[b2_maxManifoldPoints], tangentImpulse[b2_maxManifoldPoints];
     for (int32 j = 0; j < points; ++j) {
-        normalImpulse[j] = LOCKBOX_LANES(vc, points[j].normalImpulse.Raw());
-        tangentImpulse[j] = LOCKBOX_LANES(vc, points[j].tangentImpulse.Raw());
+        normalImpulse[j] = LOCKBOX_LANES_OF(vc, points[j].normalImpulse.Raw());
+        tangentImpulse[j] = LOCKBOX_LANES_OF(vc, points[j].tangentImpulse.Raw());
         Bound(unsafe, normalImpulse[j]);
         Bound(unsafe, tangentImpulse[j]);
     }
@@ -199,8 +194,7 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], const Ro
     }
 
     // Lanes with no flag are written back; the rest are the scalar row's.
-    const uint32 followed =
-        static_cast<uint32>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(unsafe, Zero()))));
+    const uint32 followed = Followed(unsafe);
     alignas(32) int64_t raw[6][4];
     SpillPair(p, raw);
     alignas(32) int64_t normal[b2_maxManifoldPoints][4], tangent[b2_maxManifoldPoints][4];
@@ -223,7 +217,6 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], const Ro
     return ~followed & 0xFu;
 }
 
-#undef LOCKBOX_LANES
 }  // namespace contactlanes
 #endif  // LOCKBOX_INTEGER_LANES
 
@@ -285,7 +278,7 @@ void b2ContactSolver::AllowLanes(bool allow) noexcept { lanes::Allow(allow); }
 
 int32 b2ContactSolver::SolveIndependentVelocityConstraints(int32 begin, int32 end) {
 #ifdef LOCKBOX_INTEGER_LANES
-    if (m_laneRows != nullptr && lanes::HasAvx2() && lanes::Allowed()) {
+    if (m_laneRows != nullptr && lanes::Usable()) {
         // The constraints write no body in common, so any order gives the same bits: each quad
         // of the lane rows whose constraints have one point count goes to the lanes; the
         // constraints before the first quad, in mixed quads and after the last go to the

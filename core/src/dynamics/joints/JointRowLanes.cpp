@@ -19,11 +19,6 @@ namespace {
 namespace jointlanes {
 using namespace lanes;
 
-// Four rows' field as lanes (lane k from row k).
-#define LOCKBOX_ROW_LANES(rows, field)                                                                 \
-    _mm256_set_epi64x(int64_t{(rows)[3]->field}, int64_t{(rows)[2]->field}, int64_t{(rows)[1]->field}, \
-                      int64_t{(rows)[0]->field})
-
 // An arithmetic shift right of every lane (AVX2 has only the logical one): for a negative value
 // the logical shift of its complement, complemented.
 LOCKBOX_AVX2 inline Lanes ShiftRightArith(Lanes x, int n) {
@@ -64,23 +59,23 @@ LOCKBOX_AVX2 uint32 SolveFour(JointSolver::Row* const rows[4], b2Velocity* veloc
     const int32 bodiesB[4] = {rows[0]->indexB, rows[1]->indexB, rows[2]->indexB, rows[3]->indexB};
     Pair p = LoadPair(unsafe, velocities, bodiesA, bodiesB);
     Lanes &vAx = p.vAx, &vAy = p.vAy, &wA = p.wA, &vBx = p.vBx, &vBy = p.vBy, &wB = p.wB;
-    Lanes impulseX = LOCKBOX_ROW_LANES(rows, impulse.x.Raw());
-    Lanes impulseY = LOCKBOX_ROW_LANES(rows, impulse.y.Raw());
+    Lanes impulseX = LOCKBOX_LANES_OF(rows, impulse.x.Raw());
+    Lanes impulseY = LOCKBOX_LANES_OF(rows, impulse.y.Raw());
     Bound(unsafe, impulseX);
     Bound(unsafe, impulseY);
 
-    const Lanes rAx = LOCKBOX_ROW_LANES(rows, rA.x.Raw()), rAy = LOCKBOX_ROW_LANES(rows, rA.y.Raw());
-    const Lanes rBx = LOCKBOX_ROW_LANES(rows, rB.x.Raw()), rBy = LOCKBOX_ROW_LANES(rows, rB.y.Raw());
+    const Lanes rAx = LOCKBOX_LANES_OF(rows, rA.x.Raw()), rAy = LOCKBOX_LANES_OF(rows, rA.y.Raw());
+    const Lanes rBx = LOCKBOX_LANES_OF(rows, rB.x.Raw()), rBy = LOCKBOX_LANES_OF(rows, rB.y.Raw());
     const Split sAx = SplitSign(rAx), sAy = SplitSign(rAy), sBx = SplitSign(rBx), sBy = SplitSign(rBy);
 
     // The velocity error at the anchors, Cdot = vB + wB x rB - vA - wA x rA.
     const Lanes cx = Sub(Sub(vBx, MulWF(unsafe, wB, sBy)), Sub(vAx, MulWF(unsafe, wA, sAy)));
     const Lanes cy = Sub(Add(vBy, MulWF(unsafe, wB, sBx)), Add(vAy, MulWF(unsafe, wA, sAx)));
     const Split scx = SplitSign(cx), scy = SplitSign(cy);
-    const Split m11 = SplitSign(LOCKBOX_ROW_LANES(rows, pointMass.ex.x.Raw()));
-    const Split m21 = SplitSign(LOCKBOX_ROW_LANES(rows, pointMass.ex.y.Raw()));
-    const Split m12 = SplitSign(LOCKBOX_ROW_LANES(rows, pointMass.ey.x.Raw()));
-    const Split m22 = SplitSign(LOCKBOX_ROW_LANES(rows, pointMass.ey.y.Raw()));
+    const Split m11 = SplitSign(LOCKBOX_LANES_OF(rows, pointMass.ex.x.Raw()));
+    const Split m21 = SplitSign(LOCKBOX_LANES_OF(rows, pointMass.ex.y.Raw()));
+    const Split m12 = SplitSign(LOCKBOX_LANES_OF(rows, pointMass.ey.x.Raw()));
+    const Split m22 = SplitSign(LOCKBOX_LANES_OF(rows, pointMass.ey.y.Raw()));
     const Lanes px = Neg(Add(MulWW(unsafe, m11, scx), MulWW(unsafe, m12, scy)));
     const Lanes py = Neg(Add(MulWW(unsafe, m21, scx), MulWW(unsafe, m22, scy)));
     impulseX = Add(impulseX, px);
@@ -88,10 +83,10 @@ LOCKBOX_AVX2 uint32 SolveFour(JointSolver::Row* const rows[4], b2Velocity* veloc
 
     // The increment on the bodies: A takes -mA P and -iA (rA x P), B takes mB P and iB (rB x P).
     const Split spx = SplitSign(px), spy = SplitSign(py);
-    const Split mA = SplitSign(LOCKBOX_ROW_LANES(rows, mA.Raw()));
-    const Split mB = SplitSign(LOCKBOX_ROW_LANES(rows, mB.Raw()));
-    const Split iA = SplitSign(LOCKBOX_ROW_LANES(rows, iA.Raw()));
-    const Split iB = SplitSign(LOCKBOX_ROW_LANES(rows, iB.Raw()));
+    const Split mA = SplitSign(LOCKBOX_LANES_OF(rows, mA.Raw()));
+    const Split mB = SplitSign(LOCKBOX_LANES_OF(rows, mB.Raw()));
+    const Split iA = SplitSign(LOCKBOX_LANES_OF(rows, iA.Raw()));
+    const Split iB = SplitSign(LOCKBOX_LANES_OF(rows, iB.Raw()));
     vAx = Sub(vAx, MulWW(unsafe, mA, spx));
     vAy = Sub(vAy, MulWW(unsafe, mA, spy));
     wA = Sub(wA, MulWW(unsafe, Cross(unsafe, rAx, rAy, px, py), iA));
@@ -100,8 +95,7 @@ LOCKBOX_AVX2 uint32 SolveFour(JointSolver::Row* const rows[4], b2Velocity* veloc
     wB = Add(wB, MulWW(unsafe, Cross(unsafe, rBx, rBy, px, py), iB));
 
     // Lanes with no flag are written back; the rest are the scalar row's.
-    const uint32 followed =
-        static_cast<uint32>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(unsafe, Zero()))));
+    const uint32 followed = Followed(unsafe);
     alignas(32) int64_t raw[6][4];
     SpillPair(p, raw);
     alignas(32) int64_t impulses[2][4];
@@ -121,14 +115,13 @@ LOCKBOX_AVX2 uint32 SolveFour(JointSolver::Row* const rows[4], b2Velocity* veloc
     return ~followed & 0xFu;
 }
 
-#undef LOCKBOX_ROW_LANES
 }  // namespace jointlanes
 }  // namespace
 #endif  // LOCKBOX_INTEGER_LANES
 
 int32 JointSolver::SolveIndependentVelocityConstraints(const b2SolverData& data, int32 begin, int32 end) {
 #ifdef LOCKBOX_INTEGER_LANES
-    if (lanes::HasAvx2() && lanes::Allowed()) {
+    if (lanes::Usable()) {
         // The joints write no body in common, so any order gives the same bits: each run of four
         // point rows goes to the lanes; a joint solved by itself, the rows after the last run of
         // four and the rows the lanes cannot follow go to the scalar iteration.

@@ -39,6 +39,14 @@ inline bool HasAvx2() noexcept {
 
 using Lanes = __m256i;
 
+// Whether this machine has the lanes and they are allowed.
+inline bool Usable() noexcept { return HasAvx2() && Allowed(); }
+
+// One field of four rows as lanes (lane k from items[k], a pointer to row k).
+#define LOCKBOX_LANES_OF(items, field)                                                                    \
+    _mm256_set_epi64x(int64_t{(items)[3]->field}, int64_t{(items)[2]->field}, int64_t{(items)[1]->field}, \
+                      int64_t{(items)[0]->field})
+
 // Every value a lane loads or a product forms stays below 2^kBoundBits in magnitude. A row adds
 // at most eight such terms into one sum, so no sum reaches 2^62, and no lane wraps where the
 // scalar row would saturate.
@@ -67,6 +75,10 @@ LOCKBOX_AVX2 inline Split Flip(const Split& s) { return {s.mag, _mm256_xor_si256
 
 // Marks the lanes where `bits` is non-zero.
 LOCKBOX_AVX2 inline void Flag(Lanes& unsafe, Lanes bits) { unsafe = _mm256_or_si256(unsafe, bits); }
+// The lanes no bound flagged (bit k: lane k), which their rows may write back.
+LOCKBOX_AVX2 inline uint32_t Followed(Lanes unsafe) {
+    return static_cast<uint32_t>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(unsafe, Zero()))));
+}
 // Marks the lanes where |x| >= 2^kBoundBits (INT64_MIN included: its magnitude is 2^63).
 LOCKBOX_AVX2 inline void Bound(Lanes& unsafe, Lanes x) {
     Flag(unsafe, _mm256_srli_epi64(SplitSign(x).mag, kBoundBits));
