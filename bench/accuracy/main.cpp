@@ -7,8 +7,10 @@
 // bench/results/<machine>/accuracy.csv (one row per run) and effects.csv (stage shares and
 // work counters per configuration), which plot_accuracy.py turns into plots and tables.
 //
-//   lockbox_accuracy [--scene NAME] [--repeat R] [--quick]
-// --quick runs only the default and one knob per family (a smoke run).
+//   lockbox_accuracy [--scene NAME] [--repeat R] [--quick] [--out DIR]
+// --quick runs only the default and one knob per family (a smoke run). A partial run writes
+// files of its own (accuracy_quick.csv, accuracy_<scene>.csv, ...) so that it never replaces
+// the full sweep's; --out DIR writes into DIR instead of bench/results/<machine>/.
 #include <cinttypes>
 #include <cstdio>
 #include <filesystem>
@@ -98,24 +100,41 @@ int main(int argc, char** argv) {
     std::vector<std::string> scenes = {"pyramid20", "vertical_stack", "chain60", "pendulum", "slope"};
     int repeat = 1;
     bool quick = false;
+    std::string only, out;
     lockbox::cli::OptionReader args("lockbox_accuracy", argc, argv);
     while (args.Next()) {
         if (args.Is("--scene")) {
-            std::string one;
-            if (args.Text(one)) scenes = {one};
+            if (args.Text(only)) scenes = {only};
         } else if (args.Is("--repeat")) {
             args.Int(1, 100000, repeat);
         } else if (args.Is("--quick")) {
             quick = true;
+        } else if (args.Is("--out")) {
+            args.Text(out);
         } else {
             args.Unknown();
         }
     }
-    if (args.Failed()) return args.Fail("usage: lockbox_accuracy [--scene NAME] [--repeat R] [--quick]\n");
-    const std::filesystem::path dir = std::filesystem::path(LOCKBOX_BENCH_RESULTS_DIR) / MachineName();
-    std::filesystem::create_directories(dir);
-    std::ofstream csv(dir / (quick ? "accuracy_quick.csv" : "accuracy.csv"));
-    std::ofstream eff(dir / (quick ? "effects_quick.csv" : "effects.csv"));
+    if (args.Failed()) return args.Fail("usage: lockbox_accuracy [--scene NAME] [--repeat R] [--quick] [--out DIR]\n");
+    // Every scene is known before any file is opened, so a misspelt name replaces nothing.
+    for (const std::string& scene : scenes) {
+        if (!MakeScene<Box2DFloatEngine>(scene)) {
+            std::fprintf(stderr, "lockbox_accuracy: unknown scene %s\n", scene.c_str());
+            return 2;
+        }
+    }
+    const std::filesystem::path dir =
+        out.empty() ? std::filesystem::path(LOCKBOX_BENCH_RESULTS_DIR) / MachineName() : std::filesystem::path(out);
+    const std::string suffix = std::string(quick ? "_quick" : "") + (only.empty() ? "" : "_" + only) + ".csv";
+    const std::filesystem::path csvPath = dir / ("accuracy" + suffix), effPath = dir / ("effects" + suffix);
+    std::error_code ignored;  // a directory that cannot be made shows as files that do not open
+    std::filesystem::create_directories(dir, ignored);
+    std::ofstream csv(csvPath);
+    std::ofstream eff(effPath);
+    if (!csv || !eff) {
+        std::fprintf(stderr, "lockbox_accuracy: cannot write %s\n", (csv ? effPath : csvPath).c_str());
+        return 1;
+    }
     csv << "scene,engine,family,config,hz,steps,vel_iters,pos_iters,warm,continuous,substep,ms_per_step,"
            "primary_metric,primary,primary_vs_float,max_pen,top_dx,top_sag,collapsed,joint_sep,"
            "all_asleep_step,energy_drift,period_err,slide_accel_err,stack_drift\n";
@@ -126,10 +145,6 @@ int main(int argc, char** argv) {
             RunSettings s = c.settings;
             s.trackMetrics = true;
             auto proto = MakeScene<Box2DFloatEngine>(scene);
-            if (!proto) {
-                std::fprintf(stderr, "unknown scene %s\n", scene.c_str());
-                return 2;
-            }
             // Cover the same simulated time at every frequency.
             const int hz = s.hz > 0 ? s.hz : proto->Info().hz;
             s.steps = proto->Info().steps * hz / proto->Info().hz;
@@ -176,6 +191,6 @@ int main(int argc, char** argv) {
             eff.flush();
         }
     }
-    std::printf("wrote %s\n", (dir / (quick ? "accuracy_quick.csv" : "accuracy.csv")).c_str());
+    std::printf("wrote %s and %s\n", csvPath.c_str(), effPath.c_str());
     return 0;
 }
