@@ -20,6 +20,7 @@
 
 #include "dynamics/TimeStep.h"
 #include "dynamics/joints/JointAccess.h"
+#include "dynamics/unchecked/UncheckedWide.h"
 #include "dynamics/unchecked/Widths.h"
 #include "lockbox/fixed/WideMatrix.h"
 
@@ -124,9 +125,9 @@ private:
     /// The velocity set-up of a revolute joint with its motor and limit disabled, straight into
     /// its rows, with the arms, K and warm start unchecked where the rows' bounds prove them in
     /// range (the joint's own set-up's bits). False, with the joint and bodies untouched, when
-    /// the joint needs its own set-up. Only where rows may run unchecked (native 128-bit
-    /// integers); elsewhere every joint takes its own set-up.
-#ifdef LOCKBOX_NATIVE_INT128
+    /// the joint needs its own set-up. Only where rows may run unchecked; elsewhere every joint
+    /// takes its own set-up.
+#ifdef LOCKBOX_UNCHECKED_ROWS
     static bool SetUpRow(b2RevoluteJoint& joint, const b2SolverData& data, Row& row, PositionRow& position) noexcept;
 #endif
 
