@@ -1,7 +1,8 @@
 #pragma once
 /// `lockbox_bench --all --compare`: every SCENES.md scene on both engines, alternating engine
 /// order between repeats (so drift in machine speed hits both), with the same iterations and
-/// time step. Writes bench/results/<machine>/compare.csv and the table in docs/benchmarks.md.
+/// time step. Writes bench/results/<machine>/compare.csv and the table in docs/benchmarks.md
+/// (or both into the directory --out names).
 /// With --workers N (N > 1) lockbox also runs on N threads in the same alternation, and the
 /// table gains a column: its time per step and the speed-up over one worker. A second table
 /// splits both engines' one-worker steps by stage (broad phase, collide, set-up, velocity,
@@ -196,26 +197,44 @@ inline std::string StageTable(const std::vector<CompareRow>& rows, const std::ve
     return md.str();
 }
 
+/// The name in `only` that is neither a shared scene nor "bullet" (its six variants), or empty
+/// when every name is one.
+inline std::string UnknownCompareScene(const std::vector<std::string>& only) {
+    for (const std::string& name : only) {
+        if (name == "bullet") continue;
+        const auto shared = SharedSceneNames();
+        if (std::find(shared.begin(), shared.end(), name) == shared.end()) return name;
+    }
+    return {};
+}
+
 /// Runs the comparison for `only` (every SCENES.md scene when empty; other rows are kept from
-/// the existing compare.csv) and rewrites compare.csv and the table; false when nothing could
-/// be compared.
-inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, int workers = 1) {
+/// the existing compare.csv) and rewrites compare.csv and the tables; false when nothing could
+/// be compared. With `outDir` set, compare.csv and the tables (compare.md) go there, and
+/// neither bench/results nor docs/benchmarks.md is touched.
+inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, int workers = 1,
+                       const std::string& outDir = {}) {
     RunSettings s;
     s.trackMetrics = false;
     const std::string machine = MachineName();
-    const std::filesystem::path dir = std::filesystem::path(LOCKBOX_BENCH_RESULTS_DIR) / machine;
+    const std::filesystem::path dir =
+        outDir.empty() ? std::filesystem::path(LOCKBOX_BENCH_RESULTS_DIR) / machine : std::filesystem::path(outDir);
     std::filesystem::create_directories(dir);
     const std::vector<CompareRow> previous =
         only.empty() ? std::vector<CompareRow>{} : ReadCompareCsv(dir / "compare.csv");
     std::vector<CompareRow> rows;
+    size_t keptRows = 0;
     for (auto name : SharedSceneNames()) {
         const std::string key(name);
         const bool selected =
             only.empty() || std::find(only.begin(), only.end(), key) != only.end() ||
             (key.rfind("bullet_", 0) == 0 && std::find(only.begin(), only.end(), "bullet") != only.end());
         if (!selected) {
-            for (const CompareRow& p : previous)
-                if (p.name == key) rows.push_back(p);
+            for (const CompareRow& p : previous) {
+                if (p.name != key) continue;
+                rows.push_back(p);
+                ++keptRows;
+            }
             continue;
         }
         std::vector<RunResult> lbRuns, flRuns, wkRuns;
@@ -321,7 +340,14 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
     std::ostringstream md;
     md << "Machine `" << machine << "`, " << repeat << " repeat(s) per engine, engines alternating; "
        << "release build; only `b2World::Step` is timed. Same scene definitions, iterations and time step "
-          "(1092/65536 s) on both engines.\n\n";
+          "(1092/65536 s) on both engines.";
+    if (keptRows > 0) {
+        // Rows from different runs met different machine speeds; say which ones are new.
+        md << " Re-measured in the last run:";
+        for (size_t i = 0; i < only.size(); ++i) md << (i ? ", " : " ") << only[i];
+        md << "; the other rows are kept from an earlier run.";
+    }
+    md << "\n\n";
     // The workers column appears when every measured row has a run on more than one worker.
     int tableWorkers = 0;
     for (const CompareRow& r : rows) {
@@ -368,6 +394,11 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
                   "**Geometric mean of the ratios (lockbox / float), %d scenes: %.2f** (goal: <= 0.9).\n", n, geomean);
     md << buf;
     std::printf("geomean_ratio=%.3f scenes=%d machine=%s\n", geomean, n, machine.c_str());
+    if (!outDir.empty()) {
+        std::ofstream(dir / "compare.md") << md.str() << "\n" << StageTable(rows, order, machine);
+        std::printf("wrote %s and %s\n", (dir / "compare.csv").string().c_str(), (dir / "compare.md").string().c_str());
+        return n > 0;
+    }
     const std::string doc = std::string(LOCKBOX_BENCH_RESULTS_DIR) + "/../../docs/benchmarks.md";
     SpliceMarkdown(doc, "compare", md.str(), "Benchmarks");
     SpliceMarkdown(doc, "stages", StageTable(rows, order, machine), "Benchmarks");

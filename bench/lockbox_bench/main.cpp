@@ -8,7 +8,10 @@
 //                 alternating; writes bench/results/<machine>/compare.csv and the table in
 //                 docs/benchmarks.md)
 //   lockbox_bench --all --compare --scenes a,b [--repeat R]   (re-measure some scenes, keep
-//                 the other rows of compare.csv)
+//                 the other rows of compare.csv; the table names the re-measured ones; a name
+//                 that is not a shared scene is refused before anything runs)
+//   lockbox_bench --all --compare ... --out DIR   (compare.csv and the tables, as compare.md,
+//                 into DIR; bench/results and docs/benchmarks.md are left alone)
 //   lockbox_bench --scene-file FILE [--steps N] [--repeat R] [--metrics]   (a b2dJson scene
 //                 file on lockbox at the file's own rate and iterations unless given; also
 //                 prints how long the file takes to load, median over the repeats)
@@ -44,6 +47,7 @@ constexpr const char* kUsage =
     "         [--position-iterations P] [--hz H] [--engine lockbox|box2d-float]\n"
     "         [--repeat R] [--metrics] [--no-profile] [--headroom] [--workers N]\n"
     "       lockbox_bench --all --compare [--scenes a,b,...] [--repeat R] [--workers N]\n"
+    "         [--out DIR]\n"
     "       lockbox_bench --scene-file FILE.json [--steps N] [--repeat R] [--metrics]\n"
     "       lockbox_bench --list\n";
 
@@ -137,7 +141,7 @@ bool RunSceneFile(const std::string& path, const RunSettings& s, int repeat, boo
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string scene, engine = "lockbox", sceneFile;
+    std::string scene, engine = "lockbox", sceneFile, outDir;
     RunSettings s;
     s.trackMetrics = false;
     int repeat = 1, workers = 1;
@@ -173,6 +177,8 @@ int main(int argc, char** argv) {
             all = true;
         } else if (args.Is("--compare")) {
             compare = true;
+        } else if (args.Is("--out")) {
+            args.Text(outDir);
         } else if (args.Is("--list")) {
             list = true;
         } else if (args.Is("--scenes")) {
@@ -199,7 +205,17 @@ int main(int argc, char** argv) {
         }
         return 0;
     }
-    if (all && compare) return RunCompare(repeat, only, workers) ? 0 : 1;
+    if (all && compare) {
+        if (const std::string bad = UnknownCompareScene(only); !bad.empty()) {
+            std::string known = "bullet";
+            for (auto name : SharedSceneNames())
+                if (name.rfind("bullet_", 0) != 0) known += ", " + std::string(name);
+            std::fprintf(stderr, "lockbox_bench: unknown scene %s in --scenes (shared scenes: %s)\n", bad.c_str(),
+                         known.c_str());
+            return 2;
+        }
+        return RunCompare(repeat, only, workers, outDir) ? 0 : 1;
+    }
     if (!sceneFile.empty()) return RunSceneFile(sceneFile, s, repeat, profile) ? 0 : 1;
     if (scene.empty()) {
         args.Refuse("give --scene NAME, --scene-file FILE, --all --compare or --list");
