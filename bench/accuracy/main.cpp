@@ -1,5 +1,6 @@
 // lockbox_accuracy: what accuracy costs in time. For pyramid20, vertical_stack, chain60, the
-// pendulum and the slope it sweeps, one knob at a time from the scene's defaults (60 Hz, 8/3):
+// pendulum, the slope and large_pyramid (over its first 300 steps) it sweeps, one knob at a time
+// from the scene's defaults (60 Hz, 8/3):
 //   time step 1/30, 1/60, 1/120, 1/240 (steps scaled to cover the same simulated time);
 //   velocity iterations 1, 2, 4, 8, 16, 32; position iterations 1, 2, 3, 8;
 //   effect switches: warm starting off, continuous collision off, sub-stepping on;
@@ -71,9 +72,19 @@ const char* PrimaryMetric(std::string_view scene) {
     if (scene == "pendulum") return "period_err";
     if (scene == "slope") return "slide_accel_err";
     if (scene == "chain60") return "joint_sep";
-    if (scene == "vertical_stack") return "stack_drift";
+    if (scene == "vertical_stack" || scene == "large_pyramid") return "stack_drift";
     return "max_pen";
 }
+
+/// Steps at the scene's own rate. large_pyramid runs 300 of its benchmark's 500 (5 simulated
+/// seconds, by which float Box2D's has fallen at the defaults) so that its settings on both
+/// engines take minutes, not half an hour; the others run their benchmark's steps.
+int SweepSteps(std::string_view scene, int benchmarkSteps) { return scene == "large_pyramid" ? 300 : benchmarkSteps; }
+
+/// Settings a scene leaves out of its sweep. Without warm starting large_pyramid falls apart, and
+/// float Box2D 2.4.1's time-of-impact stage, which scans every contact for each event, then takes
+/// over a quarter of an hour for the run.
+bool Skipped(std::string_view scene, const Config& c) { return scene == "large_pyramid" && c.label == "warm=off"; }
 
 /// Scene metrics plus derived ones (stack drift = |top_dx| + |top_sag - sag at the finest
 /// settings| is not known here, so drift is |top_dx| + max(0, top_sag)).
@@ -97,7 +108,7 @@ double Find(const std::vector<Metric>& m, const std::string& name, double fallba
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::vector<std::string> scenes = {"pyramid20", "vertical_stack", "chain60", "pendulum", "slope"};
+    std::vector<std::string> scenes = {"pyramid20", "vertical_stack", "chain60", "pendulum", "slope", "large_pyramid"};
     int repeat = 1;
     bool quick = false;
     std::string only, out;
@@ -142,12 +153,17 @@ int main(int argc, char** argv) {
 
     for (const std::string& scene : scenes) {
         for (const Config& c : Configs(quick)) {
+            if (Skipped(scene, c)) {
+                std::printf("%-15s %-12s %-15s left out (float Box2D's time of impact takes too long)\n", scene.c_str(),
+                            "both", c.label.c_str());
+                continue;
+            }
             RunSettings s = c.settings;
             s.trackMetrics = true;
             auto proto = MakeScene<Box2DFloatEngine>(scene);
             // Cover the same simulated time at every frequency.
             const int hz = s.hz > 0 ? s.hz : proto->Info().hz;
-            s.steps = proto->Info().steps * hz / proto->Info().hz;
+            s.steps = SweepSteps(scene, proto->Info().steps) * hz / proto->Info().hz;
 
             RunResult fl, lb;
             bool flOk = false, lbOk = false;
