@@ -196,6 +196,11 @@ int main(int argc, char** argv) {
         }
     }
     if (args.Failed()) return args.Fail(kUsage);
+    if ((!only.empty() || !outDir.empty()) && !(all && compare)) {
+        // They shape the comparison's files only; elsewhere they would be ignored in silence.
+        args.Refuse("--scenes and --out go with --all --compare");
+        return args.Fail(kUsage);
+    }
     if (repeat < 1) repeat = 1;
     if (list) {
         for (auto n : AllSceneNames()) {
