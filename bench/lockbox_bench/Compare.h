@@ -22,6 +22,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "BenchReport.h"
@@ -200,10 +201,9 @@ inline std::string StageTable(const std::vector<CompareRow>& rows, const std::ve
 /// The name in `only` that is neither a shared scene nor "bullet" (its six variants), or empty
 /// when every name is one.
 inline std::string UnknownCompareScene(const std::vector<std::string>& only) {
+    const auto shared = SharedSceneNames();
     for (const std::string& name : only) {
-        if (name == "bullet") continue;
-        const auto shared = SharedSceneNames();
-        if (std::find(shared.begin(), shared.end(), name) == shared.end()) return name;
+        if (name != "bullet" && std::find(shared.begin(), shared.end(), name) == shared.end()) return name;
     }
     return {};
 }
@@ -219,7 +219,13 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
     const std::string machine = MachineName();
     const std::filesystem::path dir =
         outDir.empty() ? std::filesystem::path(LOCKBOX_BENCH_RESULTS_DIR) / machine : std::filesystem::path(outDir);
-    std::filesystem::create_directories(dir);
+    // A folder that cannot be made is reported before the minutes of measuring, not after.
+    std::error_code made;
+    std::filesystem::create_directories(dir, made);
+    if (made || !std::filesystem::is_directory(dir)) {
+        std::fprintf(stderr, "lockbox_bench: cannot write into %s\n", dir.string().c_str());
+        return false;
+    }
     const std::vector<CompareRow> previous =
         only.empty() ? std::vector<CompareRow>{} : ReadCompareCsv(dir / "compare.csv");
     std::vector<CompareRow> rows;
@@ -311,6 +317,10 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
 
     {
         std::ofstream csv(dir / "compare.csv");
+        if (!csv) {
+            std::fprintf(stderr, "lockbox_bench: cannot write %s\n", (dir / "compare.csv").string().c_str());
+            return false;
+        }
         csv << "scene,steps,vel_iters,pos_iters,hz,lockbox_ms_per_step,lockbox_p95_ms,float_ms_per_step,"
                "float_p95_ms,ratio,bodies,lockbox_awake,float_awake,lockbox_contacts,float_contacts,"
                "lockbox_hash,top_costs,workers,lockbox_workers_ms_per_step";
@@ -395,7 +405,11 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
     md << buf;
     std::printf("geomean_ratio=%.3f scenes=%d machine=%s\n", geomean, n, machine.c_str());
     if (!outDir.empty()) {
-        std::ofstream(dir / "compare.md") << md.str() << "\n" << StageTable(rows, order, machine);
+        std::ofstream tables(dir / "compare.md");
+        if (!(tables << md.str() << "\n" << StageTable(rows, order, machine))) {
+            std::fprintf(stderr, "lockbox_bench: cannot write %s\n", (dir / "compare.md").string().c_str());
+            return false;
+        }
         std::printf("wrote %s and %s\n", (dir / "compare.csv").string().c_str(), (dir / "compare.md").string().c_str());
         return n > 0;
     }
