@@ -22,6 +22,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -138,6 +139,23 @@ inline std::string Micros(double ms) {
     return buf;
 }
 
+/// The SCENES.md scene a shared scene's row counts for: "bullet" for each of bullet's six
+/// variants, else the scene itself.
+inline std::string CompareKey(std::string_view name) {
+    return name.rfind("bullet_", 0) == 0 ? std::string("bullet") : std::string(name);
+}
+
+/// The SCENES.md scenes of the comparison, each once, in the shared scenes' order (what
+/// --scenes accepts).
+inline std::vector<std::string> CompareKeys() {
+    std::vector<std::string> keys;
+    for (auto name : SharedSceneNames()) {
+        const std::string key = CompareKey(name);
+        if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+    }
+    return keys;
+}
+
 /// The stage table: each stage's time per step on both engines and their ratio, per SCENES.md
 /// scene (bullet's variants summed), and each stage's geometric mean ratio over the scenes where
 /// both engines spend time in it. Scenes measured before the stage columns existed are left out.
@@ -146,8 +164,7 @@ inline std::string StageTable(const std::vector<CompareRow>& rows, const std::ve
     std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> perScene;
     for (const CompareRow& r : rows) {
         if (!r.lockboxOk || r.lbStages.size() != kStageCount || r.flStages.size() != kStageCount) continue;
-        const std::string key = r.name.rfind("bullet_", 0) == 0 ? "bullet" : r.name;
-        auto& [lb, fl] = perScene[key];
+        auto& [lb, fl] = perScene[CompareKey(r.name)];
         lb.resize(kStageCount, 0.0);
         fl.resize(kStageCount, 0.0);
         for (size_t i = 0; i < kStageCount; ++i) {
@@ -198,12 +215,15 @@ inline std::string StageTable(const std::vector<CompareRow>& rows, const std::ve
     return md.str();
 }
 
-/// The name in `only` that is neither a shared scene nor "bullet" (its six variants), or empty
-/// when every name is one.
+/// The name in `only` that is neither a shared scene nor one of CompareKeys() ("bullet" for all
+/// six variants), or empty when every name is one.
 inline std::string UnknownCompareScene(const std::vector<std::string>& only) {
+    const std::vector<std::string> keys = CompareKeys();
     const auto shared = SharedSceneNames();
     for (const std::string& name : only) {
-        if (name != "bullet" && std::find(shared.begin(), shared.end(), name) == shared.end()) return name;
+        if (std::find(keys.begin(), keys.end(), name) == keys.end() &&
+            std::find(shared.begin(), shared.end(), name) == shared.end())
+            return name;
     }
     return {};
 }
@@ -232,9 +252,8 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
     size_t keptRows = 0;
     for (auto name : SharedSceneNames()) {
         const std::string key(name);
-        const bool selected =
-            only.empty() || std::find(only.begin(), only.end(), key) != only.end() ||
-            (key.rfind("bullet_", 0) == 0 && std::find(only.begin(), only.end(), "bullet") != only.end());
+        const auto named = [&](const std::string& n) { return std::find(only.begin(), only.end(), n) != only.end(); };
+        const bool selected = only.empty() || named(key) || named(CompareKey(key));
         if (!selected) {
             for (const CompareRow& p : previous) {
                 if (p.name != key) continue;
@@ -299,7 +318,7 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
     std::vector<std::string> order;
     for (const CompareRow& r : rows) {
         if (!r.lockboxOk) continue;
-        const std::string key = r.name.rfind("bullet_", 0) == 0 ? "bullet" : r.name;
+        const std::string key = CompareKey(r.name);
         if (!perScene.count(key)) order.push_back(key);
         perScene[key].first += r.lbMs;
         perScene[key].second += r.flMs;

@@ -212,9 +212,8 @@ int main(int argc, char** argv) {
     }
     if (all && compare) {
         if (const std::string bad = UnknownCompareScene(only); !bad.empty()) {
-            std::string known = "bullet";
-            for (auto name : SharedSceneNames())
-                if (name.rfind("bullet_", 0) != 0) known += ", " + std::string(name);
+            std::string known;
+            for (const std::string& key : CompareKeys()) known += (known.empty() ? "" : ", ") + key;
             std::fprintf(stderr, "lockbox_bench: unknown scene %s in --scenes (shared scenes: %s)\n", bad.c_str(),
                          known.c_str());
             return 2;
