@@ -4,12 +4,9 @@
 #include <algorithm>
 #include <thread>
 
+#include "dynamics/tasks/SpinPause.h"
 #include "lockbox/dynamics/Tasks.h"
 #include "lockbox/fixed/Overflow.h"
-
-#if defined(__x86_64__) || defined(__i386__)
-#include <immintrin.h>
-#endif
 
 namespace lockbox {
 
@@ -19,9 +16,7 @@ namespace {
 void Relax(int32& spins) {
     if (spins < 256) {
         ++spins;
-#if defined(__x86_64__) || defined(__i386__)
-        _mm_pause();
-#endif
+        SpinPause();
         return;
     }
     std::this_thread::yield();

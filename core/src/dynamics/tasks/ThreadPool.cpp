@@ -1,5 +1,6 @@
-// b2ThreadPool: a fixed set of threads that sleep on a condition variable between loops and
-// take blocks of the loop in hand from one atomic counter, the calling thread with them.
+// b2ThreadPool: a fixed set of threads that, between loops, watch for the next one for a moment
+// and then sleep on a condition variable, and take blocks of the loop in hand from one atomic
+// counter, the calling thread with them.
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
@@ -7,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "dynamics/tasks/SpinPause.h"
 #include "lockbox/dynamics/Tasks.h"
 
 namespace lockbox {
@@ -15,6 +17,11 @@ b2TaskSystem::~b2TaskSystem() = default;
 
 namespace {
 constexpr int32 kMaxWorkers = 64;
+
+// How long a worker keeps watching for the next loop, and the caller for a loop's last block,
+// before sleeping: a step posts a loop every few tens of microseconds, and a sleeping thread's
+// wake-up costs a system call on one side and a reschedule on the other.
+constexpr int32 kSpinChecks = 4096;
 }  // namespace
 
 struct b2ThreadPool::Shared {
@@ -36,6 +43,11 @@ struct b2ThreadPool::Shared {
     bool stop = false;                 // under mutex
     int32 busy = 0;                    // workers inside the current loop (under mutex)
     Loop loop;                         // under mutex
+    // Copies of `generation`, `stop` and `busy` for the spinning checks, which take no lock;
+    // every decision is taken again under the lock.
+    std::atomic<uint64> postedGeneration{0};
+    std::atomic<bool> stopping{false};
+    std::atomic<int32> busyCount{0};
     std::atomic<int32> nextBlock{0};
     std::atomic<int32> pendingBlocks{0};
     std::vector<std::thread> threads;
@@ -58,17 +70,26 @@ struct b2ThreadPool::Shared {
 
     void WorkerMain() {
         uint64 seen = 0;
-        std::unique_lock<std::mutex> lock(mutex);
         for (;;) {
+            for (int32 i = 0; i < kSpinChecks; ++i) {
+                if (postedGeneration.load(std::memory_order_acquire) != seen ||
+                    stopping.load(std::memory_order_relaxed))
+                    break;
+                SpinPause();
+            }
+            std::unique_lock<std::mutex> lock(mutex);
             wake.wait(lock, [&] { return stop || generation != seen; });
             if (stop) return;
             seen = generation;
             const Loop l = loop;
             ++busy;
+            busyCount.store(busy, std::memory_order_relaxed);
             lock.unlock();
             RunBlocks(l);
             lock.lock();
-            if (--busy == 0) finished.notify_one();
+            --busy;
+            busyCount.store(busy, std::memory_order_release);
+            if (busy == 0) finished.notify_one();
         }
     }
 };
@@ -84,6 +105,7 @@ b2ThreadPool::~b2ThreadPool() {
     {
         const std::lock_guard<std::mutex> lock(m_shared->mutex);
         m_shared->stop = true;
+        m_shared->stopping.store(true, std::memory_order_relaxed);
     }
     m_shared->wake.notify_all();
     for (std::thread& t : m_shared->threads) t.join();
@@ -115,11 +137,17 @@ void b2ThreadPool::ParallelFor(int32 itemCount, int32 blockSize, b2TaskRange ran
         s.nextBlock.store(0, std::memory_order_relaxed);
         s.pendingBlocks.store(blockCount, std::memory_order_relaxed);
         ++s.generation;
+        s.postedGeneration.store(s.generation, std::memory_order_release);
     }
     s.wake.notify_all();
     s.RunBlocks(l);
     // Every block done, and no worker still reading this loop, before the caller goes on (and
-    // before the next loop may overwrite it).
+    // before the next loop may overwrite it). The last blocks usually end within microseconds.
+    for (int32 i = 0; i < kSpinChecks; ++i) {
+        if (s.pendingBlocks.load(std::memory_order_acquire) == 0 && s.busyCount.load(std::memory_order_acquire) == 0)
+            break;
+        SpinPause();
+    }
     std::unique_lock<std::mutex> lock(s.mutex);
     s.finished.wait(lock, [&] { return s.pendingBlocks.load(std::memory_order_acquire) == 0 && s.busy == 0; });
 }
