@@ -20,8 +20,15 @@ constexpr int32 kMaxWorkers = 64;
 
 // How long a worker keeps watching for the next loop, and the caller for a loop's last block,
 // before sleeping: a step posts a loop every few tens of microseconds, and a sleeping thread's
-// wake-up costs a system call on one side and a reschedule on the other.
+// wake-up costs a system call on one side and a reschedule on the other. Only a pool with a core
+// for each of its threads watches: with more threads than cores, a watching thread would take
+// the core of the thread it waits for.
 constexpr int32 kSpinChecks = 4096;
+
+int32 SpinChecksFor(int32 threads) {
+    const unsigned cores = std::thread::hardware_concurrency();  // 0 when unknown
+    return cores != 0 && static_cast<unsigned>(threads) <= cores ? kSpinChecks : 0;
+}
 }  // namespace
 
 struct b2ThreadPool::Shared {
@@ -36,6 +43,7 @@ struct b2ThreadPool::Shared {
     };
 
     int32 workerCount = 1;
+    int32 spinChecks = 0;  // pauses a thread watches before it sleeps (SpinChecksFor)
     std::mutex mutex;
     std::condition_variable wake;      // workers wait here for a new loop or for stop
     std::condition_variable finished;  // the caller waits here for the loop's end
@@ -71,7 +79,7 @@ struct b2ThreadPool::Shared {
     void WorkerMain() {
         uint64 seen = 0;
         for (;;) {
-            for (int32 i = 0; i < kSpinChecks; ++i) {
+            for (int32 i = 0; i < spinChecks; ++i) {
                 if (postedGeneration.load(std::memory_order_acquire) != seen ||
                     stopping.load(std::memory_order_relaxed))
                     break;
@@ -96,6 +104,7 @@ struct b2ThreadPool::Shared {
 
 b2ThreadPool::b2ThreadPool(int32 workerCount) : m_shared(std::make_unique<Shared>()) {
     m_shared->workerCount = std::clamp(workerCount, int32{1}, kMaxWorkers);
+    m_shared->spinChecks = SpinChecksFor(m_shared->workerCount);
     m_shared->threads.reserve(static_cast<size_t>(m_shared->workerCount - 1));
     for (int32 i = 1; i < m_shared->workerCount; ++i)
         m_shared->threads.emplace_back([s = m_shared.get()] { s->WorkerMain(); });
@@ -143,7 +152,7 @@ void b2ThreadPool::ParallelFor(int32 itemCount, int32 blockSize, b2TaskRange ran
     s.RunBlocks(l);
     // Every block done, and no worker still reading this loop, before the caller goes on (and
     // before the next loop may overwrite it). The last blocks usually end within microseconds.
-    for (int32 i = 0; i < kSpinChecks; ++i) {
+    for (int32 i = 0; i < s.spinChecks; ++i) {
         if (s.pendingBlocks.load(std::memory_order_acquire) == 0 && s.busyCount.load(std::memory_order_acquire) == 0)
             break;
         SpinPause();
