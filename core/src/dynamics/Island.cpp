@@ -231,12 +231,10 @@ void ColourInOrder(b2Colours<Item>& colours, Item** items, int32 count, int32 sl
 
 }  // namespace
 
-bool b2Island::Colour() {
+void b2Island::Colour() {
     const int32 slots = m_slotBase + m_bodyCount;
-    const bool contacts = ColoursContacts(), joints = ColoursJoints();
-    if (contacts) ColourInOrder(m_contactColours, m_contacts.data(), m_contactCount, slots, m_tasks);
-    if (joints) ColourInOrder(m_jointColours, m_joints.data(), m_jointCount, slots, m_tasks);
-    return contacts || joints;
+    if (ColoursContacts()) ColourInOrder(m_contactColours, m_contacts.data(), m_contactCount, slots, m_tasks);
+    if (ColoursJoints()) ColourInOrder(m_jointColours, m_joints.data(), m_jointCount, slots, m_tasks);
 }
 
 void b2Island::SolveContactVelocities(b2ContactSolver& contacts) {
@@ -260,12 +258,15 @@ void b2Island::SolveJointVelocities(const b2SolverData& data) {
 }
 
 bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& gravity, bool allowSleep) {
-    Clock::time_point timer = Clock::now();
     const Fixed h = step.dt;
-    const bool coloured = Colour();
     // A coloured island with workers runs each phase as one parallel loop of stages
     // (IslandShared.cpp); the profile then counts the velocity phase's set-up in solveVelocityNs.
-    const bool shared = coloured && m_tasks != nullptr;
+    const bool shared = (ColoursContacts() || ColoursJoints()) && m_tasks != nullptr;
+    // Integrate velocities and apply damping; copy the state into the solver buffers. As in
+    // 2.2.1, solveInit starts after the integration (a shared solve integrates in its stages).
+    if (!shared) IntegrateVelocities(0, m_bodyCount, h, gravity);
+    Clock::time_point timer = Clock::now();
+    Colour();
 
     b2SolverData solverData;
     solverData.step = step;
@@ -282,8 +283,6 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         timer = Clock::now();
         SolveVelocitiesShared(contactSolver, solverData, gravity);
     } else {
-        // Integrate velocities and apply damping; copy the state into the solver buffers.
-        IntegrateVelocities(0, m_bodyCount, h, gravity);
         contactSolver.Load();
         contactSolver.InitializeVelocityConstraints();
         if (step.warmStarting) contactSolver.WarmStart();

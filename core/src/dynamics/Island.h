@@ -67,9 +67,8 @@ public:
     /// order (Colours.h).
     bool ColoursContacts() const noexcept { return b2Coloured(m_contactCount); }
     bool ColoursJoints() const noexcept { return b2Coloured(m_jointCount); }
-    /// Puts the contacts and the joints that are many enough in colour order; returns whether
-    /// either was.
-    bool Colour();
+    /// Puts the contacts and the joints that are many enough in colour order.
+    void Colour();
     /// The solver slots a contact's solve writes (Colours.h).
     static b2Colours<b2Contact>::Written WrittenBy(const b2Contact* c);
     /// The same for a joint's, and whether it may share a colour at all.
