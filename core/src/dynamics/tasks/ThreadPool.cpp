@@ -11,6 +11,10 @@
 #include "dynamics/tasks/SpinPause.h"
 #include "lockbox/dynamics/Tasks.h"
 
+#if defined(__linux__) && !defined(__EMSCRIPTEN__)
+#include <sched.h>
+#endif
+
 namespace lockbox {
 
 b2TaskSystem::~b2TaskSystem() = default;
@@ -25,8 +29,19 @@ constexpr int32 kMaxWorkers = 64;
 // the core of the thread it waits for.
 constexpr int32 kSpinChecks = 4096;
 
+// The cores this process may run on: its affinity mask where the system has one (a container
+// pinned to a few cores of a large host), else the machine's count (0 when unknown).
+unsigned UsableCores() {
+#if defined(__linux__) && !defined(__EMSCRIPTEN__)
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof(set), &set) == 0) return static_cast<unsigned>(CPU_COUNT(&set));
+#endif
+    return std::thread::hardware_concurrency();
+}
+
 int32 SpinChecksFor(int32 threads) {
-    const unsigned cores = std::thread::hardware_concurrency();  // 0 when unknown
+    const unsigned cores = UsableCores();
     return cores != 0 && static_cast<unsigned>(threads) <= cores ? kSpinChecks : 0;
 }
 }  // namespace
