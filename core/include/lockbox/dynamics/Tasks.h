@@ -40,9 +40,10 @@ public:
     virtual void ParallelFor(int32 itemCount, int32 blockSize, b2TaskRange range, void* context) = 0;
 };
 
-/// The built-in task system: workerCount - 1 threads that sleep while idle, and the calling
-/// thread, all taking blocks from the loop in hand. The threads are created by the constructor
-/// and joined by the destructor.
+/// The built-in task system: workerCount - 1 threads and the calling thread, all taking blocks
+/// from the loop in hand. Between loops the threads watch for the next one for some tens of
+/// microseconds, when the process has a core for each of them, and then sleep. The threads are
+/// created by the constructor and joined by the destructor.
 class LOCKBOX_API b2ThreadPool final : public b2TaskSystem {
 public:
     /// A pool of workerCount threads, the caller's included (clamped to [1, 64]; 1 creates none).
