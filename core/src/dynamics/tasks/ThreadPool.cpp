@@ -40,9 +40,17 @@ unsigned UsableCores() {
     return std::thread::hardware_concurrency();
 }
 
+// The core count decides only how long a thread waits before it sleeps, never what any loop
+// computes or in which order its results are merged.
 int32 SpinChecksFor(int32 threads) {
     const unsigned cores = UsableCores();
     return cores != 0 && static_cast<unsigned>(threads) <= cores ? kSpinChecks : 0;
+}
+
+// Pauses until `done()` holds or `checks` pauses have passed.
+template <class Done>
+void Watch(int32 checks, Done done) {
+    for (int32 i = 0; i < checks && !done(); ++i) SpinPause();
 }
 }  // namespace
 
@@ -62,15 +70,12 @@ struct b2ThreadPool::Shared {
     std::mutex mutex;
     std::condition_variable wake;      // workers wait here for a new loop or for stop
     std::condition_variable finished;  // the caller waits here for the loop's end
-    uint64 generation = 0;             // loops posted so far (under mutex)
-    bool stop = false;                 // under mutex
-    int32 busy = 0;                    // workers inside the current loop (under mutex)
-    Loop loop;                         // under mutex
-    // Copies of `generation`, `stop` and `busy` for the spinning checks, which take no lock;
-    // every decision is taken again under the lock.
-    std::atomic<uint64> postedGeneration{0};
-    std::atomic<bool> stopping{false};
-    std::atomic<int32> busyCount{0};
+    // Written under `mutex`; atomic so that a watching thread may read them without it (every
+    // decision is taken again under the lock).
+    std::atomic<uint64> generation{0};  // loops posted so far
+    std::atomic<bool> stop{false};
+    std::atomic<int32> busy{0};  // workers inside the current loop
+    Loop loop;                   // under mutex
     std::atomic<int32> nextBlock{0};
     std::atomic<int32> pendingBlocks{0};
     std::vector<std::thread> threads;
@@ -94,25 +99,18 @@ struct b2ThreadPool::Shared {
     void WorkerMain() {
         uint64 seen = 0;
         for (;;) {
-            for (int32 i = 0; i < spinChecks; ++i) {
-                if (postedGeneration.load(std::memory_order_acquire) != seen ||
-                    stopping.load(std::memory_order_relaxed))
-                    break;
-                SpinPause();
-            }
+            const auto posted = [&] { return stop.load() || generation.load() != seen; };
+            Watch(spinChecks, posted);
             std::unique_lock<std::mutex> lock(mutex);
-            wake.wait(lock, [&] { return stop || generation != seen; });
-            if (stop) return;
-            seen = generation;
+            wake.wait(lock, posted);
+            if (stop.load()) return;
+            seen = generation.load();
             const Loop l = loop;
-            ++busy;
-            busyCount.store(busy, std::memory_order_relaxed);
+            busy.fetch_add(1);
             lock.unlock();
             RunBlocks(l);
             lock.lock();
-            --busy;
-            busyCount.store(busy, std::memory_order_release);
-            if (busy == 0) finished.notify_one();
+            if (busy.fetch_sub(1) == 1) finished.notify_one();
         }
     }
 };
@@ -128,8 +126,7 @@ b2ThreadPool::b2ThreadPool(int32 workerCount) : m_shared(std::make_unique<Shared
 b2ThreadPool::~b2ThreadPool() {
     {
         const std::lock_guard<std::mutex> lock(m_shared->mutex);
-        m_shared->stop = true;
-        m_shared->stopping.store(true, std::memory_order_relaxed);
+        m_shared->stop.store(true);
     }
     m_shared->wake.notify_all();
     for (std::thread& t : m_shared->threads) t.join();
@@ -156,24 +153,20 @@ void b2ThreadPool::ParallelFor(int32 itemCount, int32 blockSize, b2TaskRange ran
         // A worker that woke too late for the previous loop may still be leaving it (it took
         // no block, but it reads the block counter): let it out before the counters change.
         std::unique_lock<std::mutex> lock(s.mutex);
-        s.finished.wait(lock, [&] { return s.busy == 0; });
+        s.finished.wait(lock, [&] { return s.busy.load() == 0; });
         s.loop = l;
         s.nextBlock.store(0, std::memory_order_relaxed);
         s.pendingBlocks.store(blockCount, std::memory_order_relaxed);
-        ++s.generation;
-        s.postedGeneration.store(s.generation, std::memory_order_release);
+        s.generation.fetch_add(1);
     }
     s.wake.notify_all();
     s.RunBlocks(l);
     // Every block done, and no worker still reading this loop, before the caller goes on (and
     // before the next loop may overwrite it). The last blocks usually end within microseconds.
-    for (int32 i = 0; i < s.spinChecks; ++i) {
-        if (s.pendingBlocks.load(std::memory_order_acquire) == 0 && s.busyCount.load(std::memory_order_acquire) == 0)
-            break;
-        SpinPause();
-    }
+    const auto ended = [&] { return s.pendingBlocks.load(std::memory_order_acquire) == 0 && s.busy.load() == 0; };
+    Watch(s.spinChecks, ended);
     std::unique_lock<std::mutex> lock(s.mutex);
-    s.finished.wait(lock, [&] { return s.pendingBlocks.load(std::memory_order_acquire) == 0 && s.busy == 0; });
+    s.finished.wait(lock, ended);
 }
 
 }  // namespace lockbox
