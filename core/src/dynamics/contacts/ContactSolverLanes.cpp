@@ -92,17 +92,25 @@ LOCKBOX_AVX2 inline Lanes SpeedAlong(Lanes& unsafe, const Pair& p, const Split& 
 // by every iteration's rows).
 struct Push {
     Split ax, ay, bx, by;
+    bool same = false;  ///< pushB is pushA in every lane (equal masses)
 };
 
-// solver::ApplyAlong in lanes (B's linear change is always formed from pushB: with equal
-// pushes it is the same product).
+// An impulse d along a push: A's linear velocities lose d pushA, B's gain d pushB. With equal
+// pushes in every lane B's change is A's product, formed once (the scalar row's PushPair); the
+// skipped product would have raised the very flags A's raised.
+LOCKBOX_AVX2 inline void PushLinear(Lanes& unsafe, Pair& p, const Split& d, const Push& push) {
+    const Lanes dxA = MulWW(unsafe, d, push.ax), dyA = MulWW(unsafe, d, push.ay);
+    p.vAx = Sub(p.vAx, dxA);
+    p.vAy = Sub(p.vAy, dyA);
+    p.vBx = Add(p.vBx, push.same ? dxA : MulWW(unsafe, d, push.bx));
+    p.vBy = Add(p.vBy, push.same ? dyA : MulWW(unsafe, d, push.by));
+}
+
+// solver::ApplyAlong in lanes.
 LOCKBOX_AVX2 inline void ApplyAlong(Lanes& unsafe, Pair& p, Lanes lambda, const Push& push, const Split& turnA,
                                     const Split& turnB) {
     const Split l = SplitSign(lambda);
-    p.vAx = Sub(p.vAx, MulWW(unsafe, l, push.ax));
-    p.vAy = Sub(p.vAy, MulWW(unsafe, l, push.ay));
-    p.vBx = Add(p.vBx, MulWW(unsafe, l, push.bx));
-    p.vBy = Add(p.vBy, MulWW(unsafe, l, push.by));
+    PushLinear(unsafe, p, l, push);
     p.wA = Sub(p.wA, MulWW(unsafe, l, turnA));
     p.wB = Add(p.wB, MulWW(unsafe, l, turnB));
 }
@@ -120,10 +128,12 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], const Ro
 
     const Split nx = rows.LoadSplit(kNormalX), ny = rows.LoadSplit(kNormalY);
     const Split tx = rows.LoadSplit(kTangentX), ty = rows.LoadSplit(kTangentY);
-    const Push normalPush{rows.LoadSplit(kPushAX), rows.LoadSplit(kPushAY), rows.LoadSplit(kPushBX),
-                          rows.LoadSplit(kPushBY)};
+    const Lanes pushAX = rows.Load(kPushAX), pushAY = rows.Load(kPushAY);
+    const Lanes pushBX = rows.Load(kPushBX), pushBY = rows.Load(kPushBY);
+    const bool samePush = AllEqual(pushAX, pushBX) && AllEqual(pushAY, pushBY);
+    const Push normalPush{SplitSign(pushAX), SplitSign(pushAY), SplitSign(pushBX), SplitSign(pushBY), samePush};
     // The tangent (n.y, -n.x) pushes by (push.y, -push.x).
-    const Push tangentPush{normalPush.ay, Flip(normalPush.ax), normalPush.by, Flip(normalPush.bx)};
+    const Push tangentPush{normalPush.ay, Flip(normalPush.ax), normalPush.by, Flip(normalPush.bx), samePush};
     const Split friction = rows.LoadSplit(kFriction);
 
     Lanes normalImpulse[b2_maxManifoldPoints], tangentImpulse[b2_maxManifoldPoints];
@@ -181,10 +191,7 @@ LOCKBOX_AVX2 uint32 SolveFour(b2ContactVelocityConstraint* const vc[4], const Ro
         const Split d1 = SplitSign(Sub(x1, a1)), d2 = SplitSign(Sub(x2, a2));
         // Both impulses act along the normal: one linear impulse, two lever arms.
         const Split d = SplitSign(Add(Sub(x1, a1), Sub(x2, a2)));
-        p.vAx = Sub(p.vAx, MulWW(unsafe, d, normalPush.ax));
-        p.vAy = Sub(p.vAy, MulWW(unsafe, d, normalPush.ay));
-        p.vBx = Add(p.vBx, MulWW(unsafe, d, normalPush.bx));
-        p.vBy = Add(p.vBy, MulWW(unsafe, d, normalPush.by));
+        PushLinear(unsafe, p, d, normalPush);
         p.wA = Sub(p.wA, Add(MulWW(unsafe, d1, rows.LoadSplit(PointField(0, kTurnNA))),
                              MulWW(unsafe, d2, rows.LoadSplit(PointField(1, kTurnNA)))));
         p.wB = Add(p.wB, Add(MulWW(unsafe, d1, rows.LoadSplit(PointField(0, kTurnNB))),

@@ -83,15 +83,24 @@ LOCKBOX_AVX2 uint32 SolveFour(JointSolver::Row* const rows[4], b2Velocity* veloc
 
     // The increment on the bodies: A takes -mA P and -iA (rA x P), B takes mB P and iB (rB x P).
     const Split spx = SplitSign(px), spy = SplitSign(py);
-    const Split mA = SplitSign(LOCKBOX_LANES_OF(rows, mA.Raw()));
-    const Split mB = SplitSign(LOCKBOX_LANES_OF(rows, mB.Raw()));
+    // With equal masses in every lane B's linear change is A's product, formed once (the scalar
+    // row's sharing); the skipped product would have raised the very flags A's raised.
+    const Lanes rawMA = LOCKBOX_LANES_OF(rows, mA.Raw()), rawMB = LOCKBOX_LANES_OF(rows, mB.Raw());
+    const Split mA = SplitSign(rawMA);
     const Split iA = SplitSign(LOCKBOX_LANES_OF(rows, iA.Raw()));
     const Split iB = SplitSign(LOCKBOX_LANES_OF(rows, iB.Raw()));
-    vAx = Sub(vAx, MulWW(unsafe, mA, spx));
-    vAy = Sub(vAy, MulWW(unsafe, mA, spy));
+    const Lanes dxA = MulWW(unsafe, mA, spx), dyA = MulWW(unsafe, mA, spy);
+    vAx = Sub(vAx, dxA);
+    vAy = Sub(vAy, dyA);
     wA = Sub(wA, MulWW(unsafe, Cross(unsafe, rAx, rAy, px, py), iA));
-    vBx = Add(vBx, MulWW(unsafe, mB, spx));
-    vBy = Add(vBy, MulWW(unsafe, mB, spy));
+    if (AllEqual(rawMA, rawMB)) {
+        vBx = Add(vBx, dxA);
+        vBy = Add(vBy, dyA);
+    } else {
+        const Split mB = SplitSign(rawMB);
+        vBx = Add(vBx, MulWW(unsafe, mB, spx));
+        vBy = Add(vBy, MulWW(unsafe, mB, spy));
+    }
     wB = Add(wB, MulWW(unsafe, Cross(unsafe, rBx, rBy, px, py), iB));
 
     // Lanes with no flag are written back; the rest are the scalar row's.

@@ -123,11 +123,18 @@ template <class F, class N>
 [[gnu::always_inline]] inline void ApplyGapImpulse(const JointSolver::PositionRow& row, const Gap& g, Pose<F>& A,
                                                    Pose<F>& B) noexcept {
     const N px = g.impulse.x, py = g.impulse.y;
-    A.x -= MulToFixed(N(row.mA), px);
-    A.y -= MulToFixed(N(row.mA), py);
+    const F dxA = MulToFixed(N(row.mA), px), dyA = MulToFixed(N(row.mA), py);
+    A.x -= dxA;
+    A.y -= dyA;
     A.a -= MulToFixed(N(row.iA), ArmCross(g.rA, px, py));
-    B.x += MulToFixed(N(row.mB), px);
-    B.y += MulToFixed(N(row.mB), py);
+    // As in ApplyPointImpulse: B's linear change is A's when the masses are equal, on a proven row.
+    if (!std::is_same_v<N, Wide> && row.mB == row.mA) {
+        B.x += dxA;
+        B.y += dyA;
+    } else {
+        B.x += MulToFixed(N(row.mB), px);
+        B.y += MulToFixed(N(row.mB), py);
+    }
     B.a += MulToFixed(N(row.iB), ArmCross(g.rB, px, py));
 }
 

@@ -73,6 +73,9 @@ LOCKBOX_AVX2 inline Lanes WithSign(Lanes mag, Lanes neg) { return _mm256_sub_epi
 // -x as a split (a zero magnitude gives zero whatever its sign).
 LOCKBOX_AVX2 inline Split Flip(const Split& s) { return {s.mag, _mm256_xor_si256(s.neg, _mm256_set1_epi64x(-1))}; }
 
+// Whether a and b hold the same value in every lane.
+LOCKBOX_AVX2 inline bool AllEqual(Lanes a, Lanes b) { return _mm256_movemask_epi8(_mm256_cmpeq_epi64(a, b)) == -1; }
+
 // Marks the lanes where `bits` is non-zero.
 LOCKBOX_AVX2 inline void Flag(Lanes& unsafe, Lanes bits) { unsafe = _mm256_or_si256(unsafe, bits); }
 // The lanes no bound flagged (bit k: lane k), which their rows may write back.
