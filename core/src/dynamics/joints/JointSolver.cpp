@@ -127,8 +127,7 @@ template <class F, class N>
     A.x -= dxA;
     A.y -= dyA;
     A.a -= MulToFixed(N(row.iA), ArmCross(g.rA, px, py));
-    // As in ApplyPointImpulse: B's linear change is A's when the masses are equal, on a proven row.
-    if (!std::is_same_v<N, Wide> && row.mB == row.mA) {
+    if (SharesLinearChange<N>(row)) {
         B.x += dxA;
         B.y += dyA;
     } else {

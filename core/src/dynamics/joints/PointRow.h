@@ -19,10 +19,17 @@ inline solver::UncheckedWide ArmCross(const b2Vec2& r, solver::UncheckedWide px,
 }
 #endif
 
+// Whether a row on number type N may give B the very linear change of A, formed once: on a
+// proven row (N unchecked) whose bodies have equal inverse masses. The tested row forms both
+// products, so that a saturation is reported as often as in 2.2.1's order. R is a velocity or a
+// position row.
+template <class N, class R>
+[[gnu::always_inline]] inline bool SharesLinearChange(const R& row) noexcept {
+    return !std::is_same_v<N, Wide> && row.mB == row.mA;
+}
+
 // The point impulse (px, py) on a row's bodies: A takes -mA P and -iA (rA x P), B takes mB P and
 // iB (rB x P). An iteration applies its increment so; the set-up, the carried impulse.
-// On a proven row, equal masses give B the very linear change of A, formed once; the tested
-// row forms both, so that a saturation is reported as often as in 2.2.1's order.
 template <class N, class V>
 [[gnu::always_inline]] inline void ApplyPointImpulse(const core_detail::Engine::Joints::Solver::Row& row, V& vA, N& wA,
                                                      V& vB, N& wB, N px, N py) noexcept {
@@ -30,7 +37,7 @@ template <class N, class V>
     vA.x -= dxA;
     vA.y -= dyA;
     wA -= N(row.iA) * ArmCross(row.rA, px, py);
-    if (!std::is_same_v<N, Wide> && row.mB == row.mA) {
+    if (SharesLinearChange<N>(row)) {
         vB.x += dxA;
         vB.y += dyA;
     } else {
