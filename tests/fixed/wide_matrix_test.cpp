@@ -4,6 +4,7 @@
 // negative count. And the native 128-bit paths of the joint solvers' hot loops (b2Cross of an
 // arm and an impulse, the prepared 2x2 solve, the shifted division) against the portable
 // limbs: the same bits and the same overflow reports on random and extreme inputs.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -192,7 +193,7 @@ TEST_F(NativeWide, InverseMatchesTwoSolves) {
 TEST_F(NativeWide, NormalisingScaleRoundsLikeThe128BitShift) {
     for (int i = 0; i < 300000; ++i) {
         const int64_t raw = i % 1000 == 0 ? (i % 2000 == 0 ? INT64_MAX : -INT64_MAX) : Raw(63);
-        const int s = 1 + static_cast<int>(rng_() % 28);
+        const int s = 1 + static_cast<int>(rng_() % 33);  // up to 64 - kNormBits22
         ASSERT_EQ(detail::ScaleRaw(raw, s), detail::ToS64(detail::ShrRoundS128(detail::MulS64(raw, 1), s)))
             << raw << " " << s;
     }
@@ -226,6 +227,38 @@ TEST_F(NativeWide, ShiftedDivisionMatchesThePortableLimbs) {
         ASSERT_EQ(gotReports, Reports() - before - gotReports) << i;
     }
 }
+
+// The 2x2 solves' one-division path must give the general path's bits at its edges: n << shift
+// of 125, 126 and 127 bits, quotients just below and above 2^64, zero and extreme divisors.
+TEST_F(NativeWide, SmallDivisorDivisionMatchesThePortableLimbs) {
+    int fast = 0;
+    for (int i = 0; i < 300000; ++i) {
+        const int shift = static_cast<int>(rng_() % 70) - 3;
+        // A divisor of 0..63 bits, or exactly 2^63 (the largest a normalised determinant reaches).
+        const int dBits = static_cast<int>(rng_() % 65);
+        uint64_t dMag = uint64_t{1} << 63;
+        if (dBits < 64) dMag = dBits == 0 ? 0 : (rng_() >> (64 - dBits)) | (uint64_t{1} << (dBits - 1));
+        const bool dNegative = (rng_() & 1) != 0;
+        // Numerators near the 126-bit edge for this shift, or of any width below 2^95.
+        const int width =
+            i % 3 == 0 ? std::clamp(125 - shift + static_cast<int>(rng_() % 3), 0, 95) : static_cast<int>(rng_() % 96);
+        detail::NativeU128 nm = 0;
+        if (width > 0) {
+            nm = (static_cast<detail::NativeU128>(rng_()) << 64 | rng_()) >> (128 - width);
+            nm |= static_cast<detail::NativeU128>(1) << (width - 1);
+        }
+        const auto n = (rng_() & 1) != 0 ? -static_cast<detail::NativeI128>(nm) : static_cast<detail::NativeI128>(nm);
+        const uint64_t before = Reports();
+        const int64_t got = detail::DivShiftNative64(n, dMag, dNegative, shift, "test");
+        const uint64_t gotReports = Reports() - before;
+        const detail::S128 d{dNegative && dMag != 0, detail::U128{0, dMag}};
+        const int64_t want = detail::DivShiftS128(detail::FromNative(n), d, shift, "test");
+        ASSERT_EQ(got, want) << i << " shift " << shift << " width " << width << " d " << dMag;
+        ASSERT_EQ(gotReports, Reports() - before - gotReports) << i;
+        fast += shift >= 0 && shift <= 63 && width + shift <= 126 && dMag != 0 ? 1 : 0;
+    }
+    EXPECT_GT(fast, 100000);
+}
 #endif
 
 // The inverse that the revolute, prismatic and weld point iterations multiply by: each entry
@@ -250,8 +283,14 @@ TEST(WideMatrixInverse, EntriesAreTheInverseRounded) {
         const Wide got[4] = {M.ex.x, M.ex.y, M.ey.x, M.ey.y};
         const double norm = std::abs(a) + std::abs(b) + std::abs(c) + std::abs(d);
         const double condition = norm * norm / std::abs(det);
+        // Normalising rounds each entry of K by up to 2^-kNormBits22 of the largest. A change dK
+        // moves the inverse by K^-1 dK K^-1, so every entry's error is bounded by the inverse's
+        // largest entry times the condition number times that rounding (and a small factor).
+        const double entryError = 3.0 * std::ldexp(1.0, -detail::kNormBits22);
+        double largest = 0;
+        for (const double v : expect) largest = std::max(largest, std::abs(v));
         for (int e = 0; e < 4; ++e) {
-            const double tolerance = 1.5 + std::abs(expect[e]) * 4294967296.0 * 4e-11 * condition;
+            const double tolerance = 1.5 + largest * 4294967296.0 * entryError * condition;
             ASSERT_NEAR(static_cast<double>(got[e].Raw()), expect[e] * 4294967296.0, tolerance)
                 << "case " << i << " entry " << e;
         }

@@ -49,8 +49,9 @@ inline constexpr uint32 b2_hashVersion = 3;
 /// by colour (a colour's constraints share no dynamic body), the one order that any number of
 /// workers reproduces while sharing the island; 5 a time-of-impact sub-step's position solve
 /// ends only once the overlap is less than 1.5 linearSlop, so that the tie its first correction
-/// lands on takes one more, as in float Box2D.
-inline constexpr uint32 b2_determinismVersion = (b2_hashVersion << 16) | 5u;
+/// lands on takes one more, as in float Box2D; 6 the joints' 2x2 point solves normalise their
+/// matrix to 31 significant bits (from 36), so that each solve is one 128-by-64-bit division.
+inline constexpr uint32 b2_determinismVersion = (b2_hashVersion << 16) | 6u;
 
 /// Hash categories, in the order they are folded into the world hash.
 enum class b2HashCategory : uint32 {

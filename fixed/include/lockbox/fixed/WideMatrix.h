@@ -5,9 +5,9 @@
 ///
 /// Why: K's entries are inverse masses (up to ~1e3 1/kg) plus inverse inertias times squared
 /// arms (up to ~1e6 and more), which overflow Q16.16, and its 3x3 determinant spans 1e-9..5e11
-/// (docs/numerics.md, "Formats"). Here K is stored in Wide, normalised by a power of two so that its
-/// largest entry has kNormBits significant bits, and solved by Cramer's rule with exact 128-bit
-/// cofactors and one rounded division per component.
+/// (docs/numerics.md, "Formats"). Here K is stored in Wide, normalised by a power of two so that
+/// its largest entry has kNormBits (a 2x2 K: kNormBits22) significant bits, and solved by
+/// Cramer's rule with exact 128-bit cofactors and one rounded division per component.
 
 #include <bit>
 #include <cstdint>
@@ -109,26 +109,52 @@ inline int64_t DivShiftNative(NativeI128 n, NativeI128 d, int shift, const char*
     if (rem >= dm - rem) ++q;  // 2 rem >= d: ties away from zero
     return NarrowMagnitude(q, q != 0 && ((n < 0) != (d < 0)), op, 0, 0);
 }
+
+/// DivShiftNative for a divisor of at most 2^63 (a normalised 2x2 determinant). When n << shift
+/// fits in 126 bits and the quotient in 64, that is one 128-by-64-bit division; anything else
+/// (a saturating quotient, a zero divisor, a negative or large shift) goes the general way. The
+/// bits are DivShiftNative's: the same exact quotient, rounded the same way.
+inline int64_t DivShiftNative64(NativeI128 n, uint64_t dMag, bool dNegative, int shift, const char* op) noexcept {
+    if (shift >= 0 && shift <= 63) {
+        const NativeU128 nm = MagnitudeU128(n);
+        if ((nm >> (126 - shift)) == 0) {
+            const NativeU128 shifted = nm << shift;
+            if (static_cast<uint64_t>(shifted >> 64) < dMag) {
+                const NativeDivMod qr = DivModNative(shifted, dMag);
+                NativeU128 q = qr.quot;
+                if (qr.rem >= dMag - qr.rem) ++q;  // 2 rem >= d: ties away from zero
+                return NarrowMagnitude(q, q != 0 && ((n < 0) != dNegative), op, 0, 0);
+            }
+        }
+    }
+    const auto d = static_cast<NativeI128>(dMag);
+    return DivShiftNative(n, dNegative ? -d : d, shift, op);
+}
 #endif
 
-/// Significant bits kept in the largest entry of a normalised K. 36 bits (a relative
+/// Significant bits kept in the largest entry of a normalised 3x3 K. 36 bits (a relative
 /// resolution of 1.5e-11, far better than float's 6e-8) leave room for the exact 3x3
 /// cofactor sums times a right-hand side of up to 2^47 raw (32768 m/s) inside 127 bits.
 inline constexpr int kNormBits = 36;
 
-/// The power-of-two exponent s that brings the largest |raw| to kNormBits bits.
-constexpr int NormShift(const int64_t* raws, int count) noexcept {
+/// Significant bits kept in the largest entry of a normalised 2x2 K. 31 bits (a relative
+/// resolution of 4.7e-10, still 100 times finer than float's) keep the determinant within 2^63,
+/// so each solve is one 128-by-64-bit division instead of a general 128-bit one.
+inline constexpr int kNormBits22 = 31;
+
+/// The power-of-two exponent s that brings the largest |raw| to `bits` significant bits.
+constexpr int NormShift(const int64_t* raws, int count, int bits = kNormBits) noexcept {
     uint64_t m = 0;
     for (int i = 0; i < count; ++i) m |= AbsU64(raws[i]);
     if (m == 0) return 0;
-    return BitWidthU128(U128{0, m}) - kNormBits;
+    return BitWidthU128(U128{0, m}) - bits;
 }
 
 /// raw * 2^-s with rounding (s > 0) or exact raw * 2^-s (s <= 0, never overflows since the
-/// result has kNormBits bits).
+/// result has at most kNormBits bits).
 constexpr int64_t ScaleRaw(int64_t raw, int s) noexcept {
     if (s > 0) {
-        // s <= 28 (64 - kNormBits): |raw| + half stays below 2^64, so 64 bits round exactly.
+        // s <= 33 (64 - kNormBits22): |raw| + half stays below 2^64, so 64 bits round exactly.
         const uint64_t m = (AbsU64(raw) + (uint64_t{1} << (s - 1))) >> s;
         return raw < 0 ? -static_cast<int64_t>(m) : static_cast<int64_t>(m);
     }
@@ -190,14 +216,14 @@ struct b2WideSolver22 {
     constexpr b2WideSolver22(const b2WideVec2& ex, const b2WideVec2& ey) noexcept {
         using namespace detail;
         const int64_t raws[4] = {ex.x.Raw(), ex.y.Raw(), ey.x.Raw(), ey.y.Raw()};
-        s = NormShift(raws, 4);
+        s = NormShift(raws, 4, kNormBits22);
         a11 = ScaleRaw(ex.x.Raw(), s);
         a21 = ScaleRaw(ex.y.Raw(), s);
         a12 = ScaleRaw(ey.x.Raw(), s);
         a22 = ScaleRaw(ey.y.Raw(), s);
 #ifdef LOCKBOX_NATIVE_INT128
         if (!std::is_constant_evaluated()) {
-            // |a| <= 2^36: the exact determinant is below 2^73 either way.
+            // |a| <= 2^31: the exact determinant is at most 2^63 either way.
             det = FromNative(static_cast<NativeI128>(a11) * a22 - static_cast<NativeI128>(a12) * a21);
             return;
         }
@@ -225,22 +251,15 @@ struct b2WideSolver22 {
     }
 
 private:
-#ifdef LOCKBOX_NATIVE_INT128
-    /// det as a native value (|det| < 2^73).
-    detail::NativeI128 NativeDet() const noexcept {
-        const auto m =
-            static_cast<detail::NativeI128>((static_cast<detail::NativeU128>(det.mag.hi) << 64) | det.mag.lo);
-        return det.negative ? -m : m;
-    }
-#endif
     /// One component of the solution by Cramer's rule: (p bp - q bq) / det as a Q32.32 raw.
     constexpr int64_t Quotient(int64_t p, int64_t bp, int64_t q, int64_t bq) const noexcept {
 #ifdef LOCKBOX_NATIVE_INT128
         if (!std::is_constant_evaluated()) {
             using detail::NativeI128;
-            // |a| < 2^36 (normalised) and |b| < 2^63: products below 2^99, exact.
+            // |a| <= 2^31 (normalised) and |b| <= 2^63: products below 2^95, exact. |det| <= 2^63,
+            // so its magnitude is its low limb.
             const NativeI128 n = static_cast<NativeI128>(p) * bp - static_cast<NativeI128>(q) * bq;
-            return detail::DivShiftNative(n, NativeDet(), 32 - s, "b2WideMat22::Solve");
+            return detail::DivShiftNative64(n, det.mag.lo, det.negative, 32 - s, "b2WideMat22::Solve");
         }
 #endif
         return QuotientPortable(p, bp, q, bq);
