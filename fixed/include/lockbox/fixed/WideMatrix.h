@@ -114,7 +114,8 @@ inline int64_t DivShiftNative(NativeI128 n, NativeI128 d, int shift, const char*
 /// fits in 126 bits and the quotient in 64, that is one 128-by-64-bit division; anything else
 /// (a saturating quotient, a zero divisor, a negative or large shift) goes the general way. The
 /// bits are DivShiftNative's: the same exact quotient, rounded the same way.
-[[gnu::always_inline]] inline int64_t DivShiftNative64(NativeI128 n, uint64_t dMag, bool dNegative, int shift, const char* op) noexcept {
+[[gnu::always_inline]] inline int64_t DivShiftNative64(NativeI128 n, uint64_t dMag, bool dNegative, int shift,
+                                                       const char* op) noexcept {
     if (shift >= 0 && shift <= 63) {
         const NativeU128 nm = MagnitudeU128(n);
         if ((nm >> (126 - shift)) == 0) {
