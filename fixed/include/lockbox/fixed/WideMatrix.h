@@ -69,6 +69,13 @@ namespace detail {
 /// matter). A zero (or vanishing) d is the singular case and gives 0, as Box2D's solves do.
 constexpr int64_t DivShiftS128(S128 n, S128 d, int shift, const char* op) noexcept {
     if (IsZero(n)) return 0;
+    if (shift < 0) {
+        // Only a 2x2 K whose largest entry has 64 bits (s = 33) gets here: divide n by 2^-shift
+        // first (rounded), which keeps every shift below non-negative.
+        n = ShrRoundS128(n, -shift);
+        shift = 0;
+        if (IsZero(n)) return 0;
+    }
     int room = 126 - BitWidthU128(n.mag);
     if (room < 0) {
         // A numerator of 127 or 128 bits (extreme cofactors, e.g. from a restored image with
