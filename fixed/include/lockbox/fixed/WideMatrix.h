@@ -123,14 +123,20 @@ inline int64_t DivShiftNative(NativeI128 n, NativeI128 d, int shift, const char*
 /// bits are DivShiftNative's: the same exact quotient, rounded the same way.
 [[gnu::always_inline]] inline int64_t DivShiftNative64(NativeI128 n, uint64_t dMag, bool dNegative, int shift,
                                                        const char* op) noexcept {
-    if (shift >= 0 && shift <= 63) {
+    // A 2x2 solve's shift is 32 - s with s >= -30 (NormShift of a non-zero K), so at most 62; the
+    // word arithmetic below needs 62 - shift >= 0, and 63 takes the general way.
+    if (shift >= 0 && shift <= 62) {
         const NativeU128 nm = MagnitudeU128(n);
-        if ((nm >> (126 - shift)) == 0) {
-            const NativeU128 shifted = nm << shift;
-            if (static_cast<uint64_t>(shifted >> 64) < dMag) {
-                const NativeDivMod qr = DivModNative(shifted, dMag);
-                NativeU128 q = qr.quot;
-                if (qr.rem >= dMag - qr.rem) ++q;  // 2 rem >= d: ties away from zero
+        const auto hi = static_cast<uint64_t>(nm >> 64), lo = static_cast<uint64_t>(nm);
+        // nm << shift below 2^126 exactly when nm's high word is below 2^(62 - shift).
+        if ((hi >> (62 - shift)) == 0) {
+            // The shifted words (lo's top bits go right in two steps, so that shift 0 is defined).
+            const uint64_t shiftedHi = (hi << shift) | ((lo >> 1) >> (63 - shift));
+            if (shiftedHi < dMag) {
+                uint64_t rem = 0;
+                const uint64_t quot = DivWordNative(shiftedHi, lo << shift, dMag, &rem);
+                // 2 rem >= d: ties away from zero (the quotient plus one may reach 2^64).
+                const NativeU128 q = NativeU128{quot} + (rem >= dMag - rem ? 1u : 0u);
                 return NarrowMagnitude(q, q != 0 && ((n < 0) != dNegative), op, 0, 0);
             }
         }
@@ -260,7 +266,7 @@ struct b2WideSolver22 {
 
 private:
     /// One component of the solution by Cramer's rule: (p bp - q bq) / det as a Q32.32 raw.
-    constexpr int64_t Quotient(int64_t p, int64_t bp, int64_t q, int64_t bq) const noexcept {
+    [[gnu::always_inline]] constexpr int64_t Quotient(int64_t p, int64_t bp, int64_t q, int64_t bq) const noexcept {
 #ifdef LOCKBOX_NATIVE_INT128
         if (!std::is_constant_evaluated()) {
             using detail::NativeI128;

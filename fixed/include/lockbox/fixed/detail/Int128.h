@@ -88,31 +88,40 @@ struct NativeDivMod {
     NativeU128 rem;
 };
 
+/// (hi 2^64 + lo) / den and its remainder for hi < den, so that the quotient fits in 64 bits: one
+/// 128-by-64 division instruction on x86-64, the compiler's 128-bit division elsewhere. Quotient
+/// and remainder are unique, so both give the same bits.
+[[gnu::always_inline]] inline uint64_t DivWordNative(uint64_t hi, uint64_t lo, uint64_t den, uint64_t* rem) noexcept {
+#if defined(__x86_64__)
+    uint64_t q = 0, r = 0;
+    __asm__("divq %4" : "=a"(q), "=d"(r) : "a"(lo), "d"(hi), "rm"(den) : "cc");
+    *rem = r;
+    return q;
+#else
+    const NativeU128 n = (static_cast<NativeU128>(hi) << 64) | lo;
+    *rem = static_cast<uint64_t>(n % den);
+    return static_cast<uint64_t>(n / den);
+#endif
+}
+
 /// n / d and n % d for d != 0. On x86-64 through the processor's 128-by-64 division, each step
 /// arranged so that its quotient fits in 64 bits: a fraction of the instructions of the
 /// compiler's general 128-bit routine, which the solvers' set-ups call in every step. Quotient
 /// and remainder are unique, so every path has the same bits.
 inline NativeDivMod DivModNative(NativeU128 n, NativeU128 d) noexcept {
 #if defined(__x86_64__)
-    // hi:lo / den for hi < den (the quotient then fits in 64 bits, no divide fault).
-    const auto divq = [](uint64_t hi, uint64_t lo, uint64_t den, uint64_t* rem) {
-        uint64_t q = 0, r = 0;
-        __asm__("divq %4" : "=a"(q), "=d"(r) : "a"(lo), "d"(hi), "rm"(den) : "cc");
-        *rem = r;
-        return q;
-    };
     const auto dHi = static_cast<uint64_t>(d >> 64), dLo = static_cast<uint64_t>(d);
     const auto nHi = static_cast<uint64_t>(n >> 64), nLo = static_cast<uint64_t>(n);
     if (dHi == 0) {
         uint64_t r = 0;
         if (nHi < dLo) {
-            const uint64_t q = divq(nHi, nLo, dLo, &r);
+            const uint64_t q = DivWordNative(nHi, nLo, dLo, &r);
             return {q, r};
         }
         // A quotient of more than 64 bits: its high half first, then the rest.
         uint64_t r1 = 0;
-        const uint64_t q1 = divq(0, nHi, dLo, &r1);
-        const uint64_t q0 = divq(r1, nLo, dLo, &r);
+        const uint64_t q1 = DivWordNative(0, nHi, dLo, &r1);
+        const uint64_t q0 = DivWordNative(r1, nLo, dLo, &r);
         return {(NativeU128{q1} << 64) | q0, r};
     }
     // d >= 2^64, so the quotient is below 2^64. Divide n / 2 by d's leading 64 bits (normalised,
@@ -122,7 +131,7 @@ inline NativeDivMod DivModNative(NativeU128 n, NativeU128 d) noexcept {
     const auto v1 = static_cast<uint64_t>((d << s) >> 64);
     const NativeU128 u1 = n >> 1;
     uint64_t unused = 0;
-    const uint64_t q1 = divq(static_cast<uint64_t>(u1 >> 64), static_cast<uint64_t>(u1), v1, &unused);
+    const uint64_t q1 = DivWordNative(static_cast<uint64_t>(u1 >> 64), static_cast<uint64_t>(u1), v1, &unused);
     auto q0 = static_cast<uint64_t>((NativeU128{q1} << s) >> 63);
     if (q0 != 0) --q0;
     NativeU128 rem = n - NativeU128{q0} * d;
