@@ -45,7 +45,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: lockbox_bench --scene NAME [--steps N] [--velocity-iterations V]\n"
     "         [--position-iterations P] [--hz H] [--engine lockbox|box2d-float]\n"
-    "         [--repeat R] [--metrics] [--no-profile] [--headroom] [--workers N]\n"
+    "         [--repeat R] [--metrics] [--no-profile] [--no-timers] [--headroom] [--workers N]\n"
     "       lockbox_bench --all --compare [--scenes a,b,...] [--repeat R] [--workers N]\n"
     "         [--out DIR]\n"
     "       lockbox_bench --scene-file FILE.json [--steps N] [--repeat R] [--metrics]\n"
@@ -171,6 +171,9 @@ int main(int argc, char** argv) {
             s.trackMetrics = true;
         } else if (args.Is("--no-profile")) {
             profile = false;
+        } else if (args.Is("--no-timers")) {
+            // lockbox's world reads no clock for its profile (b2World::SetProfileTimers).
+            s.stageTimers = false;
         } else if (args.Is("--headroom")) {
             headroom = true;
         } else if (args.Is("--all")) {

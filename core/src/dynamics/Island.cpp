@@ -265,7 +265,8 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     // Integrate velocities and apply damping; copy the state into the solver buffers. As in
     // 2.2.1, solveInit starts after the integration (a shared solve integrates in its stages).
     if (!shared) IntegrateVelocities(0, m_bodyCount, h, gravity);
-    Clock::time_point timer = Clock::now();
+    const bool timers = step.timers;
+    Clock::time_point timer = StartTimer(timers);
     Colour();
 
     b2SolverData solverData;
@@ -279,8 +280,8 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     profile->contactConstraints += m_contactCount;
     profile->jointConstraints += m_jointCount;
     if (shared) {
-        profile->solveInitNs += Nanos(timer);
-        timer = Clock::now();
+        profile->solveInitNs += Elapsed(timers, timer);
+        timer = StartTimer(timers);
         SolveVelocitiesShared(contactSolver, solverData, gravity);
     } else {
         contactSolver.Load();
@@ -288,9 +289,9 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         if (step.warmStarting) contactSolver.WarmStart();
         // Joint loops are entered only when the island has joints.
         if (m_jointCount > 0) m_jointSolver.InitVelocityConstraints(m_joints.data(), m_jointCount, solverData);
-        profile->solveInitNs += Nanos(timer);
+        profile->solveInitNs += Elapsed(timers, timer);
 
-        timer = Clock::now();
+        timer = StartTimer(timers);
         for (int32 it = 0; it < step.velocityIterations; ++it) {
             if (m_jointCount > 0) SolveJointVelocities(solverData);
             SolveContactVelocities(contactSolver);
@@ -303,10 +304,10 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         contactSolver.StoreImpulses();
         if (m_jointCount > 0) m_jointSolver.StoreImpulses();
     }
-    profile->solveVelocityNs += Nanos(timer);
+    profile->solveVelocityNs += Elapsed(timers, timer);
     Observe(b2IslandPhase::e_velocity);
 
-    timer = Clock::now();
+    timer = StartTimer(timers);
     bool positionSolved = false;
     if (shared) {
         // Integration, the iterations and the copy back to the bodies, as stages.
@@ -330,7 +331,7 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         // Copy state buffers back to the bodies.
         StoreBodies(0, m_bodyCount);
     }
-    profile->solvePositionNs += Nanos(timer);
+    profile->solvePositionNs += Elapsed(timers, timer);
 
     Report(profile, contactSolver.m_velocityConstraints);
 

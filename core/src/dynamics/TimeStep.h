@@ -19,6 +19,7 @@ struct b2TimeStep {
     int32 positionIterations = 0;
     int32 stepsToSleep = 0;  ///< round(b2_timeToSleep / dt): consecutive still steps before sleep
     bool warmStarting = false;
+    bool timers = true;  ///< time the profile's stages (b2World::SetProfileTimers); never read by the solver
 };
 
 /// An impulse carried over from the last step, scaled by dtRatio for warm starting. A fixed step's

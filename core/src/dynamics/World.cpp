@@ -225,7 +225,8 @@ void World::ClearForces() {
 }
 
 void World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
-    const Clock::time_point stepTimer = Clock::now();
+    const bool timers = m_profileTimers;
+    const Clock::time_point stepTimer = StartTimer(timers);
     const uint64 saturationsBefore = SaturationCount();
     m_profile = b2Profile{};
     // Counters record the work of this Step only (not of SetTransform or DestroyBody calls
@@ -249,6 +250,7 @@ void World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
     step.inv_dt = dt > Fixed() ? Fixed(1) / dt : Fixed();
     step.dtRatio = m_inv_dt0 * dt;
     step.warmStarting = m_warmStarting;
+    step.timers = timers;
     if (dt > Fixed()) {
         // round(timeToSleep / dt) whole steps: 30 at 60 Hz, as float Box2D sleeps.
         const int64_t n = (2 * int64_t{b2_timeToSleep.Raw()} + dt.Raw()) / (2 * int64_t{dt.Raw()});
@@ -257,24 +259,24 @@ void World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
 
     // Update contacts: this is where some contacts are destroyed.
     {
-        const Clock::time_point timer = Clock::now();
+        const Clock::time_point timer = StartTimer(timers);
         m_contactManager.Collide(Tasks(), MinParallelContacts());
-        m_profile.collideNs = Nanos(timer);
+        m_profile.collideNs = Elapsed(timers, timer);
     }
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_collide, *m_owner);
 
     // Integrate velocities, solve velocity constraints, integrate positions.
     if (m_stepComplete && step.dt > Fixed()) {
-        const Clock::time_point timer = Clock::now();
+        const Clock::time_point timer = StartTimer(timers);
         Solve(step);
-        m_profile.solveNs = Nanos(timer);
+        m_profile.solveNs = Elapsed(timers, timer);
     }
 
     // Handle TOI events.
     if (m_continuousPhysics && step.dt > Fixed()) {
-        const Clock::time_point timer = Clock::now();
+        const Clock::time_point timer = StartTimer(timers);
         SolveTOI(step);
-        m_profile.solveTOINs = Nanos(timer);
+        m_profile.solveTOINs = Elapsed(timers, timer);
         if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solveTOI, *m_owner);
     }
 
@@ -306,7 +308,7 @@ void World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
         m_profile.headroom = b2MeasureHeadroom(*m_owner);
         m_profile.headroom.saturations = stepSaturations;
     }
-    m_profile.stepNs = Nanos(stepTimer);
+    m_profile.stepNs = Elapsed(timers, stepTimer);
 }
 
 bool World::IsOutside(const b2Body* b) const noexcept {

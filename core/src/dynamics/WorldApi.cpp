@@ -101,6 +101,8 @@ bool b2World::IsLocked() const noexcept { return m_state->IsLocked(); }
 const b2Profile& b2World::GetProfile() const noexcept { return m_state->m_profile; }
 void b2World::SetHeadroomTelemetry(bool flag) noexcept { m_state->m_headroomTelemetry = flag; }
 bool b2World::GetHeadroomTelemetry() const noexcept { return m_state->m_headroomTelemetry; }
+void b2World::SetProfileTimers(bool flag) noexcept { m_state->m_profileTimers = flag; }
+bool b2World::GetProfileTimers() const noexcept { return m_state->m_profileTimers; }
 void b2World::SetStepObserver(b2StepObserver* observer) noexcept { m_state->m_stepObserver = observer; }
 b2StepObserver* b2World::GetStepObserver() const noexcept { return m_state->m_stepObserver; }
 

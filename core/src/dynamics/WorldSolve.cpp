@@ -122,7 +122,7 @@ void World::Solve(const b2TimeStep& step) {
     if (measure) m_shareIslands = WorthSharing(tally.islands, tally.work, tally.largest);
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solve, *m_owner);
 
-    const Clock::time_point timer = Clock::now();
+    const Clock::time_point timer = StartTimer(step.timers);
     if (manyBodies) {
         FinishBodiesOnWorkers(*tasks);
     } else {
@@ -137,7 +137,7 @@ void World::Solve(const b2TimeStep& step) {
         }
     }
     m_contactManager.FindNewContacts(tasks, MinParallelBroadPhase());
-    m_profile.broadphaseNs += Nanos(timer);
+    m_profile.broadphaseNs += Elapsed(step.timers, timer);
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_broadPhase, *m_owner);
 }
 

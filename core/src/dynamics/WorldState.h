@@ -123,6 +123,7 @@ public:
     state_detail::FrameBook m_frames;
     b2Profile m_profile;
     bool m_headroomTelemetry = false;          ///< fill m_profile.headroom at the end of each Step
+    bool m_profileTimers = true;               ///< time the stages into m_profile's *Ns fields
     b2StepObserver* m_stepObserver = nullptr;  ///< step fenceposts (not state)
     /// Workers (not state: the bits never depend on them). The game's task system wins over
     /// the built-in pool, which exists only for a worker count above 1.

@@ -4,6 +4,7 @@
 
 #include "DynamicsTestUtil.h"
 #include "FixedPrint.h"
+#include "lockbox/state/WorldHash.h"
 
 namespace lockbox::test {
 namespace LOCKBOX_TEST_FILE {
@@ -106,6 +107,49 @@ TEST(Profile, NoListenerMeansNoCallbacks) {
     // Three touching contacts: one PreSolve and one PostSolve each.
     EXPECT_EQ(world.GetProfile().listenerCallbacks, 6);
     EXPECT_EQ(listener.preSolves + listener.postSolves, 6);
+}
+
+// The stage times of a world whose timers are off: all of them zero.
+int64_t TimeSum(const b2Profile& p) {
+    return p.stepNs + p.collideNs + p.solveNs + p.solveInitNs + p.solveVelocityNs + p.solvePositionNs + p.broadphaseNs +
+           p.solveTOINs;
+}
+
+// A world with its stage timers off reads no clock: every stage time is zero, and the work and the
+// state are those of the same world timed, with one worker and with two (the islands' shared
+// solve times its phases in its own place).
+TEST(Profile, TimersOffLeaveTimesZeroAndChangeNothing) {
+    for (int workers : {1, 2}) {
+        b2World timed(b2Vec2(0, -10)), untimed(b2Vec2(0, -10));
+        untimed.SetProfileTimers(false);
+        EXPECT_TRUE(timed.GetProfileTimers());
+        EXPECT_FALSE(untimed.GetProfileTimers());
+        int64_t timedNs = 0;
+        for (b2World* world : {&timed, &untimed}) {
+            world->SetWorkerCount(workers);
+            BuildStack(*world);
+            // A fast circle, so that the time of impact has work too.
+            MakeDynamicCircle(*world, 5, Fixed(1.5), Fixed(0.25))->SetLinearVelocity(b2Vec2(0, -100));
+        }
+        for (int n = 0; n < 60; ++n) {
+            timed.Step(kDt, 8, 3);
+            untimed.Step(kDt, 8, 3);
+            const b2Profile& a = timed.GetProfile();
+            const b2Profile& b = untimed.GetProfile();
+            ASSERT_EQ(TimeSum(b), 0) << "step " << n;
+            EXPECT_EQ(b.bodiesIntegrated, a.bodiesIntegrated);
+            EXPECT_EQ(b.velocityIterations, a.velocityIterations);
+            EXPECT_EQ(b.positionIterations, a.positionIterations);
+            EXPECT_EQ(b.toiCalls, a.toiCalls);
+            ASSERT_EQ(b2WorldHash(timed), b2WorldHash(untimed)) << "step " << n << ", " << workers << " workers";
+            timedNs += a.stepNs;
+        }
+        EXPECT_GT(timedNs, 0);
+        // Switched back on, the next step is timed again.
+        untimed.SetProfileTimers(true);
+        untimed.Step(kDt, 8, 3);
+        EXPECT_GT(untimed.GetProfile().stepNs, 0);
+    }
 }
 
 TEST(Profile, EmptyStepIsFree) {

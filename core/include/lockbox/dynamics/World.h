@@ -226,6 +226,13 @@ public:
     void SetHeadroomTelemetry(bool flag) noexcept;
     /// Whether headroom telemetry is on.
     bool GetHeadroomTelemetry() const noexcept;
+    /// Stage timers: when on (the default, as Box2D's profile), each Step reads the clock about
+    /// ten times, and a few more per island it solves, to fill GetProfile()'s *Ns fields. Off, a
+    /// Step reads no clock and those fields stay zero; the work counters and every result are
+    /// the same either way. Not state: snapshots and the hash ignore it.
+    void SetProfileTimers(bool flag) noexcept;
+    /// Whether the stage timers are on.
+    bool GetProfileTimers() const noexcept;
     /// Step fenceposts (StepObserver.h): the observer hears every stage of every Step; nullptr
     /// (the default) turns them off. Not state: snapshots and the hash ignore it.
     void SetStepObserver(b2StepObserver* observer) noexcept;

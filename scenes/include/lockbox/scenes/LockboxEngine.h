@@ -136,4 +136,7 @@ private:
     Forwarder listener_{this};
 };
 
+/// The world's stage timers (b2World::SetProfileTimers) for a run.
+inline void SetStageTimers(LockboxEngine& e, bool on) { e.world().SetProfileTimers(on); }
+
 }  // namespace lockbox::scenes

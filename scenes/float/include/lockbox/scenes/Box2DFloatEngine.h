@@ -131,4 +131,7 @@ private:
     Forwarder listener_{this};
 };
 
+/// Float Box2D 2.4.1 always times its stages: the switch has nothing to turn off.
+inline void SetStageTimers(Box2DFloatEngine&, bool) {}
+
 }  // namespace lockbox::scenes
