@@ -1,5 +1,6 @@
 #!/bin/sh
-# Instruction counts (valgrind callgrind) of world stepping for small scenes on both engines:
+# Instruction counts (valgrind callgrind) of world stepping for small scenes on both engines
+# (the microsecond scenes, whose wall time is noise, are judged by these counts):
 # Ir(--steps N) - Ir(--steps 0), so scene building and process start-up cancel out. Unlike wall
 # time, the count does not move with machine load; it is the regression guard for step cost.
 #
@@ -14,7 +15,9 @@ ir() {
         sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
 }
 echo "scene,steps,engine,instructions,instructions_per_step" > "$out"
-for spec in hello:60 pyramid20:120 chain60:120 ragdolls:120; do
+for spec in hello:60 pyramid20:120 chain60:120 ragdolls:120 vertical_stack:60 \
+    bullet_wall_dynamic:60 bullet_wall_bullet:60 bullet_wall_nocontinuous:60 \
+    bullet_stack_dynamic:60 bullet_stack_bullet:60 bullet_stack_nocontinuous:60; do
     scene=${spec%%:*}
     steps=${spec##*:}
     for engine in lockbox box2d-float; do
