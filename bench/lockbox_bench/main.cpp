@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
             profile = false;
         } else if (args.Is("--no-timers")) {
             // lockbox's world reads no clock for its profile (b2World::SetProfileTimers).
-            s.stageTimers = false;
+            s.profileTimers = false;
         } else if (args.Is("--headroom")) {
             headroom = true;
         } else if (args.Is("--all")) {

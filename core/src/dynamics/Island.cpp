@@ -14,8 +14,7 @@
 
 namespace lockbox {
 
-using core_detail::Clock;
-using core_detail::Nanos;
+using core_detail::StageTimer;
 
 namespace {
 // One step's displacement h v, in Q32.32 for b2Body::Displace: clamps the motion (Box2D's
@@ -265,8 +264,7 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     // Integrate velocities and apply damping; copy the state into the solver buffers. As in
     // 2.2.1, solveInit starts after the integration (a shared solve integrates in its stages).
     if (!shared) IntegrateVelocities(0, m_bodyCount, h, gravity);
-    const bool timers = step.timers;
-    Clock::time_point timer = StartTimer(timers);
+    StageTimer timer(step.timers);
     Colour();
 
     b2SolverData solverData;
@@ -280,8 +278,8 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
     profile->contactConstraints += m_contactCount;
     profile->jointConstraints += m_jointCount;
     if (shared) {
-        profile->solveInitNs += Elapsed(timers, timer);
-        timer = StartTimer(timers);
+        profile->solveInitNs += timer.Nanos();
+        timer.Restart();
         SolveVelocitiesShared(contactSolver, solverData, gravity);
     } else {
         contactSolver.Load();
@@ -289,9 +287,9 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         if (step.warmStarting) contactSolver.WarmStart();
         // Joint loops are entered only when the island has joints.
         if (m_jointCount > 0) m_jointSolver.InitVelocityConstraints(m_joints.data(), m_jointCount, solverData);
-        profile->solveInitNs += Elapsed(timers, timer);
+        profile->solveInitNs += timer.Nanos();
 
-        timer = StartTimer(timers);
+        timer.Restart();
         for (int32 it = 0; it < step.velocityIterations; ++it) {
             if (m_jointCount > 0) SolveJointVelocities(solverData);
             SolveContactVelocities(contactSolver);
@@ -304,10 +302,10 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         contactSolver.StoreImpulses();
         if (m_jointCount > 0) m_jointSolver.StoreImpulses();
     }
-    profile->solveVelocityNs += Elapsed(timers, timer);
+    profile->solveVelocityNs += timer.Nanos();
     Observe(b2IslandPhase::e_velocity);
 
-    timer = StartTimer(timers);
+    timer.Restart();
     bool positionSolved = false;
     if (shared) {
         // Integration, the iterations and the copy back to the bodies, as stages.
@@ -331,7 +329,7 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         // Copy state buffers back to the bodies.
         StoreBodies(0, m_bodyCount);
     }
-    profile->solvePositionNs += Elapsed(timers, timer);
+    profile->solvePositionNs += timer.Nanos();
 
     Report(profile, contactSolver.m_velocityConstraints);
 

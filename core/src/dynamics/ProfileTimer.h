@@ -7,17 +7,25 @@
 
 namespace lockbox::core_detail {
 
-using Clock = std::chrono::steady_clock;
+/// A stage's stopwatch. With the step's timers off (b2World::SetProfileTimers) it reads no clock
+/// at all and every stage's time stays zero.
+class StageTimer {
+public:
+    explicit StageTimer(bool on) : m_on(on) { Restart(); }
+    /// Starts the next stage.
+    void Restart() {
+        if (m_on) m_start = Clock::now();
+    }
+    /// Nanoseconds since the start, or 0 with the timers off.
+    int64_t Nanos() const {
+        if (!m_on) return 0;
+        return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - m_start).count();
+    }
 
-/// Nanoseconds from `from` to now.
-inline int64_t Nanos(Clock::time_point from) {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - from).count();
-}
-
-/// The clock when the step's timers are on (b2World::SetProfileTimers); with them off a step
-/// reads no clock at all, and its stages' times stay zero.
-inline Clock::time_point StartTimer(bool on) { return on ? Clock::now() : Clock::time_point{}; }
-/// Nanoseconds since a StartTimer(on), or 0 with the timers off.
-inline int64_t Elapsed(bool on, Clock::time_point from) { return on ? Nanos(from) : 0; }
+private:
+    using Clock = std::chrono::steady_clock;
+    bool m_on;
+    Clock::time_point m_start{};
+};
 
 }  // namespace lockbox::core_detail

@@ -9,8 +9,7 @@
 
 namespace lockbox {
 
-using core_detail::Clock;
-using core_detail::Nanos;
+using core_detail::StageTimer;
 using World = core_detail::Engine::World;
 using Joints = core_detail::Engine::Joints;
 
@@ -226,7 +225,7 @@ void World::ClearForces() {
 
 void World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
     const bool timers = m_profileTimers;
-    const Clock::time_point stepTimer = StartTimer(timers);
+    const StageTimer stepTimer(timers);
     const uint64 saturationsBefore = SaturationCount();
     m_profile = b2Profile{};
     // Counters record the work of this Step only (not of SetTransform or DestroyBody calls
@@ -259,24 +258,24 @@ void World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
 
     // Update contacts: this is where some contacts are destroyed.
     {
-        const Clock::time_point timer = StartTimer(timers);
+        const StageTimer timer(timers);
         m_contactManager.Collide(Tasks(), MinParallelContacts());
-        m_profile.collideNs = Elapsed(timers, timer);
+        m_profile.collideNs = timer.Nanos();
     }
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_collide, *m_owner);
 
     // Integrate velocities, solve velocity constraints, integrate positions.
     if (m_stepComplete && step.dt > Fixed()) {
-        const Clock::time_point timer = StartTimer(timers);
+        const StageTimer timer(timers);
         Solve(step);
-        m_profile.solveNs = Elapsed(timers, timer);
+        m_profile.solveNs = timer.Nanos();
     }
 
     // Handle TOI events.
     if (m_continuousPhysics && step.dt > Fixed()) {
-        const Clock::time_point timer = StartTimer(timers);
+        const StageTimer timer(timers);
         SolveTOI(step);
-        m_profile.solveTOINs = Elapsed(timers, timer);
+        m_profile.solveTOINs = timer.Nanos();
         if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solveTOI, *m_owner);
     }
 
@@ -308,7 +307,7 @@ void World::Step(Fixed dt, int32 velocityIterations, int32 positionIterations) {
         m_profile.headroom = b2MeasureHeadroom(*m_owner);
         m_profile.headroom.saturations = stepSaturations;
     }
-    m_profile.stepNs = Elapsed(timers, stepTimer);
+    m_profile.stepNs = stepTimer.Nanos();
 }
 
 bool World::IsOutside(const b2Body* b) const noexcept {

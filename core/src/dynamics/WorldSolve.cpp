@@ -16,8 +16,7 @@
 namespace lockbox {
 
 using World = core_detail::Engine::World;
-using core_detail::Clock;
-using core_detail::Nanos;
+using core_detail::StageTimer;
 
 namespace {
 // Whether the built-in pool should take a step's islands, judged on the islands of the step
@@ -122,7 +121,7 @@ void World::Solve(const b2TimeStep& step) {
     if (measure) m_shareIslands = WorthSharing(tally.islands, tally.work, tally.largest);
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_solve, *m_owner);
 
-    const Clock::time_point timer = StartTimer(step.timers);
+    const StageTimer timer(step.timers);
     if (manyBodies) {
         FinishBodiesOnWorkers(*tasks);
     } else {
@@ -137,7 +136,7 @@ void World::Solve(const b2TimeStep& step) {
         }
     }
     m_contactManager.FindNewContacts(tasks, MinParallelBroadPhase());
-    m_profile.broadphaseNs += Elapsed(step.timers, timer);
+    m_profile.broadphaseNs += timer.Nanos();
     if (m_stepObserver != nullptr) m_stepObserver->OnStage(b2StepStage::e_broadPhase, *m_owner);
 }
 

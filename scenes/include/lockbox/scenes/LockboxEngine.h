@@ -137,6 +137,6 @@ private:
 };
 
 /// The world's stage timers (b2World::SetProfileTimers) for a run.
-inline void SetStageTimers(LockboxEngine& e, bool on) { e.world().SetProfileTimers(on); }
+inline void SetProfileTimers(LockboxEngine& e, bool on) { e.world().SetProfileTimers(on); }
 
 }  // namespace lockbox::scenes

@@ -56,7 +56,7 @@ struct RunSettings {
     bool continuous = true;       ///< world continuous-physics switch
     bool subStepping = false;     ///< world sub-stepping switch
     bool trackMetrics = true;     ///< evaluate per-step metrics after each step
-    bool stageTimers = true;      ///< lockbox's stage timers (float Box2D 2.4.1 always times its stages)
+    bool profileTimers = true;    ///< lockbox's stage timers (float Box2D 2.4.1 always times its stages)
 };
 
 /// The resolved settings of a run (scene defaults with the overrides applied).
@@ -193,7 +193,7 @@ void ConfigureWorld(E& e, const SceneInfo& info, const RunSettings& s) {
     e.world().SetWarmStarting(s.warmStarting);
     e.world().SetContinuousPhysics(s.continuous);
     e.world().SetSubStepping(s.subStepping);
-    SetStageTimers(e, s.stageTimers);
+    SetProfileTimers(e, s.profileTimers);
 }
 
 /// Builds and runs a scene to completion; returns its metrics.

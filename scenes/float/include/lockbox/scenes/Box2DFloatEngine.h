@@ -132,6 +132,6 @@ private:
 };
 
 /// Float Box2D 2.4.1 always times its stages: the switch has nothing to turn off.
-inline void SetStageTimers(Box2DFloatEngine&, bool) {}
+inline void SetProfileTimers(Box2DFloatEngine&, bool) {}
 
 }  // namespace lockbox::scenes
