@@ -36,6 +36,8 @@ struct Engine {
     /// The joint factory, the joint graph's links, and what joints read of bodies
     /// (dynamics/joints/JointAccess.h).
     struct Joints;
+    /// Each body's joint edges in one array, for the island search (dynamics/JointGraph.h).
+    class JointGraph;
 
     // ---- the world's state (state/) ----
     /// The canonical state walk's body, fixture, contact and joint records (state/StateWalk.h).

@@ -180,7 +180,7 @@ struct World::IslandSearch {
     }
 
     // The one-worker search's walk from `from`, into the walker's buffers.
-    static void Walk(Walker& w, b2Body* from, Found& out) {
+    static void Walk(Walker& w, const JointGraph& joints, b2Body* from, Found& out) {
         if (++w.walk == 0) {
             std::fill(w.met.begin(), w.met.end(), 0u);
             w.walk = 1;
@@ -190,7 +190,7 @@ struct World::IslandSearch {
         out.contact = static_cast<int32>(w.contacts.size());
         out.joint = static_cast<int32>(w.joints.size());
         out.statics = static_cast<int32>(w.statics.size());
-        WalkIsland(from, w.stack, w);
+        WalkIsland(from, joints, w.stack, w);
         out.bodyEnd = static_cast<int32>(w.bodies.size());
         out.contactEnd = static_cast<int32>(w.contacts.size());
         out.jointEnd = static_cast<int32>(w.joints.size());
@@ -204,7 +204,7 @@ struct World::IslandSearch {
         const auto end = static_cast<size_t>(count * (block + 1) / walkBlocks);
         if (begin == end) return;
         const b2ScratchSet<Walker>::Lease w = walkers.Acquire();
-        for (size_t i = begin; i < end; ++i) Walk(*w, seeds[i], found[i]);
+        for (size_t i = begin; i < end; ++i) Walk(*w, world->m_jointGraph, seeds[i], found[i]);
     }
 
     static void RunBlock(int32 stage, int32 block, void* self) {

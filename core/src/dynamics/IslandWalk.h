@@ -17,6 +17,7 @@
 #include <span>
 #include <vector>
 
+#include "dynamics/JointGraph.h"
 #include "dynamics/WorldState.h"
 #include "lockbox/dynamics/Body.h"
 #include "lockbox/dynamics/contacts/Contact.h"
@@ -25,7 +26,8 @@
 namespace lockbox {
 
 template <class Sink>
-void core_detail::Engine::World::WalkIsland(b2Body* seed, std::vector<b2Body*>& stack, Sink& sink) {
+void core_detail::Engine::World::WalkIsland(b2Body* seed, const JointGraph& joints, std::vector<b2Body*>& stack,
+                                            Sink& sink) {
     stack.clear();
     stack.push_back(seed);
     seed->m_flags |= b2Body::e_islandFlag;
@@ -56,12 +58,14 @@ void core_detail::Engine::World::WalkIsland(b2Body* seed, std::vector<b2Body*>& 
             if (!sink.Meet(*other)) continue;
             stack.push_back(other);
             if (other->m_contactList != nullptr) __builtin_prefetch(other->m_contactList);
+            joints.Prefetch(*other);
         }
 
-        for (b2JointEdge* je = b->m_jointList; je; je = je->next) {
-            // Each edge lies in its joint, a line of its own: as for the contacts above.
-            if (je->next != nullptr) __builtin_prefetch(je->next);
-            b2Body* other = je->other;
+        // The joint list's edges, read from the graph's copy (one array, not a chain through
+        // the joints).
+        LOCKBOX_ASSERT(joints.Matches(*b), "the island search's joint graph is stale: a joint list changed unmarked");
+        for (const JointGraph::Edge& edge : joints.Of(*b)) {
+            b2Body* other = edge.other;
             // A joint between two bodies without mass (kinematic-static, kinematic-kinematic)
             // can change nothing: it costs nothing either. Tested first, on the body types
             // alone: such a joint may lead into another island, whose flags a worker's walk
@@ -73,8 +77,10 @@ void core_detail::Engine::World::WalkIsland(b2Body* seed, std::vector<b2Body*>& 
             if (other->m_flags & b2Body::e_scannedFlag) continue;
             // Don't simulate joints connected to inactive bodies.
             if (!other->IsActive()) continue;
-            sink.Joint(je->joint);
-            if (sink.Meet(*other)) stack.push_back(other);
+            sink.Joint(edge.joint);
+            if (!sink.Meet(*other)) continue;
+            stack.push_back(other);
+            joints.Prefetch(*other);
         }
     }
 }

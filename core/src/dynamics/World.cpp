@@ -53,6 +53,7 @@ void World::NoteToiBodiesEdit(b2Body& body) noexcept {
 
 void World::MarkJointStructureChanged(const b2Joint& joint) noexcept {
     m_frames.LogStructureChange({0, joint.m_bodyA->GetId(), joint.m_bodyB->GetId(), joint.GetId()});
+    m_jointGraph.Invalidate();
 }
 
 bool World::CheckLocked(const char* what) const {

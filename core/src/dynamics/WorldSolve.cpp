@@ -112,6 +112,7 @@ void World::Solve(const b2TimeStep& step) {
     // solved together, and in the bodies' finish.
     const int32 bodySlots = m_bodies.GetCapacity();
     const bool manyBodies = hasWorkers && bodySlots >= (OnOwnPool() ? kMinPoolBodySlots : kFinishSlotsPerBlock + 1);
+    m_jointGraph.Refresh(m_bodyList, bodySlots);
     if (parallel && manyBodies) {
         FindIslandsOnWorkers(*tasks, tally);
     } else {
@@ -176,7 +177,7 @@ void World::SearchIslands(const b2TimeStep& step, b2TaskSystem* tasks, bool hasW
                 return true;
             }
         } sink{*this};
-        WalkIsland(seed, m_stack, sink);
+        WalkIsland(seed, m_jointGraph, m_stack, sink);
 
         // No other island reaches these bodies: the scan marks have served, and the solve (and
         // any observer's view of it) sees the flags as they were.

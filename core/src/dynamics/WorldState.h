@@ -10,6 +10,7 @@
 #include "Engine.h"
 #include "dynamics/ContactManager.h"
 #include "dynamics/Island.h"
+#include "dynamics/JointGraph.h"
 #include "dynamics/Pool.h"
 #include "dynamics/TimeStep.h"
 #include "lockbox/dynamics/Body.h"
@@ -76,7 +77,10 @@ public:
     /// than copying: bodies', fixtures' and joints' set-up, shapes, pool layouts) calls one of
     /// these. A frame saved before the change is restored through its structure image, or,
     /// for a change confined to bodies and joints created since the frame, by destroying them.
-    void MarkStructureChanged() noexcept { m_frames.MarkStructureChanged(); }
+    void MarkStructureChanged() noexcept {
+        m_frames.MarkStructureChanged();
+        m_jointGraph.Invalidate();
+    }
     /// A change confined to one body: its creation or destruction, its fixtures and their
     /// settings and shapes, its mass, type, activity, damping, gravity scale or user data.
     void MarkBodyStructureChanged(int32 bodyId) noexcept;
@@ -96,6 +100,9 @@ public:
     /// derived from the joints' ids and is rebuilt on restore.
     std::vector<b2Joint*> m_joints;
     int32 m_jointIdHint = 0;  ///< every joint id below it is taken (a cache, not state)
+    /// The joint lists as the island search reads them (derived, not state): invalidated by
+    /// MarkJointStructureChanged, MarkStructureChanged and the restores that relink joints.
+    JointGraph m_jointGraph;
     int32 m_bodyCount = 0;
     int32 m_jointCount = 0;
     b2Vec2 m_gravity;
@@ -251,7 +258,7 @@ private:
     /// 2.2.1's walk of the constraint graph from `seed` that makes an island, into `sink`
     /// (IslandWalk.h).
     template <class Sink>
-    static void WalkIsland(b2Body* seed, std::vector<b2Body*>& stack, Sink& sink);
+    static void WalkIsland(b2Body* seed, const JointGraph& joints, std::vector<b2Body*>& stack, Sink& sink);
     /// Clears the scan marks the walk left on an island's bodies (IslandWalk.h).
     static void ClearScanMarks(std::span<b2Body* const> island) noexcept;
     /// Keeps the island just found in m_island for SolveRecordedIslands.

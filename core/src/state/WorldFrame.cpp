@@ -508,6 +508,7 @@ struct core_detail::Engine::Frames::Undo {
             Joints::Destroy(joint);
         });
         world.m_jointCount -= static_cast<int32>(heads.joints);
+        if (heads.joints > 0) world.m_jointGraph.Invalidate();
         // Bodies: the pools below destroy them and their fixtures.
         DropFromHead(world.m_bodyList, heads.bodies, [](b2Body*) {});
         // Check found every slot of the frame live, so no slot is made here (unreachable).

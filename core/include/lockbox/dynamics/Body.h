@@ -176,11 +176,17 @@ public:
     const b2Fixture* GetFixtureList() const noexcept { return m_fixtureList; }
     ///@}
     /// First edge of the body's joint list (one b2JointEdge per attached joint), or nullptr.
+    ///@{
     b2JointEdge* GetJointList() noexcept { return m_jointList; }
+    const b2JointEdge* GetJointList() const noexcept { return m_jointList; }
+    ///@}
     /// First edge of the body's contact list (one b2ContactEdge per contact of one of its
     /// fixtures, touching or not), or nullptr. Contacts come and go with the broad-phase during
     /// Step: do not keep pointers to them across steps.
+    ///@{
     b2ContactEdge* GetContactList() noexcept { return m_contactList; }
+    const b2ContactEdge* GetContactList() const noexcept { return m_contactList; }
+    ///@}
     /// Next body in the world list (newest first).
     b2Body* GetNext() noexcept { return m_next; }
     /// Next body in the world list (newest first).
