@@ -14,20 +14,28 @@
 
 namespace lockbox::scenes {
 
+/// A time in ms as printed: four decimals, or six below 0.01 ms, where four would leave the
+/// microsecond scenes (hello, the bullets) one or two significant digits.
+inline std::string MsText(double ms) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, ms < 0.01 ? "%.6f" : "%.4f", ms);
+    return buf;
+}
+
 /// The contracted one-line summary of a run.
 inline void PrintLine(const RunResult& r) {
     std::printf(
-        "scene=%s engine=%s steps=%d ms_per_step=%.4f p95_ms=%.4f bodies=%d awake=%d "
+        "scene=%s engine=%s steps=%d ms_per_step=%s p95_ms=%s bodies=%d awake=%d "
         "contacts=%d hash=0x%016" PRIx64 "%s\n",
-        r.scene.c_str(), r.engine.c_str(), r.settings.steps, r.msPerStep, r.p95Ms, r.bodies, r.awake, r.contacts,
-        r.hash, r.workers > 1 ? (" workers=" + std::to_string(r.workers)).c_str() : "");
+        r.scene.c_str(), r.engine.c_str(), r.settings.steps, MsText(r.msPerStep).c_str(), MsText(r.p95Ms).c_str(),
+        r.bodies, r.awake, r.contacts, r.hash, r.workers > 1 ? (" workers=" + std::to_string(r.workers)).c_str() : "");
 }
 
 /// The per-stage profile: wall-clock stages (ms per step) then work counters (per step).
 inline void PrintProfile(const RunResult& r) {
     std::printf("  profile (per step, median over repeats):");
     for (const auto& [k, v] : r.profile)
-        if (k.size() > 3 && k.compare(k.size() - 3, 3, "_ms") == 0) std::printf(" %s=%.4f", k.c_str(), v);
+        if (k.size() > 3 && k.compare(k.size() - 3, 3, "_ms") == 0) std::printf(" %s=%s", k.c_str(), MsText(v).c_str());
     std::printf("\n");
     bool any = false;
     for (const auto& [k, v] : r.profile) {

@@ -393,18 +393,21 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
     char buf[512];
     for (const CompareRow& r : rows) {
         if (r.lockboxOk) {
-            std::snprintf(buf, sizeof buf, "| %s | %d | %d/%d | %.4f | %.4f | %.2f | %.4f | %.4f | %d | %d/%d | %s |\n",
-                          r.name.c_str(), r.steps, r.vel, r.pos, r.lbMs, r.flMs, r.lbMs / r.flMs, r.lbP95, r.flP95,
-                          r.bodies, r.lbContacts, r.flContacts, r.topCosts.c_str());
+            std::snprintf(buf, sizeof buf, "| %s | %d | %d/%d | %s | %s | %.2f | %s | %s | %d | %d/%d | %s |\n",
+                          r.name.c_str(), r.steps, r.vel, r.pos, MsText(r.lbMs).c_str(), MsText(r.flMs).c_str(),
+                          r.lbMs / r.flMs, MsText(r.lbP95).c_str(), MsText(r.flP95).c_str(), r.bodies, r.lbContacts,
+                          r.flContacts, r.topCosts.c_str());
             if (workersColumn) {
                 md << std::string(buf, std::strlen(buf) - 1);
-                std::snprintf(buf, sizeof buf, " %.4f (%.2fx) |\n", r.lbWorkersMs, r.lbMs / r.lbWorkersMs);
+                std::snprintf(buf, sizeof buf, " %s (%.2fx) |\n", MsText(r.lbWorkersMs).c_str(),
+                              r.lbMs / r.lbWorkersMs);
             }
         } else {
             std::snprintf(buf, sizeof buf,
-                          "| %s | %d | %d/%d | n/a | %.4f | n/a | n/a | %.4f | %d | -/%d | "
+                          "| %s | %d | %d/%d | n/a | %s | n/a | n/a | %s | %d | -/%d | "
                           "needs joints |\n",
-                          r.name.c_str(), r.steps, r.vel, r.pos, r.flMs, r.flP95, r.bodies, r.flContacts);
+                          r.name.c_str(), r.steps, r.vel, r.pos, MsText(r.flMs).c_str(), MsText(r.flP95).c_str(),
+                          r.bodies, r.flContacts);
             if (workersColumn) {
                 md << std::string(buf, std::strlen(buf) - 1);
                 std::snprintf(buf, sizeof buf, " n/a |\n");
@@ -415,8 +418,8 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
     md << "\n";
     if (perScene.count("bullet")) {
         const auto& [lb, fl] = perScene["bullet"];
-        std::snprintf(buf, sizeof buf, "bullet (six variants summed): %.4f / %.4f ms = ratio %.2f.\n\n", lb, fl,
-                      lb / fl);
+        std::snprintf(buf, sizeof buf, "bullet (six variants summed): %s / %s ms = ratio %.2f.\n\n", MsText(lb).c_str(),
+                      MsText(fl).c_str(), lb / fl);
         md << buf;
     }
     std::snprintf(buf, sizeof buf,
