@@ -12,7 +12,8 @@ void core_detail::Engine::JointGraph::Refresh(const b2Body* bodyList, int32 slot
     for (const b2Body* b = bodyList; b != nullptr; b = b->m_next) {
         Range& range = m_ranges[static_cast<size_t>(b->m_id)];
         range.begin = static_cast<int32>(m_edges.size());
-        for (const b2JointEdge* je = b->m_jointList; je != nullptr; je = je->next) m_edges.push_back({je->other, je->joint});
+        for (const b2JointEdge* je = b->m_jointList; je != nullptr; je = je->next)
+            m_edges.push_back({je->other, je->joint});
         range.end = static_cast<int32>(m_edges.size());
     }
     // No joint: every body's edges are the empty range, without a table to look in.
