@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Checks that every tracked C++ file is formatted with the committed .clang-format.
+# Checks that every C++ file of the tree (tracked, or new and not ignored) is formatted with
+# the committed .clang-format.
 #   scripts/check-format.sh          report files that differ, exit 1 if any
 #   scripts/check-format.sh --fix    reformat them in place
 # Needs clang-format (Debian package clang-format, installed by scripts/install-deps.sh).
@@ -16,7 +17,8 @@ for arg in "$@"; do
     esac
 done
 
-mapfile -t files < <(git ls-files '*.h' '*.cpp')
+# Untracked sources too (not ignored ones): a new file is checked before it is first added.
+mapfile -t files < <(git ls-files --cached --others --exclude-standard '*.h' '*.cpp')
 if [ "$fix" -eq 1 ]; then
     clang-format -i "${files[@]}"
     exit 0
