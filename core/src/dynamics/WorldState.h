@@ -101,7 +101,7 @@ public:
     std::vector<b2Joint*> m_joints;
     int32 m_jointIdHint = 0;  ///< every joint id below it is taken (a cache, not state)
     /// The joint lists as the island search reads them (derived, not state): invalidated by
-    /// MarkJointStructureChanged, MarkStructureChanged and the restores that relink joints.
+    /// MarkJointStructureChanged, MarkStructureChanged (every restore) and a frame's undo.
     JointGraph m_jointGraph;
     int32 m_bodyCount = 0;
     int32 m_jointCount = 0;

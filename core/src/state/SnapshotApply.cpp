@@ -287,7 +287,6 @@ struct core_detail::Engine::SnapshotApply {
         const JointStateSizes& sizes = state_detail::JointStateBytes();
         b2Joint* previous = nullptr;
         world.m_jointList = nullptr;
-        world.m_jointGraph.Invalidate();
         const size_t count = img.joints.size();
         for (size_t i = 0; i < count; ++i) {
             // Joints lie anywhere in memory: request the parts written of the one a few records

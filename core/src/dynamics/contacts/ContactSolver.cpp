@@ -64,7 +64,7 @@ bool InvertBlock(const b2WideSym22& K, b2WideSym22* inverse) {
     return solver::SetUpContactPoints<Fixed, Wide>(vc, points, cA, cB, A.v, A.w, B.v, B.w);
 }
 
-// Load reads each contact's lines 0, 1 and 3, then its fixtures, then their bodies and shapes:
+// Load reads three of each contact's cache lines, then its fixtures, then their bodies and shapes:
 // three dependent misses in a large island, whose contacts lie scattered over the heap. Each
 // level is requested some places ahead, once the level before it has had time to arrive. Hints
 // only: they change no result.
@@ -99,10 +99,12 @@ void b2ContactSolver::Load(int32 begin, int32 end) {
     };
     for (int32 i = begin; i < end; ++i) {
         if (i + kContactAhead < end) {
-            const auto* bytes = reinterpret_cast<const char*>(m_contacts[i + kContactAhead]);
-            __builtin_prefetch(bytes);
-            __builtin_prefetch(bytes + 64);
-            __builtin_prefetch(bytes + 192);
+            // Named by the fields read, not by offsets: the friction's line, the manifold's
+            // point count (the manifold's last line) and the fixtures' line.
+            const b2Contact* ahead = m_contacts[i + kContactAhead];
+            __builtin_prefetch(&ahead->m_friction);
+            __builtin_prefetch(&ahead->m_manifold.pointCount);
+            __builtin_prefetch(&ahead->m_fixtureA);
         }
         if (i + kFixturesAhead < end) {
             const b2Contact* ahead = m_contacts[i + kFixturesAhead];
