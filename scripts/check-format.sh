@@ -17,6 +17,11 @@ for arg in "$@"; do
     esac
 done
 
+if ! command -v clang-format >/dev/null; then
+    echo "check-format: clang-format not found (install it with scripts/install-deps.sh)" >&2
+    exit 2
+fi
+
 # Untracked sources too (not ignored ones): a new file is checked before it is first added.
 mapfile -t files < <(git ls-files --cached --others --exclude-standard '*.h' '*.cpp')
 if [ "$fix" -eq 1 ]; then
@@ -24,12 +29,20 @@ if [ "$fix" -eq 1 ]; then
     exit 0
 fi
 
+# Batches of files per process, two at a time: one process per file spends most of its time
+# starting up (about 100 s for the tree against under 10 s). A batch that fails is checked again
+# file by file, so that the report names the files, whatever clang-format printed.
 bad=()
-for f in "${files[@]}"; do
+failed_batches="$(mktemp)"
+trap 'rm -f "$failed_batches"' EXIT
+printf '%s\0' "${files[@]}" |
+    xargs -0 -P 2 -n 40 sh -c 'clang-format --dry-run --Werror "$@" >/dev/null 2>&1 || printf "%s\0" "$@"' sh \
+        >"$failed_batches"
+while IFS= read -r -d '' f; do
     if ! clang-format --dry-run --Werror "$f" >/dev/null 2>&1; then
         bad+=("$f")
     fi
-done
+done <"$failed_batches"
 if [ "${#bad[@]}" -ne 0 ]; then
     echo "check-format: ${#bad[@]} file(s) differ from .clang-format (run scripts/check-format.sh --fix):" >&2
     printf '  %s\n' "${bad[@]}" >&2
