@@ -48,16 +48,23 @@ inline void PrintProfile(const RunResult& r) {
 }
 
 /// A short machine name: the CPU model from /proc/cpuinfo, slugified, plus the core count
-/// (e.g. "amd-epyc-7b13-2c").
+/// (e.g. "amd-epyc-7b13-2c"). A virtual machine may report only a vendor and a product line
+/// ("AMD EPYC"), the same words for processors generations apart; a model name without a digit
+/// then also carries the CPU family and model numbers ("amd-epyc-f26m2-2c"), so that two
+/// generations do not file their results in one folder.
 inline std::string MachineName() {
     std::ifstream in("/proc/cpuinfo");
-    std::string line, model = "unknown-cpu";
-    while (std::getline(in, line)) {
-        if (line.rfind("model name", 0) == 0) {
-            const auto colon = line.find(':');
-            if (colon != std::string::npos) model = line.substr(colon + 1);
-            break;
-        }
+    std::string line, model = "unknown-cpu", family, number;
+    // The first processor's "model name", "cpu family" and "model" lines (keys end at the tab).
+    while (std::getline(in, line) && !line.empty()) {
+        const auto colon = line.find(':');
+        if (colon == std::string::npos) continue;
+        const std::string key = line.substr(0, line.find_first_of("\t:"));
+        std::string value = line.substr(colon + 1);
+        while (!value.empty() && value.front() == ' ') value.erase(value.begin());
+        if (key == "model name") model = value;
+        if (key == "cpu family") family = value;
+        if (key == "model") number = value;
     }
     // Trademark marks and generic words carry no information about the machine.
     for (const char* noise : {"(R)", "(TM)", "(r)", "(tm)", "Processor", "CPU"}) {
@@ -77,6 +84,11 @@ inline std::string MachineName() {
             slug += '-';
     }
     while (!slug.empty() && slug.back() == '-') slug.pop_back();
+    const bool numbered = slug.find_first_of("0123456789") != std::string::npos;
+    const auto digits = [](const std::string& s) {
+        return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+    };
+    if (!numbered && digits(family) && digits(number)) slug += "-f" + family + "m" + number;
     const unsigned cores = std::thread::hardware_concurrency();
     return slug + "-" + std::to_string(cores) + "c";
 }
