@@ -24,6 +24,10 @@ fi
 
 # Untracked sources too (not ignored ones): a new file is checked before it is first added.
 mapfile -t files < <(git ls-files --cached --others --exclude-standard '*.h' '*.cpp')
+if [ "${#files[@]}" -eq 0 ]; then
+    echo "check-format: no C++ files found" >&2
+    exit 2
+fi
 if [ "$fix" -eq 1 ]; then
     clang-format -i "${files[@]}"
     exit 0
@@ -31,18 +35,17 @@ fi
 
 # Batches of files per process, two at a time: one process per file spends most of its time
 # starting up (about 100 s for the tree against under 10 s). A batch that fails is checked again
-# file by file, so that the report names the files, whatever clang-format printed.
-bad=()
-failed_batches="$(mktemp)"
-trap 'rm -f "$failed_batches"' EXIT
+# file by file, inside its own process, which names each file that differs in one short write
+# (so the two processes' reports cannot interleave within a name).
+report="$(mktemp)"
+trap 'rm -f "$report"' EXIT
 printf '%s\0' "${files[@]}" |
-    xargs -0 -P 2 -n 40 sh -c 'clang-format --dry-run --Werror "$@" >/dev/null 2>&1 || printf "%s\0" "$@"' sh \
-        >"$failed_batches"
-while IFS= read -r -d '' f; do
-    if ! clang-format --dry-run --Werror "$f" >/dev/null 2>&1; then
-        bad+=("$f")
-    fi
-done <"$failed_batches"
+    xargs -0 -P 2 -n 40 sh -c '
+        clang-format --dry-run --Werror "$@" >/dev/null 2>&1 && exit 0
+        for f in "$@"; do
+            clang-format --dry-run --Werror "$f" >/dev/null 2>&1 || printf "%s\0" "$f"
+        done' sh >"$report"
+mapfile -t -d '' bad <"$report"
 if [ "${#bad[@]}" -ne 0 ]; then
     echo "check-format: ${#bad[@]} file(s) differ from .clang-format (run scripts/check-format.sh --fix):" >&2
     printf '  %s\n' "${bad[@]}" >&2
