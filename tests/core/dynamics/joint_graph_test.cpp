@@ -2,9 +2,9 @@
 // change. Every way a joint list changes between steps is made here: a joint made between two
 // islands, one destroyed in the middle of a chain, a body destroyed with its joints, a new body
 // (in a freed slot) given a joint, a rollback frame that undoes new bodies and their joint, and a
-// snapshot restore that brings back a destroyed joint. After each change the world steps on, and every step must give
-// the bits of a world restored from the state before it (a fresh world, whose copy is built from nothing), and the
-// islands must hold exactly the joints the lists say.
+// snapshot restore that brings back a destroyed joint. After each change the world steps on, and
+// every step must give the bits of a world restored from the state before it (a fresh world,
+// whose copy is built from nothing), and the islands must hold exactly the joints the lists say.
 #include <cstdint>
 #include <vector>
 
