@@ -282,8 +282,7 @@ bool b2Island::Solve(b2Profile* profile, const b2TimeStep& step, const b2Vec2& g
         timer.Restart();
         SolveVelocitiesShared(contactSolver, solverData, gravity);
     } else {
-        contactSolver.Load();
-        contactSolver.InitializeVelocityConstraints();
+        contactSolver.SetUp();
         if (step.warmStarting) contactSolver.WarmStart();
         // Joint loops are entered only when the island has joints.
         if (m_jointCount > 0) m_jointSolver.InitVelocityConstraints(m_joints.data(), m_jointCount, solverData);

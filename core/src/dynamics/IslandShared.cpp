@@ -100,14 +100,13 @@ void Shared::RunBlock(int32 stage, int32 block, void* context) {
     const b2SolverData& data = *s.data;
     switch (st.kind) {
         case Kind::e_integrateVelocities: island.IntegrateVelocities(begin, end, data.step.dt, s.gravity); break;
-        case Kind::e_load: s.contacts->Load(begin, end); break;
         case Kind::e_rotations:
             for (int32 i = begin; i < end; ++i) {
                 const int32 slot = island.m_bodies[static_cast<size_t>(i)]->m_islandIndex;
                 data.rotations[slot].For(data.positions[slot].a);
             }
             break;
-        case Kind::e_init: s.contacts->InitializeVelocityConstraints(begin, end); break;
+        case Kind::e_setUp: s.contacts->SetUp(begin, end); break;
         case Kind::e_warmStart: s.contacts->WarmStart(begin, end); break;
         case Kind::e_jointInit:
             island.m_jointSolver.InitVelocityConstraints(island.m_joints.data(), begin, end, data);
@@ -167,10 +166,9 @@ void b2Island::SolveVelocitiesShared(b2ContactSolver& contacts, const b2SolverDa
     s.gravity = gravity;
     const int32 workers = m_tasks->GetWorkerCount();
     AddStage(s, Kind::e_integrateVelocities, 0, m_bodyCount, workers);
-    AddStage(s, Kind::e_load, 0, m_contactCount, workers);
     // The rotations before the set-up, so that the stages after only read a shared body's cache.
     AddStage(s, Kind::e_rotations, 0, m_bodyCount, workers);
-    AddStage(s, Kind::e_init, 0, m_contactCount, workers);
+    AddStage(s, Kind::e_setUp, 0, m_contactCount, workers);
     if (data.step.warmStarting) AddConstraintStages(s, Kind::e_warmStart, m_contactColours, m_contactCount, workers);
     if (m_jointCount > 0) m_jointSolver.Begin(m_jointCount);
     AddConstraintStages(s, Kind::e_jointInit, m_jointColours, m_jointCount, workers);

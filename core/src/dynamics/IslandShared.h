@@ -13,9 +13,8 @@ namespace lockbox {
 struct core_detail::Engine::Island::Shared {
     enum class Kind : uint8 {
         e_integrateVelocities,  ///< bodies' velocity integration (any split)
-        e_load,                 ///< the contacts' copy into the solver (any split)
         e_rotations,            ///< the bodies' cached rotations brought up to date (any split)
-        e_init,                 ///< InitializeVelocityConstraints (any split)
+        e_setUp,                ///< the contacts' copy into the solver and set-up (any split)
         e_warmStart,            ///< a colour's warm start
         e_jointInit,            ///< a joint colour's set-up (or every joint's, in one block)
         e_jointVelocity,        ///< a joint colour's velocity iteration (or every joint's)
@@ -28,7 +27,7 @@ struct core_detail::Engine::Island::Shared {
         e_storeBodies,          ///< the solver buffers back to the bodies (any split)
     };
     struct Stage {
-        Kind kind = Kind::e_init;
+        Kind kind = Kind::e_setUp;
         int32 begin = 0, end = 0;  ///< items (bodies or constraints) of the stage
         int32 blockSize = 1;
         bool endsIteration = false;  ///< the last stage of a position iteration

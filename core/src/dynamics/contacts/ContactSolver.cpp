@@ -98,7 +98,7 @@ void b2ContactSolver::Load(int32 begin, int32 end) {
         __builtin_prefetch(&fixture->m_shape->m_radius);
     };
     for (int32 i = begin; i < end; ++i) {
-        if (i + kContactAhead < end) {
+        if (i + kContactAhead < m_count) {
             // Named by the fields read, not by offsets: the friction's line, the manifold's
             // point count (the manifold's last line) and the fixtures' line.
             const b2Contact* ahead = m_contacts[i + kContactAhead];
@@ -106,12 +106,12 @@ void b2ContactSolver::Load(int32 begin, int32 end) {
             __builtin_prefetch(&ahead->m_manifold.pointCount);
             __builtin_prefetch(&ahead->m_fixtureA);
         }
-        if (i + kFixturesAhead < end) {
+        if (i + kFixturesAhead < m_count) {
             const b2Contact* ahead = m_contacts[i + kFixturesAhead];
             __builtin_prefetch(&ahead->m_fixtureA->m_body);
             __builtin_prefetch(&ahead->m_fixtureB->m_body);
         }
-        if (i + kBodiesAhead < end) {
+        if (i + kBodiesAhead < m_count) {
             const b2Contact* ahead = m_contacts[i + kBodiesAhead];
             prefetchBodyAndShape(ahead->m_fixtureA);
             prefetchBodyAndShape(ahead->m_fixtureB);
@@ -170,6 +170,18 @@ void b2ContactSolver::Load(int32 begin, int32 end) {
 #else
         pc->unchecked = b2ContactPositionConstraint::Widths();
 #endif
+    }
+}
+
+void b2ContactSolver::SetUp(int32 begin, int32 end) {
+    // A large island's constraints do not fit in the cache: copied in one pass and set up in
+    // another, each row would be fetched from memory twice (and its lane row a third time).
+    // Each contact's set-up reads only its own copy, so any grouping gives the same bits.
+    constexpr int32 kContactsPerGroup = 32;
+    for (int32 first = begin; first < end; first += kContactsPerGroup) {
+        const int32 last = b2Min(end, first + kContactsPerGroup);
+        Load(first, last);
+        InitializeVelocityConstraints(first, last);
     }
 }
 

@@ -133,6 +133,10 @@ public:
     void InitializeVelocityConstraints() { InitializeVelocityConstraints(0, m_count); }
     /// The same for constraints [begin, end) (each reads the bodies and writes only itself).
     void InitializeVelocityConstraints(int32 begin, int32 end);
+    /// Load and InitializeVelocityConstraints for contacts [begin, end), a few contacts at a
+    /// time, so that the set-up reads each constraint while its copy is still in the cache.
+    void SetUp(int32 begin, int32 end);
+    void SetUp() { SetUp(0, m_count); }
     /// Applies the accumulated impulses of the previous step.
     void WarmStart() { WarmStart(0, m_count); }
     /// The same for constraints [begin, end), in order.
