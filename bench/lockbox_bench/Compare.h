@@ -77,6 +77,7 @@ struct CompareRow {
     std::string hash, topCosts;
     int workers = 1;                         ///< worker count of the extra lockbox run (1: none)
     double lbWorkersMs = 0;                  ///< lockbox ms/step on `workers` threads
+    int rounds = 0;                          ///< runs per engine the medians are taken over (0: not recorded)
     std::vector<double> lbStages, flStages;  ///< ms/step of each stage of kStages (empty: not measured)
 };
 
@@ -126,10 +127,14 @@ inline std::vector<CompareRow> ReadCompareCsv(const std::filesystem::path& path)
                 r.flStages.push_back(num(f[19 + kStageCount + i]));
             }
         }
+        if (f.size() >= 20 + 2 * kStageCount) r.rounds = static_cast<int>(num(f[19 + 2 * kStageCount]));
         rows.push_back(r);
     }
     return rows;
 }
+
+/// A row's run count for the table ("-" for a row kept from a table that did not record it).
+inline std::string RunsText(const CompareRow& r) { return r.rounds > 0 ? std::to_string(r.rounds) : "-"; }
 
 /// ms as microseconds with about three significant digits, never in exponent form.
 inline std::string Micros(double ms) {
@@ -228,6 +233,20 @@ inline std::string UnknownCompareScene(const std::vector<std::string>& only) {
     return {};
 }
 
+/// How many runs per engine a scene gets: at least `repeat`, and for a scene whose run lasts
+/// only microseconds to a few milliseconds, enough runs for each engine to step for about
+/// kMeasuredMs in all, so that one descheduled moment cannot move the median. An odd count, so
+/// the median is one run's figure. `lockbox` and `float` are the first round's runs.
+inline int RoundsFor(int repeat, const RunResult& lockbox, const RunResult& flt) {
+    constexpr double kMeasuredMs = 200;
+    constexpr int kMaxRounds = 301;
+    const auto runMs = [](const RunResult& r) { return r.msPerStep * r.settings.steps; };
+    const double shortest = std::min(runMs(lockbox), runMs(flt));
+    if (repeat >= kMaxRounds || !(shortest > 0)) return repeat;
+    const int wanted = static_cast<int>(std::ceil(kMeasuredMs / shortest)) | 1;
+    return std::max(repeat, std::min(kMaxRounds, wanted));
+}
+
 /// Runs the comparison for `only` (every SCENES.md scene when empty; other rows are kept from
 /// the existing compare.csv) and rewrites compare.csv and the tables; false when nothing could
 /// be compared. With `outDir` set, compare.csv and the tables (compare.md) go there, and
@@ -263,7 +282,8 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
             continue;
         }
         std::vector<RunResult> lbRuns, flRuns, wkRuns;
-        for (int i = 0; i < repeat; ++i) {
+        int rounds = repeat;
+        for (int i = 0; i < rounds; ++i) {
             RunResult a, b, w;
             bool okA = true;
             if (i % 2 == 0) {
@@ -277,6 +297,7 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
             }
             if (okA) lbRuns.push_back(a);
             flRuns.push_back(b);
+            if (i == 0) rounds = RoundsFor(repeat, okA ? a : b, b);
         }
         const RunResult fl = MedianOf(flRuns);
         PrintLine(fl);
@@ -285,6 +306,7 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
         row.steps = fl.settings.steps, row.vel = fl.settings.velocityIterations;
         row.pos = fl.settings.positionIterations, row.hz = fl.settings.hz;
         row.flMs = fl.msPerStep, row.flP95 = fl.p95Ms, row.bodies = fl.bodies;
+        row.rounds = rounds;
         row.flAwake = fl.awake, row.flContacts = fl.contacts;
         if (!lbRuns.empty()) {
             const RunResult lb = MedianOf(lbRuns);
@@ -345,7 +367,7 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
                "lockbox_hash,top_costs,workers,lockbox_workers_ms_per_step";
         for (const char* engine : {"lockbox", "float"})
             for (const auto& stage : kStages) csv << "," << engine << "_" << stage.first;
-        csv << "\n";
+        csv << ",runs\n";
         for (const CompareRow& r : rows) {
             csv << r.name << "," << r.steps << "," << r.vel << "," << r.pos << "," << r.hz << ",";
             if (r.lockboxOk) {
@@ -358,16 +380,21 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
                         csv << ",";
                         if (i < stages->size()) csv << (*stages)[i];
                     }
-                csv << "\n";
             } else {
                 csv << ",," << r.flMs << "," << r.flP95 << ",," << r.bodies << ",," << r.flAwake << ",," << r.flContacts
-                    << ",,unavailable,1,\n";
+                    << ",,unavailable,1,";
+                for (size_t i = 0; i < 2 * kStageCount; ++i) csv << ",";
             }
+            csv << ",";
+            if (r.rounds > 0) csv << r.rounds;
+            csv << "\n";
         }
     }
 
     std::ostringstream md;
-    md << "Machine `" << machine << "`, " << repeat << " repeat(s) per engine, engines alternating; "
+    md << "Machine `" << machine << "`, at least " << repeat
+       << " run(s) per engine, engines alternating (a scene whose run lasts under 200 ms runs until each engine "
+          "has stepped for about 200 ms, at most 301 times; `runs` gives the count); "
        << "release build; only `b2World::Step` is timed. Same scene definitions, iterations and time step "
           "(1092/65536 s) on both engines.";
     if (keptRows > 0) {
@@ -385,18 +412,18 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
         if (r.workers != tableWorkers) tableWorkers = 1;
     }
     const bool workersColumn = tableWorkers > 1;
-    md << "| scene | steps | vel/pos | lockbox ms/step | float ms/step | ratio | lockbox p95 | float p95 | "
+    md << "| scene | steps | runs | vel/pos | lockbox ms/step | float ms/step | ratio | lockbox p95 | float p95 | "
           "bodies | contacts lockbox/float | lockbox top costs |";
     if (workersColumn) md << " lockbox " << tableWorkers << " workers ms/step (speed-up) |";
-    md << "\n| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |"
+    md << "\n| --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |"
        << (workersColumn ? " ---: |" : "") << "\n";
     char buf[512];
     for (const CompareRow& r : rows) {
         if (r.lockboxOk) {
-            std::snprintf(buf, sizeof buf, "| %s | %d | %d/%d | %s | %s | %.2f | %s | %s | %d | %d/%d | %s |\n",
-                          r.name.c_str(), r.steps, r.vel, r.pos, MsText(r.lbMs).c_str(), MsText(r.flMs).c_str(),
-                          r.lbMs / r.flMs, MsText(r.lbP95).c_str(), MsText(r.flP95).c_str(), r.bodies, r.lbContacts,
-                          r.flContacts, r.topCosts.c_str());
+            std::snprintf(buf, sizeof buf, "| %s | %d | %s | %d/%d | %s | %s | %.2f | %s | %s | %d | %d/%d | %s |\n",
+                          r.name.c_str(), r.steps, RunsText(r).c_str(), r.vel, r.pos, MsText(r.lbMs).c_str(),
+                          MsText(r.flMs).c_str(), r.lbMs / r.flMs, MsText(r.lbP95).c_str(), MsText(r.flP95).c_str(),
+                          r.bodies, r.lbContacts, r.flContacts, r.topCosts.c_str());
             if (workersColumn) {
                 md << std::string(buf, std::strlen(buf) - 1);
                 std::snprintf(buf, sizeof buf, " %s (%.2fx) |\n", MsText(r.lbWorkersMs).c_str(),
@@ -404,10 +431,10 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
             }
         } else {
             std::snprintf(buf, sizeof buf,
-                          "| %s | %d | %d/%d | n/a | %s | n/a | n/a | %s | %d | -/%d | "
+                          "| %s | %d | %s | %d/%d | n/a | %s | n/a | n/a | %s | %d | -/%d | "
                           "needs joints |\n",
-                          r.name.c_str(), r.steps, r.vel, r.pos, MsText(r.flMs).c_str(), MsText(r.flP95).c_str(),
-                          r.bodies, r.flContacts);
+                          r.name.c_str(), r.steps, RunsText(r).c_str(), r.vel, r.pos, MsText(r.flMs).c_str(),
+                          MsText(r.flP95).c_str(), r.bodies, r.flContacts);
             if (workersColumn) {
                 md << std::string(buf, std::strlen(buf) - 1);
                 std::snprintf(buf, sizeof buf, " n/a |\n");

@@ -5,8 +5,8 @@
 //   lockbox_bench ... --workers N   (lockbox steps on N threads, b2World::SetWorkerCount; with
 //                 --compare, lockbox runs at 1 and at N workers and the table gains a column)
 //   lockbox_bench --all --compare [--repeat R]   (every SCENES.md scene, both engines,
-//                 alternating; writes bench/results/<machine>/compare.csv and the table in
-//                 docs/benchmarks.md)
+//                 alternating, at least R runs each and more for scenes of short runs; writes
+//                 bench/results/<machine>/compare.csv and the table in docs/benchmarks.md)
 //   lockbox_bench --all --compare --scenes a,b [--repeat R]   (re-measure some scenes, keep
 //                 the other rows of compare.csv; the table names the re-measured ones; a name
 //                 that is not a shared scene is refused before anything runs)
