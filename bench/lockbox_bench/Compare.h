@@ -307,6 +307,7 @@ inline bool RunCompare(int repeat, const std::vector<std::string>& only = {}, in
         row.pos = fl.settings.positionIterations, row.hz = fl.settings.hz;
         row.flMs = fl.msPerStep, row.flP95 = fl.p95Ms, row.bodies = fl.bodies;
         row.rounds = rounds;
+        std::printf("scene=%s runs=%d\n", key.c_str(), rounds);
         row.flAwake = fl.awake, row.flContacts = fl.contacts;
         if (!lbRuns.empty()) {
             const RunResult lb = MedianOf(lbRuns);
