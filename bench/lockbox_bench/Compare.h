@@ -235,8 +235,8 @@ inline std::string UnknownCompareScene(const std::vector<std::string>& only) {
 
 /// How many runs per engine a scene gets: at least `repeat`, and for a scene whose run lasts
 /// only microseconds to a few milliseconds, enough runs for each engine to step for about
-/// kMeasuredMs in all, so that one descheduled moment cannot move the median. An odd count, so
-/// the median is one run's figure. `lockbox` and `float` are the first round's runs.
+/// kMeasuredMs in all, so that one descheduled moment cannot move the median. A raised count is
+/// odd, so the median is one run's figure. `lockbox` and `float` are the first round's runs.
 inline int RoundsFor(int repeat, const RunResult& lockbox, const RunResult& flt) {
     constexpr double kMeasuredMs = 200;
     constexpr int kMaxRounds = 301;
